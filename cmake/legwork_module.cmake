@@ -1,0 +1,44 @@
+# legwork_module(NAME DEPS a b ... LIBS x y ...)
+# One static library per module: sources are src/NAME/*.cpp, public headers
+# include/legwork/NAME/*.hpp. Exposed as legwork::NAME.
+function(legwork_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS;LIBS" ${ARGN})
+  file(GLOB srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${name}/*.cpp)
+  if(NOT srcs)
+    message(STATUS "legwork: module ${name} has no sources yet; skipped")
+    return()
+  endif()
+  add_library(legwork_${name} STATIC ${srcs})
+  add_library(legwork::${name} ALIAS legwork_${name})
+  target_include_directories(legwork_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
+  target_compile_features(legwork_${name} PUBLIC cxx_std_20)
+  foreach(d IN LISTS ARG_DEPS)
+    target_link_libraries(legwork_${name} PUBLIC legwork::${d})
+  endforeach()
+  target_link_libraries(legwork_${name} PUBLIC ${ARG_LIBS})
+  legwork_warnings(legwork_${name})
+endfunction()
+
+function(legwork_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wno-psabi
+    # GCC 12 false positives in std::string concatenation (GCC bug 105329).
+    -Wno-restrict)
+  if(LEGWORK_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+# legwork_tests(NAME LIBS ...): tests/NAME/*_test.cpp -> one gtest executable.
+function(legwork_tests name)
+  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
+  file(GLOB srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/${name}/*_test.cpp)
+  if(NOT srcs)
+    return()
+  endif()
+  add_executable(test_${name} ${srcs})
+  target_link_libraries(test_${name} PRIVATE ${ARG_LIBS} legwork_testdata GTest::gtest_main)
+  legwork_warnings(test_${name})
+  gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60
+    PROPERTIES ENVIRONMENT "LEGWORK_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+endfunction()

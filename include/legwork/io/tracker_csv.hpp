@@ -1,0 +1,41 @@
+#pragma once
+// Tracked points over time as CSV: a header "time,<name>_x,<name>_y,<name>_z,..."
+// then one row per sample. Time in seconds, strictly increasing; positions in
+// metres in legwork's world frame (y up). Optional quaternion columns
+// "<name>_qw,<name>_qx,<name>_qy,<name>_qz" carry an orientation (e.g. the
+// headset's). Empty cells or "nan" mark a dropped sample for that point.
+#include <legwork/core/types.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace legwork::io {
+
+struct TrackedPoint {
+  std::string name;
+  bool has_rotation = false;
+  std::vector<Vec3> position;         // one per sample; NaN where dropped
+  std::vector<Quat> rotation;         // only if has_rotation; NaN where dropped
+  std::vector<unsigned char> valid;   // 1 if the sample is present and finite
+};
+
+struct TrackerTable {
+  std::vector<double> time;
+  std::vector<TrackedPoint> points;
+
+  int sample_count() const { return static_cast<int>(time.size()); }
+  // Point by name; throws legwork::Error listing the names present if absent.
+  const TrackedPoint& point(std::string_view name) const;
+  bool has(std::string_view name) const;
+};
+
+// Errors (legwork::Error) name the file, line and column: missing "time"
+// column, a point without all of _x/_y/_z, non-numeric cells, time not
+// strictly increasing, rows with the wrong number of cells.
+TrackerTable parse_tracker_csv(std::string_view text, std::string_view source);
+TrackerTable read_tracker_csv(const std::string& path);
+std::string format_tracker_csv(const TrackerTable& t);
+void write_tracker_csv(const std::string& path, const TrackerTable& t);
+
+}  // namespace legwork::io

@@ -1,0 +1,339 @@
+// BVH reader: a hand-written tokenizer (the format is tiny) with precise
+// errors, and a motion-section parser built on std::from_chars so that no
+// value allocates.
+#include <legwork/core/fk.hpp>
+#include <legwork/core/measure.hpp>
+#include <legwork/io/bvh.hpp>
+#include <legwork/io/text.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace legwork::io {
+
+namespace {
+
+class Lexer {
+ public:
+  Lexer(std::string_view text, std::string_view source) : text_(text), source_(source) {}
+
+  [[noreturn]] void fail(const std::string& what, int line = -1) const {
+    std::ostringstream os;
+    os << source_ << ":" << (line < 0 ? line_ : line) << ": " << what;
+    throw Error(os.str());
+  }
+
+  // Next whitespace-separated token; empty at end of input.
+  std::string_view next() {
+    skip_space();
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && !is_space(text_[pos_])) ++pos_;
+    return text_.substr(start, pos_ - start);
+  }
+  std::string_view peek() {
+    const std::size_t p = pos_;
+    const int l = line_;
+    auto t = next();
+    pos_ = p;
+    line_ = l;
+    return t;
+  }
+  void expect(std::string_view want, std::string_view context) {
+    auto t = next();
+    if (t != want)
+      fail("expected '" + std::string(want) + "' " + std::string(context) + ", found " + describe(t));
+  }
+  double number(std::string_view what) {
+    auto t = next();
+    double v = 0;
+    if (!parse_double(t, v)) fail("expected a number for " + std::string(what) + ", found " + describe(t));
+    if (!std::isfinite(v)) fail(std::string(what) + " is not finite ('" + std::string(t) + "')");
+    return v;
+  }
+  int line() const { return line_; }
+  std::size_t pos() const { return pos_; }
+  void set_pos(std::size_t p, int line) { pos_ = p, line_ = line; }
+  std::string_view text() const { return text_; }
+
+  static std::string describe(std::string_view t) {
+    return t.empty() ? std::string("end of file") : "'" + std::string(t.substr(0, 40)) + "'";
+  }
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+  static bool parse_double(std::string_view t, double& v) {
+    if (t.empty()) return false;
+    const char* b = t.data();
+    const char* e = b + t.size();
+    if (*b == '+') ++b;
+    auto [ptr, ec] = std::from_chars(b, e, v);
+    return ec == std::errc() && ptr == e;
+  }
+
+ private:
+  void skip_space() {
+    while (pos_ < text_.size() && is_space(text_[pos_])) {
+      if (text_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+  }
+  std::string_view text_, source_;
+  std::size_t pos_ = 0;
+  int line_ = 1;
+};
+
+bool parse_channel(std::string_view t, Channel& c) {
+  static constexpr std::pair<std::string_view, Channel> names[] = {
+      {"Xposition", Channel::Xposition}, {"Yposition", Channel::Yposition}, {"Zposition", Channel::Zposition},
+      {"Xrotation", Channel::Xrotation}, {"Yrotation", Channel::Yrotation}, {"Zrotation", Channel::Zrotation}};
+  for (auto [n, ch] : names)
+    if (t == n) return c = ch, true;
+  return false;
+}
+
+bool is_rotation(Channel c) { return c >= Channel::Xrotation; }
+int axis_of(Channel c) { return is_rotation(c) ? static_cast<int>(c) - 3 : static_cast<int>(c); }
+
+void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int joint);
+
+void parse_joint(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int parent) {
+  auto name = lx.next();
+  if (name.empty() || name == "{") lx.fail("expected a joint name after JOINT/ROOT, found " + Lexer::describe(name));
+  if (skel.find(name) >= 0) lx.fail("duplicate joint name '" + std::string(name) + "'");
+  int j = skel.add_joint(std::string(name), parent, Vec3::Zero());
+  channels.emplace_back();
+  lx.expect("{", "after joint '" + std::string(name) + "'");
+  parse_joint_body(lx, skel, channels, j);
+}
+
+void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int j) {
+  const std::string jname = skel.names[static_cast<std::size_t>(j)];
+  bool have_offset = false, have_channels = false;
+  for (;;) {
+    const int line = lx.line();
+    auto t = lx.next();
+    if (t == "OFFSET") {
+      Vec3 o;
+      for (int k = 0; k < 3; ++k) o[k] = lx.number("OFFSET of joint '" + jname + "'");
+      skel.rest_offsets[static_cast<std::size_t>(j)] = o;
+      have_offset = true;
+    } else if (t == "CHANNELS") {
+      auto count_tok = lx.next();
+      double cnt = 0;
+      if (!Lexer::parse_double(count_tok, cnt) || cnt < 0 || cnt > 6 || cnt != std::floor(cnt))
+        lx.fail("CHANNELS of joint '" + jname + "' needs a count from 0 to 6, found " + Lexer::describe(count_tok));
+      auto& jc = channels[static_cast<std::size_t>(j)].channels;
+      for (int k = 0; k < static_cast<int>(cnt); ++k) {
+        auto ct = lx.next();
+        Channel c;
+        if (!parse_channel(ct, c))
+          lx.fail("unknown channel " + Lexer::describe(ct) + " for joint '" + jname +
+                  "' (expected Xposition, Yposition, Zposition, Xrotation, Yrotation or Zrotation)");
+        for (Channel prev : jc)
+          if (prev == c) lx.fail("channel " + std::string(ct) + " repeated for joint '" + jname + "'");
+        jc.push_back(c);
+      }
+      have_channels = true;
+    } else if (t == "JOINT") {
+      parse_joint(lx, skel, channels, j);
+    } else if (t == "End") {
+      auto site = lx.next();
+      if (site != "Site") lx.fail("expected 'Site' after 'End', found " + Lexer::describe(site));
+      lx.expect("{", "after End Site of joint '" + jname + "'");
+      lx.expect("OFFSET", "in End Site of joint '" + jname + "'");
+      Vec3 o;
+      for (int k = 0; k < 3; ++k) o[k] = lx.number("End Site OFFSET of joint '" + jname + "'");
+      lx.expect("}", "closing End Site of joint '" + jname + "'");
+      skel.end_sites[static_cast<std::size_t>(j)] = o;
+      skel.has_end_site[static_cast<std::size_t>(j)] = 1;
+    } else if (t == "}") {
+      if (!have_offset) lx.fail("joint '" + jname + "' has no OFFSET", line);
+      if (!have_channels) lx.fail("joint '" + jname + "' has no CHANNELS", line);
+      return;
+    } else {
+      lx.fail("unexpected " + Lexer::describe(t) + " in joint '" + jname +
+              "' (expected OFFSET, CHANNELS, JOINT, End Site or '}')", line);
+    }
+  }
+}
+
+// "Frames:" may be written "Frames:" or "Frames :"; "Frame Time:" likewise.
+void expect_label(Lexer& lx, std::initializer_list<std::string_view> words, const std::string& label) {
+  for (auto w : words) {
+    auto t = lx.next();
+    std::string_view want = w;
+    if (t == want) continue;
+    if (t.size() == want.size() + 1 && t.substr(0, want.size()) == want && t.back() == ':' ) continue;
+    if (t == std::string(want) + ":") continue;
+    lx.fail("missing '" + label + "' line (found " + Lexer::describe(t) + ")");
+  }
+  if (lx.peek() == ":") lx.next();
+}
+
+}  // namespace
+
+Quat euler_to_quat(const Channel* order, const double* degrees, int n) {
+  Quat q = Quat::Identity();
+  for (int k = 0; k < n; ++k) {
+    Vec3 axis = Vec3::Zero();
+    axis[axis_of(order[k])] = 1.0;
+    q = q * Quat(Eigen::AngleAxisd(deg2rad(degrees[k]), axis));
+  }
+  return q;
+}
+
+BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadOptions& opt) {
+  Lexer lx(text, source);
+  BvhFile out;
+  Skeleton skel;
+  if (auto t = lx.next(); t != "HIERARCHY")
+    lx.fail("expected 'HIERARCHY' at the start of a BVH file, found " + Lexer::describe(t));
+  if (auto t = lx.next(); t != "ROOT") lx.fail("expected 'ROOT' after HIERARCHY, found " + Lexer::describe(t));
+  parse_joint(lx, skel, out.channels, -1);
+  if (auto t = lx.next(); t != "MOTION") {
+    if (t == "ROOT") lx.fail("more than one ROOT; legwork reads single-root BVH files");
+    lx.fail("expected 'MOTION' after the hierarchy, found " + Lexer::describe(t));
+  }
+  expect_label(lx, {"Frames"}, "Frames:");
+  const int frames_line = lx.line();
+  auto ft = lx.next();
+  double declared = 0;
+  if (!Lexer::parse_double(ft, declared) || declared < 0 || declared != std::floor(declared) || declared > 1e8)
+    lx.fail("'Frames:' needs a whole number, found " + Lexer::describe(ft), frames_line);
+  expect_label(lx, {"Frame", "Time"}, "Frame Time:");
+  const double frame_time = lx.number("Frame Time");
+  if (!(frame_time > 0)) lx.fail("'Frame Time:' must be positive, found " + std::to_string(frame_time));
+
+  int total = 0;
+  for (const auto& jc : out.channels) total += static_cast<int>(jc.channels.size());
+  const int n = skel.joint_count();
+
+  // Motion lines: skip to the end of the Frame Time line.
+  std::string_view t = lx.text();
+  std::size_t p = lx.pos();
+  int line = lx.line();
+  while (p < t.size() && t[p] != '\n') {
+    if (!Lexer::is_space(t[p])) lx.fail("unexpected text after Frame Time value");
+    ++p;
+  }
+  std::vector<double> values;
+  values.reserve(static_cast<std::size_t>(declared) * static_cast<std::size_t>(total));
+  int frames = 0;
+  while (p < t.size()) {
+    ++p;  // past '\n'
+    ++line;
+    int count = 0;
+    bool blank = true;
+    while (p < t.size() && t[p] != '\n') {
+      char c = t[p];
+      if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') { ++p; continue; }
+      blank = false;
+      const char* b = t.data() + p;
+      const char* e = t.data() + t.size();
+      if (*b == '+') ++b;
+      double v;
+      auto [ptr, ec] = std::from_chars(b, e, v);
+      if (ec != std::errc() || (ptr < e && !Lexer::is_space(*ptr))) {
+        std::size_t q = p;
+        while (q < t.size() && !Lexer::is_space(t[q])) ++q;
+        lx.fail("motion line value " + std::to_string(count + 1) + " is not a number: '" +
+                    std::string(t.substr(p, std::min<std::size_t>(q - p, 40))) + "'", line);
+      }
+      if (!std::isfinite(v))
+        lx.fail("motion line value " + std::to_string(count + 1) + " is not finite (NaN or Inf)", line);
+      if (count >= total)
+        lx.fail("motion line has more than the " + std::to_string(total) + " values the hierarchy declares", line);
+      values.push_back(v);
+      ++count;
+      p = static_cast<std::size_t>(ptr - t.data());
+    }
+    if (blank) continue;
+    if (count < total)
+      lx.fail("motion line has " + std::to_string(count) + " values, the hierarchy declares " + std::to_string(total) +
+                  " channels", line);
+    ++frames;
+  }
+  if (frames != static_cast<int>(declared)) {
+    std::ostringstream os;
+    os << "'Frames: " << static_cast<long>(declared) << "' but the file has " << frames << " motion lines";
+    if (opt.strict_frame_count || frames < static_cast<int>(declared)) lx.fail(os.str(), frames_line);
+    out.report.warnings.push_back(os.str() + "; using the " + std::to_string(std::min(frames, static_cast<int>(declared))) + " declared frames");
+    frames = std::min(frames, static_cast<int>(declared));
+  }
+  if (frames == 0) lx.fail("the file has no motion frames", frames_line);
+  out.report.declared_frames = static_cast<int>(declared);
+
+  // Units: from the rest pose's height in file units.
+  double scale = opt.scale;
+  if (scale <= 0) {
+    resolve_roles(skel);
+    double h = measure_body(skel).standing_height;
+    scale = guess_unit_scale(h, &out.report.scale_reason);
+    if (scale == 0) throw Error(std::string(source) + ": " + out.report.scale_reason);
+  } else {
+    out.report.scale_reason = "given scale x" + std::to_string(scale);
+  }
+  out.report.scale = scale;
+  skel.scale(scale);
+
+  // Frames that are all zeros (a CMU export glitch) are replaced by the nearest real one.
+  auto zero_line = [&](int f) {
+    const double* v = values.data() + static_cast<std::size_t>(f) * static_cast<std::size_t>(total);
+    for (int k = 0; k < total; ++k)
+      if (v[k] != 0.0) return false;
+    return total > 0;
+  };
+  std::vector<int> source_frame(static_cast<std::size_t>(frames));
+  for (int f = 0; f < frames; ++f) source_frame[static_cast<std::size_t>(f)] = f;
+  if (opt.repair_zero_frames) {
+    for (int f = 0; f < frames; ++f) {
+      if (!zero_line(f)) continue;
+      int best = -1;
+      for (int d = 1; d < frames && best < 0; ++d) {
+        if (f + d < frames && !zero_line(f + d)) best = f + d;
+        else if (f - d >= 0 && !zero_line(f - d)) best = f - d;
+      }
+      if (best >= 0) {
+        source_frame[static_cast<std::size_t>(f)] = best;
+        ++out.report.repaired_zero_frames;
+      }
+    }
+  }
+
+  const int first = opt.drop_first_frame && frames > 1 ? 1 : 0;
+  out.report.dropped_first_frame = first == 1;
+  Motion m(skel, 1.0 / frame_time, frames - first);
+  for (int f = first; f < frames; ++f) {
+    const double* v = values.data() + static_cast<std::size_t>(source_frame[static_cast<std::size_t>(f)]) *
+                                          static_cast<std::size_t>(total);
+    PoseRef pose = m.frame(f - first);
+    for (int j = 0; j < n; ++j) {
+      const auto& jc = out.channels[static_cast<std::size_t>(j)].channels;
+      Vec3 tr = m.skeleton.rest_offsets[static_cast<std::size_t>(j)];
+      Quat q = Quat::Identity();
+      for (std::size_t k = 0; k < jc.size(); ++k) {
+        const Channel c = jc[k];
+        if (is_rotation(c)) {
+          Vec3 axis = Vec3::Zero();
+          axis[axis_of(c)] = 1.0;
+          q = q * Quat(Eigen::AngleAxisd(deg2rad(v[k]), axis));
+        } else {
+          tr[axis_of(c)] = v[k] * scale;
+        }
+      }
+      v += jc.size();
+      pose.rotations[static_cast<std::size_t>(j)] = q;
+      pose.translations[static_cast<std::size_t>(j)] = tr;
+    }
+  }
+  if (opt.resolve_roles) out.report.missing_roles = resolve_roles(m.skeleton);
+  out.motion = std::move(m);
+  return out;
+}
+
+BvhFile read_bvh(const std::string& path, const BvhReadOptions& opt) {
+  return parse_bvh(read_text_file(path), path, opt);
+}
+
+Motion load_bvh(const std::string& path, const BvhReadOptions& opt) { return read_bvh(path, opt).motion; }
+
+}  // namespace legwork::io

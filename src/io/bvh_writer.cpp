@@ -1,0 +1,124 @@
+#include <legwork/io/bvh.hpp>
+#include <legwork/io/text.hpp>
+
+#include <charconv>
+#include <cmath>
+
+namespace legwork::io {
+
+namespace {
+
+const char* channel_name(Channel c) {
+  static const char* names[] = {"Xposition", "Yposition", "Zposition", "Xrotation", "Yrotation", "Zrotation"};
+  return names[static_cast<int>(c)];
+}
+
+void append_number(std::string& out, double v) {
+  char buf[64];
+  if (std::abs(v) < 5e-7) v = 0.0;  // no "-0.000000"
+  auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 6);
+  out.append(buf, ptr);
+}
+
+std::vector<JointChannels> default_layout(const Skeleton& s) {
+  std::vector<JointChannels> out(static_cast<std::size_t>(s.joint_count()));
+  for (int j = 0; j < s.joint_count(); ++j) {
+    auto& c = out[static_cast<std::size_t>(j)].channels;
+    if (j == 0) c = {Channel::Xposition, Channel::Yposition, Channel::Zposition};
+    c.insert(c.end(), {Channel::Zrotation, Channel::Yrotation, Channel::Xrotation});
+  }
+  return out;
+}
+
+void write_joint(std::string& out, const Skeleton& s, const std::vector<JointChannels>& layout, int j, int depth,
+                 double scale) {
+  const std::string ind(static_cast<std::size_t>(depth), '\t');
+  out += ind + (j == 0 ? "ROOT " : "JOINT ") + s.names[static_cast<std::size_t>(j)] + "\n" + ind + "{\n";
+  out += ind + "\tOFFSET";
+  for (int k = 0; k < 3; ++k) out += ' ', append_number(out, s.rest_offsets[static_cast<std::size_t>(j)][k] * scale);
+  const auto& ch = layout[static_cast<std::size_t>(j)].channels;
+  out += "\n" + ind + "\tCHANNELS " + std::to_string(ch.size());
+  for (Channel c : ch) out += ' ', out += channel_name(c);
+  out += '\n';
+  for (int c : s.children(j)) write_joint(out, s, layout, c, depth + 1, scale);
+  if (s.has_end_site[static_cast<std::size_t>(j)]) {
+    out += ind + "\tEnd Site\n" + ind + "\t{\n" + ind + "\t\tOFFSET";
+    for (int k = 0; k < 3; ++k) out += ' ', append_number(out, s.end_sites[static_cast<std::size_t>(j)][k] * scale);
+    out += "\n" + ind + "\t}\n";
+  }
+  out += ind + "}\n";
+}
+
+}  // namespace
+
+void quat_to_euler(const Quat& q, const Channel* order, double* degrees) {
+  // R = Ri(a) Rj(b) Rk(c) with distinct axes i, j, k (Tait-Bryan).
+  const int i = static_cast<int>(order[0]) - 3, j = static_cast<int>(order[1]) - 3, k = static_cast<int>(order[2]) - 3;
+  const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
+  const double s = ((j - i + 3) % 3 == 1) ? 1.0 : -1.0;  // even permutation of (0,1,2)?
+  const double sb = std::clamp(s * R(i, k), -1.0, 1.0);
+  const double b = std::asin(sb);
+  double a, c;
+  if (std::abs(sb) < 1.0 - 1e-12) {
+    a = std::atan2(-s * R(j, k), R(k, k));
+    c = std::atan2(-s * R(i, j), R(i, i));
+  } else {  // gimbal lock: put all of the remaining rotation into a
+    c = 0.0;
+    a = std::atan2(s * R(k, j), R(j, j));
+  }
+  degrees[0] = rad2deg(a);
+  degrees[1] = rad2deg(b);
+  degrees[2] = rad2deg(c);
+}
+
+std::string format_bvh(const Motion& m, const BvhWriteOptions& opt) {
+  const Skeleton& s = m.skeleton;
+  s.validate();
+  const auto layout = opt.channels.empty() ? default_layout(s) : opt.channels;
+  if (layout.size() != static_cast<std::size_t>(s.joint_count()))
+    throw Error("write_bvh: channel layout has " + std::to_string(layout.size()) + " joints, skeleton has " +
+                std::to_string(s.joint_count()));
+  for (int j = 0; j < s.joint_count(); ++j) {
+    int rot = 0;
+    for (Channel c : layout[static_cast<std::size_t>(j)].channels) rot += c >= Channel::Xrotation;
+    if (rot != 3 && rot != 0)
+      throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] +
+                  "' has a layout with " + std::to_string(rot) + " rotation channels; legwork writes 0 or 3");
+  }
+  std::string out = "HIERARCHY\n";
+  write_joint(out, s, layout, 0, 0, opt.scale);
+  out += "MOTION\nFrames: " + std::to_string(m.frame_count()) + "\nFrame Time: ";
+  char buf[64];
+  auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, 1.0 / m.fps, std::chars_format::general, 10);
+  out.append(buf, ptr);
+  out += '\n';
+  out.reserve(out.size() + static_cast<std::size_t>(m.frame_count()) * static_cast<std::size_t>(s.joint_count()) * 40);
+  for (int f = 0; f < m.frame_count(); ++f) {
+    auto pose = m.frame(f);
+    bool first = true;
+    for (int j = 0; j < s.joint_count(); ++j) {
+      const auto& ch = layout[static_cast<std::size_t>(j)].channels;
+      Channel rot_order[3];
+      int nr = 0;
+      for (Channel c : ch)
+        if (c >= Channel::Xrotation) rot_order[nr++] = c;
+      double euler[3] = {0, 0, 0};
+      if (nr == 3) quat_to_euler(pose.rotations[static_cast<std::size_t>(j)], rot_order, euler);
+      int r = 0;
+      for (Channel c : ch) {
+        if (!first) out += ' ';
+        first = false;
+        if (c >= Channel::Xrotation) append_number(out, euler[r++]);
+        else append_number(out, pose.translations[static_cast<std::size_t>(j)][static_cast<int>(c)] * opt.scale);
+      }
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+void write_bvh(const std::string& path, const Motion& m, const BvhWriteOptions& opt) {
+  write_text_file(path, format_bvh(m, opt));
+}
+
+}  // namespace legwork::io
