@@ -1,0 +1,121 @@
+#pragma once
+// Full-body IK from a headset and two hand controllers (a VRIK-style
+// baseline). Given the head's position and orientation and both hands'
+// positions and orientations, it places the whole body:
+//   - torso: pelvis and spine hang under the head (neck/torso model); when the
+//     head drops the legs fold first (crouch), then the torso leans forward;
+//     the chest turns toward the head's and hands' heading, the pelvis follows;
+//   - head: exact position and orientation; the neck shares the turn;
+//   - arms: clavicles help on long reaches, two-bone IK puts the wrists on the
+//     controllers (exact whenever the target is within reach) with elbow poles
+//     down, back and out like a relaxed arm;
+//   - legs: feet stay planted under the hips; a foot steps (VRIK's
+//     "locomotion") when the centre of mass leaves the support area, when it
+//     drifts too far from its place under the hip, or when the body turns;
+//     steps are predicted from the body's velocity, with a step height and
+//     speed.
+// Runtime split: FullBodyModel is const (built once per skeleton, may throw);
+// FullBodyState is the per-avatar workspace; solve_full_body allocates
+// nothing and never throws. Model space = world, metres, y up, faces +z.
+#include <legwork/core/motion.hpp>
+#include <legwork/ik/two_bone.hpp>
+
+#include <array>
+#include <span>
+#include <vector>
+
+namespace legwork::ik {
+
+// One sample of the tracked devices, model space. Rotations are the head and
+// wrist joints' model-space rotations (device orientation already calibrated
+// onto the joint frames).
+struct TrackerFrame {
+  Vec3 head_position = Vec3::Zero();
+  Quat head_rotation = Quat::Identity();
+  std::array<Vec3, 2> hand_position{Vec3::Zero(), Vec3::Zero()};  // [0] left, [1] right
+  std::array<Quat, 2> hand_rotation{Quat::Identity(), Quat::Identity()};
+  std::array<bool, 2> hand_valid{true, true};  // false: that arm relaxes
+};
+
+struct FullBodySettings {
+  double floor_height = 0.0;        // metres; the VR play-area floor
+  // Crouch: fraction of a head drop taken by the legs (the rest by a forward
+  // lean), and the lowest pelvis height as a fraction of its standing height.
+  double crouch_leg_share = 0.8;
+  double min_pelvis_fraction = 0.5;
+  double pelvis_lean_share = 0.35;    // of the torso lean done at the hips
+  double hands_heading_weight = 0.3;  // chest heading: head vs hands direction
+  double pelvis_turn_rate = 8.0;      // 1/s, pelvis yaw following the chest
+  double neck_share = 0.3;            // of the head's turn relative to the chest taken by the neck
+  double clavicle_reach = 0.5;        // radians: most a clavicle swings to bring a hand within reach
+  // Locomotion (VRIK names): stepping when the centre of mass is farther than
+  // step_threshold outside the segment between the feet, or a foot is farther
+  // than foot_distance_threshold from its place, or turned more than
+  // step_angle_threshold (radians) from the pelvis.
+  double step_threshold = 0.10;
+  double foot_distance_threshold = 0.22;
+  double step_angle_threshold = 0.7;
+  double step_speed = 3.5;                            // m/s of foot travel
+  double min_step_time = 0.14, max_step_time = 0.40;  // seconds
+  double step_height = 0.09;                          // metres at mid-swing
+  double velocity_lead = 1.0;                         // landing predicted this many step times ahead
+  double max_step_length = 1.2;                       // metres
+};
+
+class FullBodyModel {
+ public:
+  // Throws legwork::Error if the skeleton lacks head, neck, pelvis, arm or leg
+  // roles, or its rest pose is not an upright body. Keeps a pointer to skel.
+  explicit FullBodyModel(const Skeleton& skel, const FullBodySettings& settings = {});
+
+  const Skeleton& skeleton() const { return *skel_; }
+  const FullBodySettings& settings() const { return settings_; }
+
+  // Rest measurements (identity rotations), metres.
+  double standing_head_height() const { return head_height_; }
+  double standing_pelvis_height() const { return pelvis_height_; }
+  double torso_length() const { return torso_length_; }  // pelvis to head, vertical
+
+ private:
+  friend void solve_full_body(const FullBodyModel&, const struct TrackerFrame&, double, struct FullBodyState&,
+                              PoseRef);
+  const Skeleton* skel_;
+  FullBodySettings settings_;
+  TwoBoneChain arm_[2], leg_[2];
+  int pelvis_ = -1, head_ = -1, clavicle_[2] = {-1, -1};
+  std::vector<int> spine_;  // spine chain, bottom up
+  std::vector<int> neck_;   // neck joints below the head, bottom up
+  double head_height_ = 0, pelvis_height_ = 0, torso_length_ = 0;
+  std::array<Vec3, 2> foot_offset_{};  // ankle relative to pelvis, horizontal (x, 0, z)
+  double ankle_height_ = 0;            // rest ankle height above the sole
+  double leg_length_ = 0, arm_length_ = 0;
+};
+
+// Per-avatar mutable state and scratch buffers (sized for one model).
+struct FullBodyState {
+  explicit FullBodyState(const FullBodyModel& model);
+  void reset() { initialized = false; }
+
+  struct Foot {
+    Vec3 position = Vec3::Zero();  // ankle, model space
+    double yaw = 0;
+    bool stepping = false;
+    double step_time = 0, step_duration = 0;
+    Vec3 from = Vec3::Zero();
+    double from_yaw = 0;
+  };
+  bool initialized = false;
+  std::array<Foot, 2> feet;
+  double chest_yaw = 0, pelvis_yaw = 0;
+  Vec3 previous_head = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();  // smoothed horizontal head velocity, m/s
+  int steps_taken = 0;
+  std::vector<Transform> model;  // scratch FK buffer
+};
+
+// Solves one frame. dt = seconds since the previous frame (ignored on the
+// first). `out` must have the skeleton's joint count; every joint is written.
+void solve_full_body(const FullBodyModel& model, const TrackerFrame& input, double dt, FullBodyState& state,
+                     PoseRef out);
+
+}  // namespace legwork::ik
