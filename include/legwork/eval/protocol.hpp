@@ -1,0 +1,68 @@
+#pragma once
+// Evaluation protocols of CoolMoves section 4.1 over a folder of BVH trials
+// laid out like ../shared/data/cmu (MANIFEST.tsv with columns file, class,
+// subject, trial; or DIR/bvh*/<class>/SS_TT.bvh without a manifest).
+//   cross-subject: per class, leave one subject out: database = the class's
+//                  trials of the other subjects, test = the held-out subject's;
+//   cross-trial:   per class, leave one trial out: database = every other
+//                  trial of the class (same subject included);
+//   cross-dataset: database = a class's trials of one folder, test = every
+//                  trial of that class in another folder.
+// Offline code: allocates, throws legwork::Error naming the file/line at fault.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace legwork::eval {
+
+struct TrialEntry {
+  std::string path;  // absolute or relative to the working directory
+  std::string file;  // as listed (relative to the data folder)
+  std::string cls;
+  int subject = 0, trial = 0;
+  std::string id() const;  // "SS_TT", e.g. "16_21"
+};
+
+struct Catalogue {
+  std::string root;  // the data folder
+  std::vector<TrialEntry> trials;
+  std::vector<std::string> classes() const;  // sorted, unique
+};
+
+// Reads DIR's trials: from `manifest` if given, else DIR/MANIFEST.tsv if it
+// exists, else every DIR/bvh*/<class>/*.bvh (subject and trial from the
+// "SS_TT" file name). Only `classes` are kept (empty = all); an unknown class
+// name is an error listing the classes present.
+Catalogue read_catalogue(const std::string& dir, const std::string& manifest = "",
+                         const std::vector<std::string>& classes = {});
+
+enum class Protocol { CrossSubject, CrossTrial, CrossDataset };
+const char* protocol_key(Protocol p);  // "cross_subject", "cross_trial", "cross_dataset"
+
+struct Fold {
+  Protocol protocol = Protocol::CrossSubject;
+  std::string cls;
+  std::string held_out;       // "subject 16", "trial 16_21", or the test trial id
+  int held_out_subject = -1;  // cross-subject: the subject left out
+  std::vector<int> test;      // indices into the test catalogue (= the data catalogue except cross-dataset)
+  std::vector<int> database;  // indices into the data catalogue
+};
+
+struct FoldPlan {
+  std::vector<Fold> folds;
+  std::vector<std::pair<std::string, std::string>> skipped;  // class, why it cannot be evaluated
+};
+
+FoldPlan plan_folds(const Catalogue& data, Protocol p);
+// Cross-dataset: one fold per test trial whose class the data folder has.
+FoldPlan plan_cross_dataset(const Catalogue& data, const Catalogue& test);
+
+// A fold's database leaks if it holds the held-out subject (cross-subject) or
+// a held-out trial (any protocol). Returns a description of the leak, or "".
+std::string fold_leak(const Fold& f, const Catalogue& data, const Catalogue& test);
+
+// --quick: at most `per_class` trials per class, spread over as many subjects
+// as possible (for a CI smoke run).
+Catalogue quick_subset(const Catalogue& c, int per_class);
+
+}  // namespace legwork::eval

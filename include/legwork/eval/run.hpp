@@ -1,0 +1,91 @@
+#pragma once
+// Runs the evaluation protocols (protocol.hpp) for the accentuation engine,
+// its ablation variants and the full-body IK baseline, fold by fold, in
+// parallel over the machine's cores. Offline code: allocates, throws
+// legwork::Error for unusable input (no trial loads, a fold leaks).
+#include <legwork/accent/accentuator.hpp>
+#include <legwork/accent/builder.hpp>
+#include <legwork/eval/metrics.hpp>
+#include <legwork/eval/protocol.hpp>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace legwork::eval {
+
+// One configuration of the engine under evaluation (the engine itself, or an
+// ablation: its switches are the engine's own BuildConfig / AccentConfig).
+struct Variant {
+  std::string key;    // "accent", "nn", "nn_align", "hop_2", ...
+  std::string label;  // for tables and charts
+  accent::BuildConfig build;
+  accent::AccentConfig config;
+};
+// The document's ablation (NN only -> + alignment -> + smoothing) and the
+// extra choices (window hop, speed augmentation, mirroring, k, distance
+// threshold, exact search) around a base configuration. `quick` keeps only
+// the document's three steps.
+std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const accent::AccentConfig& config, bool quick);
+
+struct RunOptions {
+  std::vector<Protocol> protocols{Protocol::CrossSubject, Protocol::CrossTrial};
+  accent::BuildConfig build;    // the engine's configuration ("accent")
+  accent::AccentConfig config;
+  bool ablation = true;         // ablation variants, on the cross-subject protocol
+  bool quick_ablation = false;  // only the document's three ablation steps
+  bool ik = true;               // the IK baseline
+  int threads = 0;              // 0 = std::thread::hardware_concurrency()
+  double max_test_seconds = 0;  // > 0: score only the first seconds of each test trial
+  bool drop_first_frame = true; // CMU files start with a synthetic T-pose
+  MetricOptions metrics;
+  std::function<void(const std::string&)> progress;  // one status line at a time
+};
+
+// One method on one fold.
+struct MethodFold {
+  bool ok = false;
+  std::string error;          // why it could not run (e.g. every database trial filtered out)
+  TrialMetrics metrics;       // frame-weighted over the fold's test trials
+  long frames = 0;
+  double seconds = 0;         // time in the per-frame solver only
+  int database_windows = 0;   // accent variants
+};
+
+struct FoldResult {
+  Fold fold;
+  std::vector<std::string> test_ids;   // "SS_TT" of the test trials
+  std::map<std::string, MethodFold> methods;  // key: "ik" or a Variant key
+};
+
+struct ProtocolResult {
+  Protocol protocol = Protocol::CrossSubject;
+  FoldPlan plan;
+  std::vector<FoldResult> folds;
+  std::vector<std::string> methods;  // keys run on this protocol, in order
+};
+
+struct DatasetSummary {
+  std::string root;
+  int trials = 0;
+  std::map<std::string, int> trials_per_class, subjects_per_class;
+  std::map<std::string, std::string> dropped;  // trial id -> why the engine's filter dropped it
+};
+
+struct EvalResult {
+  std::vector<ProtocolResult> protocols;
+  std::vector<Variant> variants;  // variants[0] = the engine ("accent")
+  DatasetSummary data;
+  double seconds = 0;  // wall time of the whole run
+  int threads = 1;
+};
+
+// `test` is only used for Protocol::CrossDataset (may be null otherwise).
+EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const RunOptions& opt);
+
+// Output motion of the IK baseline driven by a motion's head and hands (on
+// the motion's own skeleton, at its rate); `seconds` gets the solver time.
+Motion run_ik_baseline(const Motion& truth, double* seconds = nullptr);
+
+}  // namespace legwork::eval

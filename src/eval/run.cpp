@@ -1,0 +1,351 @@
+#include <legwork/eval/run.hpp>
+
+#include <legwork/core/fk.hpp>
+#include <legwork/core/interpolate.hpp>
+#include <legwork/ik/full_body.hpp>
+#include <legwork/io/bvh.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <set>
+#include <thread>
+
+namespace legwork::eval {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Runs fn(i) for i in [0, n) on `threads` threads, largest-first order given.
+// The first exception is rethrown after all workers stop.
+void parallel_for(const std::vector<int>& order, int threads, const std::function<void(int)>& fn) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto worker = [&] {
+    for (;;) {
+      const std::size_t k = next.fetch_add(1);
+      if (k >= order.size()) return;
+      try {
+        fn(order[k]);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        next = order.size();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const int t = std::max(1, std::min<int>(threads, static_cast<int>(order.size())));
+  for (int i = 1; i < t; ++i) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
+  if (error) std::rethrow_exception(error);
+}
+
+std::vector<int> iota(int n) {
+  std::vector<int> v(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) v[static_cast<std::size_t>(i)] = i;
+  return v;
+}
+
+// Build settings that change the database (variants sharing them share one).
+std::string build_key(const accent::BuildConfig& b) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%g/%d/%g/%d/%g/%d/%g/%g/%g", b.fps, b.hop, b.correlation_threshold, b.speed_variants,
+                b.speed_range, b.mirror ? 1 : 0, b.group_weight[0], b.group_weight[1], b.group_weight[2]);
+  return buf;
+}
+std::string prepare_key(const accent::BuildConfig& b) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%g/%g/%d", b.fps, b.correlation_threshold, b.mirror ? 1 : 0);
+  return buf;
+}
+
+std::vector<accent::TrialInput> load_all(const Catalogue& c, bool drop_first, int threads,
+                                         const std::function<void(const std::string&)>& progress) {
+  std::vector<accent::TrialInput> out(c.trials.size());
+  std::atomic<int> done{0};
+  std::mutex m;
+  parallel_for(iota(static_cast<int>(c.trials.size())), threads, [&](int i) {
+    const auto& e = c.trials[static_cast<std::size_t>(i)];
+    io::BvhReadOptions opt;
+    opt.drop_first_frame = drop_first;
+    auto& t = out[static_cast<std::size_t>(i)];
+    t.file = e.file;
+    t.cls = e.cls;
+    t.subject = e.subject;
+    t.trial = e.trial;
+    t.motion = io::load_bvh(e.path, opt);
+    const int d = ++done;
+    if (progress) {
+      std::lock_guard<std::mutex> lock(m);
+      progress("loading " + c.root + ": " + std::to_string(d) + "/" + std::to_string(out.size()) + " trials");
+    }
+  });
+  return out;
+}
+
+struct TestTrack {
+  Motion motion;  // at the database rate, clipped
+  RoleTrack truth;
+  std::string id;
+};
+
+TestTrack make_test(const accent::TrialInput& t, double fps, double max_seconds) {
+  TestTrack r;
+  r.motion = resample(t.motion, fps);
+  if (max_seconds > 0) {
+    const int keep = static_cast<int>(std::floor(max_seconds * fps)) + 1;
+    if (r.motion.frame_count() > keep) r.motion = trim(r.motion, 0, keep - 1);
+  }
+  r.truth = role_track(r.motion);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%02d_%02d", t.subject, t.trial);
+  r.id = buf;
+  return r;
+}
+
+std::string leak_in_database(const Fold& f, const accent::Database& db, const std::vector<std::string>& test_files) {
+  for (const auto& info : db.trials()) {
+    if (f.protocol == Protocol::CrossSubject && info.subject == f.held_out_subject)
+      return "database of fold '" + f.cls + " " + f.held_out + "' holds " + info.file;
+    for (const auto& tf : test_files)
+      if (info.file == tf) return "database of fold '" + f.cls + " " + f.held_out + "' holds the test trial " + tf;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const accent::AccentConfig& config, bool quick) {
+  std::vector<Variant> v;
+  auto add = [&](std::string key, std::string label, auto tweak) {
+    Variant x{std::move(key), std::move(label), build, config};
+    tweak(x);
+    v.push_back(std::move(x));
+  };
+  add("nn", "NN only (no alignment, no smoothing)", [](Variant& x) {
+    x.config.align = false;
+    x.config.smooth = false;
+  });
+  add("nn_align", "NN + rotation alignment", [](Variant& x) {
+    x.config.align = true;
+    x.config.smooth = false;
+  });
+  if (quick) return v;
+  add("hop_1", "hop 1 sample (11 ms)", [](Variant& x) { x.build.hop = 1; });
+  add("hop_9", "hop 9 samples (100 ms)", [](Variant& x) { x.build.hop = 9; });
+  add("no_augmentation", "no speed augmentation", [](Variant& x) { x.build.speed_variants = 0; });
+  add("mirrored", "+ mirrored trials", [](Variant& x) { x.build.mirror = true; });
+  add("k_1", "k = 1", [](Variant& x) { x.config.k_left = x.config.k_right = 1; });
+  add("k_15", "k = 15", [](Variant& x) { x.config.k_left = x.config.k_right = 15; });
+  add("threshold_off", "no distance threshold", [](Variant& x) { x.config.threshold = 0; });
+  add("threshold_2", "threshold 2 x typical distance", [](Variant& x) { x.config.threshold = 2; });
+  add("exact_search", "exact k-NN search", [](Variant& x) { x.config.search = accent::SearchMode::Exact; });
+  return v;
+}
+
+Motion run_ik_baseline(const Motion& truth, double* seconds) {
+  const Skeleton& skel = truth.skeleton;
+  const ik::FullBodyModel model(skel);
+  ik::FullBodyState state(model);
+  Motion out(skel, truth.fps, truth.frame_count());
+  std::vector<Transform> g(static_cast<std::size_t>(skel.joint_count()));
+  const auto at = [&](Role r) -> const Transform& { return g[static_cast<std::size_t>(skel.roles[r])]; };
+  double solver = 0;
+  for (int f = 0; f < truth.frame_count(); ++f) {
+    forward_kinematics(skel, truth.frame(f), g);
+    ik::TrackerFrame in;
+    in.head_position = at(Role::Head).translation;
+    in.head_rotation = at(Role::Head).rotation;
+    in.hand_position = {at(Role::LeftHand).translation, at(Role::RightHand).translation};
+    in.hand_rotation = {at(Role::LeftHand).rotation, at(Role::RightHand).rotation};
+    const auto t0 = Clock::now();
+    ik::solve_full_body(model, in, truth.frame_time(), state, out.frame(f));
+    solver += since(t0);
+  }
+  if (seconds) *seconds += solver;
+  return out;
+}
+
+EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const RunOptions& opt) {
+  const auto t_start = Clock::now();
+  EvalResult res;
+  res.threads = opt.threads > 0 ? opt.threads : std::max(1u, std::thread::hardware_concurrency());
+  const auto say = [&](const std::string& s) {
+    if (opt.progress) opt.progress(s);
+  };
+
+  // Variants: the engine first, then the ablation.
+  res.variants.push_back({"accent", "accent engine", opt.build, opt.config});
+  if (opt.ablation)
+    for (auto& v : ablation_variants(opt.build, opt.config, opt.quick_ablation)) res.variants.push_back(std::move(v));
+
+  // Load and prepare every trial once; folds assemble databases from them.
+  const std::vector<accent::TrialInput> inputs = load_all(data, opt.drop_first_frame, res.threads, opt.progress);
+  const bool cross_dataset =
+      std::find(opt.protocols.begin(), opt.protocols.end(), Protocol::CrossDataset) != opt.protocols.end();
+  if (cross_dataset && !test) throw Error("cross-dataset evaluation needs a test folder");
+  std::vector<accent::TrialInput> test_inputs;
+  if (cross_dataset) test_inputs = load_all(*test, opt.drop_first_frame, res.threads, opt.progress);
+  const Skeleton reference = accent::reference_skeleton(inputs);
+
+  std::map<std::string, std::vector<accent::PreparedTrial>> prepared;  // by prepare_key
+  std::map<std::string, accent::BuildConfig> prepare_cfg;
+  for (const auto& v : res.variants) prepare_cfg.emplace(prepare_key(v.build), v.build);
+  for (const auto& [key, cfg] : prepare_cfg) {
+    auto& set = prepared[key];
+    set.resize(inputs.size());
+    std::atomic<int> done{0};
+    std::mutex m;
+    parallel_for(iota(static_cast<int>(inputs.size())), res.threads, [&](int i) {
+      set[static_cast<std::size_t>(i)] = accent::prepare_trial(inputs[static_cast<std::size_t>(i)], reference, cfg);
+      const int d = ++done;
+      std::lock_guard<std::mutex> lock(m);
+      say("preparing trials" + std::string(cfg.mirror ? " (with mirrored copies)" : "") + ": " + std::to_string(d) +
+          "/" + std::to_string(inputs.size()));
+    });
+  }
+
+  // Dataset summary.
+  res.data.root = data.root;
+  res.data.trials = static_cast<int>(data.trials.size());
+  {
+    std::map<std::string, std::set<int>> subjects;
+    for (const auto& e : data.trials) {
+      ++res.data.trials_per_class[e.cls];
+      subjects[e.cls].insert(e.subject);
+    }
+    for (const auto& [c, s] : subjects) res.data.subjects_per_class[c] = static_cast<int>(s.size());
+    const auto& base = prepared.at(prepare_key(opt.build));
+    for (std::size_t i = 0; i < base.size(); ++i)
+      if (!base[i].kept) res.data.dropped[data.trials[i].id() + " (" + data.trials[i].cls + ")"] = base[i].reason;
+  }
+
+  // Test tracks at the database rate.
+  const std::vector<accent::TrialInput>& test_src = cross_dataset ? test_inputs : inputs;
+  std::vector<TestTrack> tests(test_src.size());
+  parallel_for(iota(static_cast<int>(test_src.size())), res.threads, [&](int i) {
+    tests[static_cast<std::size_t>(i)] = make_test(test_src[static_cast<std::size_t>(i)], opt.build.fps, opt.max_test_seconds);
+  });
+
+  // Plan every protocol's folds; one task per fold.
+  struct Task {
+    int protocol, fold;
+    double cost;
+  };
+  std::vector<Task> tasks;
+  for (Protocol p : opt.protocols) {
+    ProtocolResult pr;
+    pr.protocol = p;
+    pr.plan = p == Protocol::CrossDataset ? plan_cross_dataset(data, *test) : plan_folds(data, p);
+    const Catalogue& tc = p == Protocol::CrossDataset ? *test : data;
+    for (const auto& f : pr.plan.folds) {
+      const std::string leak = fold_leak(f, data, tc);
+      if (!leak.empty()) throw Error("fold plan leaks: " + leak);
+      FoldResult fr;
+      fr.fold = f;
+      for (int t : f.test) fr.test_ids.push_back(tc.trials[static_cast<std::size_t>(t)].id());
+      pr.folds.push_back(std::move(fr));
+    }
+    if (opt.ik) pr.methods.push_back("ik");
+    for (const auto& v : res.variants)
+      if (v.key == "accent" || p == Protocol::CrossSubject) pr.methods.push_back(v.key);
+    res.protocols.push_back(std::move(pr));
+  }
+  for (int p = 0; p < static_cast<int>(res.protocols.size()); ++p)
+    for (int f = 0; f < static_cast<int>(res.protocols[static_cast<std::size_t>(p)].folds.size()); ++f) {
+      const Fold& fold = res.protocols[static_cast<std::size_t>(p)].folds[static_cast<std::size_t>(f)].fold;
+      double cost = 0;
+      for (int d : fold.database) cost += inputs[static_cast<std::size_t>(d)].motion.frame_count();
+      for (int t : fold.test) cost += 20.0 * tests[static_cast<std::size_t>(t)].motion.frame_count();
+      cost *= static_cast<double>(res.protocols[static_cast<std::size_t>(p)].methods.size());
+      tasks.push_back({p, f, cost});
+    }
+  std::vector<int> order = iota(static_cast<int>(tasks.size()));
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return tasks[static_cast<std::size_t>(a)].cost > tasks[static_cast<std::size_t>(b)].cost;
+  });
+
+  std::atomic<int> done{0};
+  std::mutex say_mutex;
+  parallel_for(order, res.threads, [&](int k) {
+    const Task& task = tasks[static_cast<std::size_t>(k)];
+    ProtocolResult& pr = res.protocols[static_cast<std::size_t>(task.protocol)];
+    FoldResult& fr = pr.folds[static_cast<std::size_t>(task.fold)];
+    const Fold& fold = fr.fold;
+    const Catalogue& tc = pr.protocol == Protocol::CrossDataset ? *test : data;
+    std::vector<std::string> test_files;
+    for (int t : fold.test) test_files.push_back(tc.trials[static_cast<std::size_t>(t)].file);
+
+    // Accent variants, grouped by the database they need.
+    std::map<std::string, std::vector<const Variant*>> by_db;
+    for (const auto& v : res.variants)
+      if (std::find(pr.methods.begin(), pr.methods.end(), v.key) != pr.methods.end())
+        by_db[build_key(v.build)].push_back(&v);
+    for (const auto& [key, variants] : by_db) {
+      const accent::BuildConfig& bc = variants.front()->build;
+      const auto& set = prepared.at(prepare_key(bc));
+      std::vector<const accent::PreparedTrial*> members;
+      for (int d : fold.database) members.push_back(&set[static_cast<std::size_t>(d)]);
+      accent::Database db;
+      try {
+        db = accent::assemble_database(members, reference, bc);
+        db.build_index();
+      } catch (const Error& e) {
+        for (const Variant* v : variants) fr.methods[v->key].error = e.what();
+        continue;
+      }
+      const std::string leak = leak_in_database(fold, db, test_files);
+      if (!leak.empty()) throw Error("fold leak: " + leak);
+      for (const Variant* v : variants) {
+        MethodFold& mf = fr.methods[v->key];
+        mf.database_windows = db.window_count();
+        std::vector<TrialMetrics> per;
+        for (int t : fold.test) {
+          const TestTrack& tt = tests[static_cast<std::size_t>(t)];
+          const accent::AccentRun run = accent::accentuate_motion(db, v->config, tt.motion);
+          per.push_back(evaluate_trial(role_track(run.output), tt.truth, opt.metrics));
+          mf.frames += tt.motion.frame_count();
+          mf.seconds += run.seconds;
+        }
+        mf.metrics = combine(per);
+        mf.ok = true;
+      }
+    }
+    if (opt.ik) {
+      MethodFold& mf = fr.methods["ik"];
+      std::vector<TrialMetrics> per;
+      try {
+        for (int t : fold.test) {
+          const TestTrack& tt = tests[static_cast<std::size_t>(t)];
+          const Motion out = run_ik_baseline(tt.motion, &mf.seconds);
+          per.push_back(evaluate_trial(role_track(out), tt.truth, opt.metrics));
+          mf.frames += tt.motion.frame_count();
+        }
+        mf.metrics = combine(per);
+        mf.ok = true;
+      } catch (const Error& e) {
+        mf.error = e.what();
+      }
+    }
+    const int d = ++done;
+    char line[256];
+    const auto a = fr.methods.find("accent"), i = fr.methods.find("ik");
+    std::snprintf(line, sizeof line, "%d/%zu folds  %s %s %s: accent %.1f cm, ik %.1f cm  (%.0f s)", d, tasks.size(),
+                  protocol_key(pr.protocol), fold.cls.c_str(), fold.held_out.c_str(),
+                  a != fr.methods.end() && a->second.ok ? a->second.metrics.mpjpe_cm : NAN,
+                  i != fr.methods.end() && i->second.ok ? i->second.metrics.mpjpe_cm : NAN, since(t_start));
+    std::lock_guard<std::mutex> lock(say_mutex);
+    say(line);
+  });
+  res.seconds = since(t_start);
+  return res;
+}
+
+}  // namespace legwork::eval
