@@ -99,7 +99,31 @@ void draw_footprints(cairo_t* cr, const Scene& scene, const Framing& fr) {
   cairo_restore(cr);
 }
 
+struct Box {
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+// A small label next to point q, at the first of eight spots around it that
+// does not overlap labels already placed.
+void place_label(cairo_t* cr, const Eigen::Vector2d& q, const std::string& s, const Rgb& color, std::vector<Box>& placed) {
+  const double w = text_width(cr, s, 11), h = 11;
+  const double dx[] = {6, 6, -6 - w, -6 - w, -w / 2, -w / 2, 14, -14 - w};
+  const double dy[] = {-6, 6 + h, -6, 6 + h, -10, 12 + h, 4, 4};
+  std::size_t k = 0;
+  for (; k < 8; ++k) {
+    const Box b{q.x() + dx[k], q.y() + dy[k] - h, q.x() + dx[k] + w, q.y() + dy[k]};
+    bool clash = false;
+    for (const auto& o : placed) clash = clash || b.overlaps(o);
+    if (!clash) break;
+  }
+  if (k == 8) k = 0;
+  placed.push_back({q.x() + dx[k], q.y() + dy[k] - h, q.x() + dx[k] + w, q.y() + dy[k]});
+  text(cr, q.x() + dx[k], q.y() + dy[k], s, 11, Align::Left, color);
+}
+
 void draw_curves(cairo_t* cr, const Scene& scene, const Framing& fr) {
+  std::vector<Box> placed;
   cairo_save(cr);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
@@ -130,11 +154,15 @@ void draw_curves(cairo_t* cr, const Scene& scene, const Framing& fr) {
       set_color(cr, {1, 1, 1});
       cairo_set_line_width(cr, 1.0);
       cairo_stroke(cr);
-      if (m < c.mark_labels.size()) text(cr, q.x() + 6, q.y() - 6, c.mark_labels[m], 11, Align::Left, c.color);
+      if (m < c.mark_labels.size()) place_label(cr, q, c.mark_labels[m], c.color, placed);
     }
     if (!c.label.empty()) {
+      // At the curve's end, inside the panel (to the left of the end if needed).
       const auto q = fr.to_pixel(c.points.back());
-      text(cr, q.x() + 8, q.y() + 4, c.label, 12, Align::Left, c.color, 1.0, true);
+      const double w = text_width(cr, c.label, 12, true);
+      const bool fits_right = q.x() + 8 + w < fr.width - 4;
+      text(cr, fits_right ? q.x() + 8 : q.x() - 8, q.y() + 16, c.label, 12, fits_right ? Align::Left : Align::Right,
+           c.color, 1.0, true);
     }
   }
   cairo_restore(cr);
@@ -225,14 +253,16 @@ void draw_label(cairo_t* cr, const Figure& f, const Framing& fr, const Layout& l
   text(cr, x, std::min(lowest + 18, fr.height - 4.0), f.label, 12, Align::Centre, kInk, std::max(f.alpha, 0.6));
 }
 
-void draw_scale_bar(cairo_t* cr, const Framing& fr) {
+// Top-right corner (beside the title) if there is room, else bottom-left.
+void draw_scale_bar(cairo_t* cr, const Framing& fr, double title_width) {
   const double target = 0.18 * fr.width * fr.metres_per_pixel;
   static const double kLengths[] = {0.01, 0.02, 0.05, 0.1, 0.2, 0.25, 0.5, 1, 2, 5, 10, 20, 50, 100};
   double len = kLengths[0];
   for (double c : kLengths)
     if (c <= target) len = c;
   const double px = len / fr.metres_per_pixel;
-  const double x0 = 10, y = fr.height - 10;
+  const bool top = 10 + title_width + 30 + px < fr.width - 10;
+  const double x0 = top ? fr.width - 12 - px : 10, y = top ? 22 : fr.height - 10;
   cairo_save(cr);
   set_color(cr, kInk);
   cairo_set_line_width(cr, 1.5);
@@ -285,8 +315,9 @@ void draw_scene(cairo_t* cr, const Scene& scene, const Framing& fr) {
   for (const Figure* f : order) draw_figure(cr, *f, fr);
   draw_curves(cr, scene, fr);
   for (const auto& f : scene.figures) draw_label(cr, f, fr, l);
-  if (!scene.title.empty()) text(cr, 10, 19, scene.title, 14, Align::Left, kInk, 1.0, true);
-  draw_scale_bar(cr, fr);
+  double title_w = 0;
+  if (!scene.title.empty()) title_w = text(cr, 10, 19, scene.title, 14, Align::Left, kInk, 1.0, true);
+  draw_scale_bar(cr, fr, title_w);
   cairo_restore(cr);
 }
 

@@ -163,38 +163,50 @@ void render_contact_sheet(const Skeleton& skel, const std::vector<Pose>& poses, 
 
 void render_trajectory(const Motion& m, int joint, const std::vector<int>& marked_frames, const Camera& cam,
                        const std::string& path) {
+  render_trajectory(m, joint, marked_frames, cam, path, TrajectoryOptions{});
+}
+
+void render_trajectory(const Motion& m, int joint, const std::vector<int>& marked_frames, const Camera& cam,
+                       const std::string& path, const TrajectoryOptions& opt) {
   detail::format_of(path);
   if (joint < 0 || joint >= m.joint_count())
     throw Error("trajectory '" + path + "': joint index " + std::to_string(joint) + " is outside 0.." +
                 std::to_string(m.joint_count() - 1));
   if (m.frame_count() == 0) throw Error("trajectory '" + path + "': the motion has no frames");
+  const int first = opt.first_frame, last = opt.last_frame < 0 ? m.frame_count() - 1 : opt.last_frame;
+  if (first < 0 || last >= m.frame_count() || first > last)
+    throw Error("trajectory '" + path + "': frames " + std::to_string(first) + ":" + std::to_string(last) +
+                " are outside the motion's 0:" + std::to_string(m.frame_count() - 1));
   std::vector<int> marks = marked_frames;
   if (marks.empty()) {  // five evenly spaced frames
-    const int n = std::min(5, m.frame_count());
-    for (int i = 0; i < n; ++i) marks.push_back(n > 1 ? i * (m.frame_count() - 1) / (n - 1) : 0);
+    const int n = std::min(5, last - first + 1);
+    for (int i = 0; i < n; ++i) marks.push_back(first + (n > 1 ? i * (last - first) / (n - 1) : 0));
   }
   for (int f : marks)
-    if (f < 0 || f >= m.frame_count())
-      throw Error("trajectory '" + path + "': marked frame " + std::to_string(f) + " is outside 0.." +
-                  std::to_string(m.frame_count() - 1));
+    if (f < first || f > last)
+      throw Error("trajectory '" + path + "': marked frame " + std::to_string(f) + " is outside frames " +
+                  std::to_string(first) + ":" + std::to_string(last));
 
   Scene scene;
-  const auto all = joint_positions(m);
-  const auto nj = static_cast<std::size_t>(m.joint_count());
+  const auto& name = m.skeleton.names[static_cast<std::size_t>(joint)];
+  std::vector<Transform> model(static_cast<std::size_t>(m.joint_count()));
   Curve path_curve;
   path_curve.color = {0.10, 0.55, 0.30};
   path_curve.width = 2.0;
-  for (int f = 0; f < m.frame_count(); ++f)
-    path_curve.points.push_back(all[static_cast<std::size_t>(f) * nj + static_cast<std::size_t>(joint)]);
+  for (int f = first; f <= last; ++f) {
+    forward_kinematics(m.skeleton, m.frame(f), model);
+    path_curve.points.push_back(model[static_cast<std::size_t>(joint)].translation);
+  }
   for (int f : marks) {
     scene.figures.push_back(make_figure(m.skeleton, m.frame(f), 0.35));
-    path_curve.marks.push_back(f);
+    path_curve.marks.push_back(f - first);
     path_curve.mark_labels.push_back(std::to_string(f));
   }
-  path_curve.label = m.skeleton.names[static_cast<std::size_t>(joint)];
+  path_curve.label = name;
   scene.curves.push_back(std::move(path_curve));
-  scene.title = m.skeleton.names[static_cast<std::size_t>(joint)] + " path over " + std::to_string(m.frame_count()) +
-                " frames (" + view_name(cam.view) + " view; dots = marked frames)";
+  scene.title = !opt.title.empty() ? opt.title
+                                   : name + " path over " + std::to_string(last - first + 1) + " frames (" +
+                                         view_name(cam.view) + " view; dots = marked frames)";
   render_scene(scene, cam, path);
 }
 

@@ -147,6 +147,16 @@ void render_contact_sheet(const Skeleton& skel, const std::vector<Pose>& poses,
 // plus the path of `joint` over all frames, with the chosen frames marked.
 void render_trajectory(const Motion& m, int joint, const std::vector<int>& marked_frames,
                        const Camera& cam, const std::string& path);
+// The same over frames [first_frame, last_frame] only (last_frame -1 = the
+// last frame); marks and labels keep the motion's own frame numbers. An empty
+// `marked_frames` marks five evenly spaced frames of the range.
+struct TrajectoryOptions {
+  int first_frame = 0;
+  int last_frame = -1;
+  std::string title;  // empty: "<joint> path over N frames (<view> view)"
+};
+void render_trajectory(const Motion& m, int joint, const std::vector<int>& marked_frames,
+                       const Camera& cam, const std::string& path, const TrajectoryOptions& opt);
 
 // Video of a motion (MP4 through the ffmpeg program; throws legwork::Error if
 // ffmpeg is missing or fails). `extra` figures/curves per frame may be added

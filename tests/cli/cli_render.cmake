@@ -1,0 +1,17 @@
+# legwork render: pictures and videos of a motion.
+legwork_cli_test(render_help render --help)
+legwork_cli_test(render_sheet render ${D}/walking/07_01.bvh --out ${O}/render_sheet.png --frames 1:120 --every 20)
+legwork_cli_test(render_sheet_svg render ${D}/running/09_01.bvh --out ${O}/render_sheet.svg --frames 1: --view three-quarter)
+legwork_cli_test(render_frame render ${D}/walking/07_01.bvh --out ${O}/render_frame.png --frames 60:60 --view front)
+legwork_cli_test(render_trace render ${D}/walking/07_01.bvh --out ${O}/render_trace.png --trace LeftFoot --frames 1:)
+legwork_cli_test(render_trace_role_top render ${D}/walking/07_01.bvh --out ${O}/render_trace_top.svg --trace left_ankle --view top --drop-first)
+legwork_cli_fail(render_bad_view render ${D}/walking/07_01.bvh --out ${O}/x.png --view diagonal)
+legwork_cli_fail(render_bad_trace render ${D}/walking/07_01.bvh --out ${O}/x.png --trace LeftPaw)
+legwork_cli_fail(render_bad_ext render ${D}/walking/07_01.bvh --out ${O}/x.gif)
+legwork_cli_fail(render_bad_frames render ${D}/walking/07_01.bvh --out ${O}/x.png --frames 900:)
+legwork_cli_fail(render_odd_video_size render ${D}/walking/07_01.bvh --out ${O}/x.mp4 --width 321)
+# Video only where ffmpeg is installed.
+find_program(LEGWORK_FFMPEG_PROGRAM ffmpeg)
+if(LEGWORK_FFMPEG_PROGRAM)
+  legwork_cli_test(render_video render ${D}/walking/07_01.bvh --out ${O}/render_walk.mp4 --frames 1:240 --trace LeftFoot --width 320 --height 240)
+endif()
