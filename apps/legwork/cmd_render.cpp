@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 namespace legwork::cli {
 namespace {
@@ -24,6 +25,7 @@ struct RenderArgs {
   int width = 0, height = 0;
   double fps = 30;
   std::string title;
+  std::vector<std::string> compare;  // more motions for a side-by-side video
 };
 
 // A joint by exact name or by role name (e.g. LeftAnkle); the error lists the valid names.
@@ -73,7 +75,26 @@ void run_render(const RenderArgs& a) {
     opt.trace_joint = trace;
     opt.title = !a.title.empty() ? a.title : clip + " (" + render::view_name(view) + " view)";
     const Motion part = (first == 0 && last == m.frame_count() - 1) ? m : trim(m, first, last);
-    render::render_video(part, opt, a.out);
+    if (a.compare.empty()) {
+      render::render_video(part, opt, a.out);
+    } else {
+      // Side by side: this motion first, then each --compare file, same frames and options.
+      std::vector<Motion> others;
+      std::vector<std::string> labels{clip};
+      for (const auto& path : a.compare) {
+        MotionInput other = a.in;
+        other.path = path;
+        Motion o = other.load().motion;
+        if (o.frame_count() == 0) throw Error("'" + path + "' has no frames");
+        const int b = std::min(last, o.frame_count() - 1);
+        others.push_back(first <= b ? trim(o, std::min(first, b), b) : o);
+        labels.push_back(std::filesystem::path(path).stem().string());
+      }
+      std::vector<const Motion*> all{&part};
+      for (const auto& o : others) all.push_back(&o);
+      if (a.title.empty()) opt.title = render::view_name(view) + " view";
+      render::render_video_side_by_side(all, labels, opt, a.out);
+    }
     std::printf("%d source frames (%d:%d) at %.4g Hz -> %.4g fps video, %dx%d\n", last - first + 1, first, last, m.fps,
                 a.fps, opt.camera.width, opt.camera.height);
     announce("video", a.out);
@@ -92,18 +113,6 @@ void run_render(const RenderArgs& a) {
     announce("trajectory", a.out);
     return;
   }
-  if (first == last) {
-    render::Scene scene;
-    scene.figures.push_back(render::make_figure(m.skeleton, m.frame(first), 1.0, "frame " + std::to_string(first)));
-    scene.title = !a.title.empty() ? a.title : clip + " frame " + std::to_string(first);
-    render::Camera cam;
-    cam.view = view;
-    cam.width = a.width > 0 ? a.width : 480;
-    cam.height = a.height > 0 ? a.height : 480;
-    render::render_scene(scene, cam, a.out);
-    announce("frame", a.out);
-    return;
-  }
   render::SheetOptions opt;
   if (!a.view.empty()) opt.views = {view};
   if (a.height > 0) opt.panel_height = a.height;
@@ -116,11 +125,13 @@ void run_render(const RenderArgs& a) {
     poses.push_back(std::move(p));
     opt.labels.push_back("frame " + std::to_string(f));
   }
+  // One frame (A:A) is a one-pose sheet: same facing and framing rules.
   opt.title = !a.title.empty() ? a.title
+              : first == last  ? clip + ": frame " + std::to_string(first)
                                : clip + ": frames " + std::to_string(first) + ":" + std::to_string(last) + " (" +
                                      std::to_string(poses.size()) + " poses)";
   render::render_contact_sheet(m.skeleton, poses, opt, a.out);
-  announce("contact sheet", a.out);
+  announce(first == last ? "frame" : "contact sheet", a.out);
 }
 
 void register_render(CLI::App& app) {
@@ -144,10 +155,14 @@ void register_render(CLI::App& app) {
   cmd->add_option("--every", a->every, "take every Nth frame for sheet poses / path marks (default: ~6 over the range)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--width", a->width, "picture/video width in pixels (video: even)")->check(CLI::Range(16, 8192));
-  cmd->add_option("--height", a->height, "picture/video height in pixels (contact sheet: per view row)")
+  cmd->add_option("--height", a->height,
+                  "picture/video height in pixels (contact sheets: per view row, width follows the poses)")
       ->check(CLI::Range(16, 8192));
   cmd->add_option("--fps", a->fps, "video frame rate (the motion is resampled), default 30")->check(CLI::Range(1.0, 240.0));
   cmd->add_option("--title", a->title, "title text (default: clip name and frames)");
+  cmd->add_option("--compare", a->compare,
+                  "video only: more BVH files drawn side by side with IN (same frames, view and options)")
+      ->check(CLI::ExistingFile);
   cmd->callback([a] { run_render(*a); });
 }
 

@@ -187,8 +187,17 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
   }
   if (opt.camera.metres_per_pixel > 0) mpp = opt.camera.metres_per_pixel;
   cam.metres_per_pixel = mpp;
-  for (int i = 0; i < n; ++i)
-    tracks[static_cast<std::size_t>(i)].framing = frame_scene(extent[static_cast<std::size_t>(i)], cam);
+  // Shared vertical centre, so the floors line up across panels.
+  double vlo = 1e300, vhi = -1e300;
+  for (const auto& s : extent) {
+    Eigen::Vector2d lo, hi;
+    if (detail::plane_bounds(s, cam.view, lo, hi)) vlo = std::min(vlo, lo.y()), vhi = std::max(vhi, hi.y());
+  }
+  for (int i = 0; i < n; ++i) {
+    auto& fr = tracks[static_cast<std::size_t>(i)].framing;
+    fr = frame_scene(extent[static_cast<std::size_t>(i)], cam);
+    if (vlo <= vhi) fr.centre_plane.y() = (vlo + vhi) / 2;
+  }
 
   double duration = 0;
   for (const Motion* m : motions) duration = std::max(duration, m->duration());
