@@ -1,0 +1,184 @@
+// legwork eval accent: the CoolMoves section 4.1 protocol (cross-subject,
+// cross-trial, cross-dataset) for the accentuation engine, its ablation and
+// the full-body IK baseline, with a report (Markdown, JSON, charts).
+#include "command.hpp"
+
+#include <legwork/eval/report.hpp>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+
+namespace legwork::cli {
+namespace {
+
+std::vector<std::string> split_commas(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+struct EvalArgs {
+  std::string data, manifest, test, test_manifest, classes, protocols, out;
+  bool quick = false, no_ablation = false, no_ik = false, keep_first = false;
+  int threads = 0, quick_trials = 4;
+  double max_seconds = 0, quick_seconds = 12;
+  // Engine switches (defaults = the engine's own defaults).
+  int hop = -1, k = -1, speed_variants = -1;
+  double threshold = -1;
+  bool mirror = false, exact = false;
+};
+
+std::vector<eval::Protocol> parse_protocols(const std::string& s, bool have_test) {
+  if (s.empty()) {
+    if (have_test) return {eval::Protocol::CrossDataset};
+    return {eval::Protocol::CrossSubject, eval::Protocol::CrossTrial};
+  }
+  std::vector<eval::Protocol> out;
+  for (const auto& p : split_commas(s)) {
+    if (p == "cross_subject" || p == "cross-subject") out.push_back(eval::Protocol::CrossSubject);
+    else if (p == "cross_trial" || p == "cross-trial") out.push_back(eval::Protocol::CrossTrial);
+    else if (p == "cross_dataset" || p == "cross-dataset") out.push_back(eval::Protocol::CrossDataset);
+    else throw Error("--protocols: unknown protocol '" + p + "' (cross_subject, cross_trial, cross_dataset)");
+  }
+  return out;
+}
+
+// A progress line on stderr: rewritten in place on a terminal, one line each otherwise.
+std::function<void(const std::string&)> progress_printer() {
+  const bool tty = isatty(fileno(stderr));
+  auto last = std::make_shared<std::string>();
+  return [tty, last](const std::string& line) {
+    if (tty) {
+      std::fprintf(stderr, "\r[eval] %s\x1b[K", line.c_str());
+    } else {
+      // Only fold lines and the last of each loading/preparing phase.
+      const bool fold = line.find(" folds ") != std::string::npos;
+      const auto slash = line.rfind('/');
+      const bool phase_end = slash != std::string::npos && line.find(':') != std::string::npos &&
+                             line.substr(line.rfind(' ') + 1, slash - line.rfind(' ') - 1) ==
+                                 line.substr(slash + 1, line.find(' ', slash) - slash - 1);
+      if (fold || phase_end) std::fprintf(stderr, "[eval] %s\n", line.c_str());
+    }
+    std::fflush(stderr);
+    *last = line;
+  };
+}
+
+void print_summary(const nlohmann::json& r) {
+  auto val = [](const nlohmann::json& m, const char* k) {
+    return m.contains(k) && m[k].is_number() ? m[k].get<double>() : NAN;
+  };
+  for (const char* p : {"cross_subject", "cross_trial", "cross_dataset"}) {
+    if (!r.contains(p)) continue;
+    std::printf("%s (%d folds):\n", p, r[p]["folds"].get<int>());
+    for (const char* m : {"accent", "ik"}) {
+      if (!r[p].contains(m)) continue;
+      const auto& x = r[p][m];
+      std::printf("  %-6s full %5.2f cm (SD %.2f)  upper %5.2f  lower %5.2f  hands %.2f / %.2f cm  "
+                  "MPJVE %.1f cm/s  jitter %.2f  hand r %.3f  %.0f frames/s\n",
+                  m, val(x, "full_body_cm"), val(x, "full_body_cm_sd"), val(x, "upper_body_cm"),
+                  val(x, "lower_body_cm"), val(x, "left_hand_cm"), val(x, "right_hand_cm"), val(x, "mpjve_cm_s"),
+                  val(x, "jitter"), val(x, "hand_correlation"), val(x, "frames_per_second"));
+    }
+    if (r[p].contains("ablation"))
+      for (const auto& [k, x] : r[p]["ablation"].items())
+        std::printf("  ablation %-16s full %5.2f cm  lower %5.2f cm\n", k.c_str(), val(x, "full_body_cm"),
+                    val(x, "lower_body_cm"));
+  }
+  for (const auto& t : r["targets"])
+    std::printf("target %-58s %s\n", t["target"].get<std::string>().c_str(),
+                t["met"].is_null() ? "n/a" : (t["met"].get<bool>() ? "met" : "NOT met"));
+}
+
+void register_eval(CLI::App& app) {
+  auto* group = app.add_subcommand("eval", "Evaluate methods against motion-capture ground truth.");
+  group->require_subcommand(1);
+  auto* cmd = group->add_subcommand(
+      "accent",
+      "Reproduce CoolMoves section 4.1: leave-one-subject-out and leave-one-trial-out per class for the\n"
+      "accentuation engine, its ablation and the full-body IK baseline; report.md, report.json and charts.\n"
+      "Examples:\n"
+      "  legwork eval accent --data ../shared/data/cmu --out eval-report\n"
+      "  legwork eval accent --data data/cmu --quick --out quick-report\n"
+      "  legwork eval accent --data ../shared/data/cmu --test my-recordings --out cross-dataset\n"
+      "  legwork eval accent --data ../shared/data/cmu --classes boxing,running --protocols cross_subject");
+  auto a = std::make_shared<EvalArgs>();
+  cmd->add_option("--data", a->data, "folder of BVH trials laid out like ../shared/data/cmu (the database side)")
+      ->required();
+  cmd->add_option("--manifest", a->manifest, "manifest TSV (columns file, class, subject, trial) for --data");
+  cmd->add_option("--test", a->test, "cross-dataset: score every trial of this folder against a --data database");
+  cmd->add_option("--test-manifest", a->test_manifest, "manifest TSV for --test");
+  cmd->add_option("--classes", a->classes, "comma-separated classes (default: every class present)");
+  cmd->add_option("--protocols", a->protocols,
+                  "comma-separated: cross_subject, cross_trial, cross_dataset (default: the first two, or "
+                  "cross_dataset with --test)");
+  cmd->add_option("--out", a->out, "write report.md, report.json and charts (PNG + SVG) into this folder");
+  cmd->add_flag("--quick", a->quick, "a small subset for CI: few trials per class, short clips, 3-step ablation");
+  cmd->add_option("--quick-trials", a->quick_trials, "--quick: trials per class")->check(CLI::PositiveNumber);
+  cmd->add_option("--max-seconds", a->max_seconds, "score only the first seconds of each test trial (0 = all)");
+  cmd->add_option("--threads", a->threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-ablation", a->no_ablation, "skip the ablation variants");
+  cmd->add_flag("--no-ik", a->no_ik, "skip the IK baseline");
+  cmd->add_flag("--keep-first-frame", a->keep_first, "do not drop frame 0 (CMU files start with a T-pose)");
+  cmd->add_option("--hop", a->hop, "engine: window hop in samples")->check(CLI::PositiveNumber);
+  cmd->add_option("--k", a->k, "engine: neighbours per hand")->check(CLI::Range(1, 32));
+  cmd->add_option("--threshold", a->threshold, "engine: distance threshold in typical distances (0 = none)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--speed-variants", a->speed_variants, "engine: speed-augmented copies per window")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--mirror", a->mirror, "engine: add mirrored trials to every database");
+  cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");
+  cmd->callback([a] {
+    const auto classes = split_commas(a->classes);
+    eval::Catalogue data = eval::read_catalogue(a->data, a->manifest, classes);
+    std::unique_ptr<eval::Catalogue> test;
+    if (!a->test.empty()) test = std::make_unique<eval::Catalogue>(eval::read_catalogue(a->test, a->test_manifest, classes));
+    eval::RunOptions opt;
+    opt.protocols = parse_protocols(a->protocols, test != nullptr);
+    for (auto p : opt.protocols)
+      if (p == eval::Protocol::CrossDataset && !test) throw Error("--protocols cross_dataset needs --test DIR");
+    if (a->quick) {
+      data = eval::quick_subset(data, a->quick_trials);
+      if (test) *test = eval::quick_subset(*test, a->quick_trials);
+      opt.quick_ablation = true;
+      opt.max_test_seconds = a->quick_seconds;
+    }
+    if (a->max_seconds > 0) opt.max_test_seconds = a->max_seconds;
+    opt.ablation = !a->no_ablation;
+    opt.ik = !a->no_ik;
+    opt.threads = a->threads;
+    opt.drop_first_frame = !a->keep_first;
+    if (a->hop > 0) opt.build.hop = a->hop;
+    if (a->speed_variants >= 0) opt.build.speed_variants = a->speed_variants;
+    opt.build.mirror = a->mirror;
+    if (a->k > 0) opt.config.k_left = opt.config.k_right = a->k;
+    if (a->threshold >= 0) opt.config.threshold = a->threshold;
+    if (a->exact) opt.config.search = accent::SearchMode::Exact;
+    opt.progress = progress_printer();
+
+    const eval::EvalResult res = eval::run_evaluation(data, test.get(), opt);
+    if (isatty(fileno(stderr))) std::fprintf(stderr, "\n");
+    const nlohmann::json report = eval::report_json(res);
+    print_summary(report);
+    std::printf("%zu trials, %.1f s on %d threads\n", data.trials.size(), res.seconds, res.threads);
+    if (!a->out.empty()) {
+      for (const auto& f : eval::write_report(res, a->out))
+        if (f.ends_with(".md") || f.ends_with(".json")) announce("report", f);
+      announce("charts", a->out + "/{body_parts,classes,ablation}.{png,svg}");
+    }
+  });
+}
+
+LEGWORK_COMMAND(register_eval, 90);
+
+}  // namespace
+}  // namespace legwork::cli

@@ -1,0 +1,497 @@
+#include <legwork/eval/report.hpp>
+
+#include <legwork/render/plot.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace legwork::eval {
+namespace {
+
+using json = nlohmann::json;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// JSON has no NaN: undefined figures become null.
+json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+double get(const json& j, const std::string& key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
+}
+
+// Mean and SD across folds of every metric, for the folds selected.
+json summarize_folds(const std::vector<const MethodFold*>& folds) {
+  json out;
+  long frames = 0;
+  double seconds = 0;
+  for (const auto& k : metric_keys()) {
+    std::vector<double> v;
+    for (const MethodFold* f : folds) v.push_back(metric_value(f->metrics, k.key));
+    const Stats s = summarize(v);
+    out[k.key] = num(s.mean);
+    out[std::string(k.key) + "_sd"] = num(s.sd);
+  }
+  for (const MethodFold* f : folds) {
+    frames += f->frames;
+    seconds += f->seconds;
+  }
+  out["folds"] = folds.size();
+  out["frames"] = frames;
+  out["frames_per_second"] = num(seconds > 0 ? static_cast<double>(frames) / seconds : kNaN);
+  return out;
+}
+
+json summarize_method(const ProtocolResult& p, const std::string& method) {
+  std::vector<const MethodFold*> all;
+  std::map<std::string, std::vector<const MethodFold*>> by_class;
+  json failures = json::array();
+  for (const auto& f : p.folds) {
+    const auto it = f.methods.find(method);
+    if (it == f.methods.end()) continue;
+    if (!it->second.ok) {
+      failures.push_back({{"class", f.fold.cls}, {"held_out", f.fold.held_out}, {"error", it->second.error}});
+      continue;
+    }
+    all.push_back(&it->second);
+    by_class[f.fold.cls].push_back(&it->second);
+  }
+  json out = summarize_folds(all);
+  json classes = json::object();
+  for (const auto& [cls, folds] : by_class) classes[cls] = summarize_folds(folds);
+  out["classes"] = classes;
+  if (!failures.empty()) out["failed_folds"] = failures;
+  return out;
+}
+
+// The document's published figures (CoolMoves, section 4.1.2).
+json paper_figures() {
+  json p;
+  p["cross_subject"]["accent"] = {{"full_body_cm", 11.4}, {"full_body_cm_sd", 2.3}, {"left_hand_cm", 1.6},
+                                  {"left_hand_cm_sd", 0.22}, {"right_hand_cm", 1.9}, {"right_hand_cm_sd", 0.27},
+                                  {"left_hand_correlation", 0.92}, {"right_hand_correlation", 0.94},
+                                  {"hand_correlation", 0.93}, {"frames_per_second", 152.0}};
+  p["cross_subject"]["ik"] = {{"full_body_cm", 12.1}, {"full_body_cm_sd", 3.4}, {"left_hand_cm", 0.0},
+                              {"right_hand_cm", 0.0}, {"hand_correlation", 1.0}};
+  p["cross_trial"]["accent"] = {{"full_body_cm", 9.6}, {"full_body_cm_sd", 2.1}, {"left_hand_cm", 1.4},
+                                {"left_hand_cm_sd", 0.18}, {"right_hand_cm", 1.7}, {"right_hand_cm_sd", 0.21}};
+  p["ablation"] = {{"nn", 16.5}, {"nn_align", 13.2}, {"accent", 11.4}};
+  p["lower_body_gain_over_ik_cm"] = 3.5;
+  p["note"] = "CoolMoves (section 4.1.2, Figure 4): CMU boxing, basketball, climbing ladder, running, swimming; "
+              "its own body-part figures other than hands and full body are only plotted, not printed";
+  return p;
+}
+
+json target(const std::string& name, double value, const std::string& op, double goal, const std::string& note = "") {
+  json t = {{"target", name}, {"value", num(value)}, {"goal", goal}, {"op", op}};
+  const bool defined = std::isfinite(value);
+  t["met"] = defined ? json(op == "<=" ? value <= goal : value >= goal) : json(nullptr);
+  if (!note.empty()) t["note"] = note;
+  return t;
+}
+
+json targets_of(const json& r) {
+  json t = json::array();
+  auto method = [&](const char* p, const char* m) -> json {
+    return r.contains(p) && r[p].contains(m) ? r[p][m] : json::object();
+  };
+  const json cs = method("cross_subject", "accent"), ct = method("cross_trial", "accent");
+  const json cs_ik = method("cross_subject", "ik"), ct_ik = method("cross_trial", "ik");
+  if (!cs.empty()) {
+    t.push_back(target("cross-subject full body <= 11.4 cm (document)", get(cs, "full_body_cm"), "<=", 11.4));
+    t.push_back(target("cross-subject full body <= 8 cm (aim)", get(cs, "full_body_cm"), "<=", 8.0));
+  }
+  if (!ct.empty()) {
+    t.push_back(target("cross-trial full body <= 9.6 cm (document)", get(ct, "full_body_cm"), "<=", 9.6));
+    t.push_back(target("cross-trial full body <= 7 cm (aim)", get(ct, "full_body_cm"), "<=", 7.0));
+  }
+  for (const auto& [name, m] : {std::pair{"cross-subject", cs}, std::pair{"cross-trial", ct}}) {
+    if (m.empty()) continue;
+    t.push_back(target(std::string(name) + " left hand <= 1.6 cm", get(m, "left_hand_cm"), "<=", 1.6));
+    t.push_back(target(std::string(name) + " right hand <= 1.6 cm", get(m, "right_hand_cm"), "<=", 1.6));
+    t.push_back(target(std::string(name) + " hand correlation >= 0.95", get(m, "hand_correlation"), ">=", 0.95));
+  }
+  if (!cs.empty() && !cs_ik.empty())
+    t.push_back(target("cross-subject lower body >= 3.5 cm better than IK",
+                       get(cs_ik, "lower_body_cm") - get(cs, "lower_body_cm"), ">=", 3.5,
+                       "value = IK lower body - engine lower body (cm)"));
+  if (!ct.empty() && !ct_ik.empty())
+    t.push_back(target("cross-trial lower body >= 3.5 cm better than IK",
+                       get(ct_ik, "lower_body_cm") - get(ct, "lower_body_cm"), ">=", 3.5,
+                       "value = IK lower body - engine lower body (cm)"));
+  const json& any = !cs.empty() ? cs : ct;
+  if (!any.empty()) {
+    t.push_back(target("engine >= 20,000 frames/s (per-frame update, one core)", get(any, "frames_per_second"), ">=",
+                       20000.0, "measured inside this run while the other folds ran in parallel"));
+    t.push_back(target("engine >= 130x the document's 152 Hz", get(any, "frames_per_second") / 152.0, ">=", 130.0));
+  }
+  return t;
+}
+
+std::string fmt(double v, int decimals = 1) {
+  if (!std::isfinite(v)) return "n/a";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+std::string fmt_sd(const json& m, const std::string& key, int decimals = 1) {
+  const double v = get(m, key), sd = get(m, key + "_sd");
+  if (!std::isfinite(v)) return "n/a";
+  return fmt(v, decimals) + " (" + fmt(sd, decimals) + ")";
+}
+std::string paper_cell(const json& paper, const std::string& key, int decimals = 1) {
+  if (!paper.contains(key)) return "–";
+  const double v = paper[key].get<double>();
+  std::string s = fmt(v, decimals);
+  if (paper.contains(key + "_sd")) {
+    char sd[32];
+    std::snprintf(sd, sizeof sd, "%.2g", paper[key + "_sd"].get<double>());  // as printed: 2.3, 0.22
+    s += std::string(" (") + sd + ")";
+  }
+  return s;
+}
+
+const std::vector<std::string> kProtocols{"cross_subject", "cross_trial", "cross_dataset"};
+
+// Figures for charts: value of a metric for protocol/method (NaN if absent).
+double value_of(const json& r, const std::string& protocol, const std::string& method, const std::string& key) {
+  if (!r.contains(protocol) || !r[protocol].contains(method)) return kNaN;
+  return get(r[protocol][method], key);
+}
+
+}  // namespace
+
+const std::vector<MetricKey>& metric_keys() {
+  static const std::vector<MetricKey> keys{
+      {"full_body_cm", "full body", "cm"},
+      {"upper_body_cm", "upper body", "cm"},
+      {"lower_body_cm", "lower body", "cm"},
+      {"left_hand_cm", "left hand", "cm"},
+      {"right_hand_cm", "right hand", "cm"},
+      {"mpjpe_cm", "MPJPE", "cm"},
+      {"mpjve_cm_s", "MPJVE", "cm/s"},
+      {"jitter", "jitter", "10^2 m/s^3"},
+      {"jitter_truth", "jitter of the ground truth", "10^2 m/s^3"},
+      {"hand_correlation", "hand correlation", ""},
+      {"left_hand_correlation", "left hand correlation", ""},
+      {"right_hand_correlation", "right hand correlation", ""},
+      {"foot_skating_cm", "foot skating", "cm/frame"},
+      {"foot_skating_truth_cm", "foot skating of the ground truth", "cm/frame"},
+  };
+  return keys;
+}
+
+double metric_value(const TrialMetrics& m, const std::string& key) {
+  auto part = [&](Part p) { return m.part_cm[static_cast<std::size_t>(p)]; };
+  if (key == "full_body_cm") return part(Part::FullBody);
+  if (key == "upper_body_cm") return part(Part::UpperBody);
+  if (key == "lower_body_cm") return part(Part::LowerBody);
+  if (key == "left_hand_cm") return part(Part::LeftHand);
+  if (key == "right_hand_cm") return part(Part::RightHand);
+  if (key == "mpjpe_cm") return m.mpjpe_cm;
+  if (key == "mpjve_cm_s") return m.mpjve_cm_s;
+  if (key == "jitter") return m.jitter;
+  if (key == "jitter_truth") return m.jitter_truth;
+  if (key == "left_hand_correlation") return m.hand_correlation[0];
+  if (key == "right_hand_correlation") return m.hand_correlation[1];
+  if (key == "hand_correlation") {
+    const double l = m.hand_correlation[0], r = m.hand_correlation[1];
+    if (std::isfinite(l) && std::isfinite(r)) return 0.5 * (l + r);
+    return std::isfinite(l) ? l : r;
+  }
+  if (key == "foot_skating_cm") return m.foot_skating_cm;
+  if (key == "foot_skating_truth_cm") return m.foot_skating_truth_cm;
+  throw Error("unknown metric key '" + key + "'");
+}
+
+json report_json(const EvalResult& r) {
+  json out;
+  json meta;
+  meta["data"] = r.data.root;
+  meta["trials"] = r.data.trials;
+  meta["trials_per_class"] = r.data.trials_per_class;
+  meta["subjects_per_class"] = r.data.subjects_per_class;
+  meta["dropped_by_correlation_filter"] = r.data.dropped;
+  meta["seconds"] = r.seconds;
+  meta["threads"] = r.threads;
+  json variants = json::array();
+  for (const auto& v : r.variants) {
+    variants.push_back({{"key", v.key},
+                        {"label", v.label},
+                        {"hop", v.build.hop},
+                        {"speed_variants", v.build.speed_variants},
+                        {"speed_range", v.build.speed_range},
+                        {"mirror", v.build.mirror},
+                        {"correlation_threshold", v.build.correlation_threshold},
+                        {"k_left", v.config.k_left},
+                        {"k_right", v.config.k_right},
+                        {"threshold", v.config.threshold},
+                        {"align", v.config.align},
+                        {"smooth", v.config.smooth},
+                        {"search", v.config.search == accent::SearchMode::Fast    ? "fast"
+                                   : v.config.search == accent::SearchMode::Exact ? "exact"
+                                                                                  : "brute_force"}});
+  }
+  meta["variants"] = variants;
+  json units = json::object();
+  for (const auto& k : metric_keys()) units[k.key] = k.unit;
+  meta["units"] = units;
+  meta["definitions"] =
+      "errors: mean Euclidean distance over role joints and frames per fold (upper body = head, neck, spine, "
+      "clavicles, arms; lower body = pelvis, legs, feet); mean and SD across folds. MPJVE: central-difference "
+      "velocities. jitter: mean jerk magnitude of the output (10^2 m/s^3, as AvatarPoser/AGRoL). hand correlation: "
+      "Pearson r of input vs output hand positions relative to the input head, per axis, averaged over x, y, z. "
+      "foot skating: mean horizontal slide per frame (90 Hz) of an ankle or toe staying within 3 cm of its floor "
+      "level. frames_per_second: per-frame solver time only.";
+  out["meta"] = meta;
+  out["paper"] = paper_figures();
+
+  for (const auto& p : r.protocols) {
+    json pj;
+    pj["folds"] = p.folds.size();
+    json skipped = json::object();
+    for (const auto& [cls, why] : p.plan.skipped) skipped[cls] = why;
+    pj["skipped_classes"] = skipped;
+    json folds = json::array();
+    for (const auto& f : p.folds) {
+      json fj = {{"class", f.fold.cls}, {"held_out", f.fold.held_out}, {"test", f.test_ids},
+                 {"database_trials", f.fold.database.size()}};
+      for (const auto& [m, mf] : f.methods) {
+        if (!mf.ok) {
+          fj[m] = {{"error", mf.error}};
+          continue;
+        }
+        json mj = {{"frames", mf.frames}, {"database_windows", mf.database_windows}};
+        for (const auto& k : metric_keys()) mj[k.key] = num(metric_value(mf.metrics, k.key));
+        fj[m] = mj;
+      }
+      folds.push_back(fj);
+    }
+    for (const auto& m : p.methods) {
+      const bool main_method = m == "accent" || m == "ik";
+      json s = summarize_method(p, m);
+      if (main_method) pj[m] = s;
+      if (m != "ik" && r.variants.size() > 1 && p.protocol == Protocol::CrossSubject) pj["ablation"][m] = s;
+    }
+    pj["fold_results"] = folds;
+    out[protocol_key(p.protocol)] = pj;
+  }
+  out["targets"] = targets_of(out);
+  return out;
+}
+
+std::string report_markdown(const json& r) {
+  std::ostringstream md;
+  const json& paper = r["paper"];
+  const json& meta = r["meta"];
+  md << "# Accentuation evaluation (CoolMoves section 4.1 protocol)\n\n";
+  md << "Data: `" << meta["data"].get<std::string>() << "`, " << meta["trials"] << " trials; run took "
+     << fmt(meta["seconds"].get<double>(), 0) << " s on " << meta["threads"] << " threads.\n\n";
+  md << "Every figure below comes from this run's report.json; the document's published figures are printed "
+        "beside ours (\"doc.\"). Errors in cm, mean (SD across folds).\n\n";
+
+  // Headline: per protocol and method, body parts.
+  md << "## Per body part (document's Figure 4 A)\n\n";
+  md << "| protocol | method | left hand | right hand | upper body | lower body | full body | doc. full body | "
+        "doc. hands (L/R) |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& p : kProtocols) {
+    if (!r.contains(p)) continue;
+    for (const char* m : {"accent", "ik"}) {
+      if (!r[p].contains(m)) continue;
+      const json& x = r[p][m];
+      const json pp = paper.contains(p) && paper[p].contains(m) ? paper[p][m] : json::object();
+      md << "| " << p << " | " << (std::string(m) == "ik" ? "IK baseline" : "accent engine") << " | "
+         << fmt_sd(x, "left_hand_cm") << " | " << fmt_sd(x, "right_hand_cm") << " | " << fmt_sd(x, "upper_body_cm")
+         << " | " << fmt_sd(x, "lower_body_cm") << " | **" << fmt_sd(x, "full_body_cm") << "** | "
+         << paper_cell(pp, "full_body_cm") << " | " << paper_cell(pp, "left_hand_cm") << " / "
+         << paper_cell(pp, "right_hand_cm") << " |\n";
+    }
+  }
+  md << "\n## Motion quality and speed\n\n";
+  md << "| protocol | method | MPJVE (cm/s) | jitter (10² m/s³) | jitter of truth | hand corr. (L/R) | doc. hand corr. "
+        "| foot skating (cm/frame) | truth skating | frames/s | doc. frames/s |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& p : kProtocols) {
+    if (!r.contains(p)) continue;
+    for (const char* m : {"accent", "ik"}) {
+      if (!r[p].contains(m)) continue;
+      const json& x = r[p][m];
+      const json pp = paper.contains(p) && paper[p].contains(m) ? paper[p][m] : json::object();
+      md << "| " << p << " | " << m << " | " << fmt_sd(x, "mpjve_cm_s") << " | " << fmt(get(x, "jitter"), 2) << " | "
+         << fmt(get(x, "jitter_truth"), 2) << " | " << fmt(get(x, "left_hand_correlation"), 3) << " / "
+         << fmt(get(x, "right_hand_correlation"), 3) << " | "
+         << (pp.contains("left_hand_correlation")
+                 ? fmt(pp["left_hand_correlation"].get<double>(), 2) + " / " + fmt(pp["right_hand_correlation"].get<double>(), 2)
+                 : (pp.contains("hand_correlation") ? fmt(pp["hand_correlation"].get<double>(), 2) : "–"))
+         << " | " << fmt(get(x, "foot_skating_cm"), 2) << " | " << fmt(get(x, "foot_skating_truth_cm"), 2) << " | "
+         << fmt(get(x, "frames_per_second"), 0) << " | " << paper_cell(pp, "frames_per_second", 0) << " |\n";
+    }
+  }
+
+  // Per class.
+  for (const auto& p : kProtocols) {
+    if (!r.contains(p)) continue;
+    md << "\n## " << p << ": per class (full body / lower body, cm)\n\n";
+    md << "| class | folds | accent full | accent lower | IK full | IK lower | accent hands L/R | hand corr. |\n"
+          "|---|---|---|---|---|---|---|---|\n";
+    std::set<std::string> classes;
+    for (const char* m : {"accent", "ik"})
+      if (r[p].contains(m))
+        for (const auto& [c, v] : r[p][m]["classes"].items()) classes.insert(c);
+    for (const auto& c : classes) {
+      auto cls = [&](const char* m) -> json {
+        return r[p].contains(m) && r[p][m]["classes"].contains(c) ? r[p][m]["classes"][c] : json::object();
+      };
+      const json a = cls("accent"), i = cls("ik");
+      md << "| " << c << " | " << (a.contains("folds") ? a["folds"].dump() : i.value("folds", json(0)).dump()) << " | "
+         << fmt_sd(a, "full_body_cm") << " | " << fmt_sd(a, "lower_body_cm") << " | " << fmt_sd(i, "full_body_cm")
+         << " | " << fmt_sd(i, "lower_body_cm") << " | " << fmt(get(a, "left_hand_cm"), 2) << " / "
+         << fmt(get(a, "right_hand_cm"), 2) << " | " << fmt(get(a, "hand_correlation"), 3) << " |\n";
+    }
+    if (!r[p]["skipped_classes"].empty()) {
+      md << "\nNot evaluated under " << p << ":\n";
+      for (const auto& [c, why] : r[p]["skipped_classes"].items()) md << "- " << c << ": " << why.get<std::string>() << "\n";
+    }
+  }
+
+  // Ablation.
+  if (r.contains("cross_subject") && r["cross_subject"].contains("ablation")) {
+    md << "\n## Ablation (cross-subject, full body cm)\n\n| variant | full body | lower body | hands L/R | MPJVE | "
+          "jitter | hand corr. | doc. |\n|---|---|---|---|---|---|---|---|\n";
+    const json& ab = r["cross_subject"]["ablation"];
+    std::vector<std::string> order{"nn", "nn_align", "accent"};
+    for (const auto& [k, v] : ab.items())
+      if (std::find(order.begin(), order.end(), k) == order.end()) order.push_back(k);
+    std::map<std::string, std::string> labels;
+    for (const auto& v : meta["variants"]) labels[v["key"].get<std::string>()] = v["label"].get<std::string>();
+    for (const auto& k : order) {
+      if (!ab.contains(k)) continue;
+      const json& x = ab[k];
+      md << "| " << k << " (" << labels[k] << ") | " << fmt_sd(x, "full_body_cm") << " | " << fmt(get(x, "lower_body_cm"))
+         << " | " << fmt(get(x, "left_hand_cm"), 2) << " / " << fmt(get(x, "right_hand_cm"), 2) << " | "
+         << fmt(get(x, "mpjve_cm_s")) << " | " << fmt(get(x, "jitter"), 2) << " | " << fmt(get(x, "hand_correlation"), 3)
+         << " | " << (paper["ablation"].contains(k) ? fmt(paper["ablation"][k].get<double>()) : "–") << " |\n";
+    }
+  }
+
+  md << "\n## Targets (computed from this run)\n\n| target | value | met |\n|---|---|---|\n";
+  for (const auto& t : r["targets"]) {
+    const std::string met = t["met"].is_null() ? "n/a" : (t["met"].get<bool>() ? "**met**" : "not met");
+    const double v = t["value"].is_null() ? kNaN : t["value"].get<double>();
+    md << "| " << t["target"].get<std::string>() << " | " << fmt(v, v > 100 ? 0 : 2) << " | " << met << " |\n";
+  }
+  if (!meta["dropped_by_correlation_filter"].empty()) {
+    md << "\nTrials the engine's hand-foot correlation filter keeps out of every database (they are still tested):\n";
+    for (const auto& [t, why] : meta["dropped_by_correlation_filter"].items())
+      md << "- " << t << ": " << why.get<std::string>() << "\n";
+  }
+  md << "\nDefinitions: " << meta["definitions"].get<std::string>() << "\n";
+  return md.str();
+}
+
+std::vector<std::string> write_report(const EvalResult& res, const std::string& dir) {
+  namespace fs = std::filesystem;
+  fs::create_directories(dir);
+  std::vector<std::string> written;
+  const json r = report_json(res);
+  auto write_text = [&](const std::string& name, const std::string& text) {
+    const std::string path = (fs::path(dir) / name).string();
+    std::ofstream f(path);
+    if (!(f << text)) throw Error(path + ": cannot write");
+    written.push_back(path);
+  };
+  write_text("report.json", r.dump(2) + "\n");
+  write_text("report.md", report_markdown(r));
+
+  auto both = [&](const render::BarChart& c, const std::string& stem) {
+    for (const char* ext : {".png", ".svg"}) {
+      const std::string path = (fs::path(dir) / (stem + ext)).string();
+      render::plot_bars(c, path);
+      written.push_back(path);
+    }
+  };
+  // Figure 4 A: per body part.
+  {
+    render::BarChart c;
+    c.title = "Mean joint error per body part (cm)";
+    c.y_label = "cm";
+    const std::vector<std::pair<std::string, std::string>> parts{{"left_hand_cm", "left hand"},
+                                                                 {"right_hand_cm", "right hand"},
+                                                                 {"upper_body_cm", "upper body"},
+                                                                 {"lower_body_cm", "lower body"},
+                                                                 {"full_body_cm", "full body"}};
+    for (const auto& [k, label] : parts) c.groups.push_back(label);
+    for (const auto& p : kProtocols)
+      for (const char* m : {"accent", "ik"}) {
+        if (!r.contains(p) || !r[p].contains(m)) continue;
+        render::BarSeries s;
+        s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
+        for (const auto& [k, label] : parts) s.values.push_back(value_of(r, p, m, k));
+        c.series.push_back(s);
+      }
+    for (const auto& [p, m, name] : {std::tuple{"cross_subject", "accent", "document accent cross_subject"},
+                                     std::tuple{"cross_trial", "accent", "document accent cross_trial"},
+                                     std::tuple{"cross_subject", "ik", "document IK"}}) {
+      render::BarSeries s;
+      s.name = name;
+      const json& pp = r["paper"][p][m];
+      for (const auto& [k, label] : parts) s.values.push_back(pp.contains(k) ? pp[k].get<double>() : kNaN);
+      c.series.push_back(s);
+    }
+    c.width = 1000;
+    c.value_decimals = 1;
+    both(c, "body_parts");
+  }
+  // Per class.
+  {
+    render::BarChart c;
+    c.title = "Full-body error per class (cm)";
+    c.y_label = "cm";
+    std::set<std::string> classes;
+    for (const auto& p : kProtocols)
+      for (const char* m : {"accent", "ik"})
+        if (r.contains(p) && r[p].contains(m))
+          for (const auto& [cls, v] : r[p][m]["classes"].items()) classes.insert(cls);
+    c.groups.assign(classes.begin(), classes.end());
+    for (const auto& p : kProtocols)
+      for (const char* m : {"accent", "ik"}) {
+        if (!r.contains(p) || !r[p].contains(m)) continue;
+        render::BarSeries s;
+        s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
+        for (const auto& cls : c.groups) {
+          const json& cj = r[p][m]["classes"];
+          s.values.push_back(cj.contains(cls) ? get(cj[cls], "full_body_cm") : kNaN);
+        }
+        c.series.push_back(s);
+      }
+    c.width = 1000;
+    c.value_decimals = 1;
+    if (!c.groups.empty()) both(c, "classes");
+  }
+  // Ablation.
+  if (r.contains("cross_subject") && r["cross_subject"].contains("ablation")) {
+    render::BarChart c;
+    c.title = "Ablation, cross-subject full-body error (cm)";
+    c.y_label = "cm";
+    const json& ab = r["cross_subject"]["ablation"];
+    std::vector<std::string> order{"nn", "nn_align", "accent"};
+    for (const auto& [k, v] : ab.items())
+      if (std::find(order.begin(), order.end(), k) == order.end()) order.push_back(k);
+    render::BarSeries ours{"this run", {}}, doc{"document", {}};
+    for (const auto& k : order) {
+      if (!ab.contains(k)) continue;
+      c.groups.push_back(k);
+      ours.values.push_back(get(ab[k], "full_body_cm"));
+      doc.values.push_back(r["paper"]["ablation"].contains(k) ? r["paper"]["ablation"][k].get<double>() : kNaN);
+    }
+    c.series = {ours, doc};
+    c.width = 1100;
+    c.value_decimals = 1;
+    both(c, "ablation");
+  }
+  return written;
+}
+
+}  // namespace legwork::eval
