@@ -53,6 +53,14 @@ double yaw_of(const Quat& q) {
 
 }  // namespace
 
+bool have_arm_ik() {
+#if LEGWORK_ACCENT_HAVE_IK
+  return true;
+#else
+  return false;
+#endif
+}
+
 const char* status_name(FrameStatus s) {
   switch (s) {
     case FrameStatus::Matched: return "matched";
@@ -358,7 +366,7 @@ FrameInfo Accentuator::update(const TrackerFrame& in) {
   s.hand = {last_head_ + hand_offset_[0], last_head_ + hand_offset_[1]};
 
   const double threshold = cfg_.threshold > 0 ? cfg_.threshold * db_->typical_distance() : 0.0;
-  const bool matched = have_head_ && blend_candidates(threshold);
+  const bool matched = have_head_ && !cfg_.direct_only && blend_candidates(threshold);
   if (!matched) match_count_ = {0, 0};
   if (matched) {
     const double w = cfg_.smooth && have_smoothed_ ? std::max(match_weight_, cfg_.min_smoothing_weight) : 1.0;
@@ -372,7 +380,7 @@ FrameInfo Accentuator::update(const TrackerFrame& in) {
   const double target = (!matched || lost) ? 1.0 : 0.0;
   const double step = cfg_.fallback_seconds > 0 ? dt / cfg_.fallback_seconds : 1.0;
   fallback_ += std::clamp(target - fallback_, -step, step);
-  if (!have_smoothed_) fallback_ = 1.0;
+  if (!have_smoothed_ || cfg_.direct_only) fallback_ = 1.0;
   make_direct_pose(in);
   for (std::size_t j = 0; j < out_.rotations.size(); ++j)
     out_.rotations[j] = fallback_ <= 0 ? smoothed_.rotations[j]

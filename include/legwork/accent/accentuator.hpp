@@ -60,7 +60,11 @@ struct AccentConfig {
   bool drive_head = true;    // head joint takes the headset's orientation
   double fallback_seconds = 0.4;  // time to converge to / from the direct mapping
   double hand_ik = 0.0;      // 0..1: pull the synthesized arms onto the real hands (needs legwork::ik)
+  bool direct_only = false;  // skip matching: always the direct mapping (the IK baseline)
 };
+// True when this build has legwork::ik (arms reach the real hands in the
+// direct mapping and with hand_ik > 0); false: arms hang neutral there.
+bool have_arm_ik();
 inline constexpr int kMaxK = 32;
 
 enum class FrameStatus : std::uint8_t {
