@@ -1,0 +1,124 @@
+#pragma once
+// The accentuation motion database: a read-only, flat, memory-mappable block.
+//
+// Built offline (builder.hpp) and either kept in memory or written to a
+// versioned binary file (layout in docs/accent.md) that loads by mmap in
+// milliseconds. Windows are grouped by activity class (contiguous ranges), so
+// a session can restrict matching to some classes. Per window: the projected
+// left- and right-hand features (features.hpp), both hands' x/z over the window
+// for rotation alignment, and the candidate pose (the window's last frame:
+// local joint rotations on the database skeleton) with its source.
+//
+// Thread safety: a Database is immutable after construction (and after
+// build_index()); any number of Accentuators may read it concurrently.
+#include <legwork/accent/features.hpp>
+#include <legwork/core/motion.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace legwork::accent {
+
+inline constexpr std::uint32_t kFormatVersion = 1;
+
+// Where a window came from (for reports and leave-one-out checks).
+struct WindowSource {
+  std::uint32_t pose = 0;   // index into the pose table (shared by speed variants)
+  std::uint32_t trial = 0;  // index into Database::trials()
+  std::uint32_t frame = 0;  // last frame of the window, at the database rate (T-pose dropped)
+  std::uint16_t cls = 0;    // index into Database::classes()
+  std::uint8_t speed = 0;   // index into BuildSettings::speeds (0 = original speed)
+  std::uint8_t mirrored = 0;
+};
+static_assert(sizeof(WindowSource) == 16);
+
+struct TrialInfo {
+  std::string file, cls;
+  int subject = 0, trial = 0;
+  double correlation = 0;  // hand-foot Pearson |r| (see builder.hpp)
+};
+
+// Build parameters recorded in the database (for reports and reproducibility).
+struct BuildSettings {
+  double fps = 90.0;
+  int hop = 4;  // samples between window ends
+  double correlation_threshold = 0.1;
+  std::vector<double> speeds{1.0};  // time-scale factors; speeds[0] = 1
+  bool mirrored = false;
+};
+
+class Database {
+ public:
+  Database();
+  ~Database();
+  Database(Database&&) noexcept;
+  Database& operator=(Database&&) noexcept;
+
+  // Sizes.
+  int window_count() const;
+  int pose_count() const;
+  int class_count() const;
+  int joint_count() const { return skeleton().joint_count(); }
+
+  // The database skeleton (roles resolved), its standing height (metres) and
+  // build parameters.
+  const Skeleton& skeleton() const;
+  double height() const;
+  const BuildSettings& settings() const;
+  const FeatureSpace& feature_space() const;
+  // Median distance from a window to its nearest window of another trial
+  // (projected feature units): the scale for relative distance thresholds.
+  double typical_distance() const;
+
+  const std::vector<std::string>& classes() const;
+  const std::vector<TrialInfo>& trials() const;
+  // Index of a class by name, or -1.
+  int find_class(const std::string& name) const;
+  // Windows [first, last) of class c.
+  std::pair<int, int> class_range(int c) const;
+
+  // Per-window data (spans into the mapped block). hand: 0 = left, 1 = right.
+  const Feature& feature(int hand, int window) const;
+  std::span<const Feature> features(int hand) const;
+  const AlignXZ& align(int window) const;
+  const WindowSource& source(int window) const;
+  // Candidate pose rotations (joint_count quaternions, float w,x,y,z).
+  std::span<const float> pose_rotations(int pose) const;
+  void pose_rotation(int pose, std::span<Quat> out) const;
+
+  // Serialized block (what save() writes; in memory or mapped).
+  std::span<const std::byte> bytes() const;
+  bool is_mapped() const;
+
+  // KD-trees per class and hand (nanoflann) for the Exact and Fast search
+  // modes. Not thread-safe; call once before sharing the database.
+  void build_index(int leaf_size = 16);
+  bool has_index() const;
+
+  struct Impl;
+  const Impl& impl() const { return *impl_; }
+
+  // From a serialized block (validates it; throws legwork::Error naming `source`).
+  static Database from_bytes(std::vector<std::byte> block, const std::string& source);
+
+ private:
+  friend Database load_database(const std::string&, const struct LoadOptions&);
+  std::unique_ptr<Impl> impl_;
+};
+
+struct LoadOptions {
+  bool verify_checksum = true;  // hash the whole file (about 10 ms per 100 MB)
+  bool build_index = true;      // KD-trees for the Exact/Fast search modes
+  bool use_mmap = true;         // false: read into memory
+};
+// Maps a database file. Throws legwork::Error naming the file when it is
+// missing, truncated, corrupted (checksum), of another format version or not
+// a legwork accent database at all.
+Database load_database(const std::string& path, const LoadOptions& opt = {});
+// Writes db.bytes() to path (throws legwork::Error on I/O failure).
+void save_database(const std::string& path, const Database& db);
+
+}  // namespace legwork::accent

@@ -1,0 +1,28 @@
+#pragma once
+// k-nearest-neighbour search over one hand's database features.
+// Runtime code: no allocation, no exceptions; thread-safe on a const Database.
+#include <legwork/accent/database.hpp>
+
+#include <span>
+
+namespace legwork::accent {
+
+enum class SearchMode {
+  BruteForce,  // linear scan: the reference
+  Exact,       // KD-tree, exact (same neighbours as BruteForce, ties aside)
+  Fast,        // KD-tree, eps-approximate: a neighbour may be up to (1+eps)x farther
+};
+
+struct Match {
+  int window = -1;
+  float distance = 0;  // L2 in projected feature units (not squared)
+};
+
+// Up to k nearest windows to `query` for hand 0 (left) / 1 (right), sorted by
+// distance, among the classes whose mask byte is non-zero (empty mask = all
+// classes). k is capped at out.size(). Falls back to BruteForce when the
+// database has no index. Returns the number of matches written.
+int search_knn(const Database& db, int hand, const Feature& query, int k, SearchMode mode, float eps,
+               std::span<const unsigned char> class_mask, std::span<Match> out);
+
+}  // namespace legwork::accent

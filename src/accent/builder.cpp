@@ -1,0 +1,486 @@
+// Offline database builder (CoolMoves 3.1.1-3.1.2).
+#include <legwork/accent/builder.hpp>
+#include <legwork/accent/retarget.hpp>
+
+#include "database_impl.hpp"
+
+#include <legwork/core/fk.hpp>
+#include <legwork/core/interpolate.hpp>
+#include <legwork/core/measure.hpp>
+#include <legwork/core/mirror.hpp>
+#include <legwork/io/bvh.hpp>
+#include <legwork/io/text.hpp>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <sstream>
+
+namespace legwork::accent {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> split_tabs(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cell;
+  std::istringstream in(line);
+  while (std::getline(in, cell, '\t')) out.push_back(cell);
+  if (!line.empty() && line.back() == '\t') out.emplace_back();
+  return out;
+}
+
+bool excluded(const std::string& file, const std::vector<std::string>& exclude) {
+  for (const auto& e : exclude)
+    if (file == e || fs::path(file).filename() == fs::path(e).filename()) return true;
+  return false;
+}
+
+// "07_12.bvh" -> subject 7, trial 12 (0 if the name has another form).
+void parse_cmu_name(const std::string& file, int& subject, int& trial) {
+  const std::string stem = fs::path(file).stem().string();
+  const auto us = stem.find('_');
+  subject = trial = 0;
+  try {
+    if (us != std::string::npos) {
+      subject = std::stoi(stem.substr(0, us));
+      trial = std::stoi(stem.substr(us + 1));
+    }
+  } catch (const std::exception&) {
+    subject = trial = 0;
+  }
+}
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  const std::size_t n = a.size();
+  if (n < 2) return 0;
+  const double ma = std::accumulate(a.begin(), a.end(), 0.0) / static_cast<double>(n);
+  const double mb = std::accumulate(b.begin(), b.end(), 0.0) / static_cast<double>(n);
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  if (saa < 1e-18 || sbb < 1e-18) return 0;
+  return sab / std::sqrt(saa * sbb);
+}
+
+std::vector<Vec3> head_relative(const Motion& m, const std::vector<Vec3>& pos, Role role) {
+  const int nj = m.joint_count();
+  const auto head = static_cast<std::size_t>(m.skeleton.roles[Role::Head]);
+  const auto j = static_cast<std::size_t>(m.skeleton.roles[role]);
+  std::vector<Vec3> out(static_cast<std::size_t>(m.frame_count()));
+  for (int f = 0; f < m.frame_count(); ++f) {
+    const std::size_t b = static_cast<std::size_t>(f) * static_cast<std::size_t>(nj);
+    out[static_cast<std::size_t>(f)] = pos[b + j] - pos[b + head];
+  }
+  return out;
+}
+
+Vec3 sample_path(const std::vector<Vec3>& path, double frame) {
+  const double last = static_cast<double>(path.size() - 1);
+  frame = std::clamp(frame, 0.0, last);
+  const auto i0 = static_cast<std::size_t>(std::floor(frame));
+  const std::size_t i1 = std::min(i0 + 1, path.size() - 1);
+  const double t = frame - static_cast<double>(i0);
+  return t == 0.0 ? path[i0] : Vec3((1 - t) * path[i0] + t * path[i1]);
+}
+
+// The 72 x 27 matrix W with raw_feature(w) = W * (stacked window positions).
+Eigen::Matrix<double, kRawDim, kPosDim> raw_feature_matrix(double fps) {
+  Eigen::Matrix<double, kRawDim, kPosDim> W;
+  for (int k = 0; k < kPosDim; ++k) {
+    HandWindow w;
+    for (auto& p : w) p.setZero();
+    w[static_cast<std::size_t>(k / 3)][k % 3] = 1.0;
+    RawFeature f;
+    raw_feature(w, fps, f);
+    for (int d = 0; d < kRawDim; ++d) W(d, k) = f[static_cast<std::size_t>(d)];
+  }
+  return W;
+}
+
+int group_of(int raw_dim) { return raw_dim < kPosDim ? 0 : raw_dim < kPosDim + 3 * (kWindow - 1) ? 1 : 2; }
+
+using PosVec = Eigen::Matrix<double, kPosDim, 1>;
+PosVec stack(const HandWindow& w) {
+  PosVec p;
+  for (int i = 0; i < kWindow; ++i) p.segment<3>(3 * i) = w[static_cast<std::size_t>(i)];
+  return p;
+}
+
+}  // namespace
+
+std::vector<double> speed_factors(const BuildConfig& cfg) {
+  std::vector<double> s{1.0};
+  const int per_side = cfg.speed_variants / 2;
+  for (int i = 1; i <= per_side; ++i) {
+    const double d = cfg.speed_range * i / per_side;
+    s.push_back(1.0 - d);
+    s.push_back(1.0 + d);
+  }
+  if (cfg.speed_variants % 2 == 1) s.push_back(1.0 + cfg.speed_range);
+  return s;
+}
+
+std::vector<TrialInput> load_trials(const std::string& dir, const std::vector<std::string>& classes,
+                                    const std::vector<std::string>& exclude, const Progress& progress) {
+  struct Row {
+    std::string file, cls;
+    int subject = 0, trial = 0;
+  };
+  std::vector<Row> rows;
+  const fs::path root(dir);
+  if (!fs::is_directory(root)) throw Error("data folder '" + dir + "' does not exist");
+  const fs::path manifest = root / "MANIFEST.tsv";
+  if (fs::exists(manifest)) {
+    std::istringstream in(io::read_text_file(manifest.string()));
+    std::string line;
+    std::getline(in, line);
+    const auto head = split_tabs(line);
+    auto col = [&](const std::string& name) {
+      const auto it = std::find(head.begin(), head.end(), name);
+      if (it == head.end()) throw Error(manifest.string() + ":1: no '" + name + "' column");
+      return static_cast<std::size_t>(it - head.begin());
+    };
+    const std::size_t cf = col("file"), cc = col("class"), cs = col("subject"), ct = col("trial");
+    int lineno = 1;
+    while (std::getline(in, line)) {
+      ++lineno;
+      if (line.empty()) continue;
+      const auto cells = split_tabs(line);
+      if (cells.size() <= std::max({cf, cc, cs, ct}))
+        throw Error(manifest.string() + ":" + std::to_string(lineno) + ": too few columns");
+      Row r{cells[cf], cells[cc], 0, 0};
+      try {
+        r.subject = std::stoi(cells[cs]);
+        r.trial = std::stoi(cells[ct]);
+      } catch (const std::exception&) {
+        throw Error(manifest.string() + ":" + std::to_string(lineno) + ": subject/trial are not numbers");
+      }
+      rows.push_back(r);
+    }
+  } else {
+    for (const auto& sub : fs::directory_iterator(root)) {
+      if (!sub.is_directory() || sub.path().filename().string().rfind("bvh", 0) != 0) continue;
+      for (const auto& cdir : fs::directory_iterator(sub.path())) {
+        if (!cdir.is_directory()) continue;
+        for (const auto& f : fs::directory_iterator(cdir.path())) {
+          if (io::extension_of(f.path().string()) != ".bvh") continue;
+          Row r{fs::relative(f.path(), root).string(), cdir.path().filename().string(), 0, 0};
+          parse_cmu_name(r.file, r.subject, r.trial);
+          rows.push_back(r);
+        }
+      }
+    }
+    std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.file < b.file; });
+  }
+  std::set<std::string> present;
+  for (const auto& r : rows) present.insert(r.cls);
+  for (const auto& c : classes)
+    if (!present.count(c)) {
+      std::string list;
+      for (const auto& p : present) list += (list.empty() ? "" : ", ") + p;
+      throw Error("class '" + c + "' is not in " + dir + " (classes present: " + list + ")");
+    }
+  std::vector<Row> chosen;
+  for (const auto& r : rows)
+    if ((classes.empty() || std::find(classes.begin(), classes.end(), r.cls) != classes.end()) && !excluded(r.file, exclude))
+      chosen.push_back(r);
+  std::vector<TrialInput> out;
+  out.reserve(chosen.size());
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    const auto& r = chosen[i];
+    if (progress) progress(static_cast<int>(i), static_cast<int>(chosen.size()), r.file);
+    io::BvhReadOptions opt;
+    opt.drop_first_frame = true;  // CMU's synthetic T-pose (DAZ: the reference pose)
+    TrialInput t{r.file, r.cls, r.subject, r.trial, io::load_bvh((root / r.file).string(), opt)};
+    out.push_back(std::move(t));
+  }
+  if (progress) progress(static_cast<int>(chosen.size()), static_cast<int>(chosen.size()), "");
+  return out;
+}
+
+Skeleton reference_skeleton(std::span<const TrialInput> trials) {
+  if (trials.empty()) throw Error("accent build: no trials given");
+  std::map<std::vector<std::string>, int> count;
+  for (const auto& t : trials) ++count[t.motion.skeleton.names];
+  const auto best = std::max_element(count.begin(), count.end(), [](auto& a, auto& b) { return a.second < b.second; });
+  for (const auto& t : trials)
+    if (t.motion.skeleton.names == best->first) return t.motion.skeleton;
+  return trials.front().motion.skeleton;
+}
+
+double hand_foot_correlation(const Motion& m) {
+  const auto pos = joint_positions(m);
+  const std::array<Role, 2> hands{Role::LeftHand, Role::RightHand};
+  const std::array<Role, 2> feet{Role::LeftAnkle, Role::RightAnkle};
+  double sum = 0;
+  int n = 0;
+  for (Role h : hands) {
+    const auto hp = head_relative(m, pos, h);
+    for (Role f : feet) {
+      const auto fp = head_relative(m, pos, f);
+      for (int a = 0; a < 3; ++a) {
+        std::vector<double> x(hp.size()), y(fp.size());
+        for (std::size_t i = 0; i < hp.size(); ++i) x[i] = hp[i][a], y[i] = fp[i][a];
+        sum += std::abs(pearson(x, y));
+        ++n;
+      }
+    }
+  }
+  return n ? sum / n : 0.0;
+}
+
+PreparedTrial prepare_trial(const TrialInput& t, const Skeleton& reference, const BuildConfig& cfg) {
+  PreparedTrial p;
+  p.info = {t.file, t.cls, t.subject, t.trial, 0.0};
+  const Skeleton& s = t.motion.skeleton;
+  for (Role r : {Role::Head, Role::LeftHand, Role::RightHand, Role::LeftAnkle, Role::RightAnkle, Role::Pelvis})
+    if (!s.roles.has(r)) {
+      p.reason = "no joint for role " + std::string(role_name(r));
+      return p;
+    }
+  if (t.motion.frame_count() < kWindow) {
+    p.reason = "too short (" + std::to_string(t.motion.frame_count()) + " frames)";
+    return p;
+  }
+  Motion m = resample(t.motion, cfg.fps);
+  if (s.names == reference.names) {
+    // Same rig: copy rotations onto the reference bone lengths.
+    Motion on_ref(reference, m.fps, m.frame_count());
+    std::copy(m.all_rotations().begin(), m.all_rotations().end(), on_ref.all_rotations().begin());
+    for (int f = 0; f < m.frame_count(); ++f) {
+      auto fr = on_ref.frame(f);
+      fr.translations[0] = m.frame(f).translations[0];
+    }
+    p.motion = std::move(on_ref);
+    p.reason = "kept";
+  } else {
+    p.motion = retarget_motion(m, reference);
+    p.reason = "kept (mapped by joint roles onto the database skeleton)";
+  }
+  p.info.correlation = hand_foot_correlation(p.motion);
+  if (!(p.info.correlation > cfg.correlation_threshold)) {
+    std::ostringstream why;
+    why.precision(3);
+    why << "hand-foot correlation " << p.info.correlation << " <= threshold " << cfg.correlation_threshold;
+    p.reason = why.str();
+    p.motion = Motion();
+    return p;
+  }
+  const auto pos = joint_positions(p.motion);
+  p.hands[0] = head_relative(p.motion, pos, Role::LeftHand);
+  p.hands[1] = head_relative(p.motion, pos, Role::RightHand);
+  if (cfg.mirror) {
+    p.mirrored = mirror_motion(p.motion);
+    const auto mpos = joint_positions(p.mirrored);
+    p.mirrored_hands[0] = head_relative(p.mirrored, mpos, Role::LeftHand);
+    p.mirrored_hands[1] = head_relative(p.mirrored, mpos, Role::RightHand);
+  }
+  p.kept = true;
+  return p;
+}
+
+Database assemble_database(std::span<const PreparedTrial* const> trials, const Skeleton& reference,
+                           const BuildConfig& cfg, BuildReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (cfg.hop < 1) throw Error("accent build: hop must be at least 1 sample");
+  BlockParts parts;
+  parts.skeleton = reference;
+  resolve_roles(parts.skeleton);
+  parts.height = measure_body(parts.skeleton).standing_height;
+  parts.settings = {cfg.fps, cfg.hop, cfg.correlation_threshold, speed_factors(cfg), cfg.mirror};
+  const auto& speeds = parts.settings.speeds;
+  const int nj = reference.joint_count();
+
+  // Kept trials in class order (windows of a class must be contiguous).
+  std::vector<const PreparedTrial*> kept;
+  for (const auto* t : trials)
+    if (t->kept) kept.push_back(t);
+  std::stable_sort(kept.begin(), kept.end(), [](auto* a, auto* b) { return a->info.cls < b->info.cls; });
+
+  std::vector<std::array<PosVec, 2>> windows;
+  std::vector<int> window_counts;
+  for (const auto* t : kept) {
+    if (t->motion.joint_count() != nj) throw Error("accent build: trial '" + t->info.file + "' is not on the reference skeleton");
+    if (parts.classes.empty() || parts.classes.back() != t->info.cls) {
+      if (!parts.ranges.empty()) parts.ranges.back().second = static_cast<int>(parts.sources.size());
+      parts.classes.push_back(t->info.cls);
+      parts.ranges.emplace_back(static_cast<int>(parts.sources.size()), 0);
+    }
+    const auto trial_index = static_cast<std::uint32_t>(parts.trials.size());
+    parts.trials.push_back(t->info);
+    const int before = static_cast<int>(parts.sources.size());
+    for (int mir = 0; mir < (cfg.mirror ? 2 : 1); ++mir) {
+      const Motion& m = mir ? t->mirrored : t->motion;
+      const auto& hands = mir ? t->mirrored_hands : t->hands;
+      for (int e = kWindow - 1; e < m.frame_count(); e += cfg.hop) {
+        const auto pose = static_cast<std::uint32_t>(parts.poses.size() / (static_cast<std::size_t>(nj) * 4));
+        const auto fr = m.frame(e);
+        for (int j = 0; j < nj; ++j) {
+          const Quat q = fr.rotations[static_cast<std::size_t>(j)].normalized();
+          parts.poses.insert(parts.poses.end(), {static_cast<float>(q.w()), static_cast<float>(q.x()),
+                                                 static_cast<float>(q.y()), static_cast<float>(q.z())});
+        }
+        for (std::size_t si = 0; si < speeds.size(); ++si) {
+          const double s = speeds[si];
+          if (e - (kWindow - 1) * s < -1e-9) continue;
+          std::array<HandWindow, 2> w;
+          for (int h = 0; h < 2; ++h)
+            for (int i = 0; i < kWindow; ++i)
+              w[static_cast<std::size_t>(h)][static_cast<std::size_t>(i)] =
+                  sample_path(hands[static_cast<std::size_t>(h)], e - (kWindow - 1 - i) * s);
+          windows.push_back({stack(w[0]), stack(w[1])});
+          AlignXZ a;
+          fill_align(w[0], w[1], a);
+          parts.align.push_back(a);
+          parts.sources.push_back({pose, trial_index, static_cast<std::uint32_t>(e), static_cast<std::uint16_t>(parts.classes.size() - 1),
+                                   static_cast<std::uint8_t>(si), static_cast<std::uint8_t>(mir)});
+        }
+      }
+    }
+    window_counts.push_back(static_cast<int>(parts.sources.size()) - before);
+  }
+  if (!parts.ranges.empty()) parts.ranges.back().second = static_cast<int>(parts.sources.size());
+  if (windows.empty())
+    throw Error("accent build: no windows: every trial was dropped or too short (see the per-trial report; "
+                "lower --correlation or add trials)");
+
+  // Per-dimension normalisation of the raw features, from the mean and
+  // covariance of the stacked positions (raw = W p is linear in them).
+  const auto W = raw_feature_matrix(cfg.fps);
+  PosVec mean = PosVec::Zero();
+  Eigen::Matrix<double, kPosDim, kPosDim> cov = Eigen::Matrix<double, kPosDim, kPosDim>::Zero();
+  for (const auto& w : windows)
+    for (const auto& p : w) mean += p;
+  const double count = 2.0 * static_cast<double>(windows.size());
+  mean /= count;
+  for (const auto& w : windows)
+    for (const auto& p : w) cov.noalias() += (p - mean) * (p - mean).transpose();
+  cov /= count;
+  parts.space.fps = cfg.fps;
+  parts.space.group_weight = cfg.group_weight;
+  Eigen::Matrix<double, kRawDim, 1> scale;
+  for (int d = 0; d < kRawDim; ++d) {
+    const double var = W.row(d) * cov * W.row(d).transpose();
+    const double sd = std::sqrt(std::max(var, 0.0));
+    scale(d) = cfg.group_weight[static_cast<std::size_t>(group_of(d))] / std::max(sd, 1e-9);
+    parts.space.scale[static_cast<std::size_t>(d)] = scale(d);
+  }
+  // Metric on positions M = W^T S^2 W = A^T A, then rotate onto the principal
+  // axes of the data in that metric (distances unchanged, KD-trees split well).
+  const Eigen::Matrix<double, kRawDim, kPosDim> SW = scale.asDiagonal() * W;
+  const Eigen::Matrix<double, kPosDim, kPosDim> M = SW.transpose() * SW;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, kPosDim, kPosDim>> es(M);
+  const Eigen::Matrix<double, kPosDim, kPosDim> A =
+      es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * es.eigenvectors().transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, kPosDim, kPosDim>> pca(A * cov * A.transpose());
+  const Eigen::Matrix<double, kPosDim, kPosDim> U = pca.eigenvectors().rowwise().reverse();  // descending variance
+  const Eigen::Matrix<double, kPosDim, kPosDim> P = U.transpose() * A;
+  for (int r = 0; r < kDim; ++r)
+    for (int c = 0; c < kPosDim; ++c) parts.space.projection[static_cast<std::size_t>(r * kPosDim + c)] = P(r, c);
+  for (int h = 0; h < 2; ++h) {
+    auto& out = parts.features[h];
+    out.resize(windows.size());
+    for (std::size_t w = 0; w < windows.size(); ++w) {
+      const PosVec y = P * windows[w][static_cast<std::size_t>(h)];
+      for (int d = 0; d < kDim; ++d) out[w][static_cast<std::size_t>(d)] = static_cast<float>(y(d));
+    }
+  }
+
+  // Typical distance: median over sampled original-speed windows of the
+  // distance to the nearest window of another trial (left hand).
+  {
+    std::vector<int> originals;
+    for (std::size_t w = 0; w < parts.sources.size(); ++w)
+      if (parts.sources[w].speed == 0 && !parts.sources[w].mirrored) originals.push_back(static_cast<int>(w));
+    std::mt19937 rng(12345);
+    std::shuffle(originals.begin(), originals.end(), rng);
+    originals.resize(std::min<std::size_t>(originals.size(), static_cast<std::size_t>(std::max(cfg.typical_samples, 1))));
+    std::vector<double> nn;
+    const auto& F = parts.features[0];
+    for (int q : originals) {
+      float best = std::numeric_limits<float>::max();
+      for (std::size_t w = 0; w < F.size(); ++w) {
+        if (parts.sources[w].trial == parts.sources[static_cast<std::size_t>(q)].trial) continue;
+        float s = 0;
+        for (int d = 0; d < kDim; ++d) {
+          const float x = F[w][static_cast<std::size_t>(d)] - F[static_cast<std::size_t>(q)][static_cast<std::size_t>(d)];
+          s += x * x;
+        }
+        best = std::min(best, s);
+      }
+      if (best < std::numeric_limits<float>::max()) nn.push_back(std::sqrt(best));
+    }
+    if (!nn.empty()) {
+      std::nth_element(nn.begin(), nn.begin() + static_cast<std::ptrdiff_t>(nn.size() / 2), nn.end());
+      parts.typical_distance = std::max(nn[nn.size() / 2], 1e-6);
+    } else {
+      parts.typical_distance = 1.0;  // a single trial: no cross-trial distance to measure
+    }
+  }
+
+  auto block = serialize_block(parts);
+  if (report) {
+    report->trials.clear();
+    std::size_t k = 0;
+    for (const auto* t : trials) {
+      TrialVerdict v{t->info.file, t->info.cls, t->kept, t->info.correlation, 0, t->reason};
+      if (t->kept) {
+        const auto it = std::find(kept.begin(), kept.end(), t);
+        k = static_cast<std::size_t>(it - kept.begin());
+        v.windows = window_counts[k];
+      }
+      report->trials.push_back(v);
+    }
+    report->windows = static_cast<int>(parts.sources.size());
+    report->poses = static_cast<int>(parts.poses.size() / (static_cast<std::size_t>(nj) * 4));
+    report->bytes = block.size();
+    report->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  return Database::from_bytes(std::move(block), "(in memory)");
+}
+
+Database build_database(std::span<const TrialInput> trials, const BuildConfig& cfg, BuildReport* report,
+                        const Progress& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Skeleton ref = reference_skeleton(trials);
+  std::vector<PreparedTrial> prepared;
+  prepared.reserve(trials.size());
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    if (progress) progress(static_cast<int>(i), static_cast<int>(trials.size()), trials[i].file);
+    try {
+      prepared.push_back(prepare_trial(trials[i], ref, cfg));
+    } catch (const Error& e) {
+      PreparedTrial p;
+      p.info = {trials[i].file, trials[i].cls, trials[i].subject, trials[i].trial, 0.0};
+      p.reason = e.what();
+      prepared.push_back(std::move(p));
+    }
+  }
+  if (progress) progress(static_cast<int>(trials.size()), static_cast<int>(trials.size()), "assembling");
+  std::vector<const PreparedTrial*> ptrs;
+  for (const auto& p : prepared) ptrs.push_back(&p);
+  BuildReport local;
+  BuildReport* r = report ? report : &local;
+  r->seconds = 0;
+  for (const auto& t : trials)
+    if (t.motion.skeleton.names == ref.names) {
+      r->skeleton_from = t.file;
+      break;
+    }
+  Database db = assemble_database(ptrs, ref, cfg, r);
+  r->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return db;
+}
+
+}  // namespace legwork::accent

@@ -1,0 +1,340 @@
+// Database: the serialized block, its validation, mmap loading and KD-trees.
+#include "database_impl.hpp"
+
+#include <legwork/core/skeleton.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace legwork::accent {
+namespace {
+
+using json = nlohmann::json;
+
+std::size_t align64(std::size_t n) { return (n + 63) & ~static_cast<std::size_t>(63); }
+
+json vec3_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+Vec3 json_vec3(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+
+json meta_json(const BlockParts& p) {
+  json j;
+  const Skeleton& s = p.skeleton;
+  json sk;
+  sk["names"] = s.names;
+  sk["parents"] = s.parents;
+  json off = json::array(), ends = json::array();
+  for (int i = 0; i < s.joint_count(); ++i) {
+    off.push_back(vec3_json(s.rest_offsets[static_cast<std::size_t>(i)]));
+    ends.push_back(s.has_end_site[static_cast<std::size_t>(i)] ? vec3_json(s.end_sites[static_cast<std::size_t>(i)]) : json(nullptr));
+  }
+  sk["rest_offsets_m"] = off;
+  sk["end_sites_m"] = ends;
+  j["skeleton"] = sk;
+  j["height_m"] = p.height;
+  j["build"] = {{"fps", p.settings.fps},
+                {"hop", p.settings.hop},
+                {"correlation_threshold", p.settings.correlation_threshold},
+                {"speeds", p.settings.speeds},
+                {"mirrored", p.settings.mirrored}};
+  j["features"] = {{"window", kWindow},
+                   {"raw_layout", "p0..p8 (xyz, head-relative m), v1..v8 (m/s), a2..a8 (m/s^2)"},
+                   {"fps", p.space.fps},
+                   {"scale", p.space.scale},
+                   {"group_weight", p.space.group_weight},
+                   {"projection", p.space.projection}};
+  j["typical_distance"] = p.typical_distance;
+  j["classes"] = p.classes;
+  json ranges = json::array();
+  for (auto [a, b] : p.ranges) ranges.push_back({a, b});
+  j["class_ranges"] = ranges;
+  json trials = json::array();
+  for (const auto& t : p.trials)
+    trials.push_back({{"file", t.file}, {"class", t.cls}, {"subject", t.subject}, {"trial", t.trial}, {"correlation", t.correlation}});
+  j["trials"] = trials;
+  return j;
+}
+
+[[noreturn]] void fail(const std::string& source, const std::string& what) {
+  throw Error("accent database '" + source + "': " + what);
+}
+
+void parse_meta(Database::Impl& d, const std::string& text, const std::string& source) {
+  json j;
+  try {
+    j = json::parse(text);
+    Skeleton s;
+    const auto& sk = j.at("skeleton");
+    const auto names = sk.at("names").get<std::vector<std::string>>();
+    const auto parents = sk.at("parents").get<std::vector<int>>();
+    if (names.size() != parents.size() || names.size() != sk.at("rest_offsets_m").size())
+      fail(source, "skeleton arrays have different lengths");
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      s.add_joint(names[i], parents[i], json_vec3(sk.at("rest_offsets_m").at(i)));
+      const auto& e = sk.at("end_sites_m").at(i);
+      if (!e.is_null()) {
+        s.end_sites[i] = json_vec3(e);
+        s.has_end_site[i] = 1;
+      }
+    }
+    s.validate();
+    resolve_roles(s);
+    d.skeleton = std::move(s);
+    d.height = j.at("height_m").get<double>();
+    const auto& b = j.at("build");
+    d.settings.fps = b.at("fps").get<double>();
+    d.settings.hop = b.at("hop").get<int>();
+    d.settings.correlation_threshold = b.at("correlation_threshold").get<double>();
+    d.settings.speeds = b.at("speeds").get<std::vector<double>>();
+    d.settings.mirrored = b.at("mirrored").get<bool>();
+    const auto& f = j.at("features");
+    if (f.at("window").get<int>() != kWindow) fail(source, "window size differs from this build's " + std::to_string(kWindow));
+    d.space.fps = f.at("fps").get<double>();
+    d.space.scale = f.at("scale").get<std::array<double, kRawDim>>();
+    d.space.group_weight = f.at("group_weight").get<std::array<double, 3>>();
+    d.space.projection = f.at("projection").get<std::array<double, kDim * kDim>>();
+    d.typical_distance = j.at("typical_distance").get<double>();
+    d.classes = j.at("classes").get<std::vector<std::string>>();
+    d.ranges.clear();
+    for (const auto& r : j.at("class_ranges")) d.ranges.emplace_back(r.at(0).get<int>(), r.at(1).get<int>());
+    d.trials.clear();
+    for (const auto& t : j.at("trials"))
+      d.trials.push_back({t.at("file").get<std::string>(), t.at("class").get<std::string>(), t.at("subject").get<int>(),
+                          t.at("trial").get<int>(), t.at("correlation").get<double>()});
+  } catch (const json::exception& e) {
+    fail(source, std::string("metadata is malformed: ") + e.what());
+  }
+  if (d.ranges.size() != d.classes.size()) fail(source, "class ranges do not match the class list");
+}
+
+template <class T>
+const T* section(const Database::Impl& d, std::uint64_t offset, std::uint64_t count, const std::string& source,
+                 const char* what) {
+  const std::uint64_t bytes = count * sizeof(T);
+  if (offset % alignof(T) != 0 || offset > d.size || bytes > d.size - offset)
+    fail(source, std::string("section '") + what + "' lies outside the file (truncated?)");
+  return reinterpret_cast<const T*>(d.base + offset);
+}
+
+// Validates the block in d.base/d.size and fills the views.
+void open_block(Database::Impl& d, const std::string& source, bool verify) {
+  if (d.size < sizeof(FileHeader)) fail(source, "file is " + std::to_string(d.size) + " bytes, shorter than the header (truncated or not a database)");
+  std::memcpy(&d.header, d.base, sizeof(FileHeader));
+  const FileHeader& h = d.header;
+  if (std::memcmp(h.magic, kMagic, sizeof(kMagic)) != 0) fail(source, "not a legwork accent database (bad magic)");
+  if (h.endian != kEndianTag) fail(source, "written on a machine of other endianness");
+  if (h.version != kFormatVersion)
+    fail(source, "format version " + std::to_string(h.version) + ", but this legwork reads version " +
+                     std::to_string(kFormatVersion) + "; rebuild it with 'legwork accent build'");
+  if (h.file_bytes != d.size)
+    fail(source, "header says " + std::to_string(h.file_bytes) + " bytes but the file has " + std::to_string(d.size) +
+                     (d.size < h.file_bytes ? " (truncated)" : " (trailing data)"));
+  if (h.feature_dim != static_cast<std::uint32_t>(kDim) || h.window != static_cast<std::uint32_t>(kWindow))
+    fail(source, "feature layout (" + std::to_string(h.feature_dim) + " dims, window " + std::to_string(h.window) +
+                     ") differs from this build's");
+  if (verify) {
+    const std::uint64_t sum = block_checksum({d.base, d.size});
+    if (sum != h.checksum) fail(source, "checksum mismatch: the file is corrupted");
+  }
+  const char* meta = reinterpret_cast<const char*>(section<char>(d, h.meta_offset, h.meta_bytes, source, "metadata"));
+  parse_meta(d, std::string(meta, h.meta_bytes), source);
+  if (static_cast<std::uint32_t>(d.skeleton.joint_count()) != h.joint_count) fail(source, "joint count disagrees with the skeleton");
+  if (d.classes.size() != h.class_count) fail(source, "class count disagrees with the class list");
+  for (auto [a, b] : d.ranges)
+    if (a < 0 || b < a || static_cast<std::uint32_t>(b) > h.window_count) fail(source, "class range outside the windows");
+  for (int hand = 0; hand < 2; ++hand)
+    d.features[hand] = section<Feature>(d, h.feature_offset[hand], h.window_count, source, "features");
+  d.align = section<AlignXZ>(d, h.align_offset, h.window_count, source, "alignment");
+  d.sources = section<WindowSource>(d, h.source_offset, h.window_count, source, "sources");
+  d.poses = section<float>(d, h.pose_offset, std::uint64_t{h.pose_count} * h.joint_count * 4, source, "poses");
+  for (std::uint32_t w = 0; w < h.window_count; ++w)
+    if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.trials.size() || d.sources[w].cls >= h.class_count)
+      fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
+}
+
+}  // namespace
+
+std::uint64_t block_checksum(std::span<const std::byte> block) {
+  // 64-bit FNV-1a over 8-byte words with an extra shift-xor mix: catches
+  // truncation, bit flips and overwrites (not an integrity seal against tampering).
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  auto mix = [&h](std::uint64_t w) {
+    h ^= w;
+    h *= 0x100000001b3ull;
+    h ^= h >> 29;
+  };
+  const std::size_t n = block.size();
+  constexpr std::size_t kSumAt = offsetof(FileHeader, checksum);
+  for (std::size_t i = 0; i + 8 <= n; i += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, block.data() + i, 8);
+    if (i == kSumAt) w = 0;
+    mix(w);
+  }
+  std::uint64_t tail = 0;
+  std::memcpy(&tail, block.data() + (n & ~std::size_t{7}), n & 7);
+  mix(tail ^ n);
+  return h;
+}
+
+std::vector<std::byte> serialize_block(const BlockParts& p) {
+  const std::string meta = meta_json(p).dump();
+  const std::size_t nw = p.sources.size();
+  const std::size_t nj = static_cast<std::size_t>(p.skeleton.joint_count());
+  const std::size_t np = nj ? p.poses.size() / (nj * 4) : 0;
+  FileHeader h{};
+  std::memcpy(h.magic, kMagic, sizeof(kMagic));
+  h.version = kFormatVersion;
+  h.endian = kEndianTag;
+  h.window_count = static_cast<std::uint32_t>(nw);
+  h.pose_count = static_cast<std::uint32_t>(np);
+  h.joint_count = static_cast<std::uint32_t>(nj);
+  h.class_count = static_cast<std::uint32_t>(p.classes.size());
+  h.feature_dim = kDim;
+  h.window = kWindow;
+  std::size_t at = align64(sizeof(FileHeader));
+  auto place = [&at](std::size_t bytes) {
+    const std::size_t o = at;
+    at = align64(at + bytes);
+    return o;
+  };
+  h.meta_offset = place(meta.size());
+  h.meta_bytes = meta.size();
+  for (int hand = 0; hand < 2; ++hand) h.feature_offset[hand] = place(nw * sizeof(Feature));
+  h.align_offset = place(nw * sizeof(AlignXZ));
+  h.source_offset = place(nw * sizeof(WindowSource));
+  h.pose_offset = place(p.poses.size() * sizeof(float));
+  h.file_bytes = at;
+  std::vector<std::byte> block(at);
+  auto put = [&block](std::size_t off, const void* src, std::size_t bytes) {
+    if (bytes) std::memcpy(block.data() + off, src, bytes);
+  };
+  put(h.meta_offset, meta.data(), meta.size());
+  for (int hand = 0; hand < 2; ++hand) put(h.feature_offset[hand], p.features[hand].data(), nw * sizeof(Feature));
+  put(h.align_offset, p.align.data(), nw * sizeof(AlignXZ));
+  put(h.source_offset, p.sources.data(), nw * sizeof(WindowSource));
+  put(h.pose_offset, p.poses.data(), p.poses.size() * sizeof(float));
+  put(0, &h, sizeof(h));
+  h.checksum = block_checksum(block);
+  put(0, &h, sizeof(h));
+  return block;
+}
+
+Database::Impl::~Impl() {
+  if (map) munmap(map, map_bytes);
+}
+
+Database::Database() : impl_(std::make_unique<Impl>()) {}
+Database::~Database() = default;
+Database::Database(Database&&) noexcept = default;
+Database& Database::operator=(Database&&) noexcept = default;
+
+int Database::window_count() const { return static_cast<int>(impl_->header.window_count); }
+int Database::pose_count() const { return static_cast<int>(impl_->header.pose_count); }
+int Database::class_count() const { return static_cast<int>(impl_->classes.size()); }
+const Skeleton& Database::skeleton() const { return impl_->skeleton; }
+double Database::height() const { return impl_->height; }
+const BuildSettings& Database::settings() const { return impl_->settings; }
+const FeatureSpace& Database::feature_space() const { return impl_->space; }
+double Database::typical_distance() const { return impl_->typical_distance; }
+const std::vector<std::string>& Database::classes() const { return impl_->classes; }
+const std::vector<TrialInfo>& Database::trials() const { return impl_->trials; }
+int Database::find_class(const std::string& name) const {
+  for (std::size_t c = 0; c < impl_->classes.size(); ++c)
+    if (impl_->classes[c] == name) return static_cast<int>(c);
+  return -1;
+}
+std::pair<int, int> Database::class_range(int c) const { return impl_->ranges[static_cast<std::size_t>(c)]; }
+const Feature& Database::feature(int hand, int window) const { return impl_->features[hand][window]; }
+std::span<const Feature> Database::features(int hand) const {
+  return {impl_->features[hand], static_cast<std::size_t>(window_count())};
+}
+const AlignXZ& Database::align(int window) const { return impl_->align[window]; }
+const WindowSource& Database::source(int window) const { return impl_->sources[window]; }
+std::span<const float> Database::pose_rotations(int pose) const {
+  const std::size_t n = static_cast<std::size_t>(joint_count()) * 4;
+  return {impl_->poses + static_cast<std::size_t>(pose) * n, n};
+}
+void Database::pose_rotation(int pose, std::span<Quat> out) const {
+  const auto r = pose_rotations(pose);
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = Quat(r[4 * j], r[4 * j + 1], r[4 * j + 2], r[4 * j + 3]);
+}
+std::span<const std::byte> Database::bytes() const { return {impl_->base, impl_->size}; }
+bool Database::is_mapped() const { return impl_->map != nullptr; }
+bool Database::has_index() const { return !impl_->index.empty(); }
+
+void Database::build_index(int leaf_size) {
+  Impl& d = *impl_;
+  d.index.clear();
+  d.index.resize(d.classes.size());
+  for (std::size_t c = 0; c < d.classes.size(); ++c) {
+    const auto [a, b] = d.ranges[c];
+    for (int hand = 0; hand < 2; ++hand) {
+      auto& ci = d.index[c];
+      ci.cloud[hand].data = reinterpret_cast<const float*>(d.features[hand] + a);
+      ci.cloud[hand].count = static_cast<std::size_t>(b - a);
+      ci.tree[hand] = std::make_unique<KdTree>(kDim, ci.cloud[hand],
+                                               nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(leaf_size)));
+    }
+  }
+}
+
+Database Database::from_bytes(std::vector<std::byte> block, const std::string& source) {
+  Database db;
+  db.impl_->owned = std::move(block);
+  db.impl_->base = db.impl_->owned.data();
+  db.impl_->size = db.impl_->owned.size();
+  open_block(*db.impl_, source, true);
+  return db;
+}
+
+Database load_database(const std::string& path, const LoadOptions& opt) {
+  Database db;
+  Database::Impl& d = *db.impl_;
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) fail(path, std::string("cannot open: ") + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    ::close(fd);
+    fail(path, std::string("cannot stat: ") + std::strerror(errno));
+  }
+  const auto bytes = static_cast<std::size_t>(st.st_size);
+  if (bytes == 0) {
+    ::close(fd);
+    fail(path, "file is empty");
+  }
+  if (opt.use_mmap) {
+    void* m = ::mmap(nullptr, bytes, PROT_READ, MAP_PRIVATE, fd, 0);
+    ::close(fd);
+    if (m == MAP_FAILED) fail(path, std::string("mmap failed: ") + std::strerror(errno));
+    d.map = m;
+    d.map_bytes = bytes;
+    d.base = static_cast<const std::byte*>(m);
+  } else {
+    d.owned.resize(bytes);
+    const auto got = ::read(fd, d.owned.data(), bytes);
+    ::close(fd);
+    if (got != static_cast<ssize_t>(bytes)) fail(path, "short read");
+    d.base = d.owned.data();
+  }
+  d.size = bytes;
+  open_block(d, path, opt.verify_checksum);
+  if (opt.build_index) db.build_index();
+  return db;
+}
+
+void save_database(const std::string& path, const Database& db) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw Error("cannot write accent database '" + path + "'");
+  const auto b = db.bytes();
+  out.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+  if (!out) throw Error("write failed for accent database '" + path + "'");
+}
+
+}  // namespace legwork::accent

@@ -1,0 +1,99 @@
+#pragma once
+// Private: the serialized block layout and the in-memory view of a Database.
+#include <legwork/accent/database.hpp>
+
+#include <nanoflann.hpp>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace legwork::accent {
+
+inline constexpr char kMagic[8] = {'L', 'W', 'A', 'C', 'C', 'E', 'N', 'T'};
+inline constexpr std::uint32_t kEndianTag = 0x01020304u;
+
+// Fixed header at offset 0 (little-endian; 128 bytes).
+struct FileHeader {
+  char magic[8];
+  std::uint32_t version;
+  std::uint32_t endian;
+  std::uint64_t file_bytes;
+  std::uint64_t checksum;  // hash of the whole block with this field zeroed
+  std::uint32_t window_count, pose_count, joint_count, class_count;
+  std::uint32_t feature_dim, window;
+  std::uint64_t meta_offset, meta_bytes;       // JSON: skeleton, normalisation, classes, trials
+  std::uint64_t feature_offset[2];             // float[window_count][kDim] per hand
+  std::uint64_t align_offset;                  // AlignXZ[window_count]
+  std::uint64_t source_offset;                 // WindowSource[window_count]
+  std::uint64_t pose_offset;                   // float[pose_count][joint_count][4]
+  std::uint64_t reserved[2];
+};
+static_assert(sizeof(FileHeader) == 128);
+
+std::uint64_t block_checksum(std::span<const std::byte> block);
+
+// nanoflann reads the mapped features in place through this adaptor.
+struct FeatureCloud {
+  const float* data = nullptr;
+  std::size_t count = 0;
+  std::size_t kdtree_get_point_count() const { return count; }
+  float kdtree_get_pt(std::size_t i, std::size_t d) const { return data[i * kDim + d]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const { return false; }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, FeatureCloud>, FeatureCloud,
+                                                    kDim, std::uint32_t>;
+
+struct ClassIndex {
+  std::array<FeatureCloud, 2> cloud;
+  std::array<std::unique_ptr<KdTree>, 2> tree;
+};
+
+struct Database::Impl {
+  std::vector<std::byte> owned;  // in-memory block (empty when mapped)
+  void* map = nullptr;
+  std::size_t map_bytes = 0;
+  const std::byte* base = nullptr;
+  std::size_t size = 0;
+  FileHeader header{};
+
+  Skeleton skeleton;
+  double height = 0;
+  BuildSettings settings;
+  FeatureSpace space;
+  double typical_distance = 1;
+  std::vector<std::string> classes;
+  std::vector<std::pair<int, int>> ranges;
+  std::vector<TrialInfo> trials;
+
+  const Feature* features[2] = {nullptr, nullptr};
+  const AlignXZ* align = nullptr;
+  const WindowSource* sources = nullptr;
+  const float* poses = nullptr;
+
+  std::vector<ClassIndex> index;  // per class, empty until build_index()
+
+  ~Impl();
+};
+
+// Serializes the parts into a block (used by the builder).
+struct BlockParts {
+  Skeleton skeleton;
+  double height = 0;
+  BuildSettings settings;
+  FeatureSpace space;
+  double typical_distance = 1;
+  std::vector<std::string> classes;
+  std::vector<std::pair<int, int>> ranges;
+  std::vector<TrialInfo> trials;
+  std::vector<Feature> features[2];
+  std::vector<AlignXZ> align;
+  std::vector<WindowSource> sources;
+  std::vector<float> poses;  // pose_count * joint_count * 4
+};
+std::vector<std::byte> serialize_block(const BlockParts& parts);
+
+}  // namespace legwork::accent

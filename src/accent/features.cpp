@@ -1,0 +1,79 @@
+#include <legwork/accent/features.hpp>
+
+#include <cmath>
+
+namespace legwork::accent {
+
+void raw_feature(const HandWindow& w, double fps, RawFeature& out) {
+  int o = 0;
+  for (int i = 0; i < kWindow; ++i)
+    for (int a = 0; a < 3; ++a) out[static_cast<std::size_t>(o++)] = w[static_cast<std::size_t>(i)][a];
+  // Backward differences: v_i = (p_i - p_{i-1}) fps, a_i = (v_i - v_{i-1}) fps.
+  std::array<Vec3, kWindow> v;
+  for (int i = 1; i < kWindow; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    v[iu] = (w[iu] - w[iu - 1]) * fps;
+    for (int a = 0; a < 3; ++a) out[static_cast<std::size_t>(o++)] = v[iu][a];
+  }
+  for (int i = 2; i < kWindow; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    const Vec3 acc = (v[iu] - v[iu - 1]) * fps;
+    for (int a = 0; a < 3; ++a) out[static_cast<std::size_t>(o++)] = acc[a];
+  }
+}
+
+void FeatureSpace::project(const HandWindow& w, Feature& out) const {
+  for (int r = 0; r < kDim; ++r) {
+    const double* row = projection.data() + static_cast<std::ptrdiff_t>(r) * kPosDim;
+    double s = 0;
+    for (int i = 0; i < kWindow; ++i) {
+      const Vec3& p = w[static_cast<std::size_t>(i)];
+      s += row[3 * i] * p.x() + row[3 * i + 1] * p.y() + row[3 * i + 2] * p.z();
+    }
+    out[static_cast<std::size_t>(r)] = static_cast<float>(s);
+  }
+}
+
+double FeatureSpace::raw_distance(const HandWindow& a, const HandWindow& b) const {
+  RawFeature fa, fb;
+  raw_feature(a, fps, fa);
+  raw_feature(b, fps, fb);
+  double s = 0;
+  for (std::size_t d = 0; d < fa.size(); ++d) {
+    const double x = scale[d] * (fa[d] - fb[d]);
+    s += x * x;
+  }
+  return std::sqrt(s);
+}
+
+void fill_align(const HandWindow& left, const HandWindow& right, AlignXZ& out) {
+  for (int i = 0; i < kWindow; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    out[static_cast<std::size_t>(2 * i)] = static_cast<float>(left[iu].x());
+    out[static_cast<std::size_t>(2 * i + 1)] = static_cast<float>(left[iu].z());
+    out[static_cast<std::size_t>(2 * kWindow + 2 * i)] = static_cast<float>(right[iu].x());
+    out[static_cast<std::size_t>(2 * kWindow + 2 * i + 1)] = static_cast<float>(right[iu].z());
+  }
+}
+
+double align_yaw(const AlignXZ& q, const AlignXZ& s) {
+  // Sums of the closed form; c_i rises linearly over the window for both hands,
+  // so the latest samples (the pose we output) count most.
+  double sc = 0, sxq = 0, szq = 0, sxs = 0, szs = 0, cross = 0, dot = 0;
+  for (int h = 0; h < 2; ++h)
+    for (int i = 0; i < kWindow; ++i) {
+      const double c = static_cast<double>(i + 1) / kWindow;
+      const auto k = static_cast<std::size_t>(h * 2 * kWindow + 2 * i);
+      const double xq = q[k], zq = q[k + 1], xs = s[k], zs = s[k + 1];
+      sc += c;
+      sxq += c * xq, szq += c * zq, sxs += c * xs, szs += c * zs;
+      cross += c * (xq * zs - xs * zq);
+      dot += c * (xq * xs + zq * zs);
+    }
+  const double num = cross - (sxq * szs - sxs * szq) / sc;
+  const double den = dot - (sxq * sxs + szq * szs) / sc;
+  if (std::abs(num) < 1e-300 && std::abs(den) < 1e-300) return 0.0;
+  return std::atan2(num, den);
+}
+
+}  // namespace legwork::accent

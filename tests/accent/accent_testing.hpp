@@ -1,0 +1,33 @@
+#pragma once
+// Shared helpers for the accent tests: sample trials from the repo's data/cmu.
+#include <legwork/accent/builder.hpp>
+#include <legwork/io/bvh.hpp>
+
+#include "testdata.hpp"
+
+#include <string>
+#include <vector>
+
+namespace legwork::accent::testing {
+
+// A trial of the repo's sample data ("walking/07_01"), T-pose dropped.
+inline TrialInput sample_trial(const std::string& cls_slash_name) {
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  const auto slash = cls_slash_name.find('/');
+  const std::string cls = cls_slash_name.substr(0, slash), name = cls_slash_name.substr(slash + 1);
+  const std::string dir = cls == "climbing_ladder" ? "cmu/bvh_daz/" : "cmu/bvh/";
+  TrialInput t;
+  t.file = cls_slash_name + ".bvh";
+  t.cls = cls;
+  t.motion = io::load_bvh(testdata::sample(dir + cls_slash_name + ".bvh").string(), opt);
+  return t;
+}
+
+inline std::vector<TrialInput> sample_trials(const std::vector<std::string>& names) {
+  std::vector<TrialInput> out;
+  for (const auto& n : names) out.push_back(sample_trial(n));
+  return out;
+}
+
+}  // namespace legwork::accent::testing
