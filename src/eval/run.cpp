@@ -147,6 +147,7 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
   add("threshold_off", "no distance threshold", [](Variant& x) { x.config.threshold = 0; });
   add("threshold_2", "threshold 2 x typical distance", [](Variant& x) { x.config.threshold = 2; });
   add("exact_search", "exact k-NN search", [](Variant& x) { x.config.search = accent::SearchMode::Exact; });
+  add("hand_ik", "+ arms pulled onto the real hands (hand_ik = 1)", [](Variant& x) { x.config.hand_ik = 1.0; });
   return v;
 }
 

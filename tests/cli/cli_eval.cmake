@@ -1,0 +1,13 @@
+# legwork eval accent: the --quick run on the repo's sample data (CI), its
+# report checked by check_eval_report.cmake, and bad input.
+legwork_cli_test(eval_quick eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --out ${O}/eval-quick)
+set_tests_properties(cli.eval_quick PROPERTIES FIXTURES_SETUP eval_quick TIMEOUT 180)
+add_test(NAME cli.eval_quick_report
+         COMMAND ${CMAKE_COMMAND} -DREPORT_DIR=${O}/eval-quick -P ${CMAKE_CURRENT_LIST_DIR}/check_eval_report.cmake)
+set_tests_properties(cli.eval_quick_report PROPERTIES FIXTURES_REQUIRED eval_quick)
+legwork_cli_test(eval_help eval accent --help)
+legwork_cli_fail(eval_missing_data eval accent --data ${O}/no-such-folder --quick)
+legwork_cli_fail(eval_unknown_class eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing --quick)
+legwork_cli_fail(eval_bad_protocol eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols leave_one_out --quick)
+legwork_cli_fail(eval_cross_dataset_needs_test eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols cross_dataset)
+legwork_cli_fail(eval_bad_manifest eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --manifest ${PROJECT_SOURCE_DIR}/data/cmu/bvh/walking/07_01.bvh)
