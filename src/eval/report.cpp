@@ -63,6 +63,15 @@ json summarize_method(const ProtocolResult& p, const std::string& method) {
   json classes = json::object();
   for (const auto& [cls, folds] : by_class) classes[cls] = summarize_folds(folds);
   out["classes"] = classes;
+  // Macro average: every class counts once, however many folds it has (the
+  // fold mean above is dominated by the classes with most subjects/trials).
+  json macro = json::object();
+  for (const auto& k : metric_keys()) {
+    std::vector<double> v;
+    for (const auto& [cls, c] : classes.items()) v.push_back(get(c, k.key));
+    macro[k.key] = num(summarize(v).mean);
+  }
+  out["class_mean"] = macro;
   if (!failures.empty()) out["failed_folds"] = failures;
   return out;
 }
@@ -122,11 +131,13 @@ json targets_of(const json& r) {
     t.push_back(target("cross-trial lower body >= 3.5 cm better than IK",
                        get(ct_ik, "lower_body_cm") - get(ct, "lower_body_cm"), ">=", 3.5,
                        "value = IK lower body - engine lower body (cm)"));
-  const json& any = !cs.empty() ? cs : ct;
-  if (!any.empty()) {
-    t.push_back(target("engine >= 20,000 frames/s (per-frame update, one core)", get(any, "frames_per_second"), ">=",
-                       20000.0, "measured inside this run while the other folds ran in parallel"));
-    t.push_back(target("engine >= 130x the document's 152 Hz", get(any, "frames_per_second") / 152.0, ">=", 130.0));
+  const double fps = r["meta"]["speed"].contains("accent_frames_per_second")
+                         ? get(r["meta"]["speed"], "accent_frames_per_second")
+                         : kNaN;
+  if (std::isfinite(fps)) {
+    t.push_back(target("engine >= 20,000 frames/s (per-frame update, one core)", fps, ">=", 20000.0,
+                       "speed pass of this run (meta.speed)"));
+    t.push_back(target("engine >= 130x the document's 152 Hz", fps / 152.0, ">=", 130.0));
   }
   return t;
 }
@@ -236,6 +247,14 @@ json report_json(const EvalResult& r) {
                                                                                   : "brute_force"}});
   }
   meta["variants"] = variants;
+  meta["speed"] = {{"trial", r.speed.trial},
+                   {"fold", r.speed.fold},
+                   {"frames", r.speed.frames},
+                   {"database_windows", r.speed.database_windows},
+                   {"accent_frames_per_second", num(r.speed.accent_frames_per_second)},
+                   {"ik_frames_per_second", num(r.speed.ik_frames_per_second)},
+                   {"note", "single-threaded pass after the folds, best of 3, per-frame solver time only; the "
+                            "per-protocol frames_per_second figures were measured while the folds ran in parallel"}};
   json units = json::object();
   for (const auto& k : metric_keys()) units[k.key] = k.unit;
   meta["units"] = units;
@@ -310,6 +329,18 @@ std::string report_markdown(const json& r) {
          << paper_cell(pp, "right_hand_cm") << " |\n";
     }
   }
+  md << "\nAveraged over classes instead (each class once, whatever its number of folds):\n\n"
+        "| protocol | method | left hand | right hand | upper body | lower body | full body |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& p : kProtocols) {
+    if (!r.contains(p)) continue;
+    for (const char* m : {"accent", "ik"}) {
+      if (!r[p].contains(m) || !r[p][m].contains("class_mean")) continue;
+      const json& x = r[p][m]["class_mean"];
+      md << "| " << p << " | " << m << " | " << fmt(get(x, "left_hand_cm")) << " | " << fmt(get(x, "right_hand_cm"))
+         << " | " << fmt(get(x, "upper_body_cm")) << " | " << fmt(get(x, "lower_body_cm")) << " | "
+         << fmt(get(x, "full_body_cm")) << " |\n";
+    }
+  }
   md << "\n## Motion quality and speed\n\n";
   md << "| protocol | method | MPJVE (cm/s) | jitter (10² m/s³) | jitter of truth | hand corr. (L/R) | doc. hand corr. "
         "| foot skating (cm/frame) | truth skating | frames/s | doc. frames/s |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -376,6 +407,15 @@ std::string report_markdown(const json& r) {
     }
   }
 
+  if (meta.contains("speed") && meta["speed"]["frames"].get<int>() > 0) {
+    const json& sp = meta["speed"];
+    md << "\n## Speed (measured in this run)\n\nSingle-threaded pass after the folds on held-out trial "
+       << sp["trial"].get<std::string>() << " (" << sp["fold"].get<std::string>() << ", " << sp["frames"]
+       << " frames at 90 Hz, database of " << sp["database_windows"] << " windows), best of 3, solver time only: "
+       << "engine **" << fmt(get(sp, "accent_frames_per_second"), 0) << " frames/s** ("
+       << fmt(get(sp, "accent_frames_per_second") / 152.0, 0) << "x the document's 152 Hz), IK baseline "
+       << fmt(get(sp, "ik_frames_per_second"), 0) << " frames/s. The machine is shared, so expect noise.\n";
+  }
   md << "\n## Targets (computed from this run)\n\n| target | value | met |\n|---|---|---|\n";
   for (const auto& t : r["targets"]) {
     const std::string met = t["met"].is_null() ? "n/a" : (t["met"].get<bool>() ? "**met**" : "not met");

@@ -120,6 +120,43 @@ std::string leak_in_database(const Fold& f, const accent::Database& db, const st
   return "";
 }
 
+// See SpeedResult: the first protocol's fold with the longest test trial.
+void measure_speed(EvalResult& res, const std::vector<accent::PreparedTrial>& prepared, const Skeleton& reference,
+                   const std::vector<TestTrack>& tests, const RunOptions& opt) {
+  const FoldResult* best = nullptr;
+  int best_test = -1;
+  for (const auto& p : res.protocols)
+    for (const auto& f : p.folds) {
+      const auto it = f.methods.find("accent");
+      if (it == f.methods.end() || !it->second.ok) continue;
+      for (int t : f.fold.test)
+        if (best_test < 0 || tests[static_cast<std::size_t>(t)].motion.frame_count() >
+                                 tests[static_cast<std::size_t>(best_test)].motion.frame_count()) {
+          best = &f;
+          best_test = t;
+        }
+    }
+  if (!best) return;
+  std::vector<const accent::PreparedTrial*> members;
+  for (int d : best->fold.database) members.push_back(&prepared[static_cast<std::size_t>(d)]);
+  accent::Database db = accent::assemble_database(members, reference, opt.build);
+  db.build_index();
+  const TestTrack& tt = tests[static_cast<std::size_t>(best_test)];
+  double a = 1e30, k = 1e30;
+  for (int pass = 0; pass < 3; ++pass) {
+    a = std::min(a, accent::accentuate_motion(db, opt.config, tt.motion).seconds);
+    double s = 0;
+    run_ik_baseline(tt.motion, &s);
+    k = std::min(k, s);
+  }
+  res.speed.trial = tt.id;
+  res.speed.fold = std::string(protocol_key(best->fold.protocol)) + " " + best->fold.cls + " " + best->fold.held_out;
+  res.speed.frames = tt.motion.frame_count();
+  res.speed.database_windows = db.window_count();
+  res.speed.accent_frames_per_second = a > 0 ? tt.motion.frame_count() / a : 0;
+  res.speed.ik_frames_per_second = k > 0 ? tt.motion.frame_count() / k : 0;
+}
+
 }  // namespace
 
 std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const accent::AccentConfig& config, bool quick) {
@@ -345,6 +382,7 @@ EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const Ru
     std::lock_guard<std::mutex> lock(say_mutex);
     say(line);
   });
+  measure_speed(res, prepared.at(prepare_key(opt.build)), reference, tests, opt);
   res.seconds = since(t_start);
   return res;
 }

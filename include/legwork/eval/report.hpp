@@ -28,7 +28,8 @@ double metric_value(const TrialMetrics& m, const std::string& key);
 //   { "meta": {...}, "paper": {...}, "targets": [...],
 //     "cross_subject": { "folds": n, "skipped_classes": {...},
 //                        "accent": { <metric>: mean, <metric>_sd: sd, "frames_per_second": x,
-//                                    "folds": n, "classes": { "<class>": { <metric>: ..., ... } } },
+//                                    "folds": n, "classes": { "<class>": { <metric>: ..., ... } },
+//                                    "class_mean": { <metric>: mean over classes } },
 //                        "ik": {...}, "ablation": { "<variant>": {...} } },
 //     "cross_trial": {...}, "cross_dataset": {...} }
 nlohmann::json report_json(const EvalResult& r);

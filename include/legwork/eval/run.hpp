@@ -73,10 +73,20 @@ struct DatasetSummary {
   std::map<std::string, std::string> dropped;  // trial id -> why the engine's filter dropped it
 };
 
+// A dedicated speed measurement after the folds: the engine and the IK
+// baseline on one held-out trial, single-threaded with nothing else of the
+// run in flight, best of three passes (per-frame solver time only).
+struct SpeedResult {
+  std::string trial, fold;
+  int frames = 0, database_windows = 0;
+  double accent_frames_per_second = 0, ik_frames_per_second = 0;
+};
+
 struct EvalResult {
   std::vector<ProtocolResult> protocols;
   std::vector<Variant> variants;  // variants[0] = the engine ("accent")
   DatasetSummary data;
+  SpeedResult speed;
   double seconds = 0;  // wall time of the whole run
   int threads = 1;
 };
