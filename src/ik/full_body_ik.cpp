@@ -278,7 +278,9 @@ void solve_full_body(const FullBodyModel& M, const TrackerFrame& in, double dt, 
       const double dist = horizontal(landing(pick, 0.0, S.min_step_time) - f.position).norm();
       f.stepping = true;
       f.step_time = 0.0;
-      f.step_duration = std::clamp(dist / S.step_speed, S.min_step_time, S.max_step_time);
+      // A swing foot moves about twice as fast as the body (it is still half the stride).
+      const double speed = std::max(S.step_speed, S.swing_speed_ratio * st.velocity.norm());
+      f.step_duration = std::clamp(dist / speed, S.min_step_time, S.max_step_time);
       f.from = f.position;
       f.from_yaw = f.yaw;
     }

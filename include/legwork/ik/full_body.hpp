@@ -55,7 +55,8 @@ struct FullBodySettings {
   double step_threshold = 0.10;
   double foot_distance_threshold = 0.22;
   double step_angle_threshold = 0.7;
-  double step_speed = 3.5;                            // m/s of foot travel
+  double step_speed = 3.5;                            // m/s of foot travel (at least)
+  double swing_speed_ratio = 2.0;                     // foot travel speed / body speed when faster
   double min_step_time = 0.14, max_step_time = 0.40;  // seconds
   double step_height = 0.09;                          // metres at mid-swing
   double velocity_lead = 1.0;                         // landing predicted this many step times ahead
