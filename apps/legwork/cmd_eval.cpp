@@ -173,7 +173,7 @@ void register_eval(CLI::App& app) {
     if (!a->out.empty()) {
       for (const auto& f : eval::write_report(res, a->out))
         if (f.ends_with(".md") || f.ends_with(".json")) announce("report", f);
-      announce("charts", a->out + "/{body_parts,classes,ablation}.{png,svg}");
+        else if (f.ends_with(".png")) announce("chart (and .svg)", f);
     }
   });
 }

@@ -11,3 +11,8 @@ legwork_cli_fail(eval_unknown_class eval accent --data ${PROJECT_SOURCE_DIR}/dat
 legwork_cli_fail(eval_bad_protocol eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols leave_one_out --quick)
 legwork_cli_fail(eval_cross_dataset_needs_test eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols cross_dataset)
 legwork_cli_fail(eval_bad_manifest eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --manifest ${PROJECT_SOURCE_DIR}/data/cmu/bvh/walking/07_01.bvh)
+# Cross-dataset: a fixed database (manifest subset) scoring other subjects' trials;
+# boxing has no database trial and is listed as not evaluable.
+legwork_cli_test(eval_cross_dataset eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu
+                 --manifest ${CMAKE_CURRENT_LIST_DIR}/eval_database.tsv --test ${PROJECT_SOURCE_DIR}/data/cmu
+                 --test-manifest ${CMAKE_CURRENT_LIST_DIR}/eval_test.tsv --max-seconds 10 --out ${O}/eval-cross-dataset)
