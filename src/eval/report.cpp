@@ -2,6 +2,7 @@
 
 #include <legwork/render/plot.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -527,7 +528,7 @@ std::vector<std::string> write_report(const EvalResult& res, const std::string& 
       doc.values.push_back(r["paper"]["ablation"].contains(k) ? r["paper"]["ablation"][k].get<double>() : kNaN);
     }
     c.series = {ours, doc};
-    c.width = 1100;
+    c.width = std::max(800, 105 * static_cast<int>(c.groups.size()));
     c.value_decimals = 1;
     both(c, "ablation");
   }
