@@ -46,7 +46,7 @@ struct TrackerFrame {
 
 struct AccentConfig {
   SearchMode search = SearchMode::Fast;
-  float fast_eps = 2.0f;  // Fast mode: neighbours within (1 + eps) x the true distance
+  float fast_eps = 5.0f;  // Fast mode: KD-tree pruning slack (squared-distance factor 1 + eps)
   int k_left = 5, k_right = 5;  // matches per hand (at most kMaxK)
   // Match distance limit in units of Database::typical_distance(); <= 0: none.
   double threshold = 6.0;

@@ -22,7 +22,10 @@ struct Match {
 // distance, among the classes whose mask byte is non-zero (empty mask = all
 // classes). k is capped at out.size(). Falls back to BruteForce when the
 // database has no index. Returns the number of matches written.
+// `seeds` (optional): windows likely to be close, e.g. the previous frame's
+// matches; they tighten the KD-tree bound from the start (results unchanged
+// in Exact mode, usually better in Fast mode).
 int search_knn(const Database& db, int hand, const Feature& query, int k, SearchMode mode, float eps,
-               std::span<const unsigned char> class_mask, std::span<Match> out);
+               std::span<const unsigned char> class_mask, std::span<Match> out, std::span<const int> seeds = {});
 
 }  // namespace legwork::accent
