@@ -376,20 +376,20 @@ void register_run(CLI::App& parent) {
     if (!a->video.empty()) {
       const Motion input = input_figure(frames, fps);
       std::vector<const Motion*> panels{&input, &run.output};
-      std::vector<std::string> labels{"input: headset + controllers", "accentuated"};
+      std::vector<std::string> labels{"input (head, hands)", "accentuated"};
       if (a->compare_ik) {
         panels.push_back(&ik.output);
-        labels.push_back(have_arm_ik() ? "IK baseline" : "direct mapping (no IK)");
+        labels.push_back(have_arm_ik() ? "IK baseline" : "no-IK baseline");
       }
       if (!truth.skeleton.names.empty()) {
         panels.push_back(&truth);
-        labels.push_back("ground truth (not seen)");
+        labels.push_back("ground truth");
       }
       render::VideoOptions vo;
       vo.fps = 30;
       vo.camera.view = render::View::ThreeQuarter;
-      vo.camera.width = 480;
-      vo.camera.height = 480;
+      vo.camera.width = 280 * static_cast<int>(panels.size());
+      vo.camera.height = 420;
       vo.title = "legwork accent: " + io::extension_of(a->input.path) + " session";
       render::render_video_side_by_side(panels, labels, vo, a->video);
       announce("video", a->video);

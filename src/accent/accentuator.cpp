@@ -199,7 +199,7 @@ bool Accentuator::blend_candidates(double threshold) {
   fill_align(w[0], w[1], query_xz);
   const int k[2] = {cfg_.k_left, cfg_.k_right};
   for (int h = 0; h < 2; ++h) {
-    Feature f;
+    Feature& f = live_[static_cast<std::size_t>(h)];
     db.feature_space().project(w[h], f);
     auto& m = matches_[static_cast<std::size_t>(h)];
     // Last frame's matches seed the search (motion is continuous).

@@ -100,6 +100,8 @@ class Accentuator {
   const AccentConfig& config() const { return cfg_; }
   // The last matches per hand (window indices into the database).
   std::span<const Match> matches(int hand) const;
+  // The live feature of the last update per hand (projected, as in the database).
+  const Feature& live_feature(int hand) const { return live_[static_cast<std::size_t>(hand)]; }
   // Bytes of per-avatar state (workspace included).
   std::size_t state_bytes() const;
 
@@ -143,6 +145,7 @@ class Accentuator {
   // Workspace.
   std::array<std::array<Match, kMaxK>, 2> matches_{};
   std::array<int, 2> match_count_{0, 0};
+  std::array<Feature, 2> live_{};
   std::array<std::array<Quat, kMaxK>, 2> root_aligned_{};
   std::array<std::array<double, kMaxK>, 2> weight_{}, confidence_{};
   std::vector<Quat> model_rot_;
