@@ -24,6 +24,7 @@
 #include <memory>
 #include <sys/resource.h>
 #include <ctime>
+#include <filesystem>
 #include <thread>
 
 namespace legwork::cli {
@@ -390,7 +391,7 @@ void register_run(CLI::App& parent) {
       vo.camera.view = render::View::ThreeQuarter;
       vo.camera.width = 280 * static_cast<int>(panels.size());
       vo.camera.height = 420;
-      vo.title = "legwork accent: " + io::extension_of(a->input.path) + " session";
+      vo.title = "legwork accent: " + std::filesystem::path(a->input.path).filename().string();
       render::render_video_side_by_side(panels, labels, vo, a->video);
       announce("video", a->video);
     }
