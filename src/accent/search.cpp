@@ -39,11 +39,12 @@ struct FullDistanceResult {
   int base;
   Match* out;  // holds squared distances
   int k, n;
+  int budget = -1;  // remaining full-distance evaluations; < 0 = unlimited
   float worstDist() const { return n == k ? out[n - 1].distance : std::numeric_limits<float>::max(); }
   bool full() const { return n == k; }
   bool addPoint(float, std::uint32_t index) {
     add(base + static_cast<int>(index));
-    return true;
+    return budget < 0 || --budget > 0;  // false stops the tree search
   }
   void add(int w) {
     const float d2 = squared_distance(features + static_cast<std::ptrdiff_t>(w) * kDim, query);
@@ -59,7 +60,8 @@ bool allowed(std::span<const unsigned char> mask, std::size_t c) { return mask.e
 }  // namespace
 
 int search_knn(const Database& db, int hand, const Feature& query, int k, SearchMode mode, float eps,
-               std::span<const unsigned char> class_mask, std::span<Match> out, std::span<const int> seeds) {
+               std::span<const unsigned char> class_mask, std::span<Match> out, std::span<const int> seeds,
+               int max_checks) {
   k = std::min<int>(k, static_cast<int>(out.size()));
   if (k <= 0) return 0;
   const auto& d = db.impl();
@@ -81,6 +83,7 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
     for (std::size_t c = 0; c < d.ranges.size(); ++c) {
       if (!allowed(class_mask, c) || d.ranges[c].first == d.ranges[c].second) continue;
       rs.base = d.ranges[c].first;
+      rs.budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
       d.index[c].tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
     }
     n = rs.n;

@@ -47,6 +47,7 @@ struct TrackerFrame {
 struct AccentConfig {
   SearchMode search = SearchMode::Fast;
   float fast_eps = 5.0f;  // Fast mode: KD-tree pruning slack (squared-distance factor 1 + eps)
+  int fast_max_checks = 1500;  // Fast mode: candidates examined per class tree (bounds p99)
   int k_left = 5, k_right = 5;  // matches per hand (at most kMaxK)
   // Match distance limit in units of Database::typical_distance(); <= 0: none.
   double threshold = 6.0;
