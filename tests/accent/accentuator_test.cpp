@@ -215,3 +215,38 @@ TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
 
 }  // namespace
 }  // namespace legwork::accent
+
+namespace legwork::accent {
+namespace {
+
+// The document's Table-1 classes from the full shared set, one running trial
+// held out: exact search equals brute force on its real queries, and the
+// accentuated hands follow the held-out hands.
+TEST(AccentShared, Table1DatabaseOnAHeldOutRunningTrial) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  const std::string data = testdata::shared_cmu().string();
+  const auto trials = load_trials(data, {"boxing", "basketball", "climbing_ladder", "running", "swimming"}, {"bvh/running/35_26.bvh"});
+  Database db = build_database(trials, BuildConfig{});
+  db.build_index();
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  const Motion input = resample(io::load_bvh(data + "/bvh/running/35_26.bvh", opt), 90.0);
+  AccentConfig cfg;
+  cfg.search = SearchMode::Exact;
+  const AccentRun exact = accentuate_motion(db, cfg, input);
+  cfg.search = SearchMode::BruteForce;
+  const AccentRun brute = accentuate_motion(db, cfg, input);
+  // Same neighbours -> the same poses (up to float summation order).
+  double max_diff = 0;
+  for (std::size_t i = 0; i < exact.output.all_rotations().size(); ++i)
+    max_diff = std::max(max_diff, 1.0 - std::abs(exact.output.all_rotations()[i].dot(brute.output.all_rotations()[i])));
+  EXPECT_LT(max_diff, 1e-6);
+  const HandErrors e = measure(input, exact.output);
+  std::printf("[ figures  ] held-out running 35_26 vs Table-1 database (%d windows): hands %.1f / %.1f cm, role joints %.1f cm\n",
+              db.window_count(), 100 * e.left, 100 * e.right, 100 * e.body);
+  EXPECT_LT(e.left, 0.07);
+  EXPECT_LT(e.right, 0.07);
+}
+
+}  // namespace
+}  // namespace legwork::accent
