@@ -181,7 +181,7 @@ void register_build(CLI::App& parent) {
 // ---------------------------------------------------------------- run
 
 struct RunArgs {
-  std::string db, out, video, json_path, classes, mode = "fast", target;
+  std::string db, out, video, json_path, classes, mode = "fast", target, save_session;
   MotionInput input;
   bool compare_ik = false, no_align = false, no_smooth = false, no_limits = false;
   int k = 5, k_left = -1, k_right = -1;
@@ -208,6 +208,26 @@ std::vector<TrackerFrame> frames_from_csv(const std::string& path) {
     out[i].right = {right.position[i], Quat::Identity(), right.valid[i] != 0};
   }
   return out;
+}
+
+io::TrackerTable session_table(std::span<const TrackerFrame> frames) {
+  io::TrackerTable t;
+  t.points.resize(3);
+  t.points[0].name = "head";
+  t.points[0].has_rotation = true;
+  t.points[1].name = "left";
+  t.points[2].name = "right";
+  for (const auto& f : frames) {
+    t.time.push_back(f.time);
+    const DeviceSample* d[3] = {&f.head, &f.left, &f.right};
+    for (int i = 0; i < 3; ++i) {
+      auto& p = t.points[static_cast<std::size_t>(i)];
+      p.position.push_back(d[i]->position);
+      if (p.has_rotation) p.rotation.push_back(d[i]->rotation);
+      p.valid.push_back(d[i]->valid ? 1 : 0);
+    }
+  }
+  return t;
 }
 
 // Frames at a uniform rate from timed samples (nearest earlier sample's data is
@@ -263,6 +283,7 @@ void register_run(CLI::App& parent) {
   cmd->add_option("--classes", a->classes, "comma-separated classes to match against (default: all in the database)");
   cmd->add_option("--hand-ik", a->hand_ik, "0..1: pull the synthesized arms onto the real hands (needs legwork::ik)")->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");
+  cmd->add_option("--save-session", a->save_session, "also write the input as a headset session CSV (the format --input reads)");
   cmd->callback([a] {
     const auto out_ext = io::extension_of(a->out);
     if (out_ext != ".glb" && out_ext != ".bvh") throw Error("--out '" + a->out + "' must end in .glb or .bvh");
@@ -296,6 +317,10 @@ void register_run(CLI::App& parent) {
       throw Error("--input '" + a->input.path + "' must be a .bvh trial or a .csv headset session");
     }
     if (frames.empty()) throw Error("--input '" + a->input.path + "' has no samples");
+    if (!a->save_session.empty()) {
+      io::write_tracker_csv(a->save_session, session_table(frames));
+      announce("headset session", a->save_session);
+    }
     AccentRun run = accentuate(db, cfg, frames, fps);
     std::map<std::string, int> statuses;
     double weight = 0;

@@ -6,7 +6,12 @@ set_tests_properties(cli.accent_build PROPERTIES FIXTURES_SETUP accent_db)
 legwork_cli_test(accent_build_classes accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes boxing,walking --mirror
                  --hop 2 --speeds 4 --out ${O}/accent_box_walk.lwdb)
 legwork_cli_test(accent_run accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
-                 --out ${O}/accent_07_02.bvh --json ${O}/accent_07_02.json --compare-ik)
+                 --out ${O}/accent_07_02.bvh --json ${O}/accent_07_02.json --compare-ik
+                 --save-session ${O}/accent_07_02_session.csv)
+set_tests_properties(cli.accent_run PROPERTIES FIXTURES_SETUP accent_session)
+legwork_cli_test(accent_run_csv accent run --db ${ACC_DB} --input ${O}/accent_07_02_session.csv --height 1.7
+                 --out ${O}/accent_07_02_from_csv.bvh)
+set_tests_properties(cli.accent_run_csv PROPERTIES FIXTURES_REQUIRED "accent_db;accent_session")
 legwork_cli_test(accent_run_glb_exact accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
                  --out ${O}/accent_07_02.glb --mode exact --k 3 --no-align --no-smooth --exaggerate 1.3)
 legwork_cli_test(accent_run_target accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
