@@ -23,6 +23,9 @@
 #include <map>
 #include <memory>
 #include <sys/resource.h>
+#include <ctime>
+#include <filesystem>
+#include <thread>
 
 namespace legwork::cli {
 namespace {
@@ -40,7 +43,7 @@ Progress progress_bar(const std::string& what) {
     const int filled = total > 0 ? done * width / total : width;
     std::fprintf(stderr, "\r%s [%s%s] %d/%d %-40.40s", what.c_str(), std::string(static_cast<std::size_t>(filled), '#').c_str(),
                  std::string(static_cast<std::size_t>(width - filled), '.').c_str(), done, total, item.c_str());
-    if (done >= total && item.empty()) std::fprintf(stderr, "\n");
+    if (done >= total) std::fprintf(stderr, "\n");
     std::fflush(stderr);
   };
 }
@@ -178,7 +181,7 @@ void register_build(CLI::App& parent) {
 // ---------------------------------------------------------------- run
 
 struct RunArgs {
-  std::string db, out, video, json_path, classes, mode = "fast", target;
+  std::string db, out, video, json_path, classes, mode = "fast", target, save_session;
   MotionInput input;
   bool compare_ik = false, no_align = false, no_smooth = false, no_limits = false;
   int k = 5, k_left = -1, k_right = -1;
@@ -205,6 +208,26 @@ std::vector<TrackerFrame> frames_from_csv(const std::string& path) {
     out[i].right = {right.position[i], Quat::Identity(), right.valid[i] != 0};
   }
   return out;
+}
+
+io::TrackerTable session_table(std::span<const TrackerFrame> frames) {
+  io::TrackerTable t;
+  t.points.resize(3);
+  t.points[0].name = "head";
+  t.points[0].has_rotation = true;
+  t.points[1].name = "left";
+  t.points[2].name = "right";
+  for (const auto& f : frames) {
+    t.time.push_back(f.time);
+    const DeviceSample* d[3] = {&f.head, &f.left, &f.right};
+    for (int i = 0; i < 3; ++i) {
+      auto& p = t.points[static_cast<std::size_t>(i)];
+      p.position.push_back(d[i]->position);
+      if (p.has_rotation) p.rotation.push_back(d[i]->rotation);
+      p.valid.push_back(d[i]->valid ? 1 : 0);
+    }
+  }
+  return t;
 }
 
 // Frames at a uniform rate from timed samples (nearest earlier sample's data is
@@ -260,6 +283,7 @@ void register_run(CLI::App& parent) {
   cmd->add_option("--classes", a->classes, "comma-separated classes to match against (default: all in the database)");
   cmd->add_option("--hand-ik", a->hand_ik, "0..1: pull the synthesized arms onto the real hands (needs legwork::ik)")->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");
+  cmd->add_option("--save-session", a->save_session, "also write the input as a headset session CSV (the format --input reads)");
   cmd->callback([a] {
     const auto out_ext = io::extension_of(a->out);
     if (out_ext != ".glb" && out_ext != ".bvh") throw Error("--out '" + a->out + "' must end in .glb or .bvh");
@@ -293,6 +317,10 @@ void register_run(CLI::App& parent) {
       throw Error("--input '" + a->input.path + "' must be a .bvh trial or a .csv headset session");
     }
     if (frames.empty()) throw Error("--input '" + a->input.path + "' has no samples");
+    if (!a->save_session.empty()) {
+      io::write_tracker_csv(a->save_session, session_table(frames));
+      announce("headset session", a->save_session);
+    }
     AccentRun run = accentuate(db, cfg, frames, fps);
     std::map<std::string, int> statuses;
     double weight = 0;
@@ -374,21 +402,21 @@ void register_run(CLI::App& parent) {
     if (!a->video.empty()) {
       const Motion input = input_figure(frames, fps);
       std::vector<const Motion*> panels{&input, &run.output};
-      std::vector<std::string> labels{"input: headset + controllers", "accentuated"};
+      std::vector<std::string> labels{"input (head, hands)", "accentuated"};
       if (a->compare_ik) {
         panels.push_back(&ik.output);
-        labels.push_back(have_arm_ik() ? "IK baseline" : "direct mapping (no IK)");
+        labels.push_back(have_arm_ik() ? "IK baseline" : "no-IK baseline");
       }
       if (!truth.skeleton.names.empty()) {
         panels.push_back(&truth);
-        labels.push_back("ground truth (not seen)");
+        labels.push_back("ground truth");
       }
       render::VideoOptions vo;
       vo.fps = 30;
       vo.camera.view = render::View::ThreeQuarter;
-      vo.camera.width = 480;
-      vo.camera.height = 480;
-      vo.title = "legwork accent: " + io::extension_of(a->input.path) + " session";
+      vo.camera.width = 280 * static_cast<int>(panels.size());
+      vo.camera.height = 420;
+      vo.title = "legwork accent: " + std::filesystem::path(a->input.path).filename().string();
       render::render_video_side_by_side(panels, labels, vo, a->video);
       announce("video", a->video);
     }
@@ -401,13 +429,20 @@ struct BenchArgs {
   std::string db, json_path, data, classes;
   MotionInput input;
   int repeat = 3, k = 5;
-  float eps = 2.0f;
+  float eps = 5.0f;
 };
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())))];
+}
+
+// CPU time of this thread (excludes time the machine gave to other processes).
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 long peak_rss_kb() {
@@ -434,6 +469,16 @@ void register_bench(CLI::App& parent) {
     json j;
     j["database"] = a->db;
     j["input"] = a->input.path;
+    {
+      double load[3] = {0, 0, 0};
+      if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+        if (std::fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = -1;
+        std::fclose(f);
+      }
+      j["machine_load_1min"] = load[0];
+      std::printf("machine load (1 min): %.1f on %u cores - wall-clock figures include time given to other processes\n", load[0],
+                  std::thread::hardware_concurrency());
+    }
     // Load: mapping + header/metadata checks, checksum, KD-tree build, each timed.
     LoadOptions lo;
     lo.verify_checksum = false;
@@ -469,11 +514,12 @@ void register_bench(CLI::App& parent) {
       cfg.user_height = measure_body(truth.skeleton).standing_height;
       std::vector<double> lat;
       lat.reserve(frames.size() * static_cast<std::size_t>(a->repeat));
-      double total = 0;
+      double total = 0, cpu = 0;
       std::size_t bytes = 0;
       for (int r = 0; r < a->repeat; ++r) {
         Accentuator acc(db, cfg);
         bytes = acc.state_bytes();
+        const double c0 = thread_cpu_seconds();
         for (const auto& f : frames) {
           const auto s = Clock::now();
           acc.update(f);
@@ -481,14 +527,17 @@ void register_bench(CLI::App& parent) {
           lat.push_back(dt);
           total += dt;
         }
+        cpu += thread_cpu_seconds() - c0;
       }
       const double mean_us = 1e6 * total / static_cast<double>(lat.size());
       const double p99_us = 1e6 * percentile(lat, 0.99);
       const double fps_run = static_cast<double>(lat.size()) / total;
-      std::printf("%-6s mean %7.2f us, p99 %7.2f us, %9.0f frames/s (%.0fx the document's 152 Hz)\n", mode_name(mode), mean_us, p99_us,
-                  fps_run, fps_run / 152.0);
+      const double fps_cpu = static_cast<double>(lat.size()) / cpu;
+      std::printf("%-6s wall: mean %7.2f us, p99 %7.2f us, %8.0f frames/s | CPU time: %8.0f frames/s (%.0fx the document's 152 Hz)\n",
+                  mode_name(mode), mean_us, p99_us, fps_run, fps_cpu, fps_cpu / 152.0);
       modes[mode_name(mode)] = {{"mean_us", mean_us}, {"p99_us", p99_us}, {"frames_per_second", fps_run},
-                                {"speedup_vs_152hz", fps_run / 152.0}, {"avatar_state_bytes", bytes}};
+                                {"frames_per_cpu_second", fps_cpu}, {"cpu_us_per_frame", 1e6 * cpu / static_cast<double>(lat.size())},
+                                {"speedup_vs_152hz", fps_cpu / 152.0}, {"avatar_state_bytes", bytes}};
     }
     j["modes"] = modes;
     // Fast-mode recall: the live queries of this trial, fast vs brute force.
@@ -496,28 +545,36 @@ void register_bench(CLI::App& parent) {
       AccentConfig cfg;
       cfg.user_height = measure_body(truth.skeleton).standing_height;
       Accentuator acc(db, cfg);
-      std::size_t hits = 0, total = 0;
       std::array<Match, kMaxK> brute{}, fast{};
       const double scale = db.height() / cfg.user_height;
-      for (std::size_t f = kWindow - 1; f < frames.size(); ++f) {
-        for (int h = 0; h < 2; ++h) {
-          HandWindow w;
-          for (int i = 0; i < kWindow; ++i) {
-            const auto& fr = frames[f - static_cast<std::size_t>(kWindow - 1 - i)];
-            w[static_cast<std::size_t>(i)] = ((h == 0 ? fr.left.position : fr.right.position) - fr.head.position) * scale;
+      std::vector<float> eps_list{0.5f, 1.0f, 2.0f, 5.0f, 10.0f};
+      if (std::find(eps_list.begin(), eps_list.end(), a->eps) == eps_list.end()) eps_list.push_back(a->eps);
+      json by_eps = json::object();
+      for (float eps : eps_list) {
+        std::size_t hits = 0, total = 0;
+        for (std::size_t f = kWindow - 1; f < frames.size(); ++f) {
+          for (int h = 0; h < 2; ++h) {
+            HandWindow w;
+            for (int i = 0; i < kWindow; ++i) {
+              const auto& fr = frames[f - static_cast<std::size_t>(kWindow - 1 - i)];
+              w[static_cast<std::size_t>(i)] = ((h == 0 ? fr.left.position : fr.right.position) - fr.head.position) * scale;
+            }
+            Feature q;
+            db.feature_space().project(w, q);
+            const int nb = search_knn(db, h, q, a->k, SearchMode::BruteForce, 0, {}, brute);
+            const int nf = search_knn(db, h, q, a->k, SearchMode::Fast, eps, {}, fast, {}, cfg.fast_max_checks);
+            for (int x = 0; x < nf; ++x)
+              for (int y = 0; y < nb; ++y) hits += fast[static_cast<std::size_t>(x)].window == brute[static_cast<std::size_t>(y)].window;
+            total += static_cast<std::size_t>(nb);
           }
-          Feature q;
-          db.feature_space().project(w, q);
-          const int nb = search_knn(db, h, q, a->k, SearchMode::BruteForce, 0, {}, brute);
-          const int nf = search_knn(db, h, q, a->k, SearchMode::Fast, a->eps, {}, fast);
-          for (int x = 0; x < nf; ++x)
-            for (int y = 0; y < nb; ++y) hits += fast[static_cast<std::size_t>(x)].window == brute[static_cast<std::size_t>(y)].window;
-          total += static_cast<std::size_t>(nb);
         }
+        const double recall = total ? static_cast<double>(hits) / static_cast<double>(total) : 0.0;
+        by_eps[std::to_string(eps).substr(0, 4)] = recall;
+        if (eps == a->eps) j["fast_recall"] = recall;
+        std::printf("fast-mode recall@%d (eps %.2g, max %d checks) vs brute force on this trial: %.3f\n", a->k, eps,
+                    cfg.fast_max_checks, recall);
       }
-      const double recall = total ? static_cast<double>(hits) / static_cast<double>(total) : 0.0;
-      std::printf("fast-mode recall@%d (eps %.2g) vs brute force on this trial: %.3f\n", a->k, a->eps, recall);
-      j["fast_recall"] = recall;
+      j["fast_recall_by_eps"] = by_eps;
       j["avatar_state_bytes"] = acc.state_bytes();
     }
     j["peak_rss_kb"] = peak_rss_kb();

@@ -199,10 +199,15 @@ bool Accentuator::blend_candidates(double threshold) {
   fill_align(w[0], w[1], query_xz);
   const int k[2] = {cfg_.k_left, cfg_.k_right};
   for (int h = 0; h < 2; ++h) {
-    Feature f;
+    Feature& f = live_[static_cast<std::size_t>(h)];
     db.feature_space().project(w[h], f);
     auto& m = matches_[static_cast<std::size_t>(h)];
-    int got = search_knn(db, h, f, k[h], cfg_.search, cfg_.fast_eps, class_mask_, m);
+    // Last frame's matches seed the search (motion is continuous).
+    std::array<int, kMaxK> seeds;
+    const int ns = match_count_[static_cast<std::size_t>(h)];
+    for (int i = 0; i < ns; ++i) seeds[static_cast<std::size_t>(i)] = m[static_cast<std::size_t>(i)].window;
+    int got = search_knn(db, h, f, k[h], cfg_.search, cfg_.fast_eps, class_mask_, m, std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)),
+                         cfg_.fast_max_checks);
     if (threshold > 0)
       while (got > 0 && m[static_cast<std::size_t>(got - 1)].distance > threshold) --got;
     match_count_[static_cast<std::size_t>(h)] = got;

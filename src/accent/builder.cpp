@@ -351,6 +351,18 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
     window_counts.push_back(static_cast<int>(parts.sources.size()) - before);
   }
   if (!parts.ranges.empty()) parts.ranges.back().second = static_cast<int>(parts.sources.size());
+  // Per-trial verdicts (also when the build fails, so the CLI can show why).
+  auto fill_verdicts = [&] {
+    if (!report) return;
+    report->trials.clear();
+    for (const auto* t : trials) {
+      TrialVerdict v{t->info.file, t->info.cls, t->kept, t->info.correlation, 0, t->reason};
+      const auto it = std::find(kept.begin(), kept.end(), t);
+      if (it != kept.end()) v.windows = window_counts[static_cast<std::size_t>(it - kept.begin())];
+      report->trials.push_back(v);
+    }
+  };
+  if (windows.empty()) fill_verdicts();
   if (windows.empty())
     throw Error("accent build: no windows: every trial was dropped or too short (see the per-trial report; "
                 "lower --correlation or add trials)");
@@ -431,17 +443,7 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
 
   auto block = serialize_block(parts);
   if (report) {
-    report->trials.clear();
-    std::size_t k = 0;
-    for (const auto* t : trials) {
-      TrialVerdict v{t->info.file, t->info.cls, t->kept, t->info.correlation, 0, t->reason};
-      if (t->kept) {
-        const auto it = std::find(kept.begin(), kept.end(), t);
-        k = static_cast<std::size_t>(it - kept.begin());
-        v.windows = window_counts[k];
-      }
-      report->trials.push_back(v);
-    }
+    fill_verdicts();
     report->windows = static_cast<int>(parts.sources.size());
     report->poses = static_cast<int>(parts.poses.size() / (static_cast<std::size_t>(nj) * 4));
     report->bytes = block.size();

@@ -279,7 +279,7 @@ void Database::build_index(int leaf_size) {
       auto& ci = d.index[c];
       ci.cloud[hand].data = reinterpret_cast<const float*>(d.features[hand] + a);
       ci.cloud[hand].count = static_cast<std::size_t>(b - a);
-      ci.tree[hand] = std::make_unique<KdTree>(kDim, ci.cloud[hand],
+      ci.tree[hand] = std::make_unique<KdTree>(kTreeDim, ci.cloud[hand],
                                                nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(leaf_size)));
     }
   }

@@ -10,6 +10,10 @@
 #include <utility>
 #include <vector>
 
+#ifndef LEGWORK_ACCENT_TREE_DIM
+#define LEGWORK_ACCENT_TREE_DIM 5
+#endif
+
 namespace legwork::accent {
 
 inline constexpr char kMagic[8] = {'L', 'W', 'A', 'C', 'C', 'E', 'N', 'T'};
@@ -35,6 +39,11 @@ static_assert(sizeof(FileHeader) == 128);
 
 std::uint64_t block_checksum(std::span<const std::byte> block);
 
+// The KD-trees index only the first kTreeDim projected dimensions (the
+// principal ones). Distances over a prefix never exceed the full distance, so
+// the trees prune with lower bounds and the search stays exact (search.cpp).
+inline constexpr int kTreeDim = LEGWORK_ACCENT_TREE_DIM;
+
 // nanoflann reads the mapped features in place through this adaptor.
 struct FeatureCloud {
   const float* data = nullptr;
@@ -45,7 +54,7 @@ struct FeatureCloud {
   bool kdtree_get_bbox(Box&) const { return false; }
 };
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, FeatureCloud>, FeatureCloud,
-                                                    kDim, std::uint32_t>;
+                                                    kTreeDim, std::uint32_t>;
 
 struct ClassIndex {
   std::array<FeatureCloud, 2> cloud;

@@ -29,12 +29,39 @@ inline float squared_distance(const float* a, const float* b) {
   return s;
 }
 
+// nanoflann result set over the prefix trees: the tree reports points whose
+// prefix distance beats worstDist(); we rank them by their full distance and
+// report the k-th best full distance as the bound (prefix <= full, so no true
+// neighbour is ever pruned).
+struct FullDistanceResult {
+  const float* features;
+  const float* query;
+  int base;
+  Match* out;  // holds squared distances
+  int k, n;
+  int budget = -1;  // remaining full-distance evaluations; < 0 = unlimited
+  float worstDist() const { return n == k ? out[n - 1].distance : std::numeric_limits<float>::max(); }
+  bool full() const { return n == k; }
+  bool addPoint(float, std::uint32_t index) {
+    add(base + static_cast<int>(index));
+    return budget < 0 || --budget > 0;  // false stops the tree search
+  }
+  void add(int w) {
+    const float d2 = squared_distance(features + static_cast<std::ptrdiff_t>(w) * kDim, query);
+    if (n == k && d2 >= out[n - 1].distance) return;
+    for (int i = 0; i < n; ++i)
+      if (out[i].window == w) return;  // a seed found again by the tree
+    push_top({out, static_cast<std::size_t>(k)}, k, n, w, d2);
+  }
+};
+
 bool allowed(std::span<const unsigned char> mask, std::size_t c) { return mask.empty() || (c < mask.size() && mask[c]); }
 
 }  // namespace
 
 int search_knn(const Database& db, int hand, const Feature& query, int k, SearchMode mode, float eps,
-               std::span<const unsigned char> class_mask, std::span<Match> out) {
+               std::span<const unsigned char> class_mask, std::span<Match> out, std::span<const int> seeds,
+               int max_checks) {
   k = std::min<int>(k, static_cast<int>(out.size()));
   if (k <= 0) return 0;
   const auto& d = db.impl();
@@ -47,19 +74,19 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
         push_top(out, k, n, w, squared_distance(feats + static_cast<std::ptrdiff_t>(w) * kDim, query.data()));
     }
   } else {
-    constexpr int kMaxK = 64;
-    std::uint32_t idx[kMaxK];
-    float d2[kMaxK];
-    const int kk = std::min(k, kMaxK);
+    // One result set across the class trees: the k-th best full distance found
+    // so far prunes every later tree too.
+    FullDistanceResult rs{reinterpret_cast<const float*>(d.features[hand]), query.data(), 0, out.data(), k, 0};
+    for (int w : seeds)
+      if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) rs.add(w);
     const nanoflann::SearchParams params(32, mode == SearchMode::Fast ? eps : 0.0f);
     for (std::size_t c = 0; c < d.ranges.size(); ++c) {
       if (!allowed(class_mask, c) || d.ranges[c].first == d.ranges[c].second) continue;
-      nanoflann::KNNResultSet<float, std::uint32_t> rs(static_cast<std::size_t>(kk));
-      rs.init(idx, d2);
+      rs.base = d.ranges[c].first;
+      rs.budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
       d.index[c].tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
-      const int got = static_cast<int>(rs.size());
-      for (int i = 0; i < got; ++i) push_top(out, k, n, d.ranges[c].first + static_cast<int>(idx[i]), d2[i]);
     }
+    n = rs.n;
   }
   for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)].distance = std::sqrt(out[static_cast<std::size_t>(i)].distance);
   return n;

@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <thread>
 
 namespace legwork::accent {
 namespace {
@@ -79,6 +81,171 @@ TEST_F(HeldOut, HandsFollowTheInputAndThePoseIsSane) {
     EXPECT_LT(e.right, 0.08);
     EXPECT_GT(matched, run.output.frame_count() * 9 / 10);
   }
+}
+
+}  // namespace
+}  // namespace legwork::accent
+
+namespace legwork::accent {
+namespace {
+
+// A database of one trial, every window, no augmentation: the live input of
+// the same trial must land exactly on the database's features.
+TEST(AccentLive, LiveFeaturisationEqualsDatabaseFeaturisation) {
+  const auto trials = testing::sample_trials({"walking/07_01"});
+  BuildConfig cfg;
+  cfg.hop = 1;
+  cfg.speed_variants = 0;
+  const Database db = build_database(trials, cfg);
+  // The database saw the trial at 90 Hz on its own skeleton (the reference).
+  const Motion m = resample(trials[0].motion, 90.0);
+  const auto frames = tracker_frames_from_motion(m);
+  AccentConfig ac;
+  ac.search = SearchMode::BruteForce;
+  Accentuator acc(db, ac);
+  int checked = 0;
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    acc.update(frames[f]);
+    if (f < kWindow - 1) continue;
+    const int window = static_cast<int>(f) - (kWindow - 1);  // hop 1: window w ends on frame w + 8
+    ASSERT_EQ(db.source(window).frame, f);
+    for (int h = 0; h < 2; ++h)
+      for (int d = 0; d < kDim; ++d)
+        ASSERT_NEAR(acc.live_feature(h)[static_cast<std::size_t>(d)], db.feature(h, window)[static_cast<std::size_t>(d)], 2e-4)
+            << "frame " << f << " hand " << h << " dim " << d;
+    EXPECT_LT(acc.matches(0)[0].distance, 1e-3);
+    ++checked;
+  }
+  EXPECT_GT(checked, 100);
+}
+
+TEST(AccentLive, BadTrackingNeverBreaksThePose) {
+  const auto trials = testing::sample_trials({"walking/07_01", "walking/05_01"});
+  const Database db = build_database(trials, BuildConfig{});
+  const Motion m = resample(testing::sample_trial("walking/07_02").motion, 90.0);
+  auto frames = tracker_frames_from_motion(m);
+  AccentConfig ac;
+  ac.user_height = 1.7;
+  Accentuator acc(db, ac);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  int rejected = 0, lost = 0;
+  Vec3 last_root = Vec3::Zero();
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    TrackerFrame t = frames[f];
+    if (f % 37 == 5) t.left.position = Vec3(nan, 0, 0);            // NaN sample
+    if (f >= 100 && f < 160) t.right.valid = false;                // controller lost for 0.67 s
+    if (f % 53 == 7) t.head.rotation = Quat(nan, nan, nan, nan);   // broken headset orientation
+    const FrameInfo info = acc.update(t);
+    lost += info.status == FrameStatus::TrackingLost;
+    if (f == 50) {
+      // Time going backwards is rejected and leaves the pose unchanged.
+      const Vec3 before = acc.pose().translations[0];
+      TrackerFrame back = t;
+      back.time -= 0.5;
+      EXPECT_EQ(acc.update(back).status, FrameStatus::Rejected);
+      EXPECT_EQ(acc.pose().translations[0], before);
+      ++rejected;
+    }
+    for (const auto& q : acc.pose().rotations) ASSERT_TRUE(std::isfinite(q.norm()) && std::abs(q.norm() - 1) < 1e-6) << f;
+    ASSERT_TRUE(acc.pose().translations[0].allFinite()) << f;
+    if (f > 0) {
+      EXPECT_LT((acc.pose().translations[0] - last_root).norm(), 0.2) << "root jumped at frame " << f;
+    }
+    last_root = acc.pose().translations[0];
+  }
+  EXPECT_EQ(rejected, 1);
+  EXPECT_GE(lost, 60);
+}
+
+TEST(AccentLive, BoneLengthsEqualTheTargetsAndHeadSitsAtTheHeadset) {
+  const auto trials = testing::sample_trials({"walking/07_01", "running/09_01"});
+  const Database db = build_database(trials, BuildConfig{});
+  const Motion m = resample(testing::sample_trial("walking/07_02").motion, 90.0);
+  AccentConfig ac;
+  ac.user_height = 1.86;
+  const AccentRun run = accentuate(db, ac, tracker_frames_from_motion(m), 90.0);
+  const Skeleton& s = run.output.skeleton;
+  const double k = 1.86 / db.height();
+  const auto frames = tracker_frames_from_motion(m);
+  for (int f = 0; f < run.output.frame_count(); f += 17) {
+    const auto p = joint_positions(s, run.output.frame(f));
+    for (int j = 1; j < s.joint_count(); ++j) {
+      const double bone = (p[static_cast<std::size_t>(j)] - p[static_cast<std::size_t>(s.parents[static_cast<std::size_t>(j)])]).norm();
+      EXPECT_NEAR(bone, db.skeleton().rest_offsets[static_cast<std::size_t>(j)].norm() * k, 1e-9) << s.names[static_cast<std::size_t>(j)];
+    }
+    EXPECT_LT((p[static_cast<std::size_t>(s.roles[Role::Head])] - frames[static_cast<std::size_t>(f)].head.position).norm(), 1e-9);
+  }
+}
+
+TEST(AccentLive, ManyAvatarsShareOneDatabaseAcrossThreads) {
+  const auto trials = testing::sample_trials({"walking/07_01", "walking/05_01", "boxing/13_18"});
+  Database db = build_database(trials, BuildConfig{});
+  db.build_index();
+  const Motion m = resample(testing::sample_trial("walking/07_02").motion, 90.0);
+  const auto frames = tracker_frames_from_motion(m);
+  AccentConfig ac;
+  const AccentRun reference = accentuate(db, ac, frames, 90.0);
+  std::vector<std::thread> threads;
+  std::vector<int> same(4, 0);
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      const AccentRun r = accentuate(db, ac, frames, 90.0);
+      same[static_cast<std::size_t>(t)] = std::equal(r.output.all_rotations().begin(), r.output.all_rotations().end(),
+                                                     reference.output.all_rotations().begin(),
+                                                     [](const Quat& a, const Quat& b) { return a.coeffs() == b.coeffs(); });
+    });
+  for (auto& th : threads) th.join();
+  for (int t = 0; t < 4; ++t) EXPECT_TRUE(same[static_cast<std::size_t>(t)]) << "avatar " << t << " differs";
+}
+
+TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
+  const Database db = build_database(testing::sample_trials({"walking/07_01"}), BuildConfig{});
+  AccentConfig ac;
+  ac.classes = {"dancing"};
+  try {
+    Accentuator a(db, ac);
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("walking"), std::string::npos) << e.what();
+  }
+  ac.classes = {};
+  ac.k_left = 1000;
+  EXPECT_THROW(Accentuator(db, ac), Error);
+}
+
+}  // namespace
+}  // namespace legwork::accent
+
+namespace legwork::accent {
+namespace {
+
+// The document's Table-1 classes from the full shared set, one running trial
+// held out: exact search equals brute force on its real queries, and the
+// accentuated hands follow the held-out hands.
+TEST(AccentShared, Table1DatabaseOnAHeldOutRunningTrial) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  const std::string data = testdata::shared_cmu().string();
+  const auto trials = load_trials(data, {"boxing", "basketball", "climbing_ladder", "running", "swimming"}, {"bvh/running/35_26.bvh"});
+  Database db = build_database(trials, BuildConfig{});
+  db.build_index();
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  const Motion input = resample(io::load_bvh(data + "/bvh/running/35_26.bvh", opt), 90.0);
+  AccentConfig cfg;
+  cfg.search = SearchMode::Exact;
+  const AccentRun exact = accentuate_motion(db, cfg, input);
+  cfg.search = SearchMode::BruteForce;
+  const AccentRun brute = accentuate_motion(db, cfg, input);
+  // Same neighbours -> the same poses (up to float summation order).
+  double max_diff = 0;
+  for (std::size_t i = 0; i < exact.output.all_rotations().size(); ++i)
+    max_diff = std::max(max_diff, 1.0 - std::abs(exact.output.all_rotations()[i].dot(brute.output.all_rotations()[i])));
+  EXPECT_LT(max_diff, 1e-6);
+  const HandErrors e = measure(input, exact.output);
+  std::printf("[ figures  ] held-out running 35_26 vs Table-1 database (%d windows): hands %.1f / %.1f cm, role joints %.1f cm\n",
+              db.window_count(), 100 * e.left, 100 * e.right, 100 * e.body);
+  EXPECT_LT(e.left, 0.07);
+  EXPECT_LT(e.right, 0.07);
 }
 
 }  // namespace

@@ -46,7 +46,8 @@ struct TrackerFrame {
 
 struct AccentConfig {
   SearchMode search = SearchMode::Fast;
-  float fast_eps = 2.0f;  // Fast mode: neighbours within (1 + eps) x the true distance
+  float fast_eps = 5.0f;  // Fast mode: KD-tree pruning slack (squared-distance factor 1 + eps)
+  int fast_max_checks = 1500;  // Fast mode: candidates examined per class tree (bounds p99)
   int k_left = 5, k_right = 5;  // matches per hand (at most kMaxK)
   // Match distance limit in units of Database::typical_distance(); <= 0: none.
   double threshold = 6.0;
@@ -100,6 +101,8 @@ class Accentuator {
   const AccentConfig& config() const { return cfg_; }
   // The last matches per hand (window indices into the database).
   std::span<const Match> matches(int hand) const;
+  // The live feature of the last update per hand (projected, as in the database).
+  const Feature& live_feature(int hand) const { return live_[static_cast<std::size_t>(hand)]; }
   // Bytes of per-avatar state (workspace included).
   std::size_t state_bytes() const;
 
@@ -143,6 +146,7 @@ class Accentuator {
   // Workspace.
   std::array<std::array<Match, kMaxK>, 2> matches_{};
   std::array<int, 2> match_count_{0, 0};
+  std::array<Feature, 2> live_{};
   std::array<std::array<Quat, kMaxK>, 2> root_aligned_{};
   std::array<std::array<double, kMaxK>, 2> weight_{}, confidence_{};
   std::vector<Quat> model_rot_;

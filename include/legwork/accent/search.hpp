@@ -22,7 +22,14 @@ struct Match {
 // distance, among the classes whose mask byte is non-zero (empty mask = all
 // classes). k is capped at out.size(). Falls back to BruteForce when the
 // database has no index. Returns the number of matches written.
+// `seeds` (optional): windows likely to be close, e.g. the previous frame's
+// matches; they tighten the KD-tree bound from the start (results unchanged
+// in Exact mode, usually better in Fast mode).
+// `max_checks` (Fast mode only, 0 = unlimited): stop a class's tree after this
+// many full-distance evaluations, bounding the worst-case latency when the
+// query is far from everything in the database.
 int search_knn(const Database& db, int hand, const Feature& query, int k, SearchMode mode, float eps,
-               std::span<const unsigned char> class_mask, std::span<Match> out);
+               std::span<const unsigned char> class_mask, std::span<Match> out, std::span<const int> seeds = {},
+               int max_checks = 0);
 
 }  // namespace legwork::accent

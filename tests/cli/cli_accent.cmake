@@ -1,0 +1,32 @@
+# legwork accent: build a database from the sample data, accentuate a held-out trial, bench; bad input fails.
+set(ACC_DB ${O}/accent_sample.lwdb)
+legwork_cli_test(accent_build accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --exclude bvh/walking/07_02.bvh
+                 --out ${ACC_DB} --json ${O}/accent_build.json)
+set_tests_properties(cli.accent_build PROPERTIES FIXTURES_SETUP accent_db)
+legwork_cli_test(accent_build_classes accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes boxing,walking --mirror
+                 --hop 2 --speeds 4 --out ${O}/accent_box_walk.lwdb)
+legwork_cli_test(accent_run accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
+                 --out ${O}/accent_07_02.bvh --json ${O}/accent_07_02.json --compare-ik
+                 --save-session ${O}/accent_07_02_session.csv)
+set_tests_properties(cli.accent_run PROPERTIES FIXTURES_SETUP accent_session)
+legwork_cli_test(accent_run_csv accent run --db ${ACC_DB} --input ${O}/accent_07_02_session.csv --height 1.7
+                 --out ${O}/accent_07_02_from_csv.bvh)
+set_tests_properties(cli.accent_run_csv PROPERTIES FIXTURES_REQUIRED "accent_db;accent_session")
+legwork_cli_test(accent_run_glb_exact accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
+                 --out ${O}/accent_07_02.glb --mode exact --k 3 --no-align --no-smooth --exaggerate 1.3)
+legwork_cli_test(accent_run_target accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
+                 --out ${O}/accent_07_02_daz.bvh --target ${PROJECT_SOURCE_DIR}/data/cmu/bvh_daz/climbing_ladder/14_33.bvh)
+legwork_cli_test(accent_bench accent bench --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
+                 --json ${O}/accent_bench.json)
+set_tests_properties(cli.accent_run cli.accent_run_glb_exact cli.accent_run_target cli.accent_bench
+                     PROPERTIES FIXTURES_REQUIRED accent_db)
+legwork_cli_fail(accent_build_unknown_class accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing
+                 --out ${O}/x.lwdb)
+legwork_cli_fail(accent_build_bad_ext accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --out ${O}/x.db)
+legwork_cli_fail(accent_build_all_filtered accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes walking
+                 --correlation 1.5 --out ${O}/x.lwdb)
+legwork_cli_fail(accent_run_not_a_db accent run --db ${PROJECT_SOURCE_DIR}/data/cmu/MANIFEST.tsv
+                 --input ${D}/walking/07_02.bvh --out ${O}/x.bvh)
+legwork_cli_fail(accent_run_unknown_class accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --classes dancing
+                 --out ${O}/x.bvh)
+set_tests_properties(cli.accent_run_unknown_class PROPERTIES FIXTURES_REQUIRED accent_db)
