@@ -148,19 +148,23 @@ void solve_full_body(const FullBodyModel& M, const TrackerFrame& in, double dt, 
   for (int j : M.spine_)
     out.rotations[static_cast<std::size_t>(j)] = yaw_rotation(twist / n_spine) * pitch_rotation((lean - hip_lean) / n_spine);
   out.translations[root] = Vec3::Zero();
-  forward_kinematics(skel, out, model);
-  const Quat chest = parent_model_rotation(skel, model, M.neck_.front());
-  Quat delta = chest.conjugate() * in.head_rotation.normalized();
-  if (delta.w() < 0) delta.coeffs() = -delta.coeffs();
-  // Powers of one rotation compose exactly: the head ends on the headset's orientation.
-  const double neck_part = S.neck_share / static_cast<double>(M.neck_.size());
-  for (int j : M.neck_) out.rotations[static_cast<std::size_t>(j)] = Quat::Identity().slerp(neck_part, delta);
-  out.rotations[static_cast<std::size_t>(M.head_)] = Quat::Identity().slerp(1.0 - S.neck_share, delta);
-  // Place the body so the head joint is exactly on the headset.
-  forward_kinematics(skel, out, model);
-  const Vec3 shift = in.head_position - model[static_cast<std::size_t>(M.head_)].translation;
-  out.translations[root] = shift;
-  for (auto& t : model) t.translation += shift;
+  // The neck takes a share of the head's turn relative to the chest; then the
+  // body is placed so the head joint is exactly on the headset.
+  const auto place_head = [&] {
+    forward_kinematics(skel, out, model);
+    const Quat chest = parent_model_rotation(skel, model, M.neck_.front());
+    Quat delta = chest.conjugate() * in.head_rotation.normalized();
+    if (delta.w() < 0) delta.coeffs() = -delta.coeffs();
+    // Powers of one rotation compose exactly: the head ends on the headset's orientation.
+    const double neck_part = S.neck_share / static_cast<double>(M.neck_.size());
+    for (int j : M.neck_) out.rotations[static_cast<std::size_t>(j)] = Quat::Identity().slerp(neck_part, delta);
+    out.rotations[static_cast<std::size_t>(M.head_)] = Quat::Identity().slerp(1.0 - S.neck_share, delta);
+    forward_kinematics(skel, out, model);
+    const Vec3 shift = in.head_position - model[static_cast<std::size_t>(M.head_)].translation;
+    out.translations[root] += shift;
+    for (auto& t : model) t.translation += shift;
+  };
+  place_head();
 
   // Clavicles help long reaches.
   for (int s = 0; s < 2; ++s) {
@@ -181,6 +185,31 @@ void solve_full_body(const FullBodyModel& M, const TrackerFrame& in, double dt, 
     out.rotations[static_cast<std::size_t>(c)] = (parent_model_rotation(skel, model, c).conjugate() * cm).normalized();
   }
   forward_kinematics(skel, out, model);
+  // Still out of reach (arms stretched overhead while lying, a long reach):
+  // swing the whole body about the head toward that hand, so the head stays
+  // on the headset and the hands stay exact.
+  for (int iter = 0; iter < 4; ++iter) {
+    double worst = 0;
+    int side = -1;
+    for (int s = 0; s < 2; ++s) {
+      if (!in.hand_valid[static_cast<std::size_t>(s)]) continue;
+      const double e = (in.hand_position[static_cast<std::size_t>(s)] -
+                        model[static_cast<std::size_t>(M.arm_[s].root)].translation).norm() - 0.999 * M.arm_length_;
+      if (e > worst) {
+        worst = e;
+        side = s;
+      }
+    }
+    if (side < 0) break;
+    const Vec3 head = model[static_cast<std::size_t>(M.head_)].translation;
+    const Vec3 arm = model[static_cast<std::size_t>(M.arm_[side].root)].translation - head;
+    const Vec3 axis = arm.cross(in.hand_position[static_cast<std::size_t>(side)] - head);
+    if (arm.norm() < 1e-6 || axis.norm() < 1e-9) break;
+    const Quat swing(Eigen::AngleAxisd(std::min(S.body_reach, 1.1 * worst / arm.norm()), axis.normalized()));
+    out.rotations[root] = (swing * out.rotations[root]).normalized();
+    out.translations[root] = head + swing * (out.translations[root] - head);
+    place_head();
+  }
 
   // 4. Arms: two-bone IK onto the controllers, elbows down, back and out.
   const Quat chest_heading = yaw_rotation(st.chest_yaw);

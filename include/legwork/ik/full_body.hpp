@@ -48,6 +48,7 @@ struct FullBodySettings {
   double pelvis_turn_rate = 8.0;      // 1/s, pelvis yaw following the chest
   double neck_share = 0.3;            // of the head's turn relative to the chest taken by the neck
   double clavicle_reach = 0.5;        // radians: most a clavicle swings to bring a hand within reach
+  double body_reach = 1.2;            // radians: most the body swings about the head when a clavicle is not enough
   // Locomotion (VRIK names): stepping when the centre of mass is farther than
   // step_threshold outside the segment between the feet, or a foot is farther
   // than foot_distance_threshold from its place, or turned more than
