@@ -28,7 +28,7 @@ std::vector<std::string> split_commas(const std::string& s) {
 
 struct EvalArgs {
   std::string data, manifest, test, test_manifest, classes, protocols, out;
-  bool quick = false, no_ablation = false, no_ik = false, keep_first = false;
+  bool quick = false, no_ablation = false, no_ik = false, keep_first = false, video = false;
   int threads = 0, quick_trials = 4;
   double max_seconds = 0, quick_seconds = 12;
   // Engine switches (defaults = the engine's own defaults).
@@ -126,6 +126,7 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--quick-trials", a->quick_trials, "--quick: trials per class")->check(CLI::PositiveNumber);
   cmd->add_option("--max-seconds", a->max_seconds, "score only the first seconds of each test trial (0 = all)");
   cmd->add_option("--threads", a->threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--video", a->video, "also write compare.mp4: truth, engine and IK side by side (needs ffmpeg)");
   cmd->add_flag("--no-ablation", a->no_ablation, "skip the ablation variants");
   cmd->add_flag("--no-ik", a->no_ik, "skip the IK baseline");
   cmd->add_flag("--keep-first-frame", a->keep_first, "do not drop frame 0 (CMU files start with a T-pose)");
@@ -138,6 +139,7 @@ void register_eval(CLI::App& app) {
   cmd->add_flag("--mirror", a->mirror, "engine: add mirrored trials to every database");
   cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");
   cmd->callback([a] {
+    if (a->video && a->out.empty()) throw Error("--video needs --out DIR");
     const auto classes = split_commas(a->classes);
     eval::Catalogue data = eval::read_catalogue(a->data, a->manifest, classes);
     std::unique_ptr<eval::Catalogue> test;
@@ -174,6 +176,7 @@ void register_eval(CLI::App& app) {
       for (const auto& f : eval::write_report(res, a->out))
         if (f.ends_with(".md") || f.ends_with(".json")) announce("report", f);
         else if (f.ends_with(".png")) announce("chart (and .svg)", f);
+      if (a->video) announce("video", eval::write_comparison_video(res, a->out));
     }
   });
 }

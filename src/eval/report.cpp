@@ -1,6 +1,8 @@
 #include <legwork/eval/report.hpp>
 
+#include <legwork/core/interpolate.hpp>
 #include <legwork/render/plot.hpp>
+#include <legwork/render/render.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -540,6 +542,23 @@ std::vector<std::string> write_report(const EvalResult& res, const std::string& 
     both(c, "ablation");
   }
   return written;
+}
+
+std::string write_comparison_video(const EvalResult& r, const std::string& dir, double seconds) {
+  namespace fs = std::filesystem;
+  const SpeedResult& s = r.speed;
+  if (s.truth.frame_count() < 2) throw Error("no held-out trial to show (the run scored no engine fold)");
+  fs::create_directories(dir);
+  const int last = std::min(s.truth.frame_count(), static_cast<int>(seconds * s.truth.fps) + 1) - 1;
+  const Motion truth = trim(s.truth, 0, last), engine = trim(s.accent, 0, last), ik = trim(s.ik, 0, last);
+  render::VideoOptions opt;
+  opt.camera.view = render::View::ThreeQuarter;
+  opt.camera.width = 1080;
+  opt.camera.height = 480;
+  opt.title = "held-out " + s.trial + " (" + s.fold + ")";
+  const std::string path = (fs::path(dir) / "compare.mp4").string();
+  render::render_video_side_by_side({&truth, &engine, &ik}, {"ground truth", "accent engine", "IK baseline"}, opt, path);
+  return path;
 }
 
 }  // namespace legwork::eval

@@ -144,11 +144,17 @@ void measure_speed(EvalResult& res, const std::vector<accent::PreparedTrial>& pr
   const TestTrack& tt = tests[static_cast<std::size_t>(best_test)];
   double a = 1e30, k = 1e30;
   for (int pass = 0; pass < 3; ++pass) {
-    a = std::min(a, accent::accentuate_motion(db, opt.config, tt.motion).seconds);
+    accent::AccentRun run = accent::accentuate_motion(db, opt.config, tt.motion);
+    a = std::min(a, run.seconds);
     double s = 0;
-    run_ik_baseline(tt.motion, &s);
+    Motion ik = run_ik_baseline(tt.motion, &s);
     k = std::min(k, s);
+    if (pass == 0) {
+      res.speed.accent = std::move(run.output);
+      res.speed.ik = std::move(ik);
+    }
   }
+  res.speed.truth = tt.motion;
   res.speed.trial = tt.id;
   res.speed.fold = std::string(protocol_key(best->fold.protocol)) + " " + best->fold.cls + " " + best->fold.held_out;
   res.speed.frames = tt.motion.frame_count();

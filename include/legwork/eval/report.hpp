@@ -38,5 +38,9 @@ std::string report_markdown(const nlohmann::json& report);
 // ablation.{png,svg} (when there is an ablation) into dir (created).
 // Returns the files written.
 std::vector<std::string> write_report(const EvalResult& r, const std::string& dir);
+// compare.mp4 in dir: ground truth, engine and IK baseline side by side on
+// the speed pass's held-out trial (first `seconds`). Needs the ffmpeg
+// program (throws legwork::Error if it is missing). Returns the path.
+std::string write_comparison_video(const EvalResult& r, const std::string& dir, double seconds = 12.0);
 
 }  // namespace legwork::eval

@@ -80,6 +80,8 @@ struct SpeedResult {
   std::string trial, fold;
   int frames = 0, database_windows = 0;
   double accent_frames_per_second = 0, ik_frames_per_second = 0;
+  // That trial's ground truth and both methods' outputs (for a comparison video).
+  Motion truth, accent, ik;
 };
 
 struct EvalResult {
