@@ -11,12 +11,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-bool is_left_arm(Role r) {
-  return r == Role::LeftClavicle || r == Role::LeftShoulder || r == Role::LeftElbow || r == Role::LeftHand;
-}
-bool is_right_arm(Role r) {
-  return r == Role::RightClavicle || r == Role::RightShoulder || r == Role::RightElbow || r == Role::RightHand;
-}
 bool is_lower(Role r) {
   switch (r) {
     case Role::Pelvis:
@@ -76,7 +70,7 @@ bool role_in_part(Role r, Part p) {
   switch (p) {
     case Part::LeftHand: return r == Role::LeftHand;
     case Part::RightHand: return r == Role::RightHand;
-    case Part::UpperBody: return !is_lower(r) || is_left_arm(r) || is_right_arm(r);
+    case Part::UpperBody: return !is_lower(r);  // head, neck, spine, chest, clavicles, arms
     case Part::LowerBody: return is_lower(r);
     case Part::FullBody: return r != Role::Count;
     default: return false;
