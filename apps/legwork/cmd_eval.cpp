@@ -12,6 +12,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <regex>
 #include <sstream>
 
 namespace legwork::cli {
@@ -60,12 +61,10 @@ std::function<void(const std::string&)> progress_printer() {
     if (tty) {
       std::fprintf(stderr, "\r[eval] %s\x1b[K", line.c_str());
     } else {
-      // Only fold lines and the last of each loading/preparing phase.
+      // Only fold lines and the last line of each loading/preparing phase ("N/N").
+      static const std::regex done_phase(R"((\d+)/\1\b)");
       const bool fold = line.find(" folds ") != std::string::npos;
-      const auto slash = line.rfind('/');
-      const bool phase_end = slash != std::string::npos && line.find(':') != std::string::npos &&
-                             line.substr(line.rfind(' ') + 1, slash - line.rfind(' ') - 1) ==
-                                 line.substr(slash + 1, line.find(' ', slash) - slash - 1);
+      const bool phase_end = std::regex_search(line, done_phase);
       if (fold || phase_end) std::fprintf(stderr, "[eval] %s\n", line.c_str());
     }
     std::fflush(stderr);
