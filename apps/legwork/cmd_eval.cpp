@@ -34,7 +34,7 @@ struct EvalArgs {
   double max_seconds = 0, quick_seconds = 12;
   // Engine switches (defaults = the engine's own defaults).
   int hop = -1, k = -1, speed_variants = -1;
-  double threshold = -1;
+  double threshold = -1, hand_ik = -1;
   bool mirror = false, exact = false;
 };
 
@@ -135,6 +135,8 @@ void register_eval(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--speed-variants", a->speed_variants, "engine: speed-augmented copies per window")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--hand-ik", a->hand_ik, "engine: 0..1 pull of the synthesized arms onto the real hands")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--mirror", a->mirror, "engine: add mirrored trials to every database");
   cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");
   cmd->callback([a] {
@@ -163,6 +165,7 @@ void register_eval(CLI::App& app) {
     opt.build.mirror = a->mirror;
     if (a->k > 0) opt.config.k_left = opt.config.k_right = a->k;
     if (a->threshold >= 0) opt.config.threshold = a->threshold;
+    if (a->hand_ik >= 0) opt.config.hand_ik = a->hand_ik;
     if (a->exact) opt.config.search = accent::SearchMode::Exact;
     opt.progress = progress_printer();
 
