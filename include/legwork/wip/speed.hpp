@@ -32,7 +32,7 @@ class SpeedEstimator {
 // `idle_stop` seconds.
 class StepSpeedEstimator final : public SpeedEstimator {
  public:
-  double gain = 1.75;     // m/s of forward speed per m/s of mean vertical foot speed
+  double gain = 2.15;     // m/s of forward speed per m/s of mean vertical foot speed
   double idle_stop = 0.8; // s without swing -> 0
   void reset() override;
   void observe(const SpeedInput& in) override;

@@ -46,7 +46,7 @@ struct SyntheticOptions {
   double rate = 30.0;         // Hz
   double stand_time = 3.0;    // still standing at the start (floor calibration)
   double cadence = 1.8;       // steps per second (both feet together)
-  double step_height = 0.20;  // ankle lift of the left foot, metres
+  double step_height = 0.15;  // ankle lift of the left foot, metres (comfortable in-place stepping)
   double asymmetry = 0.0;     // right lift = step_height * (1 - asymmetry)
   double swing_fraction = 0.75;  // part of each step period a foot is in the air
   double noise = 0.015;       // Gaussian jitter per coordinate, metres (Kinect: 1-2 cm)

@@ -39,7 +39,7 @@ struct MappingParams {
   double knee_bend = 0.01;      // standing root lowered by this fraction of the leg (keeps knees soft)
   bool feet_flat = true;        // keep the ankle's standing model rotation
   SpeedModel speed_model = SpeedModel::StepSpeed;
-  double speed_gain = 1.75;     // step-speed model gain (see calibrate_step_speed_gain)
+  double speed_gain = 2.15;     // step-speed model gain: comfortable in-place stepping (0.15 m, 1.8 steps/s) -> ~1.3 m/s
   double stride_per_step = 0.65;  // step-frequency model, m per step
   double max_speed = 3.5;       // m/s cap
   double speed_tau = 0.3;       // s: smoothing of the forward speed
