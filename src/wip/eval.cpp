@@ -210,6 +210,11 @@ void Agreement::add(double x, double y) {
   se2 += (x - y) * (x - y);
 }
 
+void Agreement::merge(const Agreement& o) {
+  samples += o.samples;
+  sx += o.sx, sy += o.sy, sxx += o.sxx, syy += o.syy, sxy += o.sxy, se2 += o.se2;
+}
+
 void Agreement::finish() {
   if (samples < 2) return;
   const double n = samples;

@@ -94,9 +94,7 @@ SyntheticTrack synthetic_stepping(const SyntheticOptions& o) {
   const double swing = std::clamp(o.swing_fraction, 0.1, 1.6) * step_period;
   const double lift[2] = {o.step_height, o.step_height * (1.0 - o.asymmetry)};
   auto paused = [&](double t0, double t1) {
-    for (const auto& [s, len] : o.pauses)
-      if (t1 > s && t0 < s + len) return true;
-    return false;
+    return o.pause_length > 0 && t1 > o.pause_start && t0 < o.pause_start + o.pause_length;
   };
   // Swings alternate left, right, ...; a swing overlapping a pause is skipped.
   int foot = kLeft;

@@ -93,6 +93,9 @@ void reset(const WipModel& model, WipWorkspace& ws) {
   ws.kind = StepKind::None;
   ws.last_time = ws.ds_time = ws.dh = ws.speed = ws.distance = 0;
   ws.z_target[0] = ws.z_target[1] = ws.z[0] = ws.z[1] = 0;
+  ws.gap[0] = ws.gap[1] = ws.gap_up[0] = ws.gap_up[1] = 0;
+  ws.h_off = 0;
+  ws.h_switch = 1;
   ws.root_xz = Vec3::Zero();
   ws.frame = WipFrame{};
 }
@@ -146,13 +149,40 @@ void update_depth_targets(const WipModel& m, WipWorkspace& ws, const unsigned ev
     const int s = ws.driver, o = 1 - s;
     const bool up = ws.gait[s].phase == GaitPhase::InitialSwing;
     const double h = equation_height(m, ws, s);
+    double zs, zo;
     if (ws.kind == StepKind::First) {
-      ws.z_target[s] = first_step_swing(m.shape, h, up);
-      ws.z_target[o] = first_step_support(m.shape, h, up);
+      zs = first_step_swing(m.shape, h, up);
+      zo = first_step_support(m.shape, h, up);
     } else {
-      ws.z_target[s] = next_step_swing(m.shape, h, up);
-      ws.z_target[o] = next_step_support(m.shape, h, up);
+      zs = next_step_swing(m.shape, h, up);
+      zo = next_step_support(m.shape, h, up);
     }
+    // The branches meet only at h = H; mid-swing is detected a little before
+    // the apex and the running apex estimate is not exact, so the descending
+    // branch starts with the gap left at the switch and closes it in
+    // proportion to the remaining height (the foot still lands exactly on
+    // the equations' final value).
+    // Likewise the foot-off is detected at H1, not at h = 0: the ascending
+    // branch starts from where the feet are and fades that gap out by the apex.
+    if (ev[s] & kEventFootOff) {
+      ws.gap_up[s] = ws.z_target[s] - zs;
+      ws.gap_up[o] = ws.z_target[o] - zo;
+      ws.h_off = ws.feet[s].h;
+    }
+    if (up) {
+      const double apex = std::max(ws.gait[s].apex_estimate, ws.h_off + 1e-3);
+      const double fade_up = 1 - std::clamp((ws.feet[s].h - ws.h_off) / (apex - ws.h_off), 0.0, 1.0);
+      zs += fade_up * ws.gap_up[s];
+      zo += fade_up * ws.gap_up[o];
+    }
+    if (ev[s] & kEventMidSwing) {
+      ws.gap[s] = ws.z_target[s] - zs;
+      ws.gap[o] = ws.z_target[o] - zo;
+      ws.h_switch = std::max(ws.feet[s].h, m.params.gait.min_h1);
+    }
+    const double fade = up ? 0.0 : std::clamp(ws.feet[s].h / ws.h_switch, 0.0, 1.0);
+    ws.z_target[s] = zs + fade * ws.gap[s];
+    ws.z_target[o] = zo + fade * ws.gap[o];
   }
   if (ws.walking && ws.driver < 0 && ws.ds_time > m.params.mapping.stop_time) {
     ws.walking = false;
@@ -211,9 +241,12 @@ const WipFrame& update(const WipModel& m, const TrackerSample& sample, WipWorksp
   // Smooth the targets (frame-rate independent form of the document's lerp).
   const auto& mp = p.mapping;
   for (int f = 0; f < 2; ++f) ws.z[f] = approach(ws.z[f], ws.z_target[f], dt, mp.smoothing_tau);
-  // Eq. 5-7: the body drops with the trailing foot's depth while walking.
-  const double z_trail = std::min({ws.z[0], ws.z[1], 0.0});
-  const double dh_target = ws.walking ? body_drop(m.leg_length, z_trail) : 0.0;
+  // Eq. 5-7: the body drops with the trailing foot's depth while walking. The
+  // leading foot can reach further than the trailing one (the strike
+  // overshoot of eq. 3), so the farther of the two sets the drop: otherwise
+  // that leg would be out of reach and lock straight.
+  const double z_far = std::max({-ws.z[0], -ws.z[1], ws.z[0], ws.z[1]});
+  const double dh_target = ws.walking ? body_drop(m.leg_length, z_far) : 0.0;
   ws.dh = approach(ws.dh, dh_target, dt, mp.body_tau);
   // Eq. 8: swinging feet lift by lift_scale * h (scaled to the avatar).
   double y_local[2], lift[2];

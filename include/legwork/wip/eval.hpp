@@ -54,6 +54,7 @@ struct Agreement {
   // Accumulated sums so several trials can be pooled.
   double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, se2 = 0;
   void add(double generated, double truth);
+  void merge(const Agreement& other);  // pools another set's sums
   void finish();
 };
 

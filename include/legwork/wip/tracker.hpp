@@ -52,7 +52,8 @@ struct SyntheticOptions {
   double noise = 0.015;       // Gaussian jitter per coordinate, metres (Kinect: 1-2 cm)
   double drop_rate = 0.02;    // probability a sample is flagged invalid
   double nan_rate = 0.01;     // probability a sample's coordinates are NaN (also invalid)
-  std::vector<std::pair<double, double>> pauses{{11.0, 3.0}};  // (start, length) standing still
+  double pause_start = 11.0;  // a stop in the middle: standing still from here...
+  double pause_length = 3.0;  // ...for this long (0 = no pause)
   double floor_y = 0.0;       // tracker world height of the floor
   double ankle_height = 0.08; // ankle above the floor when standing
   double stance_width = 0.2;  // distance between the ankles, metres

@@ -34,9 +34,9 @@ struct MappingParams {
   double lift_scale = 0.5;    // eq. 8's 0.5: avatar lift per metre of user lift
   double stop_time = 1.5;     // s of double support -> stop (legs back to neutral)
   double smoothing_tau = 0.05;  // s: exponential approach of the targets (the document's lerp)
-  double body_tau = 0.1;        // s: same for the body's vertical offset
+  double body_tau = 0.05;       // s: same for the body's vertical offset
   double hint_forward = 0.29;   // m in front of the knee at the reference leg
-  double knee_bend = 0.01;      // standing root lowered by this fraction of the leg (keeps knees soft)
+  double knee_bend = 0.02;      // standing root lowered by this fraction of the leg (keeps knees soft)
   bool feet_flat = true;        // keep the ankle's standing model rotation
   SpeedModel speed_model = SpeedModel::StepSpeed;
   double speed_gain = 2.15;     // step-speed model gain: comfortable in-place stepping (0.15 m, 1.8 steps/s) -> ~1.3 m/s
@@ -107,6 +107,8 @@ struct WipWorkspace {
   StepKind kind = StepKind::None;
   double last_time = 0, ds_time = 0, dh = 0, speed = 0, distance = 0;
   double z_target[2] = {0, 0}, z[2] = {0, 0};
+  double gap[2] = {0, 0}, h_switch = 1;     // gap at mid-swing, faded out while descending
+  double gap_up[2] = {0, 0}, h_off = 0;     // gap at foot-off, faded out while ascending
   Vec3 root_xz = Vec3::Zero();
   WipFrame frame;
 };
