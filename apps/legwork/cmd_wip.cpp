@@ -374,11 +374,15 @@ void run_wip_command(const WipArgs& a) {
   if (!a.baseline.empty() && a.baseline != "keyframe")
     throw Error("--baseline '" + a.baseline + "': the only baseline is 'keyframe'");
   const std::string avatar_path = a.avatar.empty() ? default_avatar() : a.avatar;
-  Motion avatar_file = load_bvh_motion(avatar_path, a.keep_first);
-  require_roles(avatar_file.skeleton, avatar_path);
+  const Motion avatar_file = load_bvh_motion(avatar_path, a.keep_first);
   const Input in = load_input(a);
   const WipParams params = params_from(a, in.rate);
-  const WipModel model = make_wip_model(avatar_file.skeleton, params);
+  WipModel model;
+  try {
+    model = make_wip_model(avatar_file.skeleton, params);
+  } catch (const Error& e) {
+    throw Error("--avatar " + avatar_path + ": " + e.what());
+  }
   std::cerr << "legwork wip: " << in.what << "\n";
   std::fprintf(stderr, "legwork wip: avatar %s, leg %.3f m, step length S %.3f m\n", avatar_path.c_str(),
                model.leg_length, model.shape.S);
@@ -695,6 +699,8 @@ void register_wip(CLI::App& app) {
   add_method_options(cmd, *a);
   auto& s = a->syn;
   cmd->add_option("--duration", s.duration, "synthetic: seconds (default 20)")->check(CLI::PositiveNumber);
+  cmd->add_option("--stand-time", s.stand_time, "synthetic: standing still at the start, s (default 3)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--cadence", s.cadence, "synthetic: steps per second (default 1.8)")->check(CLI::PositiveNumber);
   cmd->add_option("--step-height", s.step_height, "synthetic: ankle lift, m (default 0.15)")->check(CLI::PositiveNumber);
   cmd->add_option("--asymmetry", s.asymmetry, "synthetic: right lift = (1 - a) * left (default 0)")->check(CLI::Range(0.0, 0.9));
