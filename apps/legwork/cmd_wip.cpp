@@ -239,11 +239,6 @@ void write_phase_plot(const std::string& path, const std::string& title, std::sp
     render::plot_lines(p, path);
     return;
   }
-  // Strip frames marked on the depth panel.
-  for (int f : strip)
-    if (f >= 0 && f < static_cast<int>(frames.size())) pz.bands.emplace_back(t[static_cast<std::size_t>(f)] - 0.01,
-                                                                             t[static_cast<std::size_t>(f)] + 0.01,
-                                                                             render::Rgb{0.1, 0.1, 0.1}, "strip frames", 0.5);
   const std::string tmp_plot = path + ".curves.tmp.png", tmp_strip = path + ".strip.tmp.png";
   render::plot_lines(p, tmp_plot);
   std::vector<Pose> poses;

@@ -23,6 +23,26 @@ double ankle_above_sole(const Skeleton& s, std::span<const Transform> g, int ank
   return g[static_cast<std::size_t>(ankle)].translation.y() - sole;
 }
 
+// Rest poses often hold the arms out (T-pose): let the upper arms hang down
+// a little away from the body, so the standing avatar looks natural.
+void hang_arms(const Skeleton& s, Pose& pose) {
+  const Role arms[2][2] = {{Role::LeftShoulder, Role::LeftElbow}, {Role::RightShoulder, Role::RightElbow}};
+  for (int side = 0; side < 2; ++side) {
+    const int sh = s.roles[arms[side][0]], el = s.roles[arms[side][1]];
+    if (sh < 0 || el < 0) continue;
+    std::vector<Transform> g(static_cast<std::size_t>(s.joint_count()));
+    forward_kinematics(s, pose, g);
+    const Vec3 bone = g[static_cast<std::size_t>(el)].translation - g[static_cast<std::size_t>(sh)].translation;
+    if (bone.norm() < 1e-9) continue;
+    const Vec3 want = Vec3(side == 0 ? 0.15 : -0.15, -1.0, 0.0).normalized();  // +x is the character's left
+    const Quat turn = Quat::FromTwoVectors(bone, want);
+    const Quat model = turn * g[static_cast<std::size_t>(sh)].rotation;
+    const int parent = s.parents[static_cast<std::size_t>(sh)];
+    pose.rotations[static_cast<std::size_t>(sh)] =
+        parent < 0 ? model : (g[static_cast<std::size_t>(parent)].rotation.conjugate() * model).normalized();
+  }
+}
+
 double approach(double current, double target, double dt, double tau) {
   if (!(tau > 0)) return target;
   return current + (target - current) * (1 - std::exp(-dt / tau));
@@ -30,7 +50,7 @@ double approach(double current, double target, double dt, double tau) {
 
 }  // namespace
 
-WipModel make_wip_model(const Skeleton& avatar, const WipParams& params) {
+WipModel make_wip_model(const Skeleton& avatar, const WipParams& params, ConstPoseRef upper_body) {
   WipModel m;
   m.skeleton = avatar;
   m.params = params;
@@ -65,6 +85,19 @@ WipModel make_wip_model(const Skeleton& avatar, const WipParams& params) {
     m.foot_rotation[f] = g[static_cast<std::size_t>(m.legs[f].end)].rotation;
   }
   m.root_height = body.hip_height - mp.knee_bend * m.leg_length;
+  if (upper_body.joint_count() == m.skeleton.joint_count()) {
+    // Upper body from the given pose: everything above the pelvis (the root
+    // keeps the heading, the legs are solved every frame).
+    for (int j = 1; j < m.skeleton.joint_count(); ++j) {
+      bool leg = false;
+      for (int f = 0; f < 2; ++f) leg |= m.skeleton.is_ancestor(m.legs[f].root, j);
+      bool hip_side = false;  // joints between the pelvis and a hip (CMU's LHipJoint)
+      for (int f = 0; f < 2; ++f) hip_side |= m.skeleton.is_ancestor(j, m.legs[f].root);
+      if (!leg && !hip_side) m.base_pose.rotations[static_cast<std::size_t>(j)] = upper_body.rotations[static_cast<std::size_t>(j)];
+    }
+  } else {
+    hang_arms(m.skeleton, m.base_pose);
+  }
   m.base_pose.translations[0] = Vec3(0, m.root_height, 0);
   return m;
 }

@@ -67,7 +67,10 @@ struct WipModel {
 };
 
 // Throws legwork::Error if the skeleton lacks the leg roles (naming them).
-WipModel make_wip_model(const Skeleton& avatar, const WipParams& params = {});
+// `upper_body` (optional, e.g. a frame of the avatar's own motion) gives the
+// local rotations of the joints the legs do not drive (spine, arms, head);
+// default: the rest pose with the upper arms hanging down.
+WipModel make_wip_model(const Skeleton& avatar, const WipParams& params = {}, ConstPoseRef upper_body = {});
 
 enum class StepKind : unsigned char { None, First, Consecutive };
 
