@@ -57,7 +57,7 @@ inline bool in_swing(GaitPhase p) { return p != GaitPhase::DoubleSupport; }
 //   DoubleSupport -> InitialSwing  h > H1 and v > V1            (foot-off detected)
 //   InitialSwing  -> MidSwing      v < V1                       (ascent ends near the apex)
 //   MidSwing      -> TerminalSwing v < -V2 or h < H1            (descending)
-//   any swing     -> DoubleSupport h < land_fraction * H1       (foot-strike detected)
+//   any swing     -> DoubleSupport h < land_fraction * H1 (0.3) (foot-strike detected)
 //   TerminalSwing -> DoubleSupport also when the descent stops (v > -V1) below H1
 // With `adaptive`, H1/V1/V2 shrink toward fractions of the user's own step
 // (running estimates of apex height and peak speeds), never above the
@@ -67,7 +67,7 @@ struct GaitParams {
   double h1 = 0.10;  // m
   double v1 = 0.20;  // m/s
   double v2 = 0.60;  // m/s
-  double land_fraction = 0.5;    // landing height = land_fraction * H1 (hysteresis)
+  double land_fraction = 0.3;    // landing height = land_fraction * H1 (hysteresis)
   double min_stance_time = 0.07; // s in double support before a new lift counts
   double max_ascent_time = 1.0;  // s: an ascent longer than this is treated as held (mid-swing)
   double lost_confidence = 0.1;  // below this, a swinging foot is put down
