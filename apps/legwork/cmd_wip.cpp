@@ -116,7 +116,7 @@ void add_method_options(CLI::App* cmd, WipArgs& a) {
 
 // ---- frame CSV and plots -------------------------------------------------
 
-void write_frames_csv(const std::string& path, std::span<const WipFrame> frames, const KeyframeBaselineState* = nullptr) {
+void write_frames_csv(const std::string& path, std::span<const WipFrame> frames) {
   std::ostringstream o;
   o << "time,phase_left,phase_right,h_left,h_right,v_left,v_right,confidence_left,confidence_right,h1_left,h1_right,"
        "z_target_left,z_target_right,z_left,z_right,y_left,y_right,root_offset,speed,distance,walking,events_left,"

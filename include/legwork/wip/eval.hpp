@@ -2,10 +2,13 @@
 // Evaluation of walking-in-place on real walking (offline): true gait events
 // from mocap, step detection scores, true foot-forward offsets and curve
 // agreement. May allocate and throw legwork::Error.
+#include <legwork/wip/baseline.hpp>
 #include <legwork/wip/tracker.hpp>
 #include <legwork/wip/wip.hpp>
 
+#include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace legwork::wip {
@@ -57,15 +60,6 @@ struct Agreement {
   void merge(const Agreement& other);  // pools another set's sums
   void finish();
 };
-
-}  // namespace legwork::wip
-
-#include <legwork/wip/baseline.hpp>
-
-#include <cstdint>
-#include <string>
-
-namespace legwork::wip {
 
 struct EvalOptions {
   WipParams params;            // the method's parameters (rate = tracker rate)
