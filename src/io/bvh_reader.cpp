@@ -62,7 +62,14 @@ class Lexer {
   std::string_view text() const { return text_; }
 
   static std::string describe(std::string_view t) {
-    return t.empty() ? std::string("end of file") : "'" + std::string(t.substr(0, 40)) + "'";
+    return t.empty() ? std::string("end of file") : "'" + printable(t.substr(0, 40)) + "'";
+  }
+  // Binary input (a .glb given as .bvh) must not put control bytes in messages.
+  static std::string printable(std::string_view t) {
+    std::string out(t);
+    for (char& c : out)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+    return out;
   }
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
   // A well-formed number that does not fit a double (1e999).
@@ -398,7 +405,7 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
       auto token = [&] {
         std::size_t q = p;
         while (q < t.size() && !Lexer::is_space(t[q])) ++q;
-        return std::string(t.substr(p, std::min<std::size_t>(q - p, 40)));
+        return Lexer::printable(t.substr(p, std::min<std::size_t>(q - p, 40)));
       };
       if (count >= total)
         lx.fail("motion line has more than the " + std::to_string(total) + " values the hierarchy declares (extra '" +
