@@ -307,7 +307,7 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
   auto ft = lx.next();
   double declared = 0;
   if (!Lexer::parse_double(ft, declared) || declared < 0 || declared != std::floor(declared) || declared > 1e8)
-    lx.fail("'Frames:' needs a whole number, found " + Lexer::describe(ft), frames_line);
+    lx.fail("'Frames:' needs a whole number from 0 to 100000000, found " + Lexer::describe(ft), frames_line);
   expect_label(lx, {"Frame", "Time"}, "Frame Time:");
   const double frame_time = lx.number("Frame Time");
   if (!(frame_time > 0) || !std::isfinite(1.0 / frame_time))
