@@ -138,6 +138,20 @@ TEST(RenderScene, SvgHasPaths) {
   EXPECT_NE(text.find("<path"), std::string::npos);
 }
 
+TEST(RenderScene, NonFinitePositionsAreSkippedNotFatal) {
+  const Motion& m = walk();
+  Scene s;
+  Figure f = make_figure(m.skeleton, m.frame(40), 1.0, "broken hand");
+  f.positions[static_cast<std::size_t>(m.skeleton.require("LeftHand"))] = Vec3::Constant(std::nan(""));
+  s.figures.push_back(f);
+  s.footprints.push_back({Vec3(std::nan(""), 0, 0), 0.0, true});
+  const auto file = out("nan.png");
+  ASSERT_NO_THROW(render_scene(s, Camera{}, file));
+  Image img(file);
+  ASSERT_TRUE(img.ok());
+  EXPECT_GT(img.count([](int, int, const auto& p) { return near_color(p, kRightColor); }), 100);
+}
+
 TEST(RenderScene, BadExtensionIsAnError) {
   Scene s;
   EXPECT_THROW(render_scene(s, Camera{}, out("x.jpg")), Error);
