@@ -198,6 +198,42 @@ TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
   EXPECT_LT(right_on_right, right_on_left / 10);
 }
 
+// A walking frame turned to walk along -z: the contact sheet's face_forward
+// must turn it back, so the front row still shows the left side on the right
+// (and without face_forward the picture shows the back: left on the left).
+TEST(ContactSheet, FrontRowFacesTheViewerWhateverTheWalkingDirection) {
+  const Motion& m = walk();
+  const auto fr = m.frame(100);
+  Pose p;
+  p.rotations.assign(fr.rotations.begin(), fr.rotations.end());
+  p.translations.assign(fr.translations.begin(), fr.translations.end());
+  const Quat half_turn(Eigen::AngleAxisd(kPi, Vec3::UnitY()));
+  p.rotations[0] = half_turn * p.rotations[0];
+  p.translations[0] = half_turn * p.translations[0];
+  auto left_minus_right_x = [&](bool face_forward) {
+    SheetOptions opt;
+    opt.views = {View::Front};
+    opt.face_forward = face_forward;
+    const auto file = out(face_forward ? "sheet_turned_ff.png" : "sheet_turned_raw.png");
+    render_contact_sheet(m.skeleton, {p}, opt, file);
+    Image img(file);
+    EXPECT_TRUE(img.ok());
+    double lx = 0, rx = 0;
+    int ln = 0, rn = 0;
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        const auto px = img.at(x, y);
+        if (near_color(px, kLeftColor)) lx += x, ++ln;
+        if (near_color(px, kRightColor)) rx += x, ++rn;
+      }
+    EXPECT_GT(ln, 100);
+    EXPECT_GT(rn, 100);
+    return lx / std::max(ln, 1) - rx / std::max(rn, 1);
+  };
+  EXPECT_GT(left_minus_right_x(true), 10);
+  EXPECT_LT(left_minus_right_x(false), -10);
+}
+
 TEST(ContactSheet, RowsPerViewPosesSideBySide) {
   const Motion& m = walk();
   std::vector<Pose> poses;
