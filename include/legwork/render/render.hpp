@@ -154,6 +154,7 @@ struct TrajectoryOptions {
   int first_frame = 0;
   int last_frame = -1;
   std::string title;  // empty: "<joint> path over N frames (<view> view)"
+  std::vector<Footprint> footprints;  // drawn on the floor under the path
 };
 void render_trajectory(const Motion& m, int joint, const std::vector<int>& marked_frames,
                        const Camera& cam, const std::string& path, const TrajectoryOptions& opt);
