@@ -309,3 +309,31 @@ TEST(Footprints, TopViewPutsLeftFootAboveRight) {
   EXPECT_LT(ly / ln, ry / rn);  // left foot higher in the picture
   EXPECT_LT(lx / ln, rx / rn);  // right foot further forward (+z = right)
 }
+
+TEST(RenderPanels, GridOfViewsHasEveryPanelDrawn) {
+  const Motion& m = walk();
+  std::vector<Panel> panels;
+  for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
+    Panel p;
+    p.scene.figures.push_back(make_figure(m.skeleton, m.frame(80)));
+    p.scene.title = view_name(v);
+    p.camera.view = v;
+    p.camera.width = 240;
+    p.camera.height = 200;
+    panels.push_back(p);
+  }
+  const auto file = out("panels.png");
+  render_panels(panels, 2, file, "four views");
+  Image img(file);
+  ASSERT_TRUE(img.ok());
+  EXPECT_EQ(img.width(), 480);
+  EXPECT_EQ(img.height(), 400 + 34);
+  for (int q = 0; q < 4; ++q) {
+    const int x0 = (q % 2) * 240, y0 = 34 + (q / 2) * 200;
+    const int n = img.count([&](int x, int y, const auto& p) {
+      return x >= x0 && x < x0 + 240 && y >= y0 + 30 && y < y0 + 200 && (near_color(p, kLeftColor) || near_color(p, kRightColor));
+    });
+    EXPECT_GT(n, 80) << "panel " << q;
+  }
+  EXPECT_THROW(render_panels({}, 2, file), Error);
+}
