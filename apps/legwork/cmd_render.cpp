@@ -102,6 +102,26 @@ std::vector<int> sample_frames(int first, int last, int every) {
   return out;
 }
 
+// A picture height that suits the content's aspect in this view (less empty
+// space for long flat paths seen from above), between 240 and 960 pixels.
+int fitted_height(const Motion& m, int first, int last, render::View view, int width) {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = -lo;
+  const auto pos = joint_positions(m);
+  const auto nj = static_cast<std::size_t>(m.joint_count());
+  for (int f = first; f <= last; ++f)
+    for (std::size_t j = 0; j < nj; ++j) {
+      Vec3 p = pos[static_cast<std::size_t>(f) * nj + j];
+      for (int floor = 0; floor < (view == render::View::Top ? 1 : 2); ++floor) {
+        if (floor) p.y() = 0;
+        const auto q = render::project(view, p);
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+      }
+    }
+  const double aspect = (hi.y() - lo.y()) / std::max(hi.x() - lo.x(), 1e-3);
+  return std::clamp(static_cast<int>(width * 0.84 * aspect) + 110, 240, 960) / 2 * 2;
+}
+
 void run_render(const RenderArgs& a) {
   const std::string ext = io::extension_of(a.out);
   if (ext != ".png" && ext != ".svg" && ext != ".mp4")
@@ -155,7 +175,7 @@ void run_render(const RenderArgs& a) {
     render::Camera cam;
     cam.view = view;
     cam.width = a.width > 0 ? a.width : 960;
-    cam.height = a.height > 0 ? a.height : 480;
+    cam.height = a.height > 0 ? a.height : fitted_height(m, first, last, view, cam.width);
     render::TrajectoryOptions opt;
     opt.first_frame = first;
     opt.last_frame = last;
