@@ -91,7 +91,7 @@ std::vector<Case> cases() {
       {"zero_frame_time", replace(v, "Frame Time: 0.1", "Frame Time: 0"), 18, "'Frame Time:' must be a positive"},
       {"negative_frame_time", replace(v, "Frame Time: 0.1", "Frame Time: -0.01"), 18, "'Frame Time:' must be a positive"},
       {"missing_frame_time", replace(v, "Frame Time: 0.1\n", ""), 18, "missing 'Frame Time:' line"},
-      {"fractional_frames", replace(v, "Frames: 2", "Frames: 2.5"), 17, "'Frames:' needs a whole number, found '2.5'"},
+      {"fractional_frames", replace(v, "Frames: 2", "Frames: 2.5"), 17, "'Frames:' needs a whole number from 0 to 100000000, found '2.5'"},
       {"truncated_in_hierarchy", v.substr(0, v.find("0.5 0\n    CHANNELS")), 8,
        "expected a number for OFFSET of joint 'Spine', found end of file"},
       {"truncated_in_motion", v.substr(0, v.size() - 10), 20, "motion line has 6 values, the hierarchy declares 9"},
