@@ -257,6 +257,8 @@ void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& cha
       if (!have_offset) lx.fail("joint '" + jname + "' has no OFFSET", line);
       if (!have_channels) lx.fail("joint '" + jname + "' has no CHANNELS", line);
       return;
+    } else if (Channel extra; parse_channel(t, extra)) {
+      lx.fail("CHANNELS of joint '" + jname + "' lists more channels than its count (extra '" + std::string(t) + "')", line);
     } else if (t.empty() || t == "MOTION") {
       lx.fail("missing '}' closing joint '" + jname + "' (found " + Lexer::describe(t) + ")", line);
     } else {

@@ -77,6 +77,8 @@ std::vector<Case> cases() {
       {"missing_closing_brace", replace(v, "  }\n}\nMOTION", "  }\nMOTION"), 15, "missing '}' closing joint 'Hips'"},
       {"channel_count_too_big", replace(v, "3 Zrotation Yrotation Xrotation", "4 Zrotation Yrotation Xrotation"), 9,
        "CHANNELS of joint 'Spine' declares 4 channels but lists 3"},
+      {"channel_count_too_small", replace(v, "3 Zrotation Yrotation Xrotation", "2 Zrotation Yrotation Xrotation"), 9,
+       "CHANNELS of joint 'Spine' lists more channels than its count (extra 'Xrotation')"},
       {"channel_count_out_of_range", replace(v, "3 Zrotation Yrotation Xrotation", "7 Zrotation Yrotation Xrotation"), 9,
        "CHANNELS of joint 'Spine' needs a count from 0 to 6, found '7'"},
       {"repeated_channel", replace(v, "3 Zrotation Yrotation Xrotation", "3 Zrotation Zrotation Xrotation"), 9,
