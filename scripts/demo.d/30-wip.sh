@@ -20,7 +20,7 @@ avatar="$DATA/bvh/walking/07_01.bvh"
   --csv "$out/cmu_16_15_frames.csv" --plot "$out/cmu_16_15_phases.png"
 "$LEGWORK" wip --input "$walk" --avatar "$avatar" --out "$out/cmu_16_15_legs.bvh" >/dev/null
 # The document's comparison condition: the same state machines trigger a canned walk cycle.
-"$LEGWORK" wip --input "$walk" --avatar "$avatar" --baseline keyframe --out "$out/cmu_16_15_keyframe.bvh" >/dev/null
+"$LEGWORK" wip --input "$walk" --avatar "$avatar" --baseline keyframe --clip "$avatar" --out "$out/cmu_16_15_keyframe.bvh" >/dev/null
 if command -v ffmpeg >/dev/null 2>&1; then
   "$LEGWORK" render "$out/cmu_16_15_legs.bvh" --view side --compare "$out/cmu_16_15_keyframe.bvh" \
     --width 960 --height 360 --title "walking in place (left) vs key-frame baseline (right), CMU 16_15 ankles" \
@@ -28,7 +28,7 @@ if command -v ffmpeg >/dev/null 2>&1; then
 fi
 
 # 3. Evaluation on real walking (all trials present; progress on stderr).
-"$LEGWORK" wip eval --out "$out/eval"
+"$LEGWORK" wip eval --clip "$avatar" --out "$out/eval"
 cp "$out/eval/report.md" "$out/eval_report.md"
 cp "$out/eval/report.json" "$out/eval_report.json"
 cp "$out/eval/summary.png" "$out/eval_summary.png"

@@ -169,6 +169,8 @@ void update_depth_targets(const WipModel& m, WipWorkspace& ws, const unsigned ev
     if (in_swing(ws.gait[other].phase)) {
       ws.driver = other;
       ws.kind = StepKind::Consecutive;
+      // Its foot-off and mid-swing passed unseen: no gaps to fade (the smoothing takes the jump).
+      ws.gap[0] = ws.gap[1] = ws.gap_up[0] = ws.gap_up[1] = 0;
     }
   }
   // A foot lifted while no step runs: a new step (first one after a stop).
@@ -201,6 +203,7 @@ void update_depth_targets(const WipModel& m, WipWorkspace& ws, const unsigned ev
       ws.gap_up[s] = ws.z_target[s] - zs;
       ws.gap_up[o] = ws.z_target[o] - zo;
       ws.h_off = ws.feet[s].h;
+      ws.gap[0] = ws.gap[1] = 0;
     }
     if (up) {
       const double apex = std::max(ws.gait[s].apex_estimate, ws.h_off + 1e-3);

@@ -18,3 +18,9 @@ legwork_cli_fail(wip_csv_missing_columns wip --input ${PROJECT_SOURCE_DIR}/tests
 legwork_cli_fail(wip_csv_time_backwards wip --input ${PROJECT_SOURCE_DIR}/tests/wip/data/time_backwards.csv --out ${O}/x.bvh)
 legwork_cli_fail(wip_avatar_without_legs wip --synthetic --avatar ${PROJECT_SOURCE_DIR}/tests/wip/data/no_legs.bvh --out ${O}/x.bvh)
 legwork_cli_fail(wip_eval_no_data wip eval --data ${O}/does-not-exist --out ${O}/wip_eval_x)
+# Run from the repository root, as a user would: the default avatar and walk
+# cycle (data/cmu/bvh/walking/07_01.bvh) are found from there.
+set_tests_properties(cli.wip_help cli.wip_synthetic cli.wip_bvh cli.wip_keyframe cli.wip_eval cli.wip_frequency
+                     cli.wip_csv cli.wip_no_input cli.wip_bad_out cli.wip_not_still cli.wip_csv_missing_columns
+                     cli.wip_csv_time_backwards cli.wip_avatar_without_legs cli.wip_eval_no_data
+                     PROPERTIES WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
