@@ -64,6 +64,21 @@ TEST(TwoBone, ReachesTargetsOnCmuLegAndModelMatchesFk) {
   }
 }
 
+TEST(TwoBone, ArmChainsReachTheirTargetsWithTheElbowTowardTheHint) {
+  Rig r = cmu_rig(50);
+  const Skeleton& s = r.motion.skeleton;
+  for (const TwoBoneChain& arm : {left_arm(s), right_arm(s)}) {
+    ASSERT_GE(arm.end, 0);
+    const Vec3 shoulder = pos(r.model, arm.root);
+    TwoBoneTarget t;
+    t.position = shoulder + Vec3(0.05, -0.15, 0.3);  // hand in front of the chest
+    t.hint = shoulder + Vec3(0, -0.4, -0.1);        // elbow down and back
+    solve_two_bone(s, arm, t, r.pose.ref(), r.model);
+    EXPECT_LT((pos(r.model, arm.end) - t.position).norm(), 1e-5);
+    EXPECT_LT(pos(r.model, arm.mid).y(), shoulder.y());
+  }
+}
+
 TEST(TwoBone, UnreachableTargetGivesStraightChainPointingAtIt) {
   Rig r = cmu_rig();
   const Skeleton& s = r.motion.skeleton;
