@@ -102,7 +102,18 @@ FullBodyModel::FullBodyModel(const Skeleton& skel, const FullBodySettings& setti
 
 FullBodyState::FullBodyState(const FullBodyModel& m) : model(static_cast<std::size_t>(m.skeleton().joint_count())) {}
 
-void solve_full_body(const FullBodyModel& M, const TrackerFrame& in, double dt, FullBodyState& st, PoseRef out) {
+void solve_full_body(const FullBodyModel& M, const TrackerFrame& input, double dt, FullBodyState& st, PoseRef out) {
+  // Bad samples: without a usable head the pose is left as it was; a hand
+  // with non-finite data is treated as lost tracking (that arm relaxes).
+  const auto finite = [](const auto& v) { return v.allFinite(); };
+  if (!finite(input.head_position) || !finite(input.head_rotation.coeffs()) ||
+      input.head_rotation.squaredNorm() < 1e-12 || !std::isfinite(dt))
+    return;
+  TrackerFrame in = input;
+  in.head_rotation.normalize();
+  for (std::size_t s = 0; s < 2; ++s)
+    if (!finite(in.hand_position[s]) || !finite(in.hand_rotation[s].coeffs()) || in.hand_rotation[s].squaredNorm() < 1e-12)
+      in.hand_valid[s] = false;
   const Skeleton& skel = *M.skel_;
   const FullBodySettings& S = M.settings_;
   const std::span<Transform> model(st.model);

@@ -122,6 +122,32 @@ TEST(FullBodyIk, StandingStillPlantsTheFeetAndCrouchesWhenTheHeadDrops) {
   EXPECT_GT(knee.z() - 0.5 * (hip.z() + ankle.z()), 0.02);
 }
 
+TEST(FullBodyIk, NonFiniteSamplesNeverReachThePose) {
+  const Motion walk = load90("cmu/bvh/walking/07_01.bvh");
+  const Skeleton& skel = walk.skeleton;
+  FullBodyModel model(skel);
+  FullBodyState state(model);
+  std::vector<Transform> g(static_cast<std::size_t>(skel.joint_count()));
+  forward_kinematics(skel, walk.frame(10), g);
+  const TrackerFrame good = tracker_of(skel, g);
+  Pose pose(skel);
+  solve_full_body(model, good, 1.0 / 90, state, pose.ref());
+  const Pose before = pose;
+  TrackerFrame bad = good;
+  bad.head_position.x() = std::nan("");
+  solve_full_body(model, bad, 1.0 / 90, state, pose.ref());
+  for (int j = 0; j < skel.joint_count(); ++j)
+    EXPECT_TRUE(pose.rotations[static_cast<std::size_t>(j)].coeffs() == before.rotations[static_cast<std::size_t>(j)].coeffs());
+  bad = good;
+  bad.hand_position[1] = Vec3::Constant(std::nan(""));  // right controller lost
+  solve_full_body(model, bad, 1.0 / 90, state, pose.ref());
+  forward_kinematics(skel, pose, g);
+  for (const auto& t : g) EXPECT_TRUE(t.translation.allFinite() && t.rotation.coeffs().allFinite());
+  // The right wrist hangs below its shoulder.
+  EXPECT_LT(g[static_cast<std::size_t>(skel.roles[Role::RightHand])].translation.y(),
+            g[static_cast<std::size_t>(skel.roles[Role::RightShoulder])].translation.y() - 0.3);
+}
+
 TEST(FullBodyIk, RejectsASkeletonWithoutArms) {
   Skeleton s;
   s.add_joint("Hips", -1, Vec3::Zero());

@@ -117,6 +117,8 @@ struct FullBodyState {
 
 // Solves one frame. dt = seconds since the previous frame (ignored on the
 // first). `out` must have the skeleton's joint count; every joint is written.
+// A non-finite head sample (or dt) leaves `out` and the state untouched; a
+// non-finite hand sample counts as that hand's tracking being lost.
 void solve_full_body(const FullBodyModel& model, const TrackerFrame& input, double dt, FullBodyState& state,
                      PoseRef out);
 
