@@ -142,7 +142,7 @@ void register_build(CLI::App& parent) {
   cmd->add_option("--speeds", a->cfg.speed_variants, "re-timed copies per window (0 = none; 2 = x0.5 and x1.5)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--speed-range", a->cfg.speed_range, "largest relative speed change of the re-timed copies")->check(CLI::Range(0.0, 0.9));
   cmd->add_flag("--mirror", a->cfg.mirror, "add left/right mirrored copies of every trial");
-  cmd->add_option("--weights", a->weights, "feature group weights position,velocity,acceleration (default 1,0.5,0.25)");
+  cmd->add_option("--weights", a->weights, "feature group weights position,velocity,acceleration (default 1,1,0.5)");
   cmd->add_option("--json", a->json_path, "write the build report (per-trial verdicts) as JSON");
   cmd->callback([a] {
     if (io::extension_of(a->out) != ".lwdb") throw Error("--out '" + a->out + "' must end in .lwdb");
