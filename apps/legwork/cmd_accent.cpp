@@ -238,11 +238,17 @@ Motion input_figure(std::span<const TrackerFrame> frames, double fps) {
   s.add_joint("LeftHand", 0, Vec3(0.2, -0.5, 0));
   s.add_joint("RightHand", 0, Vec3(-0.2, -0.5, 0));
   Motion m(s, fps, static_cast<int>(frames.size()));
+  // Lost samples show the last good position (as the engine holds them).
+  Vec3 head = Vec3::Zero(), left(0.2, -0.5, 0), right(-0.2, -0.5, 0);
   for (std::size_t f = 0; f < frames.size(); ++f) {
+    const auto& fr = frames[f];
+    if (fr.head.valid && fr.head.position.allFinite()) head = fr.head.position;
+    if (fr.left.valid && fr.left.position.allFinite()) left = fr.left.position - head;
+    if (fr.right.valid && fr.right.position.allFinite()) right = fr.right.position - head;
     auto p = m.frame(static_cast<int>(f));
-    p.translations[0] = frames[f].head.position;
-    p.translations[1] = frames[f].left.position - frames[f].head.position;
-    p.translations[2] = frames[f].right.position - frames[f].head.position;
+    p.translations[0] = head;
+    p.translations[1] = left;
+    p.translations[2] = right;
   }
   return m;
 }
