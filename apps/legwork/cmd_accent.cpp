@@ -434,7 +434,7 @@ void register_run(CLI::App& parent) {
 struct BenchArgs {
   std::string db, json_path, data, classes;
   MotionInput input;
-  int repeat = 3, k = 5;
+  int repeat = 3, k = 5, max_checks = AccentConfig{}.fast_max_checks;
   float eps = 5.0f;
 };
 
@@ -470,6 +470,7 @@ void register_bench(CLI::App& parent) {
   cmd->add_option("--repeat", a->repeat, "passes over the trial per mode")->check(CLI::PositiveNumber);
   cmd->add_option("--k", a->k, "matches per hand")->check(CLI::Range(1, kMaxK));
   cmd->add_option("--eps", a->eps, "fast-mode approximation (neighbours within (1+eps) x the true distance)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-checks", a->max_checks, "fast-mode budget of candidates per search (0 = unlimited)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--json", a->json_path, "write the figures as JSON");
   cmd->callback([a] {
     json j;
@@ -516,6 +517,7 @@ void register_bench(CLI::App& parent) {
       AccentConfig cfg;
       cfg.search = mode;
       cfg.fast_eps = a->eps;
+      cfg.fast_max_checks = a->max_checks;
       cfg.k_left = cfg.k_right = a->k;
       cfg.user_height = measure_body(truth.skeleton).standing_height;
       std::vector<double> lat;
@@ -550,6 +552,7 @@ void register_bench(CLI::App& parent) {
     {
       AccentConfig cfg;
       cfg.user_height = measure_body(truth.skeleton).standing_height;
+      cfg.fast_max_checks = a->max_checks;
       Accentuator acc(db, cfg);
       std::array<Match, kMaxK> brute{}, fast{};
       const double scale = db.height() / cfg.user_height;

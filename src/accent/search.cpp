@@ -66,7 +66,7 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
   if (k <= 0) return 0;
   const auto& d = db.impl();
   int n = 0;  // out[] holds squared distances until the end
-  if (mode == SearchMode::BruteForce || d.index.empty()) {
+  if (mode == SearchMode::BruteForce || !d.all.tree[0]) {
     const float* feats = reinterpret_cast<const float*>(d.features[hand]);
     for (std::size_t c = 0; c < d.ranges.size(); ++c) {
       if (!allowed(class_mask, c)) continue;
@@ -80,11 +80,20 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
     for (int w : seeds)
       if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) rs.add(w);
     const nanoflann::SearchParams params(32, mode == SearchMode::Fast ? eps : 0.0f);
-    for (std::size_t c = 0; c < d.ranges.size(); ++c) {
-      if (!allowed(class_mask, c) || d.ranges[c].first == d.ranges[c].second) continue;
-      rs.base = d.ranges[c].first;
-      rs.budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
-      d.index[c].tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
+    const int budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
+    bool every_class = true;
+    for (std::size_t c = 0; c < d.ranges.size(); ++c) every_class = every_class && allowed(class_mask, c);
+    if (every_class || d.index.size() != d.ranges.size()) {
+      rs.base = 0;
+      rs.budget = budget;
+      d.all.tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
+    } else {
+      for (std::size_t c = 0; c < d.ranges.size(); ++c) {
+        if (!allowed(class_mask, c) || d.ranges[c].first == d.ranges[c].second) continue;
+        rs.base = d.ranges[c].first;
+        rs.budget = budget;
+        d.index[c].tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
+      }
     }
     n = rs.n;
   }
