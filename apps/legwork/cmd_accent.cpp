@@ -345,6 +345,13 @@ void register_run(CLI::App& parent) {
       require_roles(tgt.skeleton, a->target);
       tgt.skeleton.scale(cfg.user_height > 0 ? cfg.user_height / std::max(measure_body(tgt.skeleton).standing_height, 1e-6) : 1.0);
       result = retarget_motion(run.output, tgt.skeleton);
+      // Keep the target's head at the headset, as the engine does for its own rig.
+      const int hs = run.output.skeleton.roles[Role::Head], ht = result.skeleton.roles[Role::Head];
+      for (int f = 0; f < result.frame_count(); ++f) {
+        const auto ps = joint_positions(run.output.skeleton, run.output.frame(f));
+        const auto pt = joint_positions(result.skeleton, result.frame(f));
+        result.frame(f).translations[0] += ps[static_cast<std::size_t>(hs)] - pt[static_cast<std::size_t>(ht)];
+      }
     }
     write_motion(a->out, result);
     announce("accentuated motion", a->out);
