@@ -165,8 +165,10 @@ void register_build(CLI::App& parent) {
     }
     save_database(a->out, db);
     print_class_table(report);
-    std::printf("database: %d classes, %d windows, %d poses, %.1f MB, built in %.2f s (+ %.2f s reading BVH)\n", db.class_count(),
-                report.windows, report.poses, report.bytes / 1e6, report.seconds, read_s);
+    int kept = 0;
+    for (const auto& t : report.trials) kept += t.kept;
+    std::printf("database: %d of %zu trials kept, %d classes, %d windows, %d poses, %.1f MB, built in %.2f s (+ %.2f s reading BVH)\n",
+                kept, report.trials.size(), db.class_count(), report.windows, report.poses, report.bytes / 1e6, report.seconds, read_s);
     std::printf("skeleton: %s (%d joints, %.2f m tall)\n", report.skeleton_from.c_str(), db.joint_count(), db.height());
     announce("database", a->out);
     if (!a->json_path.empty()) {
@@ -477,6 +479,8 @@ void register_bench(CLI::App& parent) {
   cmd->add_option("--repeat", a->repeat, "passes over the trial per mode")->check(CLI::PositiveNumber);
   cmd->add_option("--k", a->k, "matches per hand")->check(CLI::Range(1, kMaxK));
   cmd->add_option("--eps", a->eps, "fast-mode approximation (neighbours within (1+eps) x the true distance)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--data", a->data, "also time a database build from this folder (the --input file excluded)");
+  cmd->add_option("--classes", a->classes, "classes for the timed build (default: all)");
   cmd->add_option("--max-checks", a->max_checks, "fast-mode budget of candidates per search (0 = unlimited)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--json", a->json_path, "write the figures as JSON");
   cmd->callback([a] {
@@ -592,6 +596,18 @@ void register_bench(CLI::App& parent) {
       }
       j["fast_recall_by_eps"] = by_eps;
       j["avatar_state_bytes"] = acc.state_bytes();
+    }
+    if (!a->data.empty()) {
+      auto t1 = Clock::now();
+      const auto trials = load_trials(a->data, split_commas(a->classes), {a->input.path});
+      const double read_s = seconds_since(t1);
+      t1 = Clock::now();
+      const Database built = build_database(trials, BuildConfig{});
+      const double build_s = seconds_since(t1);
+      std::printf("build: %zu trials read in %.2f s, database (%d windows) built in %.2f s\n", trials.size(), read_s,
+                  built.window_count(), build_s);
+      j["build"] = {{"data", a->data}, {"trials", trials.size()}, {"read_seconds", read_s}, {"build_seconds", build_s},
+                    {"windows", built.window_count()}};
     }
     j["peak_rss_kb"] = peak_rss_kb();
     std::printf("memory: database %.1f MB (mapped, shared by all avatars), %zu bytes per avatar, peak RSS %.1f MB\n",
