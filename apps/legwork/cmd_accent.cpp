@@ -142,7 +142,7 @@ void register_build(CLI::App& parent) {
   cmd->add_option("--speeds", a->cfg.speed_variants, "re-timed copies per window (0 = none; 2 = x0.5 and x1.5)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--speed-range", a->cfg.speed_range, "largest relative speed change of the re-timed copies")->check(CLI::Range(0.0, 0.9));
   cmd->add_flag("--mirror", a->cfg.mirror, "add left/right mirrored copies of every trial");
-  cmd->add_option("--weights", a->weights, "feature group weights position,velocity,acceleration (default 1,0.5,0.25)");
+  cmd->add_option("--weights", a->weights, "feature group weights position,velocity,acceleration (default 1,1,0.5)");
   cmd->add_option("--json", a->json_path, "write the build report (per-trial verdicts) as JSON");
   cmd->callback([a] {
     if (io::extension_of(a->out) != ".lwdb") throw Error("--out '" + a->out + "' must end in .lwdb");
@@ -165,8 +165,10 @@ void register_build(CLI::App& parent) {
     }
     save_database(a->out, db);
     print_class_table(report);
-    std::printf("database: %d classes, %d windows, %d poses, %.1f MB, built in %.2f s (+ %.2f s reading BVH)\n", db.class_count(),
-                report.windows, report.poses, report.bytes / 1e6, report.seconds, read_s);
+    int kept = 0;
+    for (const auto& t : report.trials) kept += t.kept;
+    std::printf("database: %d of %zu trials kept, %d classes, %d windows, %d poses, %.1f MB, built in %.2f s (+ %.2f s reading BVH)\n",
+                kept, report.trials.size(), db.class_count(), report.windows, report.poses, report.bytes / 1e6, report.seconds, read_s);
     std::printf("skeleton: %s (%d joints, %.2f m tall)\n", report.skeleton_from.c_str(), db.joint_count(), db.height());
     announce("database", a->out);
     if (!a->json_path.empty()) {
@@ -238,11 +240,17 @@ Motion input_figure(std::span<const TrackerFrame> frames, double fps) {
   s.add_joint("LeftHand", 0, Vec3(0.2, -0.5, 0));
   s.add_joint("RightHand", 0, Vec3(-0.2, -0.5, 0));
   Motion m(s, fps, static_cast<int>(frames.size()));
+  // Lost samples show the last good position (as the engine holds them).
+  Vec3 head = Vec3::Zero(), left(0.2, -0.5, 0), right(-0.2, -0.5, 0);
   for (std::size_t f = 0; f < frames.size(); ++f) {
+    const auto& fr = frames[f];
+    if (fr.head.valid && fr.head.position.allFinite()) head = fr.head.position;
+    if (fr.left.valid && fr.left.position.allFinite()) left = fr.left.position - head;
+    if (fr.right.valid && fr.right.position.allFinite()) right = fr.right.position - head;
     auto p = m.frame(static_cast<int>(f));
-    p.translations[0] = frames[f].head.position;
-    p.translations[1] = frames[f].left.position - frames[f].head.position;
-    p.translations[2] = frames[f].right.position - frames[f].head.position;
+    p.translations[0] = head;
+    p.translations[1] = left;
+    p.translations[2] = right;
   }
   return m;
 }
@@ -339,6 +347,13 @@ void register_run(CLI::App& parent) {
       require_roles(tgt.skeleton, a->target);
       tgt.skeleton.scale(cfg.user_height > 0 ? cfg.user_height / std::max(measure_body(tgt.skeleton).standing_height, 1e-6) : 1.0);
       result = retarget_motion(run.output, tgt.skeleton);
+      // Keep the target's head at the headset, as the engine does for its own rig.
+      const int hs = run.output.skeleton.roles[Role::Head], ht = result.skeleton.roles[Role::Head];
+      for (int f = 0; f < result.frame_count(); ++f) {
+        const auto ps = joint_positions(run.output.skeleton, run.output.frame(f));
+        const auto pt = joint_positions(result.skeleton, result.frame(f));
+        result.frame(f).translations[0] += ps[static_cast<std::size_t>(hs)] - pt[static_cast<std::size_t>(ht)];
+      }
     }
     write_motion(a->out, result);
     announce("accentuated motion", a->out);
@@ -428,7 +443,7 @@ void register_run(CLI::App& parent) {
 struct BenchArgs {
   std::string db, json_path, data, classes;
   MotionInput input;
-  int repeat = 3, k = 5;
+  int repeat = 3, k = 5, max_checks = AccentConfig{}.fast_max_checks;
   float eps = 5.0f;
 };
 
@@ -464,6 +479,9 @@ void register_bench(CLI::App& parent) {
   cmd->add_option("--repeat", a->repeat, "passes over the trial per mode")->check(CLI::PositiveNumber);
   cmd->add_option("--k", a->k, "matches per hand")->check(CLI::Range(1, kMaxK));
   cmd->add_option("--eps", a->eps, "fast-mode approximation (neighbours within (1+eps) x the true distance)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--data", a->data, "also time a database build from this folder (the --input file excluded)");
+  cmd->add_option("--classes", a->classes, "classes for the timed build (default: all)");
+  cmd->add_option("--max-checks", a->max_checks, "fast-mode budget of candidates per search (0 = unlimited)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--json", a->json_path, "write the figures as JSON");
   cmd->callback([a] {
     json j;
@@ -510,6 +528,7 @@ void register_bench(CLI::App& parent) {
       AccentConfig cfg;
       cfg.search = mode;
       cfg.fast_eps = a->eps;
+      cfg.fast_max_checks = a->max_checks;
       cfg.k_left = cfg.k_right = a->k;
       cfg.user_height = measure_body(truth.skeleton).standing_height;
       std::vector<double> lat;
@@ -544,6 +563,7 @@ void register_bench(CLI::App& parent) {
     {
       AccentConfig cfg;
       cfg.user_height = measure_body(truth.skeleton).standing_height;
+      cfg.fast_max_checks = a->max_checks;
       Accentuator acc(db, cfg);
       std::array<Match, kMaxK> brute{}, fast{};
       const double scale = db.height() / cfg.user_height;
@@ -576,6 +596,18 @@ void register_bench(CLI::App& parent) {
       }
       j["fast_recall_by_eps"] = by_eps;
       j["avatar_state_bytes"] = acc.state_bytes();
+    }
+    if (!a->data.empty()) {
+      auto t1 = Clock::now();
+      const auto trials = load_trials(a->data, split_commas(a->classes), {a->input.path});
+      const double read_s = seconds_since(t1);
+      t1 = Clock::now();
+      const Database built = build_database(trials, BuildConfig{});
+      const double build_s = seconds_since(t1);
+      std::printf("build: %zu trials read in %.2f s, database (%d windows) built in %.2f s\n", trials.size(), read_s,
+                  built.window_count(), build_s);
+      j["build"] = {{"data", a->data}, {"trials", trials.size()}, {"read_seconds", read_s}, {"build_seconds", build_s},
+                    {"windows", built.window_count()}};
     }
     j["peak_rss_kb"] = peak_rss_kb();
     std::printf("memory: database %.1f MB (mapped, shared by all avatars), %zu bytes per avatar, peak RSS %.1f MB\n",

@@ -18,7 +18,11 @@ held_out="$DATA/bvh/walking/07_02.bvh"
 # Style control: the same walk matched against boxing only ("make it look like boxing").
 "$LEGWORK" accent run --db "$out/sample.lwdb" --input "$held_out" --drop-first --classes boxing \
   --out "$out/07_02_as_boxing.bvh"
+# Style control: exaggeration (input hands scaled 1.4x about the head before matching).
+"$LEGWORK" accent run --db "$out/sample.lwdb" --input "$held_out" --drop-first --exaggerate 1.4 \
+  --out "$out/07_02_exaggerated.bvh"
 "$LEGWORK" render "$out/07_02_accentuated.bvh" --every 20 --out "$out/07_02_accentuated_sheet.png"
+"$LEGWORK" render "$out/07_02_exaggerated.bvh" --every 20 --out "$out/07_02_exaggerated_sheet.png"
 "$LEGWORK" render "$out/07_02_as_boxing.bvh" --every 20 --out "$out/07_02_as_boxing_sheet.png"
 if command -v ffmpeg >/dev/null 2>&1; then
   "$LEGWORK" accent run --db "$out/sample.lwdb" --input "$held_out" --drop-first \
@@ -31,6 +35,7 @@ cat > "$out/README.txt" <<'TXT'
 07_02_side_by_side.mp4: held-out CMU walk 07_02 - input (head and wrists only), accentuated full body, IK baseline, ground truth
 07_02_accentuated.glb: the accentuated body as glTF 2.0 (database skeleton scaled to the walker's height)
 07_02_accentuated_sheet.png: every 20th accentuated pose, front and side views
+07_02_exaggerated_sheet.png: the same walk with the input hands exaggerated 1.4x about the head (style control)
 07_02_as_boxing_sheet.png: the same walk matched against the boxing class only (style control)
 07_02_run.json: per-frame match statistics, error against ground truth for the accentuated body
 build_report.json: database build report - per-trial verdicts (hand-foot correlation, windows, role mapping of the DAZ ladder trial)

@@ -267,12 +267,20 @@ void Database::pose_rotation(int pose, std::span<Quat> out) const {
 }
 std::span<const std::byte> Database::bytes() const { return {impl_->base, impl_->size}; }
 bool Database::is_mapped() const { return impl_->map != nullptr; }
-bool Database::has_index() const { return !impl_->index.empty(); }
+bool Database::has_index() const { return impl_->all.tree[0] != nullptr; }
 
 void Database::build_index(int leaf_size) {
   Impl& d = *impl_;
   d.index.clear();
   d.index.resize(d.classes.size());
+  d.all = ClassIndex{};
+  for (int hand = 0; hand < 2; ++hand) {
+    d.all.cloud[hand].data = reinterpret_cast<const float*>(d.features[hand]);
+    d.all.cloud[hand].count = d.header.window_count;
+    d.all.tree[hand] = std::make_unique<KdTree>(kTreeDim, d.all.cloud[hand],
+                                                nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(leaf_size)));
+  }
+  if (d.classes.size() == 1) return;  // the class tree would equal the whole-database tree
   for (std::size_t c = 0; c < d.classes.size(); ++c) {
     const auto [a, b] = d.ranges[c];
     for (int hand = 0; hand < 2; ++hand) {

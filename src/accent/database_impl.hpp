@@ -84,6 +84,7 @@ struct Database::Impl {
   const float* poses = nullptr;
 
   std::vector<ClassIndex> index;  // per class, empty until build_index()
+  ClassIndex all;                 // over every window (sessions that allow every class)
 
   ~Impl();
 };

@@ -66,12 +66,36 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
   if (k <= 0) return 0;
   const auto& d = db.impl();
   int n = 0;  // out[] holds squared distances until the end
-  if (mode == SearchMode::BruteForce || d.index.empty()) {
+  if (mode == SearchMode::BruteForce || !d.all.tree[0]) {
     const float* feats = reinterpret_cast<const float*>(d.features[hand]);
+    // Seeds first: a tight bound from the start rejects most rows on the prefix.
+    for (int w : seeds)
+      if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) {
+        bool dup = false;
+        for (int i = 0; i < n; ++i) dup = dup || out[static_cast<std::size_t>(i)].window == w;
+        if (!dup) push_top(out, k, n, w, squared_distance(feats + static_cast<std::ptrdiff_t>(w) * kDim, query.data()));
+      }
+    const int seeded = n;
     for (std::size_t c = 0; c < d.ranges.size(); ++c) {
       if (!allowed(class_mask, c)) continue;
-      for (int w = d.ranges[c].first; w < d.ranges[c].second; ++w)
-        push_top(out, k, n, w, squared_distance(feats + static_cast<std::ptrdiff_t>(w) * kDim, query.data()));
+      for (int w = d.ranges[c].first; w < d.ranges[c].second; ++w) {
+        const float* row = feats + static_cast<std::ptrdiff_t>(w) * kDim;
+        // The principal dimensions come first: most windows are rejected on them.
+        float s = 0;
+        for (int i = 0; i < 8; ++i) {
+          const float x = row[i] - query[static_cast<std::size_t>(i)];
+          s += x * x;
+        }
+        if (n == k && s >= out[static_cast<std::size_t>(n - 1)].distance) continue;
+        for (int i = 8; i < kDim; ++i) {
+          const float x = row[i] - query[static_cast<std::size_t>(i)];
+          s += x * x;
+        }
+        if (n == k && s >= out[static_cast<std::size_t>(n - 1)].distance) continue;
+        bool dup = false;
+        for (int i = 0; i < n && seeded; ++i) dup = dup || out[static_cast<std::size_t>(i)].window == w;
+        if (!dup) push_top(out, k, n, w, s);
+      }
     }
   } else {
     // One result set across the class trees: the k-th best full distance found
@@ -80,11 +104,20 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
     for (int w : seeds)
       if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) rs.add(w);
     const nanoflann::SearchParams params(32, mode == SearchMode::Fast ? eps : 0.0f);
-    for (std::size_t c = 0; c < d.ranges.size(); ++c) {
-      if (!allowed(class_mask, c) || d.ranges[c].first == d.ranges[c].second) continue;
-      rs.base = d.ranges[c].first;
-      rs.budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
-      d.index[c].tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
+    const int budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
+    bool every_class = true;
+    for (std::size_t c = 0; c < d.ranges.size(); ++c) every_class = every_class && allowed(class_mask, c);
+    if (every_class || d.index.size() != d.ranges.size()) {
+      rs.base = 0;
+      rs.budget = budget;
+      d.all.tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
+    } else {
+      for (std::size_t c = 0; c < d.ranges.size(); ++c) {
+        if (!allowed(class_mask, c) || d.ranges[c].first == d.ranges[c].second) continue;
+        rs.base = d.ranges[c].first;
+        rs.budget = budget;
+        d.index[c].tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
+      }
     }
     n = rs.n;
   }

@@ -250,3 +250,28 @@ TEST(AccentShared, Table1DatabaseOnAHeldOutRunningTrial) {
 
 }  // namespace
 }  // namespace legwork::accent
+
+namespace legwork::accent {
+namespace {
+
+// With legwork::ik in the build, hand_ik = 1 and the direct mapping put the
+// wrists on the controllers (the input is on the database's own rig, so every
+// target is reachable).
+TEST(AccentIk, HandIkAndDirectMappingReachTheRealHands) {
+  if (!have_arm_ik()) GTEST_SKIP() << "built without legwork::ik";
+  const auto trials = testing::sample_trials({"walking/07_01", "walking/05_01"});
+  const Database db = build_database(trials, BuildConfig{});
+  const Motion input = resample(trials[0].motion, 90.0);  // 07_01: the reference rig
+  for (bool direct : {false, true}) {
+    AccentConfig cfg;
+    cfg.hand_ik = 1.0;
+    cfg.direct_only = direct;
+    const AccentRun run = accentuate_motion(db, cfg, input);
+    const HandErrors e = measure(input, run.output);
+    EXPECT_LT(e.left, 0.01) << (direct ? "direct mapping" : "hand_ik");
+    EXPECT_LT(e.right, 0.01) << (direct ? "direct mapping" : "hand_ik");
+  }
+}
+
+}  // namespace
+}  // namespace legwork::accent

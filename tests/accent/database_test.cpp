@@ -205,3 +205,31 @@ TEST(AccentBuild, SkeletonWithoutHandsIsRejectedPerTrial) {
 
 }  // namespace
 }  // namespace legwork::accent
+
+namespace legwork::accent {
+namespace {
+
+// The leave-one-out path of the evaluation: prepare once, assemble per fold.
+TEST(AccentFolds, PreparedTrialsAssembleFoldsWithoutTheHeldOutTrial) {
+  const auto trials = testing::sample_trials({"walking/05_01", "walking/07_01", "walking/07_12", "running/09_01"});
+  const Skeleton ref = reference_skeleton(trials);
+  const BuildConfig cfg;
+  std::vector<PreparedTrial> prepared;
+  for (const auto& t : trials) prepared.push_back(prepare_trial(t, ref, cfg));
+  for (std::size_t held = 0; held < prepared.size(); ++held) {
+    std::vector<const PreparedTrial*> train;
+    for (std::size_t i = 0; i < prepared.size(); ++i)
+      if (i != held) train.push_back(&prepared[i]);
+    BuildReport report;
+    const Database db = assemble_database(train, ref, cfg, &report);
+    EXPECT_EQ(db.skeleton().names, ref.names);
+    for (int w = 0; w < db.window_count(); ++w)
+      ASSERT_NE(db.trials()[db.source(w).trial].file, prepared[held].info.file) << "fold " << held << " leaks";
+    int expected = 0;
+    for (const auto* t : train) expected += t->kept;
+    EXPECT_EQ(static_cast<int>(db.trials().size()), expected);
+  }
+}
+
+}  // namespace
+}  // namespace legwork::accent

@@ -37,7 +37,7 @@ struct BuildConfig {
   bool mirror = false;  // add left/right mirrored copies of every trial
   // Feature weights per group (position, velocity, acceleration), applied on
   // top of the per-dimension 1/std normalisation.
-  std::array<double, 3> group_weight{1.0, 0.5, 0.25};
+  std::array<double, 3> group_weight{1.0, 1.0, 0.5};
   int typical_samples = 300;  // windows sampled to estimate typical_distance
 };
 
