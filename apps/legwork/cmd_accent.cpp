@@ -187,7 +187,7 @@ struct RunArgs {
   MotionInput input;
   bool compare_ik = false, no_align = false, no_smooth = false, no_limits = false;
   int k = 5, k_left = -1, k_right = -1;
-  double threshold = 6.0, height = 0, exaggerate = 1.0, hand_ik = 0.0;
+  double threshold = 6.0, height = 0, exaggerate = 1.0, hand_ik = 0.0, max_tilt = AccentConfig{}.max_head_tilt_deg;
 };
 
 // A headset session CSV: time, head_x/y/z + head_qw/qx/qy/qz, left_x/y/z, right_x/y/z.
@@ -290,6 +290,8 @@ void register_run(CLI::App& parent) {
   cmd->add_option("--exaggerate", a->exaggerate, "scale the input hands about the head before matching")->check(CLI::PositiveNumber);
   cmd->add_option("--classes", a->classes, "comma-separated classes to match against (default: all in the database)");
   cmd->add_option("--hand-ik", a->hand_ik, "0..1: pull the synthesized arms onto the real hands (needs legwork::ik)")->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--max-head-tilt", a->max_tilt, "reject candidates whose head tilt differs from the headset's by more than this (degrees, 0 = off)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");
   cmd->add_option("--save-session", a->save_session, "also write the input as a headset session CSV (the format --input reads)");
   cmd->callback([a] {
@@ -310,6 +312,7 @@ void register_run(CLI::App& parent) {
     cfg.exaggeration = a->exaggerate;
     cfg.classes = split_commas(a->classes);
     cfg.hand_ik = a->hand_ik;
+    cfg.max_head_tilt_deg = a->max_tilt;
     const double fps = db.feature_space().fps;
     std::vector<TrackerFrame> frames;
     Motion truth;

@@ -206,10 +206,23 @@ bool Accentuator::blend_candidates(double threshold) {
     std::array<int, kMaxK> seeds;
     const int ns = match_count_[static_cast<std::size_t>(h)];
     for (int i = 0; i < ns; ++i) seeds[static_cast<std::size_t>(i)] = m[static_cast<std::size_t>(i)].window;
-    int got = search_knn(db, h, f, k[h], cfg_.search, cfg_.fast_eps, class_mask_, m, std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)),
+    // With the head-tilt gate, look further so k candidates usually survive it.
+    const int k_search = cfg_.max_head_tilt_deg > 0 ? std::min(kMaxK, 2 * k[h]) : k[h];
+    int got = search_knn(db, h, f, k_search, cfg_.search, cfg_.fast_eps, class_mask_, m, std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)),
                          cfg_.fast_max_checks);
     if (threshold > 0)
       while (got > 0 && m[static_cast<std::size_t>(got - 1)].distance > threshold) --got;
+    if (cfg_.max_head_tilt_deg > 0) {
+      // Keep candidates whose head is about as upright as the user's (yaw-free test).
+      const double user_tilt = std::acos(std::clamp((last_head_rot_ * Vec3::UnitY()).y(), -1.0, 1.0));
+      const double limit = deg2rad(cfg_.max_head_tilt_deg);
+      int kept = 0;
+      for (int i = 0; i < got; ++i) {
+        const Vec3 up = db.head_up(static_cast<int>(db.source(m[static_cast<std::size_t>(i)].window).pose));
+        if (std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) <= limit) m[static_cast<std::size_t>(kept++)] = m[static_cast<std::size_t>(i)];
+      }
+      got = std::min(kept, k[h]);
+    }
     match_count_[static_cast<std::size_t>(h)] = got;
     double wsum = 0;
     for (int i = 0; i < got; ++i) {

@@ -310,6 +310,8 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
 
   std::vector<std::array<PosVec, 2>> windows;
   std::vector<int> window_counts;
+  const int head_joint = parts.skeleton.roles[Role::Head];
+  if (head_joint < 0) throw Error("accent build: the reference skeleton has no head joint");
   for (const auto* t : kept) {
     if (t->motion.joint_count() != nj) throw Error("accent build: trial '" + t->info.file + "' is not on the reference skeleton");
     if (parts.classes.empty() || parts.classes.back() != t->info.cls) {
@@ -331,6 +333,11 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
           parts.poses.insert(parts.poses.end(), {static_cast<float>(q.w()), static_cast<float>(q.x()),
                                                  static_cast<float>(q.y()), static_cast<float>(q.z())});
         }
+        Quat head_model = Quat::Identity();
+        for (int j = head_joint; j >= 0; j = reference.parents[static_cast<std::size_t>(j)])
+          head_model = fr.rotations[static_cast<std::size_t>(j)] * head_model;
+        const Vec3 up = (head_model * Vec3::UnitY()).normalized();
+        parts.head_up.insert(parts.head_up.end(), {static_cast<float>(up.x()), static_cast<float>(up.y()), static_cast<float>(up.z())});
         for (std::size_t si = 0; si < speeds.size(); ++si) {
           const double s = speeds[si];
           if (e - (kWindow - 1) * s < -1e-9) continue;

@@ -153,6 +153,7 @@ void open_block(Database::Impl& d, const std::string& source, bool verify) {
   d.align = section<AlignXZ>(d, h.align_offset, h.window_count, source, "alignment");
   d.sources = section<WindowSource>(d, h.source_offset, h.window_count, source, "sources");
   d.poses = section<float>(d, h.pose_offset, std::uint64_t{h.pose_count} * h.joint_count * 4, source, "poses");
+  d.head_up = section<float>(d, h.head_up_offset, std::uint64_t{h.pose_count} * 3, source, "head up axes");
   for (std::uint32_t w = 0; w < h.window_count; ++w)
     if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.trials.size() || d.sources[w].cls >= h.class_count)
       fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
@@ -210,6 +211,7 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   h.align_offset = place(nw * sizeof(AlignXZ));
   h.source_offset = place(nw * sizeof(WindowSource));
   h.pose_offset = place(p.poses.size() * sizeof(float));
+  h.head_up_offset = place(p.head_up.size() * sizeof(float));
   h.file_bytes = at;
   std::vector<std::byte> block(at);
   auto put = [&block](std::size_t off, const void* src, std::size_t bytes) {
@@ -220,6 +222,7 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   put(h.align_offset, p.align.data(), nw * sizeof(AlignXZ));
   put(h.source_offset, p.sources.data(), nw * sizeof(WindowSource));
   put(h.pose_offset, p.poses.data(), p.poses.size() * sizeof(float));
+  put(h.head_up_offset, p.head_up.data(), p.head_up.size() * sizeof(float));
   put(0, &h, sizeof(h));
   h.checksum = block_checksum(block);
   put(0, &h, sizeof(h));
@@ -260,6 +263,10 @@ const WindowSource& Database::source(int window) const { return impl_->sources[w
 std::span<const float> Database::pose_rotations(int pose) const {
   const std::size_t n = static_cast<std::size_t>(joint_count()) * 4;
   return {impl_->poses + static_cast<std::size_t>(pose) * n, n};
+}
+Vec3 Database::head_up(int pose) const {
+  const float* u = impl_->head_up + static_cast<std::ptrdiff_t>(pose) * 3;
+  return {u[0], u[1], u[2]};
 }
 void Database::pose_rotation(int pose, std::span<Quat> out) const {
   const auto r = pose_rotations(pose);

@@ -33,7 +33,8 @@ struct FileHeader {
   std::uint64_t align_offset;                  // AlignXZ[window_count]
   std::uint64_t source_offset;                 // WindowSource[window_count]
   std::uint64_t pose_offset;                   // float[pose_count][joint_count][4]
-  std::uint64_t reserved[2];
+  std::uint64_t head_up_offset;                // float[pose_count][3]: the head's up axis, model space
+  std::uint64_t reserved;
 };
 static_assert(sizeof(FileHeader) == 128);
 
@@ -82,6 +83,7 @@ struct Database::Impl {
   const AlignXZ* align = nullptr;
   const WindowSource* sources = nullptr;
   const float* poses = nullptr;
+  const float* head_up = nullptr;
 
   std::vector<ClassIndex> index;  // per class, empty until build_index()
   ClassIndex all;                 // over every window (sessions that allow every class)
@@ -103,6 +105,7 @@ struct BlockParts {
   std::vector<AlignXZ> align;
   std::vector<WindowSource> sources;
   std::vector<float> poses;  // pose_count * joint_count * 4
+  std::vector<float> head_up;  // pose_count * 3
 };
 std::vector<std::byte> serialize_block(const BlockParts& parts);
 

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -271,6 +272,36 @@ TEST(AccentIk, HandIkAndDirectMappingReachTheRealHands) {
     EXPECT_LT(e.left, 0.01) << (direct ? "direct mapping" : "hand_ik");
     EXPECT_LT(e.right, 0.01) << (direct ? "direct mapping" : "hand_ik");
   }
+}
+
+}  // namespace
+}  // namespace legwork::accent
+
+namespace legwork::accent {
+namespace {
+
+TEST(AccentTilt, MatchedHeadsAreAboutAsUprightAsTheHeadset) {
+  // Swimmers (head near horizontal) next to walkers: an upright walker must
+  // only get candidates whose head tilt is within the gate.
+  const Database db = build_database(testing::sample_trials({"swimming/79_02", "walking/07_01", "boxing/13_18"}), BuildConfig{});
+  const Motion input = resample(testing::sample_trial("walking/07_02").motion, 90.0);
+  const auto frames = tracker_frames_from_motion(input);
+  AccentConfig cfg;
+  cfg.max_head_tilt_deg = 30;
+  Accentuator acc(db, cfg);
+  int checked = 0;
+  for (const auto& f : frames) {
+    acc.update(f);
+    const double user = std::acos(std::clamp((f.head.rotation * Vec3::UnitY()).y(), -1.0, 1.0));
+    for (int h = 0; h < 2; ++h)
+      for (const Match& m : acc.matches(h)) {
+        const Vec3 up = db.head_up(static_cast<int>(db.source(m.window).pose));
+        EXPECT_NEAR(up.norm(), 1.0, 1e-5);
+        EXPECT_LE(std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user), deg2rad(30) + 1e-9);
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 500);
 }
 
 }  // namespace

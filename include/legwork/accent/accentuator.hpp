@@ -62,6 +62,10 @@ struct AccentConfig {
   double fallback_seconds = 0.4;  // time to converge to / from the direct mapping
   double hand_ik = 0.0;      // 0..1: pull the synthesized arms onto the real hands (needs legwork::ik)
   bool direct_only = false;  // skip matching: always the direct mapping (the IK baseline)
+  // Reject candidates whose head tilt (angle of the head's up axis from
+  // vertical) differs from the headset's by more than this (degrees; 0 = off):
+  // keeps e.g. a lying swimmer's body off an upright user.
+  double max_head_tilt_deg = 30.0;
 };
 // True when this build has legwork::ik (arms reach the real hands in the
 // direct mapping and with hand_ik > 0); false: arms hang neutral there.

@@ -88,6 +88,9 @@ class Database {
   // Candidate pose rotations (joint_count quaternions, float w,x,y,z).
   std::span<const float> pose_rotations(int pose) const;
   void pose_rotation(int pose, std::span<Quat> out) const;
+  // The head joint's up axis in the candidate pose (model space, unit): how
+  // upright the performer's head was (a swimmer's is near horizontal).
+  Vec3 head_up(int pose) const;
 
   // Serialized block (what save() writes; in memory or mapped).
   std::span<const std::byte> bytes() const;
