@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -59,7 +60,16 @@ std::function<void(const std::string&)> progress_printer() {
   auto last = std::make_shared<std::string>();
   return [tty, last](const std::string& line) {
     if (tty) {
-      std::fprintf(stderr, "\r[eval] %s\x1b[K", line.c_str());
+      // A bar for the fold phase: "[#####.....] 12/163 folds ...".
+      static const std::regex folds(R"((\d+)/(\d+) folds)");
+      std::smatch m;
+      std::string bar;
+      if (std::regex_search(line, m, folds)) {
+        const double f = std::stod(m[1].str()) / std::max(1.0, std::stod(m[2].str()));
+        const int n = static_cast<int>(f * 20.0 + 0.5);
+        bar = "[" + std::string(static_cast<std::size_t>(n), '#') + std::string(static_cast<std::size_t>(20 - n), '.') + "] ";
+      }
+      std::fprintf(stderr, "\r[eval] %s%s\x1b[K", bar.c_str(), line.c_str());
     } else {
       // Only fold lines and the last line of each loading/preparing phase ("N/N").
       static const std::regex done_phase(R"((\d+)/\1\b)");
