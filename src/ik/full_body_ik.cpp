@@ -254,7 +254,7 @@ void solve_full_body(const FullBodyModel& M, const TrackerFrame& input, double d
   const double foot_y = S.floor_height + M.ankle_height_;
   // The balance point: mostly the head, which stays over the feet when the
   // hips go back in a crouch and leads in locomotion.
-  const Vec3 balance = 0.25 * pelvis + 0.75 * head_now;
+  const Vec3 balance = (1.0 - S.balance_head_weight) * pelvis + S.balance_head_weight * head_now;
   std::array<Vec3, 2> place;
   for (int s = 0; s < 2; ++s) {
     Vec3 p = horizontal(balance) + yaw_rotation(st.pelvis_yaw) * M.foot_offset_[static_cast<std::size_t>(s)];

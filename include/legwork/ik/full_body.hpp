@@ -53,6 +53,7 @@ struct FullBodySettings {
   // step_threshold outside the segment between the feet, or a foot is farther
   // than foot_distance_threshold from its place, or turned more than
   // step_angle_threshold (radians) from the pelvis.
+  double balance_head_weight = 0.75;  // balance point = this share of the head + the rest of the pelvis
   double step_threshold = 0.10;
   double foot_distance_threshold = 0.22;
   double step_angle_threshold = 0.7;
