@@ -53,7 +53,6 @@ nlohmann::json info_json(const io::BvhFile& f) {
 void print_info(const io::BvhFile& f) {
   const Motion& m = f.motion;
   const auto body = measure_body(m.skeleton);
-  std::printf("file:       %s\n", "");
   std::printf("joints:     %d\n", m.joint_count());
   std::printf("frames:     %d at %.4g Hz (%.3f s)%s\n", m.frame_count(), m.fps, m.duration(),
               f.report.dropped_first_frame ? ", frame 0 dropped" : "");

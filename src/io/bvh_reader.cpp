@@ -6,6 +6,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/io/text.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -47,8 +48,11 @@ class Lexer {
   double number(std::string_view what) {
     auto t = next();
     double v = 0;
-    if (!parse_double(t, v)) fail("expected a number for " + std::string(what) + ", found " + describe(t));
-    if (!std::isfinite(v)) fail(std::string(what) + " is not finite ('" + std::string(t) + "')");
+    if (!parse_double(t, v)) {
+      if (!out_of_range(t)) fail("expected a number for " + std::string(what) + ", found " + describe(t));
+      v = HUGE_VAL;
+    }
+    if (!std::isfinite(v)) fail(std::string(what) + " is not finite or out of range ('" + std::string(t) + "')");
     return v;
   }
   int line() const { return line_; }
@@ -60,11 +64,20 @@ class Lexer {
     return t.empty() ? std::string("end of file") : "'" + std::string(t.substr(0, 40)) + "'";
   }
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+  // A well-formed number that does not fit a double (1e999).
+  static bool out_of_range(std::string_view t) {
+    double v;
+    const char* b = t.data();
+    const char* e = b + t.size();
+    if (b != e && *b == '+') ++b;
+    auto [ptr, ec] = std::from_chars(b, e, v);
+    return ec == std::errc::result_out_of_range && ptr == e;
+  }
   static bool parse_double(std::string_view t, double& v) {
     if (t.empty()) return false;
     const char* b = t.data();
     const char* e = b + t.size();
-    if (*b == '+') ++b;
+    if (*b == '+' && b + 1 < e && b[1] != '-') ++b;  // from_chars rejects a leading '+'
     auto [ptr, ec] = std::from_chars(b, e, v);
     return ec == std::errc() && ptr == e;
   }
@@ -93,24 +106,41 @@ bool parse_channel(std::string_view t, Channel& c) {
 bool is_rotation(Channel c) { return c >= Channel::Xrotation; }
 int axis_of(Channel c) { return is_rotation(c) ? static_cast<int>(c) - 3 : static_cast<int>(c); }
 
-void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int joint);
+// Rotation by `degrees` about coordinate axis 0/1/2 (same as AngleAxis, without the general path).
+Quat axis_rotation(int axis, double degrees) {
+  const double h = 0.5 * deg2rad(degrees);
+  Quat q(std::cos(h), 0.0, 0.0, 0.0);
+  q.vec()[axis] = std::sin(h);
+  return q;
+}
 
-void parse_joint(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int parent) {
+void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int joint, int depth);
+
+// Deeper nesting than this is not a body (and would overflow the stack).
+constexpr int kMaxJointDepth = 256;
+
+bool is_keyword(std::string_view t) {
+  return t == "JOINT" || t == "End" || t == "OFFSET" || t == "CHANNELS" || t == "{" || t == "}" || t == "MOTION" ||
+         t == "ROOT";
+}
+
+void parse_joint(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int parent, int depth) {
+  if (depth > kMaxJointDepth) lx.fail("joints nested more than " + std::to_string(kMaxJointDepth) + " deep");
   auto name = lx.next();
-  if (name.empty() || name == "{") lx.fail("expected a joint name after JOINT/ROOT, found " + Lexer::describe(name));
+  if (name.empty() || is_keyword(name)) lx.fail("expected a joint name after JOINT/ROOT, found " + Lexer::describe(name));
   if (skel.find(name) >= 0) lx.fail("duplicate joint name '" + std::string(name) + "'");
   int j = skel.add_joint(std::string(name), parent, Vec3::Zero());
   channels.emplace_back();
   lx.expect("{", "after joint '" + std::string(name) + "'");
-  parse_joint_body(lx, skel, channels, j);
+  parse_joint_body(lx, skel, channels, j, depth);
 }
 
-void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int j) {
+void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int j, int depth) {
   const std::string jname = skel.names[static_cast<std::size_t>(j)];
   bool have_offset = false, have_channels = false;
   for (;;) {
-    const int line = lx.line();
     auto t = lx.next();
+    const int line = lx.line();  // the line of t
     if (t == "OFFSET") {
       Vec3 o;
       for (int k = 0; k < 3; ++k) o[k] = lx.number("OFFSET of joint '" + jname + "'");
@@ -125,6 +155,9 @@ void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& cha
       for (int k = 0; k < static_cast<int>(cnt); ++k) {
         auto ct = lx.next();
         Channel c;
+        if (!parse_channel(ct, c) && (ct.empty() || is_keyword(ct)))
+          lx.fail("CHANNELS of joint '" + jname + "' declares " + std::to_string(static_cast<int>(cnt)) +
+                  " channels but lists " + std::to_string(k) + " (found " + Lexer::describe(ct) + ")", line);
         if (!parse_channel(ct, c))
           lx.fail("unknown channel " + Lexer::describe(ct) + " for joint '" + jname +
                   "' (expected Xposition, Yposition, Zposition, Xrotation, Yrotation or Zrotation)");
@@ -134,7 +167,7 @@ void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& cha
       }
       have_channels = true;
     } else if (t == "JOINT") {
-      parse_joint(lx, skel, channels, j);
+      parse_joint(lx, skel, channels, j, depth + 1);
     } else if (t == "End") {
       auto site = lx.next();
       if (site != "Site") lx.fail("expected 'Site' after 'End', found " + Lexer::describe(site));
@@ -149,6 +182,8 @@ void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& cha
       if (!have_offset) lx.fail("joint '" + jname + "' has no OFFSET", line);
       if (!have_channels) lx.fail("joint '" + jname + "' has no CHANNELS", line);
       return;
+    } else if (t.empty() || t == "MOTION") {
+      lx.fail("missing '}' closing joint '" + jname + "' (found " + Lexer::describe(t) + ")", line);
     } else {
       lx.fail("unexpected " + Lexer::describe(t) + " in joint '" + jname +
               "' (expected OFFSET, CHANNELS, JOINT, End Site or '}')", line);
@@ -173,11 +208,7 @@ void expect_label(Lexer& lx, std::initializer_list<std::string_view> words, cons
 
 Quat euler_to_quat(const Channel* order, const double* degrees, int n) {
   Quat q = Quat::Identity();
-  for (int k = 0; k < n; ++k) {
-    Vec3 axis = Vec3::Zero();
-    axis[axis_of(order[k])] = 1.0;
-    q = q * Quat(Eigen::AngleAxisd(deg2rad(degrees[k]), axis));
-  }
+  for (int k = 0; k < n; ++k) q = q * axis_rotation(axis_of(order[k]), degrees[k]);
   return q;
 }
 
@@ -187,8 +218,11 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
   Skeleton skel;
   if (auto t = lx.next(); t != "HIERARCHY")
     lx.fail("expected 'HIERARCHY' at the start of a BVH file, found " + Lexer::describe(t));
-  if (auto t = lx.next(); t != "ROOT") lx.fail("expected 'ROOT' after HIERARCHY, found " + Lexer::describe(t));
-  parse_joint(lx, skel, out.channels, -1);
+  if (auto t = lx.next(); t != "ROOT") {
+    if (t == "MOTION" || t.empty()) lx.fail("empty hierarchy: expected 'ROOT' after HIERARCHY, found " + Lexer::describe(t));
+    lx.fail("expected 'ROOT' after HIERARCHY, found " + Lexer::describe(t));
+  }
+  parse_joint(lx, skel, out.channels, -1, 0);
   if (auto t = lx.next(); t != "MOTION") {
     if (t == "ROOT") lx.fail("more than one ROOT; legwork reads single-root BVH files");
     lx.fail("expected 'MOTION' after the hierarchy, found " + Lexer::describe(t));
@@ -201,7 +235,8 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
     lx.fail("'Frames:' needs a whole number, found " + Lexer::describe(ft), frames_line);
   expect_label(lx, {"Frame", "Time"}, "Frame Time:");
   const double frame_time = lx.number("Frame Time");
-  if (!(frame_time > 0)) lx.fail("'Frame Time:' must be positive, found " + std::to_string(frame_time));
+  if (!(frame_time > 0) || !std::isfinite(1.0 / frame_time))
+    lx.fail("'Frame Time:' must be a positive number of seconds, found " + std::to_string(frame_time));
 
   int total = 0;
   for (const auto& jc : out.channels) total += static_cast<int>(jc.channels.size());
@@ -216,7 +251,9 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
     ++p;
   }
   std::vector<double> values;
-  values.reserve(static_cast<std::size_t>(declared) * static_cast<std::size_t>(total));
+  // Every value takes at least two characters, so the text bounds the count
+  // (a bogus 'Frames:' must not reserve gigabytes).
+  values.reserve(std::min(static_cast<std::size_t>(declared) * static_cast<std::size_t>(total), (t.size() - p) / 2 + 1));
   int frames = 0;
   while (p < t.size()) {
     ++p;  // past '\n'
@@ -229,19 +266,23 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
       blank = false;
       const char* b = t.data() + p;
       const char* e = t.data() + t.size();
-      if (*b == '+') ++b;
+      if (*b == '+' && b + 1 < e && b[1] != '-') ++b;
       double v;
       auto [ptr, ec] = std::from_chars(b, e, v);
-      if (ec != std::errc() || (ptr < e && !Lexer::is_space(*ptr))) {
+      auto token = [&] {
         std::size_t q = p;
         while (q < t.size() && !Lexer::is_space(t[q])) ++q;
-        lx.fail("motion line value " + std::to_string(count + 1) + " is not a number: '" +
-                    std::string(t.substr(p, std::min<std::size_t>(q - p, 40))) + "'", line);
-      }
-      if (!std::isfinite(v))
-        lx.fail("motion line value " + std::to_string(count + 1) + " is not finite (NaN or Inf)", line);
+        return std::string(t.substr(p, std::min<std::size_t>(q - p, 40)));
+      };
       if (count >= total)
-        lx.fail("motion line has more than the " + std::to_string(total) + " values the hierarchy declares", line);
+        lx.fail("motion line has more than the " + std::to_string(total) + " values the hierarchy declares (extra '" +
+                    token() + "')", line);
+      if (ec == std::errc::result_out_of_range && (ptr == e || Lexer::is_space(*ptr)))
+        lx.fail("motion line value " + std::to_string(count + 1) + " is out of range: '" + token() + "'", line);
+      if (ec != std::errc() || (ptr < e && !Lexer::is_space(*ptr)))
+        lx.fail("motion line value " + std::to_string(count + 1) + " is not a number: '" + token() + "'", line);
+      if (!std::isfinite(v))
+        lx.fail("motion line value " + std::to_string(count + 1) + " is not finite (NaN or Inf): '" + token() + "'", line);
       values.push_back(v);
       ++count;
       p = static_cast<std::size_t>(ptr - t.data());
@@ -260,6 +301,11 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
     frames = std::min(frames, static_cast<int>(declared));
   }
   if (frames == 0) lx.fail("the file has no motion frames", frames_line);
+  // Joints without channels cost memory per frame but no text: bound the pose
+  // storage (2^26 joint poses = 3.5 GB, e.g. 5 hours of a 31-joint body at 120 fps).
+  if (static_cast<double>(frames) * n > static_cast<double>(1 << 26))
+    lx.fail(std::to_string(frames) + " frames x " + std::to_string(n) + " joints is more than legwork reads (2^26 joint poses)",
+            frames_line);
   out.report.declared_frames = static_cast<int>(declared);
 
   // Units: from the rest pose's height in file units.
@@ -282,18 +328,30 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
       if (v[k] != 0.0) return false;
     return total > 0;
   };
+  // Sources exclude frame 0 when it is the synthetic CMU T-pose (drop_first_frame).
   std::vector<int> source_frame(static_cast<std::size_t>(frames));
   for (int f = 0; f < frames; ++f) source_frame[static_cast<std::size_t>(f)] = f;
   if (opt.repair_zero_frames) {
+    const int lowest_source = opt.drop_first_frame && frames > 1 ? 1 : 0;
+    std::vector<unsigned char> zero(static_cast<std::size_t>(frames));
+    for (int f = 0; f < frames; ++f) zero[static_cast<std::size_t>(f)] = zero_line(f) ? 1 : 0;
+    // Nearest real frame before and after each frame, in two linear passes.
+    std::vector<int> before(static_cast<std::size_t>(frames), -1), after(static_cast<std::size_t>(frames), -1);
+    for (int f = 0, last = -1; f < frames; ++f) {
+      before[static_cast<std::size_t>(f)] = last;
+      if (!zero[static_cast<std::size_t>(f)] && f >= lowest_source) last = f;
+    }
+    for (int f = frames - 1, next = -1; f >= 0; --f) {
+      after[static_cast<std::size_t>(f)] = next;
+      if (!zero[static_cast<std::size_t>(f)] && f >= lowest_source) next = f;
+    }
     for (int f = 0; f < frames; ++f) {
-      if (!zero_line(f)) continue;
-      int best = -1;
-      for (int d = 1; d < frames && best < 0; ++d) {
-        if (f + d < frames && !zero_line(f + d)) best = f + d;
-        else if (f - d >= 0 && !zero_line(f - d)) best = f - d;
-      }
+      const auto fu = static_cast<std::size_t>(f);
+      if (!zero[fu]) continue;
+      const int b = before[fu], a = after[fu];
+      const int best = b < 0 ? a : a < 0 ? b : (f - b < a - f ? b : a);  // ties go to the later frame
       if (best >= 0) {
-        source_frame[static_cast<std::size_t>(f)] = best;
+        source_frame[fu] = best;
         ++out.report.repaired_zero_frames;
       }
     }
@@ -313,9 +371,7 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
       for (std::size_t k = 0; k < jc.size(); ++k) {
         const Channel c = jc[k];
         if (is_rotation(c)) {
-          Vec3 axis = Vec3::Zero();
-          axis[axis_of(c)] = 1.0;
-          q = q * Quat(Eigen::AngleAxisd(deg2rad(v[k]), axis));
+          q = q * axis_rotation(axis_of(c), v[k]);
         } else {
           tr[axis_of(c)] = v[k] * scale;
         }

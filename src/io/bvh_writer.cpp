@@ -1,6 +1,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/io/text.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -17,14 +18,26 @@ void append_number(std::string& out, double v) {
   char buf[64];
   if (std::abs(v) < 5e-7) v = 0.0;  // no "-0.000000"
   auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 6);
+  if (ec != std::errc())  // too large for fixed notation: shortest exact form instead
+    ptr = std::to_chars(buf, buf + sizeof buf, v).ptr;
   out.append(buf, ptr);
 }
 
-std::vector<JointChannels> default_layout(const Skeleton& s) {
+// True if joint j's translation leaves its rest offset in some frame (a
+// translating joint needs position channels to round-trip).
+bool translates(const Motion& m, int j) {
+  const Vec3& rest = m.skeleton.rest_offsets[static_cast<std::size_t>(j)];
+  for (int f = 0; f < m.frame_count(); ++f)
+    if ((m.frame(f).translations[static_cast<std::size_t>(j)] - rest).cwiseAbs().maxCoeff() > 1e-9) return true;
+  return false;
+}
+
+std::vector<JointChannels> default_layout(const Motion& m) {
+  const Skeleton& s = m.skeleton;
   std::vector<JointChannels> out(static_cast<std::size_t>(s.joint_count()));
   for (int j = 0; j < s.joint_count(); ++j) {
     auto& c = out[static_cast<std::size_t>(j)].channels;
-    if (j == 0) c = {Channel::Xposition, Channel::Yposition, Channel::Zposition};
+    if (j == 0 || translates(m, j)) c = {Channel::Xposition, Channel::Yposition, Channel::Zposition};
     c.insert(c.end(), {Channel::Zrotation, Channel::Yrotation, Channel::Xrotation});
   }
   return out;
@@ -74,7 +87,12 @@ void quat_to_euler(const Quat& q, const Channel* order, double* degrees) {
 std::string format_bvh(const Motion& m, const BvhWriteOptions& opt) {
   const Skeleton& s = m.skeleton;
   s.validate();
-  const auto layout = opt.channels.empty() ? default_layout(s) : opt.channels;
+  const auto layout = opt.channels.empty() ? default_layout(m) : opt.channels;
+  if (!(m.fps > 0) || !std::isfinite(m.fps)) throw Error("write_bvh: frame rate must be positive, got " + std::to_string(m.fps));
+  for (const Vec3& t : m.all_translations())
+    if (!t.allFinite()) throw Error("write_bvh: the motion has a non-finite joint translation");
+  for (const Quat& q : m.all_rotations())
+    if (!q.coeffs().allFinite()) throw Error("write_bvh: the motion has a non-finite joint rotation");
   if (layout.size() != static_cast<std::size_t>(s.joint_count()))
     throw Error("write_bvh: channel layout has " + std::to_string(layout.size()) + " joints, skeleton has " +
                 std::to_string(s.joint_count()));

@@ -59,7 +59,9 @@ struct BvhWriteOptions {
   // Metres -> file units (1 = metres; 1/kCmuUnitMetres to write CMU units).
   double scale = 1.0;
   // Channel layout per joint; empty = root "Xposition Yposition Zposition
-  // Zrotation Yrotation Xrotation", others "Zrotation Yrotation Xrotation".
+  // Zrotation Yrotation Xrotation", others "Zrotation Yrotation Xrotation"
+  // (plus the three position channels first if the joint's translation
+  // leaves its rest offset in any frame, so translating joints round-trip).
   std::vector<JointChannels> channels;
 };
 std::string format_bvh(const Motion& m, const BvhWriteOptions& opt = {});

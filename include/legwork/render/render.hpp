@@ -10,14 +10,39 @@
 
 namespace legwork::render {
 
-// Orthographic views. Side looks along -x (character's +z to the right of
-// the picture), Front looks along -z at the character's face, ThreeQuarter is
-// rotated 45 degrees about y between them and tilted down, Top looks down -y.
+// Orthographic views (picture right / picture up in model axes):
+//   Side:  +z right, +y up. The camera stands at the character's right side
+//          (-x) looking along +x, so the forward direction points right.
+//   Front: +x right, +y up. The camera looks along -z at the character's face,
+//          so the character's left (+x) is on the picture's right.
+//   ThreeQuarter: rotated 45 degrees about y between Side and Front (camera in
+//          front-right of the character) and tilted 20 degrees down.
+//   Top:   +z right, +x up, looking down -y (walking paths run left to right).
 enum class View { Side, Front, ThreeQuarter, Top };
 View parse_view(const std::string& name);  // "side", "front", "three-quarter", "top"
 std::string view_name(View v);
 
 using Rgb = std::array<double, 3>;  // 0..1
+
+// Bone colours: the character's left side, right side (centre bones use the
+// figure's own colour). Chosen to stay distinguishable for colour-blind viewers.
+inline constexpr Rgb kLeftColor{0.12, 0.40, 0.85};
+inline constexpr Rgb kRightColor{0.90, 0.33, 0.05};
+
+// Camera axes in model space: unit vectors for picture right, picture up and
+// towards the viewer (depth grows towards the viewer).
+struct ViewBasis {
+  Vec3 right, up, toward;
+};
+ViewBasis view_basis(View v);
+// Model-space point -> view-plane coordinates in metres (right, up).
+Eigen::Vector2d project(View v, const Vec3& p);
+
+// Which side of the body a joint belongs to (from the skeleton's roles:
+// everything below the left hip / clavicle / shoulder is Left, and so on;
+// mirror pairs decide for joints no role covers).
+enum class Side { Centre, Left, Right };
+std::vector<Side> joint_sides(const Skeleton& skel);
 
 // One stick figure: model-space joint positions over a skeleton.
 struct Figure {
@@ -26,7 +51,14 @@ struct Figure {
   Rgb color{0.15, 0.15, 0.2};
   double alpha = 1.0;  // < 1 draws it translucent ("x-ray" inactive poses)
   std::string label;   // drawn under the figure if not empty
+  // Optional model-space End Site tips per joint (empty vector = none; else
+  // joint_count entries, used where skeleton->has_end_site[j]): head top, toes.
+  std::vector<Vec3> end_sites;
 };
+// A figure for `pose` over `skel` (positions and End Site tips by FK).
+// `skel` must outlive the figure.
+Figure make_figure(const Skeleton& skel, ConstPoseRef pose, double alpha = 1.0,
+                   std::string label = "");
 
 // A polyline in model space, e.g. a joint trajectory; `marks` are indices of
 // points drawn as dots (key frames), `mark_labels` optional text per mark.
@@ -63,7 +95,23 @@ struct Camera {
   // Fixed framing (model-space box) instead of auto-framing, if set.
   bool fixed_bounds = false;
   Vec3 bounds_min = Vec3::Zero(), bounds_max = Vec3::Zero();
+  // Fixed scale instead of auto-fit (0 = fit the content); equal on both axes.
+  double metres_per_pixel = 0;
 };
+
+// Where a camera puts model-space points on its picture (pixels, y down).
+struct Framing {
+  View view = View::Side;
+  int width = 0, height = 0;
+  double metres_per_pixel = 1;
+  Eigen::Vector2d centre_plane = Eigen::Vector2d::Zero();  // view-plane point at centre_pixel
+  Eigen::Vector2d centre_pixel = Eigen::Vector2d::Zero();
+  Eigen::Vector2d to_pixel(const Vec3& p) const;
+};
+// The framing render_scene uses: fits all figures, curves, footprints (and
+// the floor below them) with the camera's margin, or uses its fixed bounds
+// and/or fixed scale.
+Framing frame_scene(const Scene& scene, const Camera& cam);
 
 // Writes one panel to .png or .svg (chosen by extension).
 void render_scene(const Scene& scene, const Camera& cam, const std::string& path);
@@ -85,6 +133,10 @@ struct SheetOptions {
   std::vector<std::string> labels;  // per pose, optional
   int panel_height = 360;           // pixels per view row
   std::string title;
+  // Turn all poses by one common angle about y so their mean heading faces +z
+  // (then "front" shows the face and "side" the profile, whatever the capture's
+  // walking direction). Turning within the sequence is kept.
+  bool face_forward = true;
 };
 // Poses are placed side by side along the view's horizontal axis; their root
 // horizontal translation is removed so they stand in a row.
@@ -95,6 +147,16 @@ void render_contact_sheet(const Skeleton& skel, const std::vector<Pose>& poses,
 // plus the path of `joint` over all frames, with the chosen frames marked.
 void render_trajectory(const Motion& m, int joint, const std::vector<int>& marked_frames,
                        const Camera& cam, const std::string& path);
+// The same over frames [first_frame, last_frame] only (last_frame -1 = the
+// last frame); marks and labels keep the motion's own frame numbers. An empty
+// `marked_frames` marks five evenly spaced frames of the range.
+struct TrajectoryOptions {
+  int first_frame = 0;
+  int last_frame = -1;
+  std::string title;  // empty: "<joint> path over N frames (<view> view)"
+};
+void render_trajectory(const Motion& m, int joint, const std::vector<int>& marked_frames,
+                       const Camera& cam, const std::string& path, const TrajectoryOptions& opt);
 
 // Video of a motion (MP4 through the ffmpeg program; throws legwork::Error if
 // ffmpeg is missing or fails). `extra` figures/curves per frame may be added

@@ -1,0 +1,44 @@
+// libFuzzer target for the BVH reader (and, on success, the writer).
+// Any input must end in a parsed motion or a legwork::Error: never a crash,
+// a sanitizer report, a hang or an unbounded allocation.
+#include <legwork/core/fk.hpp>
+#include <legwork/io/bvh.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+
+namespace {
+
+void parse_and_write(std::string_view text, const legwork::io::BvhReadOptions& opt) {
+  using namespace legwork;
+  try {
+    io::BvhFile f = io::parse_bvh(text, "fuzz.bvh", opt);
+    // A parsed file must satisfy the model's invariants.
+    f.motion.skeleton.validate();
+    if (f.motion.frame_count() < 1 || !(f.motion.fps > 0)) std::abort();
+    // Exercise FK and the writer on what was read (the writer may refuse
+    // layouts it cannot express, e.g. 1 or 2 rotation channels).
+    (void)joint_positions(f.motion.skeleton, f.motion.frame(0));
+    io::BvhWriteOptions w;
+    w.channels = f.channels;
+    (void)io::format_bvh(f.motion, w);
+  } catch (const Error&) {
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  legwork::io::BvhReadOptions detect;  // unit detection, strict frame count
+  parse_and_write(text, detect);
+  legwork::io::BvhReadOptions lenient;
+  lenient.scale = 1.0;
+  lenient.strict_frame_count = false;
+  lenient.drop_first_frame = true;
+  parse_and_write(text, lenient);
+  return 0;
+}

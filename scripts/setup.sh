@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs every Debian package legwork needs (idempotent) and builds it.
+# Usage: scripts/setup.sh [BUILD_DIR] [extra cmake args...]   (default build dir: build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# Each dependency, and why.
+PACKAGES=(
+  g++ cmake ninja-build pkg-config git  # toolchain (C++20, CMake >= 3.25)
+  libeigen3-dev                         # math (vectors, quaternions)
+  libcairo2-dev                         # pictures (PNG/SVG stick figures, charts)
+  ffmpeg                                # MP4 videos (the ffmpeg program)
+  libcli11-dev                          # command line
+  nlohmann-json3-dev                    # JSON reports and key-pose files
+  libtinygltf-dev                       # glTF 2.0 (.glb) export
+  libnanoflann-dev                      # KD-tree nearest neighbours (accentuation)
+  libgtest-dev libgmock-dev             # tests
+  libbenchmark-dev                      # benchmarks
+  libassimp-dev                         # benchmark baseline: assimp's BVH importer
+  clang libclang-rt-14-dev              # libFuzzer target for the BVH reader
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}" >&2
+  SUDO=""
+  if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+BUILD=${1:-build}
+shift || true
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+ninja -C "$BUILD" -j"$(nproc)"
+echo "setup: built legwork in $BUILD/ (CLI: $BUILD/apps/legwork/legwork)" >&2

@@ -1,0 +1,324 @@
+// Drawing scenes: floor, footprints, curves, stick figures, text, scale bar.
+#include "scene_draw.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace legwork::render::detail {
+
+namespace {
+
+constexpr Rgb kInk{0.12, 0.12, 0.14};
+constexpr Rgb kFloor{0.55, 0.55, 0.58};
+constexpr Rgb kGrid{0.88, 0.88, 0.9};
+
+void move_to(cairo_t* cr, const Eigen::Vector2d& p) { cairo_move_to(cr, p.x(), p.y()); }
+void line_to(cairo_t* cr, const Eigen::Vector2d& p) { cairo_line_to(cr, p.x(), p.y()); }
+
+// Stroke width in pixels for bones: ~2 cm, but readable at any zoom.
+double bone_width(const Framing& fr) { return std::clamp(0.022 / fr.metres_per_pixel, 1.6, 6.0); }
+
+// Model-space box of the scene's content, for the floor grid.
+bool content_box(const Scene& scene, Vec3& lo, Vec3& hi) {
+  lo = Vec3::Constant(1e300);
+  hi = Vec3::Constant(-1e300);
+  bool any = false;
+  for_each_content_point(scene, [&](const Vec3& p) {
+    if (!p.allFinite()) return;
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+    any = true;
+  });
+  return any;
+}
+
+void draw_floor(cairo_t* cr, const Scene& scene, const Framing& fr) {
+  Vec3 lo, hi;
+  const bool any = content_box(scene, lo, hi);
+  cairo_save(cr);
+  if (fr.view == View::Side || fr.view == View::Front) {
+    // The floor seen edge-on: one line across the panel, ticks every metre.
+    const double y = fr.to_pixel(Vec3::Zero()).y();
+    set_color(cr, kFloor);
+    cairo_set_line_width(cr, 1.2);
+    cairo_move_to(cr, 0, y);
+    cairo_line_to(cr, fr.width, y);
+    cairo_stroke(cr);
+    const Vec3 axis = view_basis(fr.view).right;
+    const double u0 = project(fr.view, Vec3::Zero()).x();
+    const double span_m = fr.width * fr.metres_per_pixel;
+    const double step = span_m > 12 ? 5.0 : 1.0;
+    const double left_u = fr.centre_plane.x() - fr.centre_pixel.x() * fr.metres_per_pixel;
+    cairo_set_line_width(cr, 1.0);
+    for (double u = std::ceil(left_u / step) * step; u <= left_u + span_m; u += step) {
+      const double x = fr.to_pixel(axis * (u - u0)).x();
+      cairo_move_to(cr, x, y);
+      cairo_line_to(cr, x, y + 5);
+    }
+    cairo_stroke(cr);
+  } else if (any) {
+    // A floor grid (y = 0) under the content, lines every nice step.
+    const double span = std::max(hi.x() - lo.x(), hi.z() - lo.z());
+    const double step = std::max(0.25, nice_step(span + 1.0, 8));
+    const double x0 = std::floor((lo.x() - 0.3) / step) * step, x1 = std::ceil((hi.x() + 0.3) / step) * step;
+    const double z0 = std::floor((lo.z() - 0.3) / step) * step, z1 = std::ceil((hi.z() + 0.3) / step) * step;
+    set_color(cr, kGrid);
+    cairo_set_line_width(cr, 1.0);
+    for (double x = x0; x <= x1 + 1e-9; x += step) {
+      move_to(cr, fr.to_pixel(Vec3(x, 0, z0)));
+      line_to(cr, fr.to_pixel(Vec3(x, 0, z1)));
+    }
+    for (double z = z0; z <= z1 + 1e-9; z += step) {
+      move_to(cr, fr.to_pixel(Vec3(x0, 0, z)));
+      line_to(cr, fr.to_pixel(Vec3(x1, 0, z)));
+    }
+    cairo_stroke(cr);
+  }
+  cairo_restore(cr);
+}
+
+void draw_footprints(cairo_t* cr, const Scene& scene, const Framing& fr) {
+  cairo_save(cr);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (const auto& fp : scene.footprints) {
+    const auto outline = footprint_outline(fp);
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+      if (i == 0)
+        move_to(cr, fr.to_pixel(outline[i]));
+      else
+        line_to(cr, fr.to_pixel(outline[i]));
+    }
+    cairo_close_path(cr);
+    const Rgb& c = fp.left ? kLeftColor : kRightColor;
+    set_color(cr, c, 0.25);
+    cairo_fill_preserve(cr);
+    set_color(cr, c, 0.9);
+    cairo_set_line_width(cr, 1.3);
+    cairo_stroke(cr);
+  }
+  cairo_restore(cr);
+}
+
+struct Box {
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+// A small label next to point q, at the first of eight spots around it that
+// does not overlap labels already placed.
+void place_label(cairo_t* cr, const Eigen::Vector2d& q, const std::string& s, const Rgb& color, std::vector<Box>& placed) {
+  const double w = text_width(cr, s, 11), h = 11;
+  const double dx[] = {6, 6, -6 - w, -6 - w, -w / 2, -w / 2, 14, -14 - w};
+  const double dy[] = {-6, 6 + h, -6, 6 + h, -10, 12 + h, 4, 4};
+  std::size_t k = 0;
+  for (; k < 8; ++k) {
+    const Box b{q.x() + dx[k], q.y() + dy[k] - h, q.x() + dx[k] + w, q.y() + dy[k]};
+    bool clash = false;
+    for (const auto& o : placed) clash = clash || b.overlaps(o);
+    if (!clash) break;
+  }
+  if (k == 8) k = 0;
+  placed.push_back({q.x() + dx[k], q.y() + dy[k] - h, q.x() + dx[k] + w, q.y() + dy[k]});
+  text(cr, q.x() + dx[k], q.y() + dy[k], s, 11, Align::Left, color);
+}
+
+void draw_curves(cairo_t* cr, const Scene& scene, const Framing& fr) {
+  std::vector<Box> placed;
+  cairo_save(cr);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  for (const auto& c : scene.curves) {
+    if (c.points.empty()) continue;
+    bool pen = false;
+    for (const auto& p : c.points) {
+      if (!p.allFinite()) {
+        pen = false;
+        continue;
+      }
+      if (pen)
+        line_to(cr, fr.to_pixel(p));
+      else
+        move_to(cr, fr.to_pixel(p));
+      pen = true;
+    }
+    set_color(cr, c.color);
+    cairo_set_line_width(cr, c.width);
+    cairo_stroke(cr);
+    for (std::size_t m = 0; m < c.marks.size(); ++m) {
+      const int i = c.marks[m];
+      if (i < 0 || i >= static_cast<int>(c.points.size())) continue;
+      const auto q = fr.to_pixel(c.points[static_cast<std::size_t>(i)]);
+      cairo_arc(cr, q.x(), q.y(), c.width + 2.5, 0, 2 * kPi);
+      set_color(cr, c.color);
+      cairo_fill_preserve(cr);
+      set_color(cr, {1, 1, 1});
+      cairo_set_line_width(cr, 1.0);
+      cairo_stroke(cr);
+      if (m < c.mark_labels.size()) place_label(cr, q, c.mark_labels[m], c.color, placed);
+    }
+    if (!c.label.empty()) {
+      // At the curve's end, inside the panel (to the left of the end if needed).
+      const auto q = fr.to_pixel(c.points.back());
+      const double w = text_width(cr, c.label, 12, true);
+      const bool fits_right = q.x() + 8 + w < fr.width - 4;
+      text(cr, fits_right ? q.x() + 8 : q.x() - 8, q.y() + 16, c.label, 12, fits_right ? Align::Left : Align::Right,
+           c.color, 1.0, true);
+    }
+  }
+  cairo_restore(cr);
+}
+
+struct Segment {
+  Vec3 a, b;
+  Rgb color;
+  double depth;
+};
+
+void draw_figure(cairo_t* cr, const Figure& f, const Framing& fr) {
+  if (!f.skeleton) return;
+  const Skeleton& skel = *f.skeleton;
+  const int n = std::min<int>(skel.joint_count(), static_cast<int>(f.positions.size()));
+  const auto sides = joint_sides(skel);
+  const Vec3 toward = view_basis(fr.view).toward;
+  auto color_of = [&](int j) -> Rgb {
+    switch (sides[static_cast<std::size_t>(j)]) {
+      case Side::Left: return kLeftColor;
+      case Side::Right: return kRightColor;
+      default: return f.color;
+    }
+  };
+  std::vector<Segment> segs;
+  for (int j = 0; j < n; ++j) {
+    const auto ju = static_cast<std::size_t>(j);
+    const int p = skel.parents[ju];
+    if (p >= 0) {
+      const Vec3 &a = f.positions[static_cast<std::size_t>(p)], &b = f.positions[ju];
+      if ((a - b).norm() > 1e-6) segs.push_back({a, b, color_of(j), (a + b).dot(toward) / 2});
+    }
+    if (f.end_sites.size() == f.positions.size() && ju < skel.has_end_site.size() && skel.has_end_site[ju]) {
+      const Vec3 &a = f.positions[ju], &b = f.end_sites[ju];
+      if ((a - b).norm() > 1e-6) segs.push_back({a, b, color_of(j), (a + b).dot(toward) / 2});
+    }
+  }
+  // Painter's order: far bones first, so the near leg is drawn over the far one.
+  std::stable_sort(segs.begin(), segs.end(), [](const Segment& x, const Segment& y) { return x.depth < y.depth; });
+
+  const double w = bone_width(fr);
+  // With alpha, draw into a group so overlapping bones do not darken.
+  cairo_save(cr);
+  if (f.alpha < 1.0) cairo_push_group(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_width(cr, w);
+  for (const auto& s : segs) {
+    move_to(cr, fr.to_pixel(s.a));
+    line_to(cr, fr.to_pixel(s.b));
+    set_color(cr, s.color);
+    cairo_stroke(cr);
+  }
+  // Head: a circle through the head joint and its tip, so the figure reads as a person.
+  const int head = skel.roles[Role::Head];
+  if (head >= 0 && head < n && f.end_sites.size() == f.positions.size() && skel.has_end_site[static_cast<std::size_t>(head)]) {
+    const Vec3 a = f.positions[static_cast<std::size_t>(head)], b = f.end_sites[static_cast<std::size_t>(head)];
+    const auto c = fr.to_pixel((a + b) / 2);
+    const double r = std::max(0.6 * (fr.to_pixel(a) - fr.to_pixel(b)).norm(), 0.07 / fr.metres_per_pixel);
+    cairo_arc(cr, c.x(), c.y(), r, 0, 2 * kPi);
+    set_color(cr, {1, 1, 1});
+    cairo_fill_preserve(cr);
+    set_color(cr, f.color);
+    cairo_set_line_width(cr, std::max(1.2, w * 0.7));
+    cairo_stroke(cr);
+  }
+  // Joints as small dots.
+  for (int j = 0; j < n; ++j) {
+    const auto q = fr.to_pixel(f.positions[static_cast<std::size_t>(j)]);
+    cairo_arc(cr, q.x(), q.y(), w * 0.75, 0, 2 * kPi);
+    set_color(cr, color_of(j));
+    cairo_fill(cr);
+  }
+  if (f.alpha < 1.0) {
+    cairo_pop_group_to_source(cr);
+    cairo_paint_with_alpha(cr, std::clamp(f.alpha, 0.0, 1.0));
+  }
+  cairo_restore(cr);
+}
+
+void draw_label(cairo_t* cr, const Figure& f, const Framing& fr, const Layout& l) {
+  if (f.label.empty() || f.positions.empty()) return;
+  // Centred under the figure's root, just below the panel's content area.
+  (void)l;
+  const double x = fr.to_pixel(f.positions[0]).x();
+  double lowest = -1e300;
+  for (const auto& p : f.positions) lowest = std::max(lowest, fr.to_pixel(p).y());
+  if (fr.view != View::Top) lowest = std::max(lowest, fr.to_pixel(Vec3(f.positions[0].x(), 0, f.positions[0].z())).y());
+  text(cr, x, std::min(lowest + 18, fr.height - 4.0), f.label, 12, Align::Centre, kInk, std::max(f.alpha, 0.6));
+}
+
+// Top-right corner (beside the title) if there is room, else bottom-left.
+void draw_scale_bar(cairo_t* cr, const Framing& fr, double title_width) {
+  const double target = 0.18 * fr.width * fr.metres_per_pixel;
+  static const double kLengths[] = {0.01, 0.02, 0.05, 0.1, 0.2, 0.25, 0.5, 1, 2, 5, 10, 20, 50, 100};
+  double len = kLengths[0];
+  for (double c : kLengths)
+    if (c <= target) len = c;
+  const double px = len / fr.metres_per_pixel;
+  const bool top = 10 + title_width + 30 + px < fr.width - 10;
+  const double x0 = top ? fr.width - 12 - px : 10, y = top ? 22 : fr.height - 10;
+  cairo_save(cr);
+  set_color(cr, kInk);
+  cairo_set_line_width(cr, 1.5);
+  cairo_move_to(cr, x0, y - 4);
+  cairo_line_to(cr, x0, y);
+  cairo_line_to(cr, x0 + px, y);
+  cairo_line_to(cr, x0 + px, y - 4);
+  cairo_stroke(cr);
+  const std::string label = len >= 1 ? format_number(len) + " m" : format_number(len * 100) + " cm";
+  text(cr, x0 + px / 2, y - 6, label, 11, Align::Centre, kInk);
+  cairo_restore(cr);
+}
+
+}  // namespace
+
+std::vector<Vec3> footprint_outline(const Footprint& fp) {
+  // A sole in foot coordinates (x lateral, z forward, metres), heel at -0.09,
+  // toes at +0.17; the arch side is narrower. Mirrored for the right foot.
+  static const double kSole[][2] = {{0.000, -0.095}, {0.030, -0.085}, {0.040, -0.050}, {0.036, 0.000},
+                                    {0.048, 0.080},  {0.050, 0.130},  {0.035, 0.165},  {0.000, 0.175},
+                                    {-0.030, 0.160}, {-0.042, 0.110}, {-0.030, 0.050}, {-0.022, 0.000},
+                                    {-0.032, -0.050}, {-0.028, -0.085}};
+  const double c = std::cos(fp.heading), s = std::sin(fp.heading);
+  // The big toe (wider side) is towards the body's midline: +x of the foot for
+  // the right foot, -x for the left (the character's left is +x).
+  const double side = fp.left ? -1.0 : 1.0;
+  std::vector<Vec3> out;
+  for (const auto& q : kSole) {
+    const double x = side * q[0], z = q[1];
+    // Rotation about +y by heading: local +z -> (sin h, 0, cos h).
+    out.emplace_back(fp.position.x() + c * x + s * z, fp.position.y(), fp.position.z() - s * x + c * z);
+  }
+  return out;
+}
+
+void draw_scene(cairo_t* cr, const Scene& scene, const Framing& fr) {
+  Camera cam;
+  cam.width = fr.width;
+  cam.height = fr.height;
+  const Layout l = layout_of(scene, cam);
+  cairo_save(cr);
+  cairo_rectangle(cr, 0, 0, fr.width, fr.height);
+  cairo_clip(cr);
+  if (scene.floor) draw_floor(cr, scene, fr);
+  draw_footprints(cr, scene, fr);
+  // Inactive (translucent) figures first so the active one stays on top.
+  std::vector<const Figure*> order;
+  for (const auto& f : scene.figures) order.push_back(&f);
+  std::stable_sort(order.begin(), order.end(), [](const Figure* a, const Figure* b) { return a->alpha < b->alpha; });
+  for (const Figure* f : order) draw_figure(cr, *f, fr);
+  draw_curves(cr, scene, fr);
+  for (const auto& f : scene.figures) draw_label(cr, f, fr, l);
+  double title_w = 0;
+  if (!scene.title.empty()) title_w = text(cr, 10, 19, scene.title, 14, Align::Left, kInk, 1.0, true);
+  draw_scale_bar(cr, fr, title_w);
+  cairo_restore(cr);
+}
+
+}  // namespace legwork::render::detail

@@ -1,0 +1,355 @@
+// Line and bar charts on cairo (see plot.hpp).
+#include <legwork/render/plot.hpp>
+
+#include "canvas.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace legwork::render {
+
+using detail::Align;
+using detail::text;
+
+Rgb palette_color(int i) {
+  // Tableau 10, reordered so the first two match the body's left/right hues.
+  static const Rgb kPalette[] = {{0.12, 0.40, 0.85}, {0.90, 0.33, 0.05}, {0.17, 0.63, 0.17}, {0.58, 0.40, 0.74},
+                                 {0.55, 0.34, 0.29}, {0.89, 0.47, 0.76}, {0.50, 0.50, 0.50}, {0.74, 0.74, 0.13},
+                                 {0.09, 0.75, 0.81}, {0.84, 0.15, 0.16}};
+  const int n = static_cast<int>(std::size(kPalette));
+  return kPalette[((i % n) + n) % n];
+}
+
+namespace {
+
+constexpr Rgb kInk{0.12, 0.12, 0.14};
+constexpr Rgb kAxis{0.35, 0.35, 0.38};
+constexpr Rgb kGridLine{0.9, 0.9, 0.92};
+
+struct Range {
+  double lo = 0, hi = 1, step = 0.2;
+};
+
+// Nice axis limits and tick step covering [lo, hi].
+Range nice_range(double lo, double hi, int ticks, bool snap) {
+  if (!(std::isfinite(lo) && std::isfinite(hi))) lo = 0, hi = 1;
+  if (hi - lo < 1e-12) {
+    const double pad = std::max(0.5, std::abs(lo) * 0.1);
+    lo -= pad;
+    hi += pad;
+  }
+  Range r;
+  r.step = detail::nice_step(hi - lo, ticks);
+  r.lo = snap ? std::floor(lo / r.step + 1e-9) * r.step : lo;
+  r.hi = snap ? std::ceil(hi / r.step - 1e-9) * r.step : hi;
+  return r;
+}
+
+// Decimals that show the tick step exactly (0.25 -> 2, 5 -> 0).
+int decimals_for(double step) {
+  int d = 0;
+  while (d < 6 && std::abs(step * std::pow(10.0, d) - std::round(step * std::pow(10.0, d))) > 1e-6) ++d;
+  return d;
+}
+
+struct LegendItem {
+  std::string label;
+  Rgb color;
+  bool band = false;  // a filled swatch instead of a line
+  bool dashed = false;
+  double swatch_alpha = 0.3;
+};
+
+// Legend box size in pixels.
+std::pair<double, double> legend_size(cairo_t* cr, const std::vector<LegendItem>& items) {
+  double w = 0;
+  for (const auto& it : items) w = std::max(w, detail::text_width(cr, it.label, 11));
+  return {w + 40, 16.0 * static_cast<double>(items.size()) + 8};
+}
+
+// Legend box with its top-left corner at (x0, y0).
+void draw_legend_at(cairo_t* cr, const std::vector<LegendItem>& items, double x0, double y0) {
+  if (items.empty()) return;
+  const auto [box_w, box_h] = legend_size(cr, items);
+  const double row = 16;
+  cairo_save(cr);
+  cairo_rectangle(cr, x0, y0, box_w, box_h);
+  cairo_set_source_rgba(cr, 1, 1, 1, 0.88);
+  cairo_fill_preserve(cr);
+  cairo_set_source_rgb(cr, 0.82, 0.82, 0.85);
+  cairo_set_line_width(cr, 1);
+  cairo_stroke(cr);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const double y = y0 + 4 + row * static_cast<double>(i) + row / 2;
+    const auto& it = items[i];
+    if (it.band) {
+      cairo_rectangle(cr, x0 + 8, y - 5, 20, 10);
+      detail::set_color(cr, it.color, it.swatch_alpha);
+      cairo_fill(cr);
+    } else {
+      cairo_move_to(cr, x0 + 8, y);
+      cairo_line_to(cr, x0 + 28, y);
+      detail::set_color(cr, it.color);
+      cairo_set_line_width(cr, 2);
+      if (it.dashed) {
+        const double dash[] = {5, 3};
+        cairo_set_dash(cr, dash, 2, 0);
+      }
+      cairo_stroke(cr);
+      cairo_set_dash(cr, nullptr, 0, 0);
+    }
+    text(cr, x0 + 34, y + 4, it.label, 11, Align::Left, kInk);
+  }
+  cairo_restore(cr);
+}
+
+// Legend in the plot rectangle's top-right corner.
+void draw_legend(cairo_t* cr, const std::vector<LegendItem>& items, double right, double top) {
+  if (items.empty()) return;
+  draw_legend_at(cr, items, right - legend_size(cr, items).first - 6, top + 6);
+}
+
+void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, double top, double w, double h,
+                bool x_ticks, const std::string& x_label) {
+  // y range from the data unless fixed.
+  double ylo = INFINITY, yhi = -INFINITY;
+  for (const auto& s : p.series)
+    for (std::size_t i = 0; i < s.y.size(); ++i)
+      if (std::isfinite(s.y[i]) && s.x[i] >= xr.lo && s.x[i] <= xr.hi) ylo = std::min(ylo, s.y[i]), yhi = std::max(yhi, s.y[i]);
+  for (const auto& r : p.ref_lines) ylo = std::min(ylo, r.y), yhi = std::max(yhi, r.y);
+  const bool fixed = std::isfinite(p.y_min) && std::isfinite(p.y_max);
+  const Range yr = fixed ? nice_range(p.y_min, p.y_max, 5, false) : nice_range(ylo, yhi, 5, true);
+  auto X = [&](double x) { return left + (x - xr.lo) / (xr.hi - xr.lo) * w; };
+  auto Y = [&](double y) { return top + h - (y - yr.lo) / (yr.hi - yr.lo) * h; };
+
+  cairo_save(cr);
+  // Bands under everything.
+  cairo_rectangle(cr, left, top, w, h);
+  cairo_clip(cr);
+  for (const auto& b : p.bands) {
+    cairo_rectangle(cr, X(std::min(b.x0, b.x1)), top, std::abs(X(b.x1) - X(b.x0)), h);
+    detail::set_color(cr, b.color, b.alpha);
+    cairo_fill(cr);
+  }
+  // Grid.
+  cairo_set_line_width(cr, 1);
+  detail::set_color(cr, kGridLine);
+  for (double y = std::ceil(yr.lo / yr.step - 1e-9) * yr.step; y <= yr.hi + 1e-9 * yr.step; y += yr.step) {
+    cairo_move_to(cr, left, std::round(Y(y)) + 0.5);
+    cairo_line_to(cr, left + w, std::round(Y(y)) + 0.5);
+  }
+  for (double x = std::ceil(xr.lo / xr.step - 1e-9) * xr.step; x <= xr.hi + 1e-9 * xr.step; x += xr.step) {
+    cairo_move_to(cr, std::round(X(x)) + 0.5, top);
+    cairo_line_to(cr, std::round(X(x)) + 0.5, top + h);
+  }
+  cairo_stroke(cr);
+  // Reference lines.
+  for (const auto& r : p.ref_lines) {
+    const double dash[] = {6, 4};
+    cairo_set_dash(cr, dash, 2, 0);
+    cairo_move_to(cr, left, Y(r.y));
+    cairo_line_to(cr, left + w, Y(r.y));
+    detail::set_color(cr, r.color);
+    cairo_set_line_width(cr, 1.2);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0);
+    if (!r.label.empty()) {
+      const double tw = detail::text_width(cr, r.label, 10);
+      cairo_rectangle(cr, left + 6, Y(r.y) - 15, tw + 6, 12);
+      cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
+      cairo_fill(cr);
+      text(cr, left + 9, Y(r.y) - 5, r.label, 10, Align::Left, r.color);
+    }
+  }
+  // Curves.
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (std::size_t si = 0; si < p.series.size(); ++si) {
+    const auto& s = p.series[si];
+    bool pen = false;
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+        pen = false;
+        continue;
+      }
+      if (pen)
+        cairo_line_to(cr, X(s.x[i]), Y(s.y[i]));
+      else
+        cairo_move_to(cr, X(s.x[i]), Y(s.y[i]));
+      pen = true;
+    }
+    detail::set_color(cr, s.color.value_or(palette_color(static_cast<int>(si))));
+    cairo_set_line_width(cr, s.width);
+    if (s.dashed) {
+      const double dash[] = {6, 4};
+      cairo_set_dash(cr, dash, 2, 0);
+    }
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0);
+  }
+  cairo_restore(cr);
+
+  // Frame and ticks.
+  cairo_save(cr);
+  detail::set_color(cr, kAxis);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, std::round(left) + 0.5, std::round(top) + 0.5, std::round(w), std::round(h));
+  cairo_stroke(cr);
+  const int yd = decimals_for(yr.step), xd = decimals_for(xr.step);
+  for (double y = std::ceil(yr.lo / yr.step - 1e-9) * yr.step; y <= yr.hi + 1e-9 * yr.step; y += yr.step)
+    text(cr, left - 6, Y(y) + 4, detail::format_number(y, yd), 11, Align::Right, kAxis);
+  if (x_ticks) {
+    for (double x = std::ceil(xr.lo / xr.step - 1e-9) * xr.step; x <= xr.hi + 1e-9 * xr.step; x += xr.step)
+      text(cr, X(x), top + h + 16, detail::format_number(x, xd), 11, Align::Centre, kAxis);
+    text(cr, left + w / 2, top + h + 34, x_label, 12, Align::Centre, kInk);
+  }
+  // Rotated y label, centred on the panel.
+  if (!p.y_label.empty()) {
+    cairo_save(cr);
+    cairo_translate(cr, left - 48, top + h / 2);
+    cairo_rotate(cr, -kPi / 2);
+    text(cr, 0, 0, p.y_label, 12, Align::Centre, kInk);
+    cairo_restore(cr);
+  }
+  text(cr, left, top - 7, p.title, 12, Align::Left, kInk, 1.0, true);
+  cairo_restore(cr);
+
+  if (p.legend) {
+    std::vector<LegendItem> items;
+    for (std::size_t si = 0; si < p.series.size(); ++si)
+      if (!p.series[si].name.empty())
+        items.push_back({p.series[si].name, p.series[si].color.value_or(palette_color(static_cast<int>(si))), false,
+                         p.series[si].dashed});
+    std::set<std::string> seen;
+    for (const auto& b : p.bands)
+      if (!b.label.empty() && seen.insert(b.label).second) items.push_back({b.label, b.color, true, false});
+    if (!items.empty()) {
+      // The corner whose legend box would hide the fewest data points.
+      const auto [bw, bh] = legend_size(cr, items);
+      const double xs[] = {left + w - bw - 6, left + 6}, ys[] = {top + 6, top + h - bh - 6};
+      double best_x = xs[0], best_y = ys[0];
+      long best = -1;
+      for (double by : ys)
+        for (double bx : xs) {
+          long hidden = 0;
+          for (const auto& s : p.series)
+            for (std::size_t i = 0; i < s.x.size(); ++i) {
+              const double px = X(s.x[i]), py = Y(s.y[i]);
+              hidden += px >= bx && px <= bx + bw && py >= by && py <= by + bh;
+            }
+          if (best < 0 || hidden < best) best = hidden, best_x = bx, best_y = by;
+        }
+      draw_legend_at(cr, items, best_x, best_y);
+    }
+  }
+}
+
+}  // namespace
+
+void plot_lines(const LinePlot& plot, const std::string& path) {
+  detail::format_of(path);
+  if (plot.panels.empty()) throw Error("plot '" + path + "': no panels");
+  double xlo = INFINITY, xhi = -INFINITY;
+  for (std::size_t pi = 0; pi < plot.panels.size(); ++pi)
+    for (const auto& s : plot.panels[pi].series) {
+      if (s.x.size() != s.y.size())
+        throw Error("plot '" + path + "': series '" + s.name + "' in panel " + std::to_string(pi) + " has " +
+                    std::to_string(s.x.size()) + " x values but " + std::to_string(s.y.size()) + " y values");
+      for (double x : s.x)
+        if (std::isfinite(x)) xlo = std::min(xlo, x), xhi = std::max(xhi, x);
+    }
+  if (std::isfinite(plot.x_min)) xlo = plot.x_min;
+  if (std::isfinite(plot.x_max)) xhi = plot.x_max;
+  Range xr = nice_range(xlo, xhi, std::max(4, plot.width / 110), false);
+
+  const double title_h = plot.title.empty() ? 8 : 36, panel_gap = 30, bottom = 50, left = 78, right = 18;
+  const int n = static_cast<int>(plot.panels.size());
+  const int height = static_cast<int>(title_h + n * (plot.panel_height + panel_gap) + bottom - panel_gap + 20);
+  detail::Canvas canvas(path, plot.width, height);
+  cairo_t* cr = canvas.cr();
+  if (!plot.title.empty()) text(cr, 12, 24, plot.title, 16, Align::Left, kInk, 1.0, true);
+  for (int i = 0; i < n; ++i) {
+    const double top = title_h + 20 + i * (plot.panel_height + panel_gap);
+    draw_panel(cr, plot.panels[static_cast<std::size_t>(i)], xr, left, top, plot.width - left - right,
+               plot.panel_height, i == n - 1, plot.x_label);
+  }
+  canvas.finish();
+}
+
+void plot_bars(const BarChart& chart, const std::string& path) {
+  detail::format_of(path);
+  if (chart.groups.empty() || chart.series.empty()) throw Error("bar chart '" + path + "': no groups or no series");
+  for (const auto& s : chart.series)
+    if (s.values.size() != chart.groups.size())
+      throw Error("bar chart '" + path + "': series '" + s.name + "' has " + std::to_string(s.values.size()) +
+                  " values for " + std::to_string(chart.groups.size()) + " groups");
+  double lo = 0, hi = 0;  // bars start at zero, so zero is always in range
+  for (const auto& s : chart.series)
+    for (double v : s.values)
+      if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (hi - lo < 1e-12) hi = lo + 1;
+  const Range yr = nice_range(lo - (lo < 0 ? 0.08 * (hi - lo) : 0), hi + 0.08 * (hi - lo), 5, true);
+
+  const double title_h = chart.title.empty() ? 10 : 38, left = 78, right = 18, bottom = 48;
+  const double w = chart.width - left - right, h = chart.height - title_h - bottom;
+  detail::Canvas canvas(path, chart.width, chart.height);
+  cairo_t* cr = canvas.cr();
+  if (!chart.title.empty()) text(cr, 12, 24, chart.title, 16, Align::Left, kInk, 1.0, true);
+  auto Y = [&](double y) { return title_h + h - (y - yr.lo) / (yr.hi - yr.lo) * h; };
+  const int yd = decimals_for(yr.step);
+  cairo_set_line_width(cr, 1);
+  for (double y = yr.lo; y <= yr.hi + 1e-9 * yr.step; y += yr.step) {
+    detail::set_color(cr, kGridLine);
+    cairo_move_to(cr, left, std::round(Y(y)) + 0.5);
+    cairo_line_to(cr, left + w, std::round(Y(y)) + 0.5);
+    cairo_stroke(cr);
+    text(cr, left - 6, Y(y) + 4, detail::format_number(y, yd), 11, Align::Right, kAxis);
+  }
+  const auto groups = static_cast<double>(chart.groups.size());
+  const auto per = static_cast<double>(chart.series.size());
+  const double group_w = w / groups, bar_w = group_w * 0.78 / per;
+  const double label_size = std::min(12.0, std::max(7.0, bar_w / 3.2));
+  for (std::size_t g = 0; g < chart.groups.size(); ++g) {
+    const double gx = left + group_w * static_cast<double>(g) + group_w * 0.11;
+    for (std::size_t s = 0; s < chart.series.size(); ++s) {
+      const double v = chart.series[s].values[g];
+      const double x = gx + bar_w * static_cast<double>(s);
+      const Rgb c = chart.series[s].color.value_or(palette_color(static_cast<int>(s)));
+      if (!std::isfinite(v)) {
+        text(cr, x + bar_w / 2, Y(0) - 4, "n/a", label_size, Align::Centre, kAxis);
+        continue;
+      }
+      cairo_rectangle(cr, x + 1, std::min(Y(v), Y(0)), bar_w - 2, std::abs(Y(v) - Y(0)));
+      detail::set_color(cr, c);
+      cairo_fill(cr);
+      if (chart.show_values) {
+        const double ty = v >= 0 ? Y(v) - 4 : Y(v) + label_size + 3;
+        text(cr, x + bar_w / 2, ty, detail::format_number(v, chart.value_decimals), label_size, Align::Centre, kInk);
+      }
+    }
+    text(cr, left + group_w * (static_cast<double>(g) + 0.5), title_h + h + 18, chart.groups[g], 12, Align::Centre, kInk);
+  }
+  // Zero line and frame.
+  detail::set_color(cr, kAxis);
+  cairo_move_to(cr, left, std::round(Y(0)) + 0.5);
+  cairo_line_to(cr, left + w, std::round(Y(0)) + 0.5);
+  cairo_stroke(cr);
+  cairo_rectangle(cr, std::round(left) + 0.5, std::round(title_h) + 0.5, std::round(w), std::round(h));
+  cairo_stroke(cr);
+  if (!chart.y_label.empty()) {
+    cairo_save(cr);
+    cairo_translate(cr, left - 52, title_h + h / 2);
+    cairo_rotate(cr, -kPi / 2);
+    text(cr, 0, 0, chart.y_label, 12, Align::Centre, kInk);
+    cairo_restore(cr);
+  }
+  std::vector<LegendItem> items;
+  for (std::size_t s = 0; s < chart.series.size(); ++s)
+    if (!chart.series[s].name.empty())
+      items.push_back({chart.series[s].name, chart.series[s].color.value_or(palette_color(static_cast<int>(s))), true, false,
+                       1.0});
+  draw_legend(cr, items, left + w, title_h);
+  canvas.finish();
+}
+
+}  // namespace legwork::render

@@ -1,0 +1,169 @@
+// Malformed BVH inputs: each gives its own clear error naming the file and
+// line (never a crash or a silently wrong motion).
+#include <legwork/io/bvh.hpp>
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+using namespace legwork;
+
+namespace {
+
+// A tiny valid file; the cases below each break one thing in it.
+// Line numbers:  1 HIERARCHY, 2 ROOT, 4 OFFSET, 5 CHANNELS, 6 JOINT Spine,
+// 8 OFFSET, 9 CHANNELS, 10 End Site, 12 OFFSET, 16 MOTION, 17 Frames,
+// 18 Frame Time, 19-20 motion lines.
+const std::string kValid =
+    "HIERARCHY\n"
+    "ROOT Hips\n"
+    "{\n"
+    "  OFFSET 0 0 0\n"
+    "  CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation\n"
+    "  JOINT Spine\n"
+    "  {\n"
+    "    OFFSET 0 0.5 0\n"
+    "    CHANNELS 3 Zrotation Yrotation Xrotation\n"
+    "    End Site\n"
+    "    {\n"
+    "      OFFSET 0 0.5 0\n"
+    "    }\n"
+    "  }\n"
+    "}\n"
+    "MOTION\n"
+    "Frames: 2\n"
+    "Frame Time: 0.1\n"
+    "0 1 0 0 0 0 10 20 30\n"
+    "0 1 0.1 0 0 0 10 20 30\n";
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << "test setup: '" << from << "' not in the file";
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  return s;
+}
+
+io::BvhReadOptions metres() {
+  io::BvhReadOptions o;
+  o.scale = 1.0;  // the toy skeleton is 1 m tall: no unit guessing
+  return o;
+}
+
+struct Case {
+  const char* name;
+  std::string text;
+  int line;            // expected line in "test.bvh:<line>:"
+  const char* expect;  // expected part of the message
+};
+
+std::vector<Case> cases() {
+  const std::string& v = kValid;
+  return {
+      {"empty_file", "", 1, "expected 'HIERARCHY' at the start of a BVH file, found end of file"},
+      {"not_bvh", "hello world\n", 1, "expected 'HIERARCHY' at the start of a BVH file, found 'hello'"},
+      {"empty_hierarchy", "HIERARCHY\nMOTION\nFrames: 1\nFrame Time: 0.1\n\n", 2, "empty hierarchy"},
+      {"missing_frames", replace(v, "Frames: 2\n", ""), 17, "missing 'Frames:' line"},
+      {"too_few_values", replace(v, "0 1 0.1 0 0 0 10 20 30", "0 1 0.1 0 0 0 10 20"), 20,
+       "motion line has 8 values, the hierarchy declares 9 channels"},
+      {"unknown_channel", replace(v, "3 Zrotation Yrotation Xrotation", "3 Zrotation Yrotation Wrotation"), 9,
+       "unknown channel 'Wrotation' for joint 'Spine'"},
+      {"nan_value", replace(v, "0 1 0 0 0 0 10 20 30", "0 1 0 0 nan 0 10 20 30"), 19,
+       "motion line value 5 is not finite (NaN or Inf): 'nan'"},
+      {"inf_value", replace(v, "0 1 0 0 0 0 10 20 30", "0 1 0 0 0 0 10 inf 30"), 19, "value 8 is not finite"},
+      {"more_lines_than_declared", v + "0 1 0.2 0 0 0 10 20 30\n", 17, "'Frames: 2' but the file has 3 motion lines"},
+      {"fewer_lines_than_declared", replace(v, "Frames: 2", "Frames: 3"), 17,
+       "'Frames: 3' but the file has 2 motion lines"},
+      {"missing_closing_brace", replace(v, "  }\n}\nMOTION", "  }\nMOTION"), 15, "missing '}' closing joint 'Hips'"},
+      {"channel_count_too_big", replace(v, "3 Zrotation Yrotation Xrotation", "4 Zrotation Yrotation Xrotation"), 9,
+       "CHANNELS of joint 'Spine' declares 4 channels but lists 3"},
+      {"channel_count_out_of_range", replace(v, "3 Zrotation Yrotation Xrotation", "7 Zrotation Yrotation Xrotation"), 9,
+       "CHANNELS of joint 'Spine' needs a count from 0 to 6, found '7'"},
+      {"repeated_channel", replace(v, "3 Zrotation Yrotation Xrotation", "3 Zrotation Zrotation Xrotation"), 9,
+       "channel Zrotation repeated for joint 'Spine'"},
+      {"duplicate_joint", replace(v, "JOINT Spine", "JOINT Hips"), 6, "duplicate joint name 'Hips'"},
+      {"non_numeric_offset", replace(v, "OFFSET 0 0.5 0\n    CHANNELS", "OFFSET 0 abc 0\n    CHANNELS"), 8,
+       "expected a number for OFFSET of joint 'Spine', found 'abc'"},
+      {"infinite_offset", replace(v, "OFFSET 0 0.5 0\n    CHANNELS", "OFFSET 0 1e999 0\n    CHANNELS"), 8,
+       "OFFSET of joint 'Spine' is not finite or out of range ('1e999')"},
+      {"missing_offset", replace(v, "    OFFSET 0 0.5 0\n    CHANNELS", "    CHANNELS"), 13, "joint 'Spine' has no OFFSET"},
+      {"missing_motion", replace(v, "MOTION\n", ""), 16, "expected 'MOTION' after the hierarchy, found 'Frames:'"},
+      {"zero_frame_time", replace(v, "Frame Time: 0.1", "Frame Time: 0"), 18, "'Frame Time:' must be a positive"},
+      {"negative_frame_time", replace(v, "Frame Time: 0.1", "Frame Time: -0.01"), 18, "'Frame Time:' must be a positive"},
+      {"missing_frame_time", replace(v, "Frame Time: 0.1\n", ""), 18, "missing 'Frame Time:' line"},
+      {"fractional_frames", replace(v, "Frames: 2", "Frames: 2.5"), 17, "'Frames:' needs a whole number, found '2.5'"},
+      {"truncated_in_hierarchy", v.substr(0, v.find("0.5 0\n    CHANNELS")), 8,
+       "expected a number for OFFSET of joint 'Spine', found end of file"},
+      {"truncated_in_motion", v.substr(0, v.size() - 10), 20, "motion line has 6 values, the hierarchy declares 9"},
+      {"text_after_values", replace(v, "0 1 0 0 0 0 10 20 30", "0 1 0 0 0 0 10 20 30 foo"), 19,
+       "motion line has more than the 9 values the hierarchy declares (extra 'foo')"},
+      {"non_numeric_value", replace(v, "0 1 0.1 0 0 0", "0 1 0.1 0 x 0"), 20, "motion line value 5 is not a number: 'x'"},
+      {"text_after_frame_time", replace(v, "Frame Time: 0.1", "Frame Time: 0.1 fps"), 18,
+       "unexpected text after Frame Time value"},
+      {"end_without_site", replace(v, "End Site", "End Point"), 10, "expected 'Site' after 'End', found 'Point'"},
+      {"two_roots", replace(v, "}\nMOTION", "}\nROOT Other\n{\n OFFSET 0 0 0\n CHANNELS 0\n}\nMOTION"), 16,
+       "more than one ROOT"},
+      {"no_frames", replace(replace(v, "Frames: 2", "Frames: 0"), "0 1 0 0 0 0 10 20 30\n0 1 0.1 0 0 0 10 20 30\n", ""),
+       17, "the file has no motion frames"},
+      {"joint_without_name", replace(v, "JOINT Spine", "JOINT"), 7, "expected a joint name after JOINT/ROOT, found '{'"},
+  };
+}
+
+}  // namespace
+
+TEST(BvhErrors, EachMalformedInputHasItsOwnMessageWithLine) {
+  const auto all = cases();
+  ASSERT_GE(all.size(), 15u);
+  std::set<std::string> messages;
+  for (const auto& c : all) {
+    SCOPED_TRACE(c.name);
+    try {
+      io::parse_bvh(c.text, "test.bvh", metres());
+      ADD_FAILURE() << c.name << ": expected an error";
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      const std::string prefix = "test.bvh:" + std::to_string(c.line) + ": ";
+      EXPECT_EQ(msg.rfind(prefix, 0), 0u) << "message: " << msg << "\nexpected prefix: " << prefix;
+      EXPECT_NE(msg.find(c.expect), std::string::npos) << "message: " << msg << "\nexpected: " << c.expect;
+      messages.insert(msg);
+    }
+  }
+  EXPECT_EQ(messages.size(), all.size()) << "two malformed inputs gave the same message";
+}
+
+TEST(BvhErrors, ValidBaseFileParses) {
+  auto f = io::parse_bvh(kValid, "test.bvh", metres());
+  EXPECT_EQ(f.motion.frame_count(), 2);
+  EXPECT_EQ(f.motion.joint_count(), 2);
+  EXPECT_DOUBLE_EQ(f.motion.fps, 10.0);
+}
+
+TEST(BvhErrors, UnknownUnitsAskForAScale) {
+  // 1000 km tall: no unit fits, the reader must say so rather than guess.
+  const std::string huge = replace(replace(kValid, "OFFSET 0 0.5 0\n    CHANNELS", "OFFSET 0 5e8 0\n    CHANNELS"),
+                                   "      OFFSET 0 0.5 0", "      OFFSET 0 5e8 0");
+  try {
+    io::parse_bvh(huge, "huge.bvh");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("huge.bvh: rest height"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("fits no known unit"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BvhErrors, DeepNestingIsAnErrorNotAStackOverflow) {
+  std::string deep = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 0\n";
+  for (int i = 0; i < 100000; ++i) deep += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 0 0\nCHANNELS 0\n";
+  EXPECT_THROW(io::parse_bvh(deep, "deep.bvh", metres()), Error);
+}
+
+TEST(BvhErrors, HugeDeclaredFrameCountDoesNotAllocate) {
+  // A bogus 'Frames:' must produce an error, not a multi-gigabyte reservation.
+  const std::string bogus = replace(kValid, "Frames: 2", "Frames: 99999999");
+  try {
+    io::parse_bvh(bogus, "bogus.bvh", metres());
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'Frames: 99999999' but the file has 2 motion lines"), std::string::npos);
+  }
+}

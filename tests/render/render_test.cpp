@@ -1,0 +1,261 @@
+// Renderer tests on real CMU data: files decode, have the requested size, are
+// not blank, put the figure inside the frame, keep left/right on the correct
+// side, and project known points where the view says they go.
+#include <legwork/core/fk.hpp>
+#include <legwork/core/interpolate.hpp>
+#include <legwork/io/bvh.hpp>
+#include <legwork/render/render.hpp>
+
+#include "render_test_util.hpp"
+#include "testdata.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+using namespace legwork;
+using namespace legwork::render;
+using legwork::render::testing::Image;
+using legwork::render::testing::is_background;
+using legwork::render::testing::near_color;
+using legwork::render::testing::out_dir;
+
+namespace {
+
+const Motion& walk() {
+  static const Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
+  return m;
+}
+
+std::string out(const std::string& name) { return (out_dir() / name).string(); }
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+TEST(Projection, EachViewMapsAKnownPoint) {
+  const Vec3 p(1.0, 2.0, 3.0);  // x = character's left, y = up, z = forward
+  EXPECT_TRUE(project(View::Side, p).isApprox(Eigen::Vector2d(3.0, 2.0)));   // forward to the right
+  EXPECT_TRUE(project(View::Front, p).isApprox(Eigen::Vector2d(1.0, 2.0)));  // left to the right
+  EXPECT_TRUE(project(View::Top, p).isApprox(Eigen::Vector2d(3.0, 1.0)));    // forward right, left up
+  // Three-quarter: right = (x + z)/sqrt2, up mostly +y with the camera looking down.
+  const auto q = project(View::ThreeQuarter, p);
+  EXPECT_NEAR(q.x(), 4.0 / std::sqrt(2.0), 1e-12);
+  const auto b = view_basis(View::ThreeQuarter);
+  EXPECT_NEAR(b.right.norm(), 1, 1e-12);
+  EXPECT_NEAR(b.up.dot(b.right), 0, 1e-12);
+  EXPECT_NEAR(b.toward.dot(b.up), 0, 1e-12);
+  EXPECT_GT(b.up.y(), 0.9);
+  EXPECT_GT(b.toward.y(), 0.2);  // camera above the floor, looking down
+  EXPECT_GT(b.toward.z(), 0.5);  // in front of the character
+  // Every basis is right-handed: right x up = towards the viewer.
+  for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
+    const auto bb = view_basis(v);
+    EXPECT_TRUE(bb.right.cross(bb.up).isApprox(bb.toward)) << view_name(v);
+    EXPECT_EQ(parse_view(view_name(v)), v);
+  }
+  EXPECT_THROW(parse_view("diagonal"), Error);
+}
+
+TEST(Projection, PixelsMatchTheDrawing) {
+  // A marked dot at a known 3D point lands on the pixel Framing::to_pixel gives,
+  // in every view; and equal metres are equal pixels on both axes.
+  const Vec3 p(0.4, 1.1, -0.3);
+  for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
+    Scene s;
+    s.floor = false;
+    Curve c;
+    c.points = {Vec3(-1, 0, -1), p, Vec3(1, 2, 1)};
+    c.color = {0.0, 0.6, 0.0};
+    c.width = 3;
+    c.marks = {1};
+    s.curves.push_back(c);
+    Camera cam;
+    cam.view = v;
+    cam.width = 300;
+    cam.height = 200;
+    const auto file = out("proj_" + view_name(v) + ".png");
+    render_scene(s, cam, file);
+    const Framing fr = frame_scene(s, cam);
+    const auto px = fr.to_pixel(p);
+    Image img(file);
+    ASSERT_TRUE(img.ok());
+    const auto got = img.at(static_cast<int>(px.x()), static_cast<int>(px.y()));
+    EXPECT_TRUE(near_color(got, c.color, 0.1)) << view_name(v) << " at " << px.transpose();
+    // A 1 m step along the view's right and up axes is the same number of pixels.
+    const auto b = view_basis(v);
+    const double sx = (fr.to_pixel(p + b.right) - px).norm(), sy = (fr.to_pixel(p + b.up) - px).norm();
+    EXPECT_NEAR(sx, sy, 1e-9);
+    EXPECT_LT(fr.to_pixel(p + b.up).y(), px.y());  // up is up in the picture
+  }
+}
+
+TEST(RenderScene, PngHasSizeContentAndFigureInsideFrame) {
+  const Motion& m = walk();
+  Scene s;
+  s.figures.push_back(make_figure(m.skeleton, m.frame(60), 1.0, "frame 60"));
+  s.title = "07_01 frame 60";
+  for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
+    Camera cam;
+    cam.view = v;
+    cam.width = 320;
+    cam.height = 400;
+    const auto file = out("scene_" + view_name(v) + ".png");
+    render_scene(s, cam, file);
+    Image img(file);
+    ASSERT_TRUE(img.ok()) << file;
+    EXPECT_EQ(img.width(), 320);
+    EXPECT_EQ(img.height(), 400);
+    EXPECT_GT(img.count([](int, int, const auto& p) { return !is_background(p); }), 800) << view_name(v);
+    // Every joint projects inside the picture, off its edges.
+    const Framing fr = frame_scene(s, cam);
+    for (const auto& p : s.figures[0].positions) {
+      const auto q = fr.to_pixel(p);
+      EXPECT_GT(q.x(), 5);
+      EXPECT_LT(q.x(), 315);
+      EXPECT_GT(q.y(), 5);
+      EXPECT_LT(q.y(), 395);
+    }
+    // The pelvis pixel is drawn.
+    const auto hip = fr.to_pixel(s.figures[0].positions[0]);
+    EXPECT_FALSE(is_background(img.at(static_cast<int>(hip.x()), static_cast<int>(hip.y())))) << view_name(v);
+  }
+}
+
+TEST(RenderScene, SvgHasPaths) {
+  const Motion& m = walk();
+  Scene s;
+  s.figures.push_back(make_figure(m.skeleton, m.frame(10)));
+  const auto file = out("scene.svg");
+  render_scene(s, Camera{}, file);
+  const auto text = slurp(file);
+  EXPECT_NE(text.find("<svg"), std::string::npos);
+  EXPECT_NE(text.find("<path"), std::string::npos);
+}
+
+TEST(RenderScene, BadExtensionIsAnError) {
+  Scene s;
+  EXPECT_THROW(render_scene(s, Camera{}, out("x.jpg")), Error);
+  EXPECT_THROW(render_scene(s, Camera{}, out("no-extension")), Error);
+}
+
+TEST(Sides, CmuSkeletonLegsAndArmsAreSided) {
+  const auto& skel = walk().skeleton;
+  const auto sides = joint_sides(skel);
+  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("LeftFoot"))], Side::Left);
+  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("LeftHand"))], Side::Left);
+  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("RightToeBase"))], Side::Right);
+  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("RightForeArm"))], Side::Right);
+  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("Head"))], Side::Centre);
+  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("Hips"))], Side::Centre);
+}
+
+// In the front view the character's left (+x) is on the picture's right: the
+// left colour must be mostly on the right half and the right colour on the
+// left half. Checked on the rest pose (facing +z, arms out) and on a real
+// walking frame turned to face +z by the contact sheet.
+TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
+  const auto& skel = walk().skeleton;
+  Scene s;
+  s.floor = false;
+  s.figures.push_back(make_figure(skel, Pose(skel)));
+  Camera cam;
+  cam.view = View::Front;
+  cam.width = 400;
+  cam.height = 400;
+  const auto file = out("front_rest.png");
+  render_scene(s, cam, file);
+  Image img(file);
+  ASSERT_TRUE(img.ok());
+  const int w = img.width();
+  auto count = [&](const Rgb& c, bool right_half) {
+    return img.count([&](int x, int, const auto& p) { return (x >= w / 2) == right_half && near_color(p, c); });
+  };
+  const int left_on_right = count(kLeftColor, true), left_on_left = count(kLeftColor, false);
+  const int right_on_left = count(kRightColor, false), right_on_right = count(kRightColor, true);
+  EXPECT_GT(left_on_right, 200);
+  EXPECT_GT(right_on_left, 200);
+  EXPECT_LT(left_on_left, left_on_right / 10);
+  EXPECT_LT(right_on_right, right_on_left / 10);
+}
+
+TEST(ContactSheet, RowsPerViewPosesSideBySide) {
+  const Motion& m = walk();
+  std::vector<Pose> poses;
+  std::vector<std::string> labels;
+  for (int f = 20; f <= 120; f += 25) {
+    Pose p(m.skeleton);
+    sample_motion(m, f / m.fps, p.ref());
+    poses.push_back(p);
+    labels.push_back("frame " + std::to_string(f));
+  }
+  SheetOptions opt;
+  opt.labels = labels;
+  opt.active = 2;
+  opt.title = "07_01 walk";
+  opt.panel_height = 300;
+  const auto file = out("sheet.png");
+  render_contact_sheet(m.skeleton, poses, opt, file);
+  Image img(file);
+  ASSERT_TRUE(img.ok());
+  EXPECT_EQ(img.height(), 2 * 300 + 34);  // two view rows plus the title strip
+  EXPECT_GT(img.width(), 5 * 0.8 * 300 / 2.4);  // five poses 0.8 m apart at ~1.8 m per row height
+  // Both rows (front, side) show both legs' colours.
+  auto in_row = [&](const Rgb& c, int row) {
+    return img.count([&](int, int y, const auto& p) { return y >= 34 + row * 300 && y < 34 + (row + 1) * 300 && near_color(p, c); });
+  };
+  EXPECT_GT(in_row(kLeftColor, 0), 100);
+  EXPECT_GT(in_row(kRightColor, 0), 100);
+  EXPECT_GT(in_row(kLeftColor, 1), 100);
+  EXPECT_GT(in_row(kRightColor, 1), 100);
+  EXPECT_THROW(render_contact_sheet(m.skeleton, {}, opt, file), Error);
+}
+
+TEST(Trajectory, PathDrawnWithMarks) {
+  const Motion& m = walk();
+  const int foot = m.skeleton.require("LeftFoot");
+  Camera cam;
+  cam.view = View::Side;
+  cam.width = 800;
+  cam.height = 360;
+  const auto file = out("trajectory.png");
+  render_trajectory(m, foot, {30, 60, 90, 120}, cam, file);
+  Image img(file);
+  ASSERT_TRUE(img.ok());
+  const Rgb path_color{0.10, 0.55, 0.30};
+  EXPECT_GT(img.count([&](int, int, const auto& p) { return near_color(p, path_color); }), 300);
+  EXPECT_THROW(render_trajectory(m, 999, {}, cam, file), Error);
+  EXPECT_THROW(render_trajectory(m, foot, {m.frame_count()}, cam, file), Error);
+}
+
+TEST(Footprints, TopViewPutsLeftFootAboveRight) {
+  // Top view: +z to the right, +x (character's left) up. Left foot at x=+0.15.
+  Scene s;
+  s.footprints.push_back({Vec3(0.15, 0, 0), 0.0, true});
+  s.footprints.push_back({Vec3(-0.15, 0, 0.4), 0.0, false});
+  Camera cam;
+  cam.view = View::Top;
+  cam.width = 300;
+  cam.height = 300;
+  const auto file = out("footprints.png");
+  render_scene(s, cam, file);
+  Image img(file);
+  ASSERT_TRUE(img.ok());
+  double ly = 0, ry = 0, lx = 0, rx = 0;
+  int ln = 0, rn = 0;
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x) {
+      const auto p = img.at(x, y);
+      if (near_color(p, kLeftColor, 0.1)) ly += y, lx += x, ++ln;
+      if (near_color(p, kRightColor, 0.1)) ry += y, rx += x, ++rn;
+    }
+  ASSERT_GT(ln, 20);
+  ASSERT_GT(rn, 20);
+  EXPECT_LT(ly / ln, ry / rn);  // left foot higher in the picture
+  EXPECT_LT(lx / ln, rx / rn);  // right foot further forward (+z = right)
+}

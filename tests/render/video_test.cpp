@@ -1,0 +1,108 @@
+// Video tests: skip cleanly when ffmpeg/ffprobe are missing; otherwise count
+// the frames ffprobe decodes from the MP4.
+#include <legwork/core/interpolate.hpp>
+#include <legwork/io/bvh.hpp>
+#include <legwork/render/render.hpp>
+
+#include "render_test_util.hpp"
+#include "testdata.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+using namespace legwork;
+using namespace legwork::render;
+
+namespace {
+
+bool have_program(const char* name) {
+  const std::string cmd = std::string("command -v ") + name + " >/dev/null 2>&1";
+  return std::system(cmd.c_str()) == 0;
+}
+
+#define REQUIRE_FFMPEG()                                                                  \
+  do {                                                                                    \
+    if (!have_program("ffmpeg") || !have_program("ffprobe"))                              \
+      GTEST_SKIP() << "ffmpeg/ffprobe not installed; video tests need them";              \
+  } while (0)
+
+// Frames ffprobe decodes, or -1.
+int probe_frames(const std::string& path) {
+  const std::string cmd = "ffprobe -v error -select_streams v:0 -count_frames -show_entries stream=nb_read_frames,width,height "
+                          "-of csv=p=0 '" + path + "'";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return -1;
+  char buf[256] = {0};
+  const bool got = std::fgets(buf, sizeof buf, p) != nullptr;
+  pclose(p);
+  if (!got) return -1;
+  int w = 0, h = 0, n = -1;
+  if (std::sscanf(buf, "%d,%d,%d", &w, &h, &n) != 3) return -1;
+  return n;
+}
+
+Motion short_walk(double seconds) {
+  Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
+  return trim(m, 1, static_cast<int>(seconds * m.fps));
+}
+
+}  // namespace
+
+TEST(Video, FrameCountMatchesDurationTimesRate) {
+  REQUIRE_FFMPEG();
+  const Motion m = short_walk(1.0);  // 120 Hz source, resampled to 25 fps
+  VideoOptions opt;
+  opt.camera.width = 320;
+  opt.camera.height = 240;
+  opt.fps = 25;
+  opt.trace_joint = m.skeleton.require("LeftFoot");
+  opt.title = "07_01";
+  const auto file = (render::testing::out_dir() / "walk.mp4").string();
+  std::filesystem::remove(file);
+  render_video(m, opt, file);
+  ASSERT_TRUE(std::filesystem::exists(file));
+  EXPECT_GT(std::filesystem::file_size(file), 1000u);
+  const int expected = static_cast<int>(std::floor(m.duration() * 25 + 1e-9)) + 1;
+  EXPECT_EQ(probe_frames(file), expected);
+}
+
+TEST(Video, SideBySideLastsAsLongAsTheLongestMotion) {
+  REQUIRE_FFMPEG();
+  const Motion a = short_walk(0.5), b = short_walk(1.0);
+  VideoOptions opt;
+  opt.camera.width = 480;
+  opt.camera.height = 240;
+  opt.camera.view = View::Front;
+  opt.fps = 20;
+  const auto file = (render::testing::out_dir() / "side_by_side.mp4").string();
+  render_video_side_by_side({&a, &b}, {"half second", "one second"}, opt, file);
+  const int expected = static_cast<int>(std::floor(b.duration() * 20 + 1e-9)) + 1;
+  EXPECT_EQ(probe_frames(file), expected);
+}
+
+TEST(Video, BadSizesAndMissingFfmpegAreClearErrors) {
+  const Motion m = short_walk(0.2);
+  VideoOptions opt;
+  opt.camera.width = 321;  // odd: H.264/yuv420p cannot take it
+  EXPECT_THROW(render_video(m, opt, (render::testing::out_dir() / "odd.mp4").string()), Error);
+  opt.camera.width = 320;
+  setenv("LEGWORK_FFMPEG", "/nonexistent/ffmpeg", 1);
+  try {
+    render_video(m, opt, (render::testing::out_dir() / "none.mp4").string());
+    ADD_FAILURE() << "expected an error for a missing ffmpeg";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ffmpeg"), std::string::npos);
+  }
+  unsetenv("LEGWORK_FFMPEG");
+}
+
+TEST(Video, FfmpegFailureIsAnError) {
+  REQUIRE_FFMPEG();
+  const Motion m = short_walk(0.2);
+  VideoOptions opt;
+  opt.camera.width = 160;
+  opt.camera.height = 120;
+  // A directory that does not exist: ffmpeg cannot open the output and exits non-zero.
+  EXPECT_THROW(render_video(m, opt, "/nonexistent-dir/x.mp4"), Error);
+}
