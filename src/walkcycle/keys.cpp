@@ -187,7 +187,7 @@ WalkKeys parse_walk_keys(std::string_view text, const Skeleton& skel, std::strin
   json doc;
   try {
     doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     throw Error(std::string(source) + ": not valid JSON: " + e.what());
   }
   check_fields(doc, {"format", "name", "description", "skeleton", "frames_per_cycle", "fps", "euler_order", "timing",
@@ -284,7 +284,7 @@ std::string walk_skeleton_path(const std::string& walk_path) {
   json doc;
   try {
     doc = json::parse(io::read_text_file(walk_path));
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     throw Error(walk_path + ": not valid JSON: " + e.what());
   }
   if (!doc.is_object() || !doc.contains("skeleton") || !doc["skeleton"].is_string()) return "";

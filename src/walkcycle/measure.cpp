@@ -116,13 +116,16 @@ ArcSmoothness arc_smoothness(const Arc& arc) {
       s.jump_frame = static_cast<double>((i + 1) % n) / arc.samples_per_frame;
     }
   }
-  double sum = 0, best = 0;
+  std::vector<double> jerk(static_cast<std::size_t>(n));
+  double best = 0;
   for (int i = 0; i < n; ++i) {
     const double j = (P(i + 2) - 3 * P(i + 1) + 3 * P(i) - P(i - 1)).norm();
-    sum += j;
+    jerk[static_cast<std::size_t>(i)] = j;
     if (j > best) best = j, s.jerk_frame = (i + 0.5) / arc.samples_per_frame;
   }
-  s.jerk_ratio = sum > 1e-15 ? best / (sum / n) : 0.0;
+  std::nth_element(jerk.begin(), jerk.begin() + n / 2, jerk.end());
+  const double median = jerk[static_cast<std::size_t>(n / 2)];
+  s.jerk_ratio = median > 1e-15 ? best / median : 0.0;
   return s;
 }
 

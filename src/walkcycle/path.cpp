@@ -218,7 +218,7 @@ Path parse_path_json(std::string_view text, std::string_view source) {
   json doc;
   try {
     doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     throw Error(std::string(source) + ": not valid JSON: " + e.what());
   }
   if (!doc.is_object()) throw Error(std::string(source) + ": expected an object with polyline, bezier, catmull_rom or svg");

@@ -124,7 +124,7 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
       // short: from mid-step, half a step remains before the stop step, which
       // itself still travels about half a step.
       const double s_here = path.project(here, seg_track, s_track + 3 * L + lookahead, nullptr, nullptr);
-      if (opt.steps < 0 && stop_step < 0 && path.length() - std::max(s_here, s_track) < 1.5 * L) {
+      if (opt.steps < 0 && stop_step < 0 && path.length() - s_here < 1.5 * L) {
         if (opt.stop) stop_step = k;
         else end_time = k * half;
       }

@@ -43,8 +43,9 @@ Arc trace_arc(const CycleModel& m, int joint, int samples_per_frame = 1);
 
 // Arc smoothness. The turning angle at each point (ignoring points where the
 // joint barely moves) should change gradually; a key pose that breaks the
-// arc shows as a jump. jerk_ratio = largest |third difference| over the mean
-// one (about 1.5-2.5 for a smooth loop; larger flags a jerky key).
+// arc shows as a jump. jerk_ratio = largest |third difference| of the
+// points over the median one (a smooth loop stays low; a key pose that
+// kinks the arc raises it, and jerk_frame says where).
 struct ArcSmoothness {
   double max_curvature_jump_deg = 0;
   double jump_frame = 0;
