@@ -125,9 +125,9 @@ WALKS['normal'] = {
                    'elbows shifted one frame behind the shoulders.',
     'frames_per_cycle': 24, 'fps': 24,
     'keys': {
-        'contact': pose(L=(-25, 5, 5, 0), R=(20, 22, -2, -30), LA=(-20, 10), RA=(22, 25),
+        'contact': pose(L=(-25, 5, 5, 0), R=(18, 12, -2, -25), LA=(-20, 10), RA=(22, 25),
                         hips=(5, -6, 0), spine1=(2, 6, 0)),
-        'down': pose(L=(-20, 25, -5, 0), R=(12, 48, 0, -10), LA=(-26, 12), RA=(26, 30),
+        'down': pose(L=(-20, 32, -8, 0), R=(12, 48, 0, -10), LA=(-26, 12), RA=(26, 30),
                      hips=(6, -4, -2), spine1=(3, 4, 1)),
         'pass': pose(L=(-2, 8, -6, 0), R=(-18, 62, -8, 0), LA=(0, 15), RA=(2, 18),
                      hips=(5, 0, -3), spine1=(2, 0, 2)),
@@ -147,21 +147,21 @@ WALKS['sneak'] = {
     'frames_per_cycle': 32, 'fps': 24,
     'timing': {'down': 5, 'pass': 9, 'up': 12},
     'keys': {
-        'contact': pose(L=(-45, 25, -5, 0), R=(15, 40, 10, -35), LA=(45, 95, 10), RA=(60, 90, 10),
-                        hips=(22, -8, 0), lowerback=(8, 0, 0), spine1=(10, 8, 0), neck=(-30, 0, 0),
+        'contact': pose(L=(-45, 25, -5, 0), R=(10, 30, 10, -30), LA=(45, 95, 10), RA=(60, 90, 10),
+                        hips=(8, -8, 0), lowerback=(18, 0, 0), spine1=(14, 8, 0), neck=(-30, 0, 0),
                         head=(-5, 0, 0), wrists=(50, 50)),
         'down': pose(L=(-35, 60, -15, 0), R=(0, 75, 10, -20), LA=(40, 100, 10), RA=(65, 95, 10),
-                     hips=(26, -5, -2), lowerback=(10, 0, 0), spine1=(12, 5, 1), neck=(-34, 0, 0),
+                     hips=(10, -5, -2), lowerback=(20, 0, 0), spine1=(16, 5, 1), neck=(-34, 0, 0),
                      head=(-8, 0, 0), wrists=(55, 55)),
         'pass': pose(L=(-18, 45, -14, 0), R=(-55, 110, 20, 0), LA=(50, 95, 10), RA=(55, 95, 10),
-                     hips=(24, 0, -3), lowerback=(9, 0, 0), spine1=(11, 0, 2), neck=(-32, 0, 0),
+                     hips=(9, 0, -3), lowerback=(19, 0, 0), spine1=(15, 0, 2), neck=(-32, 0, 0),
                      head=(-6, 0, 0), wrists=(50, 50)),
         'up': pose(L=(5, 35, 25, -30), R=(-70, 70, 20, 10), LA=(60, 90, 10), RA=(45, 100, 10),
-                   hips=(22, 6, -1), lowerback=(8, 0, 0), spine1=(10, -6, 1), neck=(-30, 0, 0),
+                   hips=(8, 6, -1), lowerback=(18, 0, 0), spine1=(14, -6, 1), neck=(-30, 0, 0),
                    head=(-4, 0, 0), wrists=(50, 50)),
     },
     'shift': {'LeftArm': 1, 'LeftForeArm': 2, 'Head': 1},
-    'stand': stand(hips=(12, 0, 0), lowerback=(6, 0, 0), spine1=(6, 0, 0)),
+    'stand': stand(hips=(6, 0, 0), lowerback=(10, 0, 0), spine1=(8, 0, 0)),
 }
 
 # Double bounce: the body rises and dips twice per step (high at contact and
@@ -174,7 +174,7 @@ WALKS['double-bounce'] = {
     'keys': {
         'contact': pose(L=(-22, 0, 8, 0), R=(18, 5, 15, -30), LA=(-18, 30), RA=(22, 45),
                         hips=(3, -5, 0), spine1=(0, 5, 0), head=(10, 0, 0)),
-        'down': pose(L=(-30, 50, -12, 0), R=(20, 65, 10, -15), LA=(-10, 55), RA=(30, 70),
+        'down': pose(L=(-30, 50, -12, 0), R=(10, 55, 10, -10), LA=(-10, 55), RA=(30, 70),
                      hips=(6, -3, -2), spine1=(4, 3, 0), head=(18, 0, 0)),
         'pass': pose(L=(-4, 0, 25, -25), R=(-30, 80, 10, 0), LA=(5, 35), RA=(10, 40),
                      hips=(3, 0, -3), spine1=(0, 0, 2), head=(8, 0, 0)),
