@@ -161,7 +161,7 @@ json arc_outputs(const wc::CycleModel& m, const std::string& joint_name, const s
   announce("arc", base + ".svg");
   std::printf("arc %s: jerk ratio %.2f at frame %.1f, largest curvature jump %.1f deg at frame %.1f%s\n",
               m.skeleton.names[static_cast<std::size_t>(j)].c_str(), sm.jerk_ratio, sm.jerk_frame,
-              sm.max_curvature_jump_deg, sm.jump_frame, sm.jerk_ratio > 3.0 ? "  <- jerky: check the keys near this frame" : "");
+              sm.max_curvature_jump_deg, sm.jump_frame, sm.jerk_ratio > 4.0 ? "  <- jerky: check the keys near this frame" : "");
   return {{"joint", m.skeleton.names[static_cast<std::size_t>(j)]},
           {"jerk_ratio", r6(sm.jerk_ratio)},
           {"jerk_frame", r6(sm.jerk_frame)},
@@ -357,12 +357,12 @@ void run_walk(const WalkArgs& a) {
                 "max deviation %.3f m\n",
                 w.steps, w.motion.frame_count(), w.motion.fps, ms, w.path_length, rad2deg(w.turning), w.end_distance,
                 w.max_path_deviation);
-    std::printf("stance slip: max %.4f mm, mean %.4f mm over %d pivot phases\n", slip.max_mm, slip.mean_mm, slip.phases);
+    std::printf("stance slip: max %.2e mm, mean %.2e mm over %d pivot phases\n", slip.max_mm, slip.mean_mm, slip.phases);
     report["steps"] = w.steps;
     report["frames"] = w.motion.frame_count();
     report["output_fps"] = w.motion.fps;
-    report["stance_slip_mm_max"] = r6(slip.max_mm);
-    report["stance_slip_mm_mean"] = r6(slip.mean_mm);
+    report["stance_slip_mm_max"] = slip.max_mm;
+    report["stance_slip_mm_mean"] = slip.mean_mm;
     report["stance_phases"] = slip.phases;
     report["path_length_m"] = r6(w.path_length);
     report["turning_deg"] = r6(rad2deg(w.turning));
