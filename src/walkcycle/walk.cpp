@@ -68,7 +68,7 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
   if (opt.steps < 0 && L < 0.01)
     throw Error("the walk advances only " + std::to_string(L * 1000) +
                 " mm per step; its key poses do not move the stance foot backwards, so it cannot follow a path");
-  const double lookahead = std::max(opt.lookahead_steps * L, 0.05);
+  const double lookahead = std::max(opt.lookahead_steps * L, 0.05);  // lead of the heading decisions
   const double hold = half / 2;
 
   std::vector<double> target{std::atan2(path.tangent(0).x(), path.tangent(0).z())};
@@ -76,7 +76,6 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
   double end_time = opt.steps >= 0 && !opt.stop ? opt.steps * half : -1;
   double s_track = 0;
   int seg_track = 0;
-  Vec3 last_decision_pos = path.points.front();
 
   auto heading_at = [&](double t) {
     const int j = static_cast<int>(std::floor(t / half + 0.5));
@@ -106,25 +105,27 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
     while (static_cast<int>(target.size()) <= need) {
       const int k = static_cast<int>(target.size());
       const Vec3 here = f > 0 ? horizontal(out.frame(f - 1).translations[0]) : path.points.front();
-      const Vec3 pos = k >= 2 ? Vec3(0.5 * (here + last_decision_pos)) : here;
-      last_decision_pos = here;
       double dist = 0;
-      s_track = std::max(s_track, path.project(pos, seg_track, s_track + 3 * L + lookahead, &seg_track, &dist));
+      s_track = std::max(s_track, path.project(here, seg_track, s_track + 3 * L + lookahead, &seg_track, &dist));
       const double remaining = path.length() - s_track;
       double th = target.back();
       if (stop_step >= 0 && k > stop_step) {
         // Stopping: keep the last heading.
-      } else if (remaining > 0.5 * L) {
-        const Vec3 aim = path.at(s_track + lookahead) - pos;
-        th = std::atan2(aim.x(), aim.z());
+      } else if (remaining > 0.25 * L) {
+        // The path's direction where the body will be once this heading has
+        // blended in (a step on: the chord over the step around s + lead),
+        // steered back towards the path in proportion to how far off it is.
+        const Vec3 chord = path.at(s_track + lookahead + 0.5 * L) - path.at(s_track + lookahead - 0.5 * L);
+        const Vec3 t0 = path.tangent(s_track);
+        const double off_left = (here - path.at(s_track)).dot(Vec3(t0.z(), 0, -t0.x()));
+        th = std::atan2(chord.x(), chord.z()) - std::atan(off_left / (2 * L));
         while (th - target.back() > kPi) th -= 2 * kPi;
         while (th - target.back() < -kPi) th += 2 * kPi;
       }
       // Stop when going on would overshoot the end by more than it falls
       // short: from mid-step, half a step remains before the stop step, which
       // itself still travels about half a step.
-      const double s_here = path.project(here, seg_track, s_track + 3 * L + lookahead, nullptr, nullptr);
-      if (opt.steps < 0 && stop_step < 0 && path.length() - s_here < 1.5 * L) {
+      if (opt.steps < 0 && stop_step < 0 && remaining < 1.5 * L) {
         if (opt.stop) stop_step = k;
         else end_time = k * half;
       }

@@ -239,7 +239,7 @@ TEST(Walk, StanceFootDoesNotSlipStraightOrCurved) {
     EXPECT_NEAR(end1.z(), 8.0, L) << w;
     EXPECT_NEAR(std::abs(rad2deg(curved.turning)), 90.0, 12.0) << w;
     EXPECT_LT(curved.end_distance, L) << w;
-    EXPECT_LT(curved.max_path_deviation, 0.45) << w;  // pure pursuit cuts the corner a little
+    EXPECT_LT(curved.max_path_deviation, 0.15) << w;
     EXPECT_LT(straight.max_path_deviation, 0.12) << w;
   }
 }

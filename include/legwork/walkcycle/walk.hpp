@@ -14,8 +14,9 @@
 // heading theta_n per path segment); heading changes are spread from the
 // middle of one step to the middle of the next, and every rotation is applied
 // about the planted pivot, so the stance foot stays put while the body turns.
-// Headings come from pure pursuit of a point one and a half steps ahead on the
-// path (this keeps the walk on the path despite the pivoting).
+// Each step's heading is decided at the middle of the previous step: the
+// path's direction one step further on (where the heading will have blended
+// in), corrected towards the path by atan(offset / two steps).
 // At the path's end the last step blends into the standing pose.
 //
 // walk_path() is offline (allocates the output motion once it knows its
@@ -29,7 +30,7 @@ namespace legwork::walkcycle {
 
 struct WalkOptions {
   double fps = 0;              // output rate; 0 = the walk's own rate
-  double lookahead_steps = 1.5;  // pure-pursuit distance in step lengths
+  double lookahead_steps = 1.0;  // heading lead along the path, in step lengths
   bool stop = true;            // end in the standing pose at the path's end
   int max_steps = 100000;      // safety limit
   int steps = -1;              // >= 0: walk exactly this many steps (then stop), ignoring the path's end
