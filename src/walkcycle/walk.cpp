@@ -85,7 +85,13 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
   };
 
   Motion& out = r.motion;
-  out = Motion(m.skeleton, out_fps, 0);
+  // Frames are written into a motion sized from the expected walk (grown by
+  // doubling if needed, trimmed at the end) instead of appended one by one.
+  const double expected_steps = opt.steps >= 0 ? opt.steps + 2.0 : path.length() / std::max(L, 0.01) + 3.0;
+  out = Motion(m.skeleton, out_fps, static_cast<int>(std::min(1e6, (expected_steps * half + half) / dt)) + 2);
+  r.labels.reserve(static_cast<std::size_t>(out.frame_count()));
+  r.heading.reserve(static_cast<std::size_t>(out.frame_count()));
+  int written = 0;
   Pose local(m.skeleton), stand_blend(m.skeleton), world(m.skeleton);
   FootPoints prev{};
   Vec3 c = Vec3::Zero();
@@ -166,7 +172,9 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
     world.translations = local.translations;
     world.rotations[0] = yaw(theta) * local.rotations[0];
     world.translations[0] = yaw(theta) * local.translations[0] + c;
-    out.push_back(world);
+    if (f >= out.frame_count()) out.resize(2 * out.frame_count());
+    out.set_frame(f, world);
+    written = f + 1;
     r.heading.push_back(theta);
     r.labels.push_back(label);
 
@@ -190,6 +198,7 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
     prev = cur;
     theta_prev = theta;
   }
+  out.resize(written);
   if (r.labels.size() > 1) r.labels[0] = r.labels[1];
   // The other foot, where it ends up beside the stance foot.
   if (opt.stop && out.frame_count() > 0) {
