@@ -153,10 +153,10 @@ WALKS['sneak'] = {
         'down': pose(L=(-35, 60, -15, 0), R=(0, 75, 10, -20), LA=(40, 100, 10), RA=(65, 95, 10),
                      hips=(10, -5, -2), lowerback=(20, 0, 0), spine1=(16, 5, 1), neck=(-34, 0, 0),
                      head=(-8, 0, 0), wrists=(55, 55)),
-        'pass': pose(L=(-18, 45, -14, 0), R=(-55, 110, 20, 0), LA=(50, 95, 10), RA=(55, 95, 10),
+        'pass': pose(L=(-18, 45, -14, 0), R=(-55, 110, -5, 0), LA=(50, 95, 10), RA=(55, 95, 10),
                      hips=(9, 0, -3), lowerback=(19, 0, 0), spine1=(15, 0, 2), neck=(-32, 0, 0),
                      head=(-6, 0, 0), wrists=(50, 50)),
-        'up': pose(L=(5, 35, 25, -30), R=(-70, 70, 20, 10), LA=(60, 90, 10), RA=(45, 100, 10),
+        'up': pose(L=(5, 35, 25, -30), R=(-70, 75, 0, 0), LA=(60, 90, 10), RA=(45, 100, 10),
                    hips=(8, 6, -1), lowerback=(18, 0, 0), spine1=(14, -6, 1), neck=(-30, 0, 0),
                    head=(-4, 0, 0), wrists=(50, 50)),
     },
@@ -178,10 +178,13 @@ WALKS['double-bounce'] = {
                      hips=(6, -3, -2), spine1=(4, 3, 0), head=(18, 0, 0)),
         'pass': pose(L=(-4, 0, 25, -25), R=(-30, 80, 10, 0), LA=(5, 35), RA=(10, 40),
                      hips=(3, 0, -3), spine1=(0, 0, 2), head=(8, 0, 0)),
-        'up': pose(L=(0, 45, -10, 0), R=(-48, 60, -15, 0), LA=(20, 60), RA=(-5, 50),
+        'up': pose(L=(0, 45, -10, 0), R=(-42, 62, -15, 0), LA=(20, 60), RA=(-5, 50),
                    hips=(6, 3, -2), spine1=(4, -3, 1), head=(18, 0, 0)),
     },
     'shift': {'Head': 1, 'Neck1': 1, 'LeftForeArm': 1},
+    # Between tiptoe (pass) and the bent-knee dip (up) the spline alone would
+    # sink the stance foot 45 mm into the floor: two root in-betweens.
+    'inbetweens': [{'frame': 7, 'root': {'height': 'floor'}}, {'frame': 8, 'root': {'height': 'floor'}}],
     'stand': stand(),
 }
 
@@ -196,12 +199,15 @@ def main():
         if 'timing' in w:
             doc['timing'] = w['timing']
         doc['keys'] = w['keys']
+        if 'inbetweens' in w:
+            doc['inbetweens'] = w['inbetweens']
         doc['shift'] = w['shift']
         doc['stand'] = w['stand']
         path = os.path.join(out_dir, name + '.json')
         text = json.dumps(doc, indent=2)
         # One line per [x, y, z] triple.
         text = re.sub(r'\[\s*(-?[\d.e+-]+),\s*(-?[\d.e+-]+),\s*(-?[\d.e+-]+)\s*\]', r'[\1, \2, \3]', text)
+        text = re.sub(r'\{\s*"frame": ([\d.]+),\s*"root": \{\s*"height": "floor"\s*\}\s*\}', r'{"frame": \1, "root": {"height": "floor"}}', text)
         with open(path, 'w') as f:
             f.write(text + '\n')
         print('wrote', path)

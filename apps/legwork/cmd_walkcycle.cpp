@@ -210,6 +210,8 @@ void write_slide_video(const wc::CycleModel& m, double spacing, const std::strin
     s.title = title;
     char name[32];
     std::snprintf(name, sizeof name, "f%05d.png", f);
+    std::fprintf(stderr, "\rsliding video: frame %d/%d", f + 1, frames + 1);
+    if (f == frames) std::fprintf(stderr, "\n");
     render::render_scene(s, cam, (dir / name).string());
   }
   ensure_parent(path);
@@ -320,12 +322,21 @@ void run_walk(const WalkArgs& a) {
   report["frames_per_cycle"] = model.frames_per_cycle;
   report["fps"] = model.fps;
   report["step_length_m"] = r6(wc::step_length(model));
-  report["loop_seam_error"] = r6(seam.position_m * 1e3) / 1e3;  // metres
+  report["loop_seam_error"] = seam.position_m;  // metres (position; velocity below)
   report["loop_seam_error_m"] = seam.position_m;
   report["loop_seam_velocity_error_mps"] = seam.velocity_mps;
   report["key_frames"] = {model.key_frames[0], model.key_frames[1], model.key_frames[2], model.key_frames[3]};
   report["key_foot_height_mm"] = json::array();
   for (double h : feet) report["key_foot_height_mm"].push_back(r6(h * 1e3));
+  const auto floor = wc::cycle_floor_contact(model);
+  report["cycle_lowest_foot_mm"] = r6(floor.lowest_m * 1e3);
+  report["cycle_lowest_foot_frame"] = floor.at_frame;
+  report["floor_clamp"] = model.floor_clamp;
+  report["floor_lift_mm_max"] = r6(floor.max_lift_m * 1e3);
+  report["floor_lift_frame"] = floor.lift_frame;
+  if (floor.max_lift_m > 0.01)
+    std::printf("note: between the keys a foot would dip %.0f mm below the floor at frame %.2f%s\n", floor.max_lift_m * 1e3,
+                floor.lift_frame, model.floor_clamp ? "; the root is lifted there (floor_clamp)" : " (floor_clamp is off)");
 
   if (!a.cycle_out.empty()) write_motion(a.cycle_out, wc::bake_cycle(model), "in-place cycle");
   if (!a.sheet.empty()) write_sheet(model, a, name);

@@ -156,7 +156,8 @@ double lowest_foot_point(const Skeleton& skel, ConstPoseRef pose) {
 }
 
 // The root offset of key pose k: as authored, or with the height that puts
-// the lowest foot point (heel, ball, toe tip) of `pose` on the floor.
+// the lowest foot point (heel, ball, toe tip) of either foot of `pose` on
+// the floor.
 Vec3 floor_offset(const CycleModel& m, const KeyPose& k, Pose& pose) {
   Vec3 off = k.root_offset.value_or(Vec3::Zero());
   if (!k.height_on_floor) return off;
@@ -183,6 +184,42 @@ void sample_cycle_rotations_only(const CycleModel& m, const Inbetween& ib, const
   }
 }
 
+// The floor lift: how far the root must rise so that no foot point goes below
+// the floor, sampled 4 times per frame, widened by half a frame each way and
+// smoothed (so it still covers every dip) and stored as one more periodic
+// spline - a smooth (C1) lift, not a clamp that would kink the motion.
+void add_floor_lift(CycleModel& m) {
+  constexpr int kPerFrame = 4, kReach = 2;
+  const int n = m.frames_per_cycle * kPerFrame;
+  Pose p(m.skeleton);
+  std::vector<double> lift(static_cast<std::size_t>(n));
+  double worst = 0;
+  for (int i = 0; i < n; ++i) {
+    sample_cycle(m, static_cast<double>(i) / kPerFrame, p.ref());
+    lift[static_cast<std::size_t>(i)] = std::max(0.0, -lowest_foot_height(m, p));
+    worst = std::max(worst, lift[static_cast<std::size_t>(i)]);
+  }
+  if (worst <= 0) return;
+  auto at = [&](const std::vector<double>& v, int i) { return v[static_cast<std::size_t>(((i % n) + n) % n)]; };
+  std::vector<double> wide(lift.size());
+  for (int i = 0; i < n; ++i) {
+    double w = 0;
+    for (int k = -kReach; k <= kReach; ++k) w = std::max(w, at(lift, i + k));
+    wide[static_cast<std::size_t>(i)] = w;
+  }
+  // Gaussian (sigma = a quarter frame) over +-half a frame: a weighted mean of values
+  // that are all >= lift[i], so the result stays >= lift[i].
+  double weights[2 * kReach + 1], sum = 0;
+  for (int k = -kReach; k <= kReach; ++k) sum += weights[k + kReach] = std::exp(-0.5 * (k * k));
+  std::vector<Entry> e;
+  for (int i = 0; i < n; ++i) {
+    double v = 0;
+    for (int k = -kReach; k <= kReach; ++k) v += weights[k + kReach] / sum * at(wide, i + k);
+    e.push_back({static_cast<double>(i) / kPerFrame, Quat::Identity(), Vec3(0, v, 0)});
+  }
+  m.floor_lift = add_channel(m, std::move(e), false);
+}
+
 }  // namespace
 
 CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys) {
@@ -200,6 +237,7 @@ CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys) {
   m.frames_per_cycle = keys.frames_per_cycle;
   m.fps = keys.fps;
   m.key_frames = keys.key_frames;
+  m.floor_clamp = false;  // while building: the channels are not complete yet
   const int n = skel.joint_count();
   const double half = m.half_cycle();
   const auto mir = [&](int j) { return skel.mirror[static_cast<std::size_t>(j)]; };
@@ -285,6 +323,8 @@ CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys) {
       }
     m.root_offset = add_channel(m, std::move(e), false);
   }
+  if (keys.floor_clamp) add_floor_lift(m);
+  m.floor_clamp = keys.floor_clamp;
   return m;
 }
 
@@ -297,7 +337,30 @@ void sample_cycle(const CycleModel& m, double frame, PoseRef out) {
     out.translations[static_cast<std::size_t>(j)] = m.skeleton.rest_offsets[static_cast<std::size_t>(j)];
   }
   out.translations[0] = Vec3(0, m.stand_height, 0) + eval_channel(m, m.root_offset, t);
+  if (m.floor_clamp && m.floor_lift.count > 0) out.translations[0] += eval_channel(m, m.floor_lift, t);
 }
+
+double lowest_foot_height(const CycleModel& m, ConstPoseRef pose) {
+  double lo = 1e300;
+  for (const FootPivots* f : {&m.left, &m.right}) {
+    Quat r = Quat::Identity();
+    Vec3 t = Vec3::Zero();
+    for (int i = 0; i < f->chain_length; ++i) {
+      const auto j = static_cast<std::size_t>(f->chain[static_cast<std::size_t>(i)]);
+      t = r * pose.translations[j] + t;
+      r = r * pose.rotations[j];
+    }
+    lo = std::min({lo, (r * f->heel_local + t).y(), (r * f->ball_local + t).y()});
+    if (f->toe >= 0) {
+      const auto tj = static_cast<std::size_t>(f->toe);
+      const Vec3 toe = r * pose.translations[tj] + t;
+      lo = std::min(lo, toe.y());
+      if (m.skeleton.has_end_site[tj]) lo = std::min(lo, (r * pose.rotations[tj] * m.skeleton.end_sites[tj] + toe).y());
+    }
+  }
+  return lo;
+}
+
 
 Motion bake_cycle(const CycleModel& m) {
   Motion out(m.skeleton, m.fps, m.frames_per_cycle);

@@ -191,7 +191,7 @@ WalkKeys parse_walk_keys(std::string_view text, const Skeleton& skel, std::strin
     throw Error(std::string(source) + ": not valid JSON: " + e.what());
   }
   check_fields(doc, {"format", "name", "description", "skeleton", "frames_per_cycle", "fps", "euler_order", "timing",
-                     "keys", "inbetweens", "shift", "stand", "comment"},
+                     "keys", "inbetweens", "shift", "stand", "floor_clamp", "comment"},
                w, "(top level)");
   WalkKeys k;
   if (doc.contains("format") && doc["format"] != "legwork-walk/1")
@@ -273,6 +273,10 @@ WalkKeys parse_walk_keys(std::string_view text, const Skeleton& skel, std::strin
     }
   }
   if (doc.contains("stand")) k.stand = parse_pose(doc["stand"], skel, k.euler, w, "stand", false);
+  if (doc.contains("floor_clamp")) {
+    if (!doc["floor_clamp"].is_boolean()) w.fail("floor_clamp", "expected true or false");
+    k.floor_clamp = doc["floor_clamp"].get<bool>();
+  }
   return k;
 }
 
@@ -322,6 +326,7 @@ std::string format_walk_keys(const WalkKeys& k, const Skeleton& skel) {
     for (auto [j, d] : k.shift) s[skel.names[static_cast<std::size_t>(j)]] = d;
     doc["shift"] = s;
   }
+  if (!k.floor_clamp) doc["floor_clamp"] = false;
   if (k.stand) {
     json st = pose_json(*k.stand, skel, k.euler);
     st.erase("root");

@@ -129,6 +129,24 @@ ArcSmoothness arc_smoothness(const Arc& arc) {
   return s;
 }
 
+FloorReport cycle_floor_contact(const CycleModel& m) {
+  FloorReport r;
+  r.lowest_m = 1e9;
+  CycleModel unclamped = m;
+  unclamped.floor_clamp = false;
+  Pose p(m.skeleton);
+  for (int i = 0; i < 4 * m.frames_per_cycle; ++i) {
+    const double t = i / 4.0;
+    sample_cycle(m, t, p.ref());
+    const double lo = lowest_foot_height(m, p);
+    if (lo < r.lowest_m) r.lowest_m = lo, r.at_frame = t;
+    sample_cycle(unclamped, t, p.ref());
+    const double dip = -lowest_foot_height(m, p);
+    if (dip > r.max_lift_m) r.max_lift_m = dip, r.lift_frame = t;
+  }
+  return r;
+}
+
 std::array<double, kKeyCount + 1> key_foot_heights(const CycleModel& m) {
   std::array<double, kKeyCount + 1> out{};
   std::vector<Transform> g(static_cast<std::size_t>(m.skeleton.joint_count()));

@@ -123,6 +123,7 @@ Skeleton symmetric(const Skeleton& in) {
   for (int j = 0; j < s.joint_count(); ++j) {
     const auto ju = static_cast<std::size_t>(j), mu = static_cast<std::size_t>(in.mirror[ju]);
     s.rest_offsets[ju] = 0.5 * (in.rest_offsets[ju] + mirror_vector(in.rest_offsets[mu]));
+    s.end_sites[ju] = 0.5 * (in.end_sites[ju] + mirror_vector(in.end_sites[mu]));
   }
   return s;
 }
@@ -178,7 +179,8 @@ TEST(Cycle, KeysAreHitAndTheLoopIsContinuous) {
   const auto& s = cmu_skeleton();
   for (const auto& w : kWalks) {
     auto keys = read_walk_keys(walk_file(w), s);
-    keys.shift.clear();  // with no shift every key pose is hit exactly
+    keys.shift.clear();  // with no shift and no floor lift every key pose is hit exactly
+    keys.floor_clamp = false;
     const CycleModel m = build_cycle(s, keys);
     Pose p(s);
     for (int k = 0; k < kKeyCount; ++k) {
@@ -193,8 +195,20 @@ TEST(Cycle, KeysAreHitAndTheLoopIsContinuous) {
       EXPECT_LT(seam.position_m, 1e-4) << w;
       EXPECT_LT(seam.velocity_mps, 1e-4) << w;
     }
-    // Key poses keep the feet on the floor ("height": "floor").
+    // Key poses keep the feet on the floor ("height": "floor"), and the
+    // floor lift keeps them from dipping below it between the keys.
     for (double h : key_foot_heights(m)) EXPECT_NEAR(h, 0.0, 0.005) << w;
+    const CycleModel lifted = shipped(w);
+    const FloorReport fl = cycle_floor_contact(lifted);
+    const auto at_keys = key_foot_heights(lifted);  // the lift may raise a key a little
+    for (int k = 0; k < kKeyCount; ++k) {
+      sample_cycle(lifted, lifted.key_frames[static_cast<std::size_t>(k)], p.ref());
+      EXPECT_LT(lowest_foot_height(lifted, p), 0.01) << w << " key " << k;  // floats at most 1 cm at a key
+    }
+    (void)at_keys;
+    std::printf("[walkcycle] %-13s feet: a foot would dip %.1f mm below the floor between keys (frame %.2f); with the lift, lowest %.2f mm\n",
+                w.c_str(), fl.max_lift_m * 1e3, fl.lift_frame, fl.lowest_m * 1e3);
+    EXPECT_GT(fl.lowest_m, -1e-3) << w;
   }
 }
 
@@ -303,6 +317,7 @@ TEST(Arcs, AJerkyKeyPoseShowsInTheArc) {
   const auto& s = cmu_skeleton();
   auto keys = read_walk_keys(walk_file("normal"), s);
   keys.shift.clear();
+  keys.floor_clamp = false;  // the arm alone
   const CycleModel smooth = build_cycle(s, keys);
   // Flick the left elbow at the down key only.
   keys.keys[1].set(s.find("LeftForeArm"), euler_xyz_to_quat(Vec3(0, -95, 0), keys.euler));

@@ -53,6 +53,7 @@ struct CycleModel {
   };
   std::vector<Channel> rotation;  // per joint
   Channel root_offset;            // Vec3 values (x side, y height, z forward)
+  Channel floor_lift;             // (0, lift, 0): keeps the feet above the floor (count 0 = none)
   std::vector<double> key_time;   // cycle frames, sorted within a channel, in [0, N)
   std::vector<Vec3> key_value;    // rotation vector (radians) or offset (metres)
   std::vector<Vec3> key_slope;    // d value / d frame at the key
@@ -61,6 +62,7 @@ struct CycleModel {
   // and the next contact (mirror of contact): 5 poses, root at (side, height, forward).
   std::array<Pose, kKeyCount + 1> step_keys;
   Pose stand;  // standing pose, root at (0, stand_height, 0)
+  bool floor_clamp = true;  // sample_cycle adds floor_lift (no foot below the floor)
   FootPivots left, right;
 
   double half_cycle() const { return frames_per_cycle / 2.0; }
@@ -72,7 +74,9 @@ struct CycleModel {
 CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys);
 
 // Local pose at cycle time `frame` (cycle frames; any real number, wrapped
-// into [0, N)). Root translation = (0, stand_height, 0) + root offset.
+// into [0, N)). Root translation = (0, stand_height, 0) + root offset (+ the
+// smooth floor lift that keeps every foot point above the floor, if
+// floor_clamp; it covers the dips sampled 4 times per frame).
 void sample_cycle(const CycleModel& m, double frame, PoseRef out);
 
 // The in-place loop: frames_per_cycle frames at the walk's rate (frame N,
@@ -82,6 +86,10 @@ Motion bake_cycle(const CycleModel& m);
 // Model-space position of a foot's heel or ball for a pose (FK of the leg
 // chain only; no allocation).
 Vec3 foot_point(const CycleModel& m, ConstPoseRef pose, bool left_foot, Pivot which);
+
+// Height of the lowest foot point (heel, ball or toe tip of either foot)
+// above the floor for a pose, metres, model space (FK of the leg chains only).
+double lowest_foot_height(const CycleModel& m, ConstPoseRef pose);
 
 // Which foot carries the weight and which point it pivots on at cycle time t
 // (first step: left foot, heel until the pass key, then ball).

@@ -31,7 +31,9 @@ struct KeyPose {
   // x = side (+ = character's left), y = height, z = forward.
   std::optional<Vec3> root_offset;
   // "height": "floor": the height is set when the cycle is built so the
-  // lowest foot point of this pose touches the floor (root_offset->y ignored).
+  // lowest point of either foot in this pose touches the floor
+  // (root_offset->y ignored). In-betweens take the joints they leave out
+  // from the spline.
   bool height_on_floor = false;
   // The rotation of `joint` if listed, else nullptr.
   const Quat* find(int joint) const;
@@ -70,6 +72,9 @@ struct WalkKeys {
   // Standing pose used to stop at the end of a path (rotations only). If
   // absent, the symmetric mean of the eight key poses of the cycle.
   std::optional<KeyPose> stand;
+  // Lift the root smoothly wherever a foot would go below the floor between
+  // keys (the spline does not know about the floor). Default on.
+  bool floor_clamp = true;
 };
 
 // The key frames for `frames` per cycle scaled from `keys` (timing, in-betweens

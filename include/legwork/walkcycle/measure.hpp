@@ -58,4 +58,16 @@ ArcSmoothness arc_smoothness(const Arc& arc);
 // five key poses of the step, metres (0 = touching; < 0 = below the floor).
 std::array<double, kKeyCount + 1> key_foot_heights(const CycleModel& m);
 
+// The same lowest foot point over the whole in-place cycle (4 samples per
+// frame): the minimum (metres, negative = below the floor; >= 0 with
+// floor_clamp) and where, and how far the floor clamp had to lift the root
+// (how far the spline alone would dip a foot below the floor between keys).
+struct FloorReport {
+  double lowest_m = 0;
+  double at_frame = 0;
+  double max_lift_m = 0;
+  double lift_frame = 0;
+};
+FloorReport cycle_floor_contact(const CycleModel& m);
+
 }  // namespace legwork::walkcycle
