@@ -377,6 +377,7 @@ void run_walk(const WalkArgs& a) {
     report["stance_phases"] = slip.phases;
     report["path_length_m"] = r6(w.path_length);
     report["turning_deg"] = r6(rad2deg(w.turning));
+    report["turning_abs_deg"] = r6(rad2deg(w.turning_abs));
     report["end_distance_m"] = r6(w.end_distance);
     report["max_path_deviation_m"] = r6(w.max_path_deviation);
     json steps = json::array();

@@ -36,15 +36,16 @@ done
 {
   echo "# Walk-cycle demo figures"
   echo
-  echo "| walk | path | steps | frames | stance slip max (mm) | loop seam (m) | turning (deg) | end distance (m) |"
-  echo "|---|---|---|---|---|---|---|---|"
+  echo "| walk | run | steps | frames | stance slip max (mm) | loop seam (m) | net / total turning (deg) | max path deviation (m) | end distance (m) | floor lift (mm) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|"
   for f in "$out"/*_report.json; do
     python3 - "$f" <<'PY'
 import json, os, sys
 r = json.load(open(sys.argv[1]))
 name = os.path.basename(sys.argv[1]).replace('_report.json', '')
 print(f"| {r.get('walk')} | {name} | {r.get('steps')} | {r.get('frames')} | {r.get('stance_slip_mm_max'):.1e} | "
-      f"{r.get('loop_seam_error_m', 0):.2e} | {r.get('turning_deg', 0):.1f} | {r.get('end_distance_m', 0):.3f} |")
+      f"{r.get('loop_seam_error_m', 0):.2e} | {r.get('turning_deg', 0):.1f} / {r.get('turning_abs_deg', 0):.1f} | "
+      f"{r.get('max_path_deviation_m', 0):.3f} | {r.get('end_distance_m', 0):.3f} | {r.get('floor_lift_mm_max', 0):.1f} |")
 PY
   done
 } > "$out/figures.md"

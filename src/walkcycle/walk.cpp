@@ -76,6 +76,7 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
   double end_time = opt.steps >= 0 && !opt.stop ? opt.steps * half : -1;
   double s_track = 0;
   int seg_track = 0;
+  Vec3 last_here = path.points.front();
 
   auto heading_at = [&](double t) {
     const int j = static_cast<int>(std::floor(t / half + 0.5));
@@ -115,6 +116,8 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
       s_track = std::max(s_track, path.project(here, seg_track, s_track + 3 * L + lookahead, &seg_track, &dist));
       const double remaining = path.length() - s_track;
       double th = target.back();
+      const Vec3 prev_here = last_here;
+      last_here = here;
       if (stop_step >= 0 && k > stop_step) {
         // Stopping: keep the last heading.
       } else if (remaining > 0.25 * L) {
@@ -123,7 +126,10 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
         // steered back towards the path in proportion to how far off it is.
         const Vec3 chord = path.at(s_track + lookahead + 0.5 * L) - path.at(s_track + lookahead - 0.5 * L);
         const Vec3 t0 = path.tangent(s_track);
-        const double off_left = (here - path.at(s_track)).dot(Vec3(t0.z(), 0, -t0.x()));
+        // (Averaged with the previous decision's position: the body sways
+        // to the stance side every step, which is not an error to steer out.)
+        const Vec3 steady = k >= 2 ? Vec3(0.5 * (here + prev_here)) : here;
+        const double off_left = (steady - path.at(s_track)).dot(Vec3(t0.z(), 0, -t0.x()));
         th = std::atan2(chord.x(), chord.z()) - std::atan(off_left / (2 * L));
         while (th - target.back() > kPi) th -= 2 * kPi;
         while (th - target.back() < -kPi) th += 2 * kPi;
@@ -210,6 +216,7 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
   }
   r.steps = r.labels.empty() ? 0 : r.labels.back().step + 1;
   r.turning = target.back() - target.front();
+  for (std::size_t i = 1; i < target.size(); ++i) r.turning_abs += std::abs(target[i] - target[i - 1]);
   r.end_distance = out.frame_count() ? (horizontal(out.frame(out.frame_count() - 1).translations[0]) - path.points.back()).norm() : 0;
   return r;
 }

@@ -64,7 +64,8 @@ struct WalkResult {
   double path_length = 0;
   double end_distance = 0;         // final root (floor) distance to the path's end
   double max_path_deviation = 0;   // largest root distance from the path, metres
-  double turning = 0;              // total heading change, radians (signed sum)
+  double turning = 0;              // net heading change, radians (+ = to the left)
+  double turning_abs = 0;          // sum of |heading changes| between steps, radians
 };
 
 // Straight-walk advance per step of the cycle (metres); the walk's stride.
