@@ -57,6 +57,27 @@ double step_length(const CycleModel& m) {
   return c.norm() / 2.0;
 }
 
+// How far the body travels during a stop step (the cycle blending into the
+// standing pose over one step, from a contact), straight ahead.
+double stop_advance(const CycleModel& m) {
+  const double half = m.half_cycle();
+  Pose cyc(m.skeleton), pose(m.skeleton);
+  sample_cycle(m, 0.0, pose.ref());
+  FootPoints prev = foot_points(m, pose);
+  Vec3 c = Vec3::Zero();
+  const int sub = 8;
+  for (int i = 1; i <= static_cast<int>(half) * sub; ++i) {
+    const double t = static_cast<double>(i) / sub;
+    sample_cycle(m, t, cyc.ref());
+    blend_poses(cyc, m.stand, smoothstep(t / half), pose.ref());
+    const FootPoints cur = foot_points(m, pose);
+    const StanceAt s = stance_at(m, t - 0.5 / sub);
+    c = planted_offset(prev.get(true, s.pivot) + c, cur.get(true, s.pivot), 0.0);
+    prev = cur;
+  }
+  return c.norm();
+}
+
 WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) {
   WalkResult r;
   const double out_fps = opt.fps > 0 ? opt.fps : m.fps;
@@ -70,6 +91,7 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
                 " mm per step; its key poses do not move the stance foot backwards, so it cannot follow a path");
   const double lookahead = std::max(opt.lookahead_steps * L, 0.05);  // lead of the heading decisions
   const double hold = half / 2;
+  const double stop_travel = opt.steps < 0 && opt.stop ? stop_advance(m) : 0.5 * L;
 
   std::vector<double> target{std::atan2(path.tangent(0).x(), path.tangent(0).z())};
   int stop_step = opt.steps >= 0 ? opt.steps : -1;
@@ -106,8 +128,7 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
       throw Error("walk: more than " + std::to_string(opt.max_steps) + " steps; is the path reachable?");
 
     // Heading decisions for every step whose blend has begun, from where the
-    // character is now (pure pursuit, averaged over the last two decisions to
-    // cancel the side-to-side sway of alternating stance feet).
+    // character is now.
     const int need = static_cast<int>(std::floor(t / half + 0.5));
     while (static_cast<int>(target.size()) <= need) {
       const int k = static_cast<int>(target.size());
@@ -134,10 +155,10 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
         while (th - target.back() > kPi) th -= 2 * kPi;
         while (th - target.back() < -kPi) th += 2 * kPi;
       }
-      // Stop when going on would overshoot the end by more than it falls
-      // short: from mid-step, half a step remains before the stop step, which
-      // itself still travels about half a step.
-      if (opt.steps < 0 && stop_step < 0 && remaining < 1.5 * L) {
+      // Stop when going on would overshoot the end by more than stopping now
+      // falls short: from mid-step, half a step remains before the stop
+      // step, which itself travels `stop_travel`.
+      if (opt.steps < 0 && stop_step < 0 && remaining - 0.5 * L - stop_travel < 0.5 * L) {
         if (opt.stop) stop_step = k;
         else end_time = k * half;
       }
