@@ -139,6 +139,8 @@ WALKS['normal'] = {
 }
 
 # Sneak: crouched, leaning forward, long slow reaching steps, hands up in front.
+# (Arm swing is measured in the torso's frame, which leans forward ~40 degrees
+# here, so the arms need large swing angles to come up in front.)
 WALKS['sneak'] = {
     'description': 'A cartoon sneak: crouched and leaning forward, long slow reaching steps landing heel '
                    'first with the toes up, the body lowest just after contact and rising onto the ball of '
@@ -147,16 +149,16 @@ WALKS['sneak'] = {
     'frames_per_cycle': 32, 'fps': 24,
     'timing': {'down': 5, 'pass': 9, 'up': 12},
     'keys': {
-        'contact': pose(L=(-45, 25, -5, 0), R=(10, 30, 10, -30), LA=(45, 95, 10), RA=(60, 90, 10),
+        'contact': pose(L=(-45, 25, -5, 0), R=(10, 30, 10, -30), LA=(75, 90, 0), RA=(90, 85, 0),
                         hips=(8, -8, 0), lowerback=(18, 0, 0), spine1=(14, 8, 0), neck=(-30, 0, 0),
                         head=(-5, 0, 0), wrists=(50, 50)),
-        'down': pose(L=(-35, 60, -15, 0), R=(0, 75, 10, -20), LA=(40, 100, 10), RA=(65, 95, 10),
+        'down': pose(L=(-35, 60, -15, 0), R=(0, 75, 10, -20), LA=(70, 95, 0), RA=(95, 90, 0),
                      hips=(10, -5, -2), lowerback=(20, 0, 0), spine1=(16, 5, 1), neck=(-34, 0, 0),
                      head=(-8, 0, 0), wrists=(55, 55)),
-        'pass': pose(L=(-18, 45, -14, 0), R=(-55, 110, -5, 0), LA=(50, 95, 10), RA=(55, 95, 10),
+        'pass': pose(L=(-18, 45, -14, 0), R=(-55, 110, -5, 0), LA=(80, 90, 0), RA=(85, 90, 0),
                      hips=(9, 0, -3), lowerback=(19, 0, 0), spine1=(15, 0, 2), neck=(-32, 0, 0),
                      head=(-6, 0, 0), wrists=(50, 50)),
-        'up': pose(L=(5, 35, 25, -30), R=(-70, 75, 0, 0), LA=(60, 90, 10), RA=(45, 100, 10),
+        'up': pose(L=(5, 35, 25, -30), R=(-70, 75, 0, 0), LA=(90, 85, 0), RA=(75, 95, 0),
                    hips=(8, 6, -1), lowerback=(18, 0, 0), spine1=(14, -6, 1), neck=(-30, 0, 0),
                    head=(-4, 0, 0), wrists=(50, 50)),
     },
