@@ -184,9 +184,6 @@ WALKS['double-bounce'] = {
                    hips=(6, 3, -2), spine1=(4, -3, 1), head=(18, 0, 0)),
     },
     'shift': {'Head': 1, 'Neck1': 1, 'LeftForeArm': 1},
-    # Between tiptoe (pass) and the bent-knee dip (up) the spline alone would
-    # sink the stance foot 45 mm into the floor: two root in-betweens.
-    'inbetweens': [{'frame': 7, 'root': {'height': 'floor'}}, {'frame': 8, 'root': {'height': 'floor'}}],
     'stand': stand(),
 }
 

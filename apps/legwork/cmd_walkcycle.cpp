@@ -159,10 +159,13 @@ json arc_outputs(const wc::CycleModel& m, const std::string& joint_name, const s
                 m.skeleton.names[static_cast<std::size_t>(j)].c_str(), sm.jerk_ratio, sm.jerk_frame, sm.max_curvature_jump_deg);
   for (const char* ext : {".svg", ".png"}) render::render_panels(panels, 2, base + ext, title);
   announce("arc", base + ".svg");
-  std::printf("arc %s: jerk ratio %.2f at frame %.1f, largest curvature jump %.1f deg at frame %.1f%s\n",
-              m.skeleton.names[static_cast<std::size_t>(j)].c_str(), sm.jerk_ratio, sm.jerk_frame,
-              sm.max_curvature_jump_deg, sm.jump_frame, sm.jerk_ratio > 4.0 ? "  <- jerky: check the keys near this frame" : "");
+  const bool jerky = sm.jerk_ratio > 5.0 && sm.extent_m > 0.1;  // (a hand held still has a tiny, noisy arc)
+  std::printf("arc %s: spans %.2f m, jerk ratio %.2f at frame %.1f, largest curvature jump %.1f deg at frame %.1f%s\n",
+              m.skeleton.names[static_cast<std::size_t>(j)].c_str(), sm.extent_m, sm.jerk_ratio, sm.jerk_frame,
+              sm.max_curvature_jump_deg, sm.jump_frame, jerky ? "  <- jerky: check the keys near this frame" : "");
   return {{"joint", m.skeleton.names[static_cast<std::size_t>(j)]},
+          {"extent_m", r6(sm.extent_m)},
+          {"jerky", jerky},
           {"jerk_ratio", r6(sm.jerk_ratio)},
           {"jerk_frame", r6(sm.jerk_frame)},
           {"max_curvature_jump_deg", r6(sm.max_curvature_jump_deg)},

@@ -185,14 +185,16 @@ void sample_cycle_rotations_only(const CycleModel& m, const Inbetween& ib, const
 }
 
 // The floor lift: how far the root must rise so that no foot point goes below
-// the floor, sampled 4 times per frame, widened by half a frame each way and
-// smoothed (so it still covers every dip) and stored as one more periodic
-// spline - a smooth (C1) lift, not a clamp that would kink the motion.
+// the floor, sampled 4 times per frame, then covered by a smooth bump (sums of
+// Gaussians of sigma = 0.6 frame, added until every sample is covered) and
+// stored as one more periodic spline - a smooth lift, not a clamp that would
+// kink the motion.
 void add_floor_lift(CycleModel& m) {
-  constexpr int kPerFrame = 4, kReach = 2;
+  constexpr int kPerFrame = 4, kReach = 8;
+  constexpr double kSigma = 2.5;  // samples (0.6 frame)
   const int n = m.frames_per_cycle * kPerFrame;
   Pose p(m.skeleton);
-  std::vector<double> lift(static_cast<std::size_t>(n));
+  std::vector<double> lift(static_cast<std::size_t>(n)), cover(static_cast<std::size_t>(n), 0.0), rest(lift.size());
   double worst = 0;
   for (int i = 0; i < n; ++i) {
     sample_cycle(m, static_cast<double>(i) / kPerFrame, p.ref());
@@ -200,23 +202,27 @@ void add_floor_lift(CycleModel& m) {
     worst = std::max(worst, lift[static_cast<std::size_t>(i)]);
   }
   if (worst <= 0) return;
-  auto at = [&](const std::vector<double>& v, int i) { return v[static_cast<std::size_t>(((i % n) + n) % n)]; };
-  std::vector<double> wide(lift.size());
-  for (int i = 0; i < n; ++i) {
-    double w = 0;
-    for (int k = -kReach; k <= kReach; ++k) w = std::max(w, at(lift, i + k));
-    wide[static_cast<std::size_t>(i)] = w;
-  }
-  // Gaussian (sigma = a quarter frame) over +-half a frame: a weighted mean of values
-  // that are all >= lift[i], so the result stays >= lift[i].
   double weights[2 * kReach + 1], sum = 0;
-  for (int k = -kReach; k <= kReach; ++k) sum += weights[k + kReach] = std::exp(-0.5 * (k * k));
-  std::vector<Entry> e;
-  for (int i = 0; i < n; ++i) {
-    double v = 0;
-    for (int k = -kReach; k <= kReach; ++k) v += weights[k + kReach] / sum * at(wide, i + k);
-    e.push_back({static_cast<double>(i) / kPerFrame, Quat::Identity(), Vec3(0, v, 0)});
+  for (int k = -kReach; k <= kReach; ++k) sum += weights[k + kReach] = std::exp(-0.5 * (k * k) / (kSigma * kSigma));
+  for (double& w : weights) w /= sum;
+  auto wrap_index = [&](int i) { return static_cast<std::size_t>(((i % n) + n) % n); };
+  for (int iter = 0; iter < 60; ++iter) {
+    double left = 0;
+    for (int i = 0; i < n; ++i) {
+      rest[static_cast<std::size_t>(i)] = std::max(0.0, lift[static_cast<std::size_t>(i)] - cover[static_cast<std::size_t>(i)]);
+      left = std::max(left, rest[static_cast<std::size_t>(i)]);
+    }
+    if (left < 1e-5) break;  // every sample covered to 0.01 mm
+    // Add the blurred shortfall, scaled up so a narrow dip is covered fast.
+    for (int i = 0; i < n; ++i) {
+      double v = 0;
+      for (int k = -kReach; k <= kReach; ++k) v += weights[k + kReach] * rest[wrap_index(i + k)];
+      cover[static_cast<std::size_t>(i)] += 1.2 * v;
+    }
   }
+  std::vector<Entry> e;
+  for (int i = 0; i < n; ++i)
+    e.push_back({static_cast<double>(i) / kPerFrame, Quat::Identity(), Vec3(0, cover[static_cast<std::size_t>(i)], 0)});
   m.floor_lift = add_channel(m, std::move(e), false);
 }
 

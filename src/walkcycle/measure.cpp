@@ -98,6 +98,9 @@ ArcSmoothness arc_smoothness(const Arc& arc) {
   const int n = static_cast<int>(arc.points.size());
   if (n < 5) return s;
   auto P = [&](int i) -> const Vec3& { return arc.points[static_cast<std::size_t>(((i % n) + n) % n)]; };
+  Vec3 lo = arc.points.front(), hi = arc.points.front();
+  for (const auto& p : arc.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  s.extent_m = (hi - lo).norm();
   double mean_seg = 0;
   for (int i = 0; i < n; ++i) mean_seg += (P(i + 1) - P(i)).norm();
   mean_seg /= n;

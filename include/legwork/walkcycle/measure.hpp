@@ -47,6 +47,7 @@ Arc trace_arc(const CycleModel& m, int joint, int samples_per_frame = 1);
 // points over the median one (a smooth loop stays low; a key pose that
 // kinks the arc raises it, and jerk_frame says where).
 struct ArcSmoothness {
+  double extent_m = 0;  // bounding-box diagonal of the arc (tiny arcs: ratios mean little)
   double max_curvature_jump_deg = 0;
   double jump_frame = 0;
   double jerk_ratio = 0;
