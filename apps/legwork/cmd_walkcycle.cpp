@@ -485,7 +485,7 @@ void register_walkcycle(CLI::App& app) {
       "         legwork walkcycle extract data/cmu/bvh/walking/07_01.bvh --out my_walk.json");
   auto a = std::make_shared<WalkArgs>();
   cmd->add_option("--keys", a->keys, "walk key-pose file (JSON, see docs/walkcycle.md); with --from-bvh: frames C,D,P,U");
-  cmd->add_option("--from-bvh", a->from_bvh, "take the key poses from frames of this BVH (frame numbers in --keys)")
+  cmd->add_option("--from-bvh", a->from_bvh, "take the key poses from frames of this BVH (frame numbers in --keys, counted from the file's first frame, the CMU T-pose)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--skeleton", a->skeleton, "BVH whose skeleton the walk is for (default: the walk's \"skeleton\")")
       ->check(CLI::ExistingFile);
