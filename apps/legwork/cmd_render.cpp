@@ -3,10 +3,13 @@
 #include "command.hpp"
 #include "motion_input.hpp"
 
+#include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/io/text.hpp>
 #include <legwork/render/render.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -26,7 +29,53 @@ struct RenderArgs {
   double fps = 30;
   std::string title;
   std::vector<std::string> compare;  // more motions for a side-by-side video
+  bool footprints = false;
 };
+
+// Rough footprints for pictures: runs of frames (>= 0.1 s) where an ankle is
+// within 5 cm of its lowest height and moves slower than 0.5 m/s horizontally.
+// One print per run at the run's mean ankle position, turned along ankle->toe.
+// A visual aid only; gait modules have their own contact detection.
+std::vector<render::Footprint> detect_footprints(const Motion& m, int first, int last) {
+  std::vector<render::Footprint> out;
+  const auto pos = joint_positions(m);
+  const auto nj = static_cast<std::size_t>(m.joint_count());
+  auto at = [&](int f, int j) { return pos[static_cast<std::size_t>(f) * nj + static_cast<std::size_t>(j)]; };
+  for (bool left : {true, false}) {
+    const int ankle = m.skeleton.roles[left ? Role::LeftAnkle : Role::RightAnkle];
+    const int toe = m.skeleton.roles[left ? Role::LeftToe : Role::RightToe];
+    if (ankle < 0) continue;
+    double low = 1e300;
+    for (int f = first; f <= last; ++f) low = std::min(low, at(f, ankle).y());
+    const int min_run = std::max(2, static_cast<int>(0.1 * m.fps));
+    int run_start = -1;
+    for (int f = first; f <= last + 1; ++f) {
+      bool contact = false;
+      if (f <= last) {
+        const int g = f < last ? f + 1 : f - 1;
+        const Vec3 d = at(g, ankle) - at(f, ankle);
+        const double speed = std::hypot(d.x(), d.z()) * m.fps;
+        contact = at(f, ankle).y() < low + 0.05 && speed < 0.5;
+      }
+      if (contact && run_start < 0) run_start = f;
+      if (!contact && run_start >= 0) {
+        if (f - run_start >= min_run) {
+          Vec3 a = Vec3::Zero(), dir = Vec3::Zero();
+          for (int k = run_start; k < f; ++k) {
+            a += at(k, ankle);
+            if (toe >= 0) dir += at(k, toe) - at(k, ankle);
+          }
+          a /= f - run_start;
+          const double heading = toe >= 0 ? std::atan2(dir.x(), dir.z()) : 0.0;
+          // The sole's origin sits ~3 cm ahead of the ankle, on the floor.
+          out.push_back({Vec3(a.x() + 0.03 * std::sin(heading), 0.0, a.z() + 0.03 * std::cos(heading)), heading, left});
+        }
+        run_start = -1;
+      }
+    }
+  }
+  return out;
+}
 
 // A joint by exact name or by role name (e.g. LeftAnkle); the error lists the valid names.
 int find_trace_joint(const Skeleton& skel, const std::string& name) {
@@ -53,6 +102,26 @@ std::vector<int> sample_frames(int first, int last, int every) {
   return out;
 }
 
+// A picture height that suits the content's aspect in this view (less empty
+// space for long flat paths seen from above), between 240 and 960 pixels.
+int fitted_height(const Motion& m, int first, int last, render::View view, int width) {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = -lo;
+  const auto pos = joint_positions(m);
+  const auto nj = static_cast<std::size_t>(m.joint_count());
+  for (int f = first; f <= last; ++f)
+    for (std::size_t j = 0; j < nj; ++j) {
+      Vec3 p = pos[static_cast<std::size_t>(f) * nj + j];
+      for (int floor = 0; floor < (view == render::View::Top ? 1 : 2); ++floor) {
+        if (floor) p.y() = 0;
+        const auto q = render::project(view, p);
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+      }
+    }
+  const double aspect = (hi.y() - lo.y()) / std::max(hi.x() - lo.x(), 1e-3);
+  return std::clamp(static_cast<int>(width * 0.84 * aspect) + 110, 240, 960) / 2 * 2;
+}
+
 void run_render(const RenderArgs& a) {
   const std::string ext = io::extension_of(a.out);
   if (ext != ".png" && ext != ".svg" && ext != ".mp4")
@@ -65,6 +134,8 @@ void run_render(const RenderArgs& a) {
                                         : parse_frame_range(a.frames, m.frame_count());
   const int trace = a.trace.empty() ? -1 : find_trace_joint(m.skeleton, a.trace);
   const std::string clip = std::filesystem::path(a.in.path).stem().string();
+  if (a.footprints && (trace < 0 || ext == ".mp4"))
+    throw Error("--footprints needs --trace JOINT and a .png/.svg output (it draws under the joint's path)");
 
   if (ext == ".mp4") {
     render::VideoOptions opt;
@@ -104,11 +175,12 @@ void run_render(const RenderArgs& a) {
     render::Camera cam;
     cam.view = view;
     cam.width = a.width > 0 ? a.width : 960;
-    cam.height = a.height > 0 ? a.height : 480;
+    cam.height = a.height > 0 ? a.height : fitted_height(m, first, last, view, cam.width);
     render::TrajectoryOptions opt;
     opt.first_frame = first;
     opt.last_frame = last;
     opt.title = a.title;
+    if (a.footprints) opt.footprints = detect_footprints(m, first, last);
     render::render_trajectory(m, trace, sample_frames(first, last, a.every), cam, a.out, opt);
     announce("trajectory", a.out);
     return;
@@ -143,6 +215,7 @@ void register_render(CLI::App& app) {
       "Examples:\n"
       "  legwork render data/cmu/bvh/walking/07_01.bvh --out sheet.png --frames 1:120 --every 20\n"
       "  legwork render data/cmu/bvh/walking/07_01.bvh --out foot.svg --trace LeftFoot --frames 1:\n"
+      "  legwork render data/cmu/bvh/walking/07_01.bvh --out steps.png --trace Hips --view top --footprints\n"
       "  legwork render data/cmu/bvh/walking/07_01.bvh --out walk.mp4 --view three-quarter --trace LeftFoot");
   auto a = std::make_shared<RenderArgs>();
   a->in.add_options(cmd);
@@ -163,6 +236,8 @@ void register_render(CLI::App& app) {
   cmd->add_option("--compare", a->compare,
                   "video only: more BVH files drawn side by side with IN (same frames, view and options)")
       ->check(CLI::ExistingFile);
+  cmd->add_flag("--footprints", a->footprints,
+                "with --trace (pictures): draw rough footprints where each ankle rests (best with --view top)");
   cmd->callback([a] { run_render(*a); });
 }
 

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <sstream>
 
@@ -61,7 +62,14 @@ class Lexer {
   std::string_view text() const { return text_; }
 
   static std::string describe(std::string_view t) {
-    return t.empty() ? std::string("end of file") : "'" + std::string(t.substr(0, 40)) + "'";
+    return t.empty() ? std::string("end of file") : "'" + printable(t.substr(0, 40)) + "'";
+  }
+  // Binary input (a .glb given as .bvh) must not put control bytes in messages.
+  static std::string printable(std::string_view t) {
+    std::string out(t);
+    for (char& c : out)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+    return out;
   }
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
   // A well-formed number that does not fit a double (1e999).
@@ -106,12 +114,79 @@ bool parse_channel(std::string_view t, Channel& c) {
 bool is_rotation(Channel c) { return c >= Channel::Xrotation; }
 int axis_of(Channel c) { return is_rotation(c) ? static_cast<int>(c) - 3 : static_cast<int>(c); }
 
+// sin and cos of an angle in degrees. Reduction is done in degrees (exact for
+// the angles BVH files hold) and the polynomials are Taylor series to the
+// 15th/16th power on [-45, 45] degrees (truncation error < 1e-16), so this
+// matches libm to about an ulp at a fraction of the cost: motion parsing is
+// mostly trigonometry otherwise.
+inline void sincos_degrees(double deg, double& s, double& c) {
+  if (!(std::abs(deg) < 1e12)) [[unlikely]] {  // beyond the exact reduction range
+    s = std::sin(deg2rad(deg));
+    c = std::cos(deg2rad(deg));
+    return;
+  }
+  // Nearest quadrant by truncation (a conversion instruction, not a libm call).
+  const auto quadrant = static_cast<long long>(deg * (1.0 / 90.0) + (deg >= 0 ? 0.5 : -0.5));
+  const double x = deg2rad(deg - 90.0 * static_cast<double>(quadrant));
+  const double x2 = x * x;
+  const double sx =
+      x * (1 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 + x2 * (-1.0 / 39916800 +
+          x2 * (1.0 / 6227020800 + x2 * (-1.0 / 1307674368000))))))));
+  const double cx =
+      1 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800 +
+          x2 * (1.0 / 479001600 + x2 * (-1.0 / 87178291200 + x2 * (1.0 / 20922789888000))))))));
+  switch (quadrant & 3) {
+    case 0: s = sx, c = cx; break;
+    case 1: s = cx, c = -sx; break;
+    case 2: s = -sx, c = -cx; break;
+    default: s = -cx, c = sx; break;
+  }
+}
+
 // Rotation by `degrees` about coordinate axis 0/1/2 (same as AngleAxis, without the general path).
 Quat axis_rotation(int axis, double degrees) {
-  const double h = 0.5 * deg2rad(degrees);
-  Quat q(std::cos(h), 0.0, 0.0, 0.0);
-  q.vec()[axis] = std::sin(h);
+  double s, c;
+  sincos_degrees(0.5 * degrees, s, c);
+  Quat q(c, 0.0, 0.0, 0.0);
+  q.vec()[axis] = s;
   return q;
+}
+
+// q * axis_rotation(axis, degrees), using the zeros of the axis rotation.
+Quat rotate_about_axis(const Quat& q, int axis, double degrees) {
+  double s, c;
+  sincos_degrees(0.5 * degrees, s, c);
+  const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
+  switch (axis) {
+    case 0: return Quat(w * c - x * s, x * c + w * s, y * c + z * s, z * c - y * s);
+    case 1: return Quat(w * c - y * s, x * c - z * s, y * c + w * s, z * c + x * s);
+    default: return Quat(w * c - z * s, x * c + y * s, y * c - x * s, z * c + w * s);
+  }
+}
+
+// Fast path for the plain decimals BVH files are made of ("-12.3456"): up to
+// 19 digits with a value below 2^53 and at most 22 decimals is exactly
+// m / 10^k, one correctly rounded division (Clinger's fast path), so the
+// result equals std::from_chars'. Returns the end of the number, or nullptr
+// to hand the token to from_chars (exponents, long mantissas, junk).
+const char* parse_plain_decimal(const char* b, const char* e, double& v) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                      1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const char* p = b;
+  bool negative = false;
+  if (p < e && (*p == '-' || *p == '+')) negative = *p++ == '-';
+  std::uint64_t m = 0;
+  int digits = 0, decimals = 0;
+  while (p < e && *p >= '0' && *p <= '9') m = m * 10 + static_cast<unsigned>(*p++ - '0'), ++digits;
+  if (p < e && *p == '.') {
+    ++p;
+    while (p < e && *p >= '0' && *p <= '9') m = m * 10 + static_cast<unsigned>(*p++ - '0'), ++digits, ++decimals;
+  }
+  if (digits == 0 || digits > 19 || decimals > 22 || m > (std::uint64_t{1} << 53)) return nullptr;
+  if (p < e && !Lexer::is_space(*p)) return nullptr;
+  const double mag = static_cast<double>(m) / kPow10[decimals];
+  v = negative ? -mag : mag;
+  return p;
 }
 
 void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int joint, int depth);
@@ -182,6 +257,8 @@ void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& cha
       if (!have_offset) lx.fail("joint '" + jname + "' has no OFFSET", line);
       if (!have_channels) lx.fail("joint '" + jname + "' has no CHANNELS", line);
       return;
+    } else if (Channel extra; parse_channel(t, extra)) {
+      lx.fail("CHANNELS of joint '" + jname + "' lists more channels than its count (extra '" + std::string(t) + "')", line);
     } else if (t.empty() || t == "MOTION") {
       lx.fail("missing '}' closing joint '" + jname + "' (found " + Lexer::describe(t) + ")", line);
     } else {
@@ -232,83 +309,24 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
   auto ft = lx.next();
   double declared = 0;
   if (!Lexer::parse_double(ft, declared) || declared < 0 || declared != std::floor(declared) || declared > 1e8)
-    lx.fail("'Frames:' needs a whole number, found " + Lexer::describe(ft), frames_line);
+    lx.fail("'Frames:' needs a whole number from 0 to 100000000, found " + Lexer::describe(ft), frames_line);
   expect_label(lx, {"Frame", "Time"}, "Frame Time:");
   const double frame_time = lx.number("Frame Time");
   if (!(frame_time > 0) || !std::isfinite(1.0 / frame_time))
     lx.fail("'Frame Time:' must be a positive number of seconds, found " + std::to_string(frame_time));
 
-  int total = 0;
-  for (const auto& jc : out.channels) total += static_cast<int>(jc.channels.size());
   const int n = skel.joint_count();
+  // Channels flattened: joint j's are flat[first[j] .. first[j + 1]).
+  std::vector<Channel> flat;
+  std::vector<int> first_channel(static_cast<std::size_t>(n) + 1, 0);
+  for (int j = 0; j < n; ++j) {
+    const auto& jc = out.channels[static_cast<std::size_t>(j)].channels;
+    flat.insert(flat.end(), jc.begin(), jc.end());
+    first_channel[static_cast<std::size_t>(j) + 1] = static_cast<int>(flat.size());
+  }
+  const int total = static_cast<int>(flat.size());
 
-  // Motion lines: skip to the end of the Frame Time line.
-  std::string_view t = lx.text();
-  std::size_t p = lx.pos();
-  int line = lx.line();
-  while (p < t.size() && t[p] != '\n') {
-    if (!Lexer::is_space(t[p])) lx.fail("unexpected text after Frame Time value");
-    ++p;
-  }
-  std::vector<double> values;
-  // Every value takes at least two characters, so the text bounds the count
-  // (a bogus 'Frames:' must not reserve gigabytes).
-  values.reserve(std::min(static_cast<std::size_t>(declared) * static_cast<std::size_t>(total), (t.size() - p) / 2 + 1));
-  int frames = 0;
-  while (p < t.size()) {
-    ++p;  // past '\n'
-    ++line;
-    int count = 0;
-    bool blank = true;
-    while (p < t.size() && t[p] != '\n') {
-      char c = t[p];
-      if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') { ++p; continue; }
-      blank = false;
-      const char* b = t.data() + p;
-      const char* e = t.data() + t.size();
-      if (*b == '+' && b + 1 < e && b[1] != '-') ++b;
-      double v;
-      auto [ptr, ec] = std::from_chars(b, e, v);
-      auto token = [&] {
-        std::size_t q = p;
-        while (q < t.size() && !Lexer::is_space(t[q])) ++q;
-        return std::string(t.substr(p, std::min<std::size_t>(q - p, 40)));
-      };
-      if (count >= total)
-        lx.fail("motion line has more than the " + std::to_string(total) + " values the hierarchy declares (extra '" +
-                    token() + "')", line);
-      if (ec == std::errc::result_out_of_range && (ptr == e || Lexer::is_space(*ptr)))
-        lx.fail("motion line value " + std::to_string(count + 1) + " is out of range: '" + token() + "'", line);
-      if (ec != std::errc() || (ptr < e && !Lexer::is_space(*ptr)))
-        lx.fail("motion line value " + std::to_string(count + 1) + " is not a number: '" + token() + "'", line);
-      if (!std::isfinite(v))
-        lx.fail("motion line value " + std::to_string(count + 1) + " is not finite (NaN or Inf): '" + token() + "'", line);
-      values.push_back(v);
-      ++count;
-      p = static_cast<std::size_t>(ptr - t.data());
-    }
-    if (blank) continue;
-    if (count < total)
-      lx.fail("motion line has " + std::to_string(count) + " values, the hierarchy declares " + std::to_string(total) +
-                  " channels", line);
-    ++frames;
-  }
-  if (frames != static_cast<int>(declared)) {
-    std::ostringstream os;
-    os << "'Frames: " << static_cast<long>(declared) << "' but the file has " << frames << " motion lines";
-    if (opt.strict_frame_count || frames < static_cast<int>(declared)) lx.fail(os.str(), frames_line);
-    out.report.warnings.push_back(os.str() + "; using the " + std::to_string(std::min(frames, static_cast<int>(declared))) + " declared frames");
-    frames = std::min(frames, static_cast<int>(declared));
-  }
-  if (frames == 0) lx.fail("the file has no motion frames", frames_line);
-  // Joints without channels cost memory per frame but no text: bound the pose
-  // storage (2^26 joint poses = 3.5 GB, e.g. 5 hours of a 31-joint body at 120 fps).
-  if (static_cast<double>(frames) * n > static_cast<double>(1 << 26))
-    lx.fail(std::to_string(frames) + " frames x " + std::to_string(n) + " joints is more than legwork reads (2^26 joint poses)",
-            frames_line);
-  out.report.declared_frames = static_cast<int>(declared);
-
-  // Units: from the rest pose's height in file units.
+  // Units come from the rest pose alone, so the motion can be converted as it is read.
   double scale = opt.scale;
   if (scale <= 0) {
     resolve_roles(skel);
@@ -321,64 +339,142 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
   out.report.scale = scale;
   skel.scale(scale);
 
-  // Frames that are all zeros (a CMU export glitch) are replaced by the nearest real one.
-  auto zero_line = [&](int f) {
-    const double* v = values.data() + static_cast<std::size_t>(f) * static_cast<std::size_t>(total);
-    for (int k = 0; k < total; ++k)
-      if (v[k] != 0.0) return false;
-    return total > 0;
+  // Motion lines: skip to the end of the Frame Time line.
+  std::string_view t = lx.text();
+  std::size_t p = lx.pos();
+  int line = lx.line();
+  while (p < t.size() && t[p] != '\n') {
+    if (!Lexer::is_space(t[p])) lx.fail("unexpected text after Frame Time value");
+    ++p;
+  }
+
+  // Lines are parsed straight into the motion's poses. Every value takes at
+  // least two characters, so the text bounds the line count: a bogus
+  // 'Frames:' must not allocate gigabytes (it fails below, after counting).
+  const std::size_t max_lines = total > 0 ? (t.size() - p) / (2 * static_cast<std::size_t>(total)) + 1 : 0;
+  const int capacity = static_cast<int>(std::min(static_cast<std::size_t>(declared), max_lines));
+  // Joints without channels cost memory per frame but no text: bound the pose
+  // storage (2^26 joint poses = 3.5 GB, e.g. 5 hours of a 31-joint body at 120 fps).
+  if (static_cast<double>(capacity) * n > static_cast<double>(1 << 26))
+    lx.fail(std::to_string(capacity) + " frames x " + std::to_string(n) +
+                " joints is more than legwork reads (2^26 joint poses)", frames_line);
+  // With drop_first_frame, line 0 (the CMU T-pose) goes to a side pose and is
+  // only kept if it turns out to be the only frame.
+  const int skip = opt.drop_first_frame ? 1 : 0;
+  Motion m(skel, 1.0 / frame_time, std::max(capacity - skip, 0));
+  Pose line0(skel);
+  std::vector<unsigned char> zero(static_cast<std::size_t>(std::max(capacity - skip, 0)), 0);
+  bool line0_zero = false;
+  std::vector<double> v(static_cast<std::size_t>(total));
+
+  auto store = [&](PoseRef pose) {
+    const double* val = v.data();
+    for (int j = 0; j < n; ++j) {
+      const auto ju = static_cast<std::size_t>(j);
+      Vec3 tr = m.skeleton.rest_offsets[ju];
+      Quat q = Quat::Identity();
+      for (int k = first_channel[ju]; k < first_channel[ju + 1]; ++k) {
+        const Channel c = flat[static_cast<std::size_t>(k)];
+        if (is_rotation(c)) q = rotate_about_axis(q, axis_of(c), val[k]);
+        else tr[axis_of(c)] = val[k] * scale;  // position channels replace the OFFSET
+      }
+      pose.rotations[ju] = q;
+      pose.translations[ju] = tr;
+    }
   };
-  // Sources exclude frame 0 when it is the synthetic CMU T-pose (drop_first_frame).
-  std::vector<int> source_frame(static_cast<std::size_t>(frames));
-  for (int f = 0; f < frames; ++f) source_frame[static_cast<std::size_t>(f)] = f;
-  if (opt.repair_zero_frames) {
-    const int lowest_source = opt.drop_first_frame && frames > 1 ? 1 : 0;
-    std::vector<unsigned char> zero(static_cast<std::size_t>(frames));
-    for (int f = 0; f < frames; ++f) zero[static_cast<std::size_t>(f)] = zero_line(f) ? 1 : 0;
-    // Nearest real frame before and after each frame, in two linear passes.
-    std::vector<int> before(static_cast<std::size_t>(frames), -1), after(static_cast<std::size_t>(frames), -1);
-    for (int f = 0, last = -1; f < frames; ++f) {
+
+  int frames = 0;
+  while (p < t.size()) {
+    ++p;  // past '\n'
+    ++line;
+    int count = 0;
+    bool blank = true, all_zero = true;
+    while (p < t.size() && t[p] != '\n') {
+      char c = t[p];
+      if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') { ++p; continue; }
+      blank = false;
+      const char* b = t.data() + p;
+      const char* e = t.data() + t.size();
+      double val;
+      const char* ptr = parse_plain_decimal(b, e, val);
+      std::errc ec{};
+      if (!ptr) {  // exponents, long mantissas, junk: the general parser decides
+        if (*b == '+' && b + 1 < e && b[1] != '-') ++b;
+        const auto r = std::from_chars(b, e, val);
+        ptr = r.ptr;
+        ec = r.ec;
+      }
+      auto token = [&] {
+        std::size_t q = p;
+        while (q < t.size() && !Lexer::is_space(t[q])) ++q;
+        return Lexer::printable(t.substr(p, std::min<std::size_t>(q - p, 40)));
+      };
+      if (count >= total)
+        lx.fail("motion line has more than the " + std::to_string(total) + " values the hierarchy declares (extra '" +
+                    token() + "')", line);
+      if (ec == std::errc::result_out_of_range && (ptr == e || Lexer::is_space(*ptr)))
+        lx.fail("motion line value " + std::to_string(count + 1) + " is out of range: '" + token() + "'", line);
+      if (ec != std::errc() || (ptr < e && !Lexer::is_space(*ptr)))
+        lx.fail("motion line value " + std::to_string(count + 1) + " is not a number: '" + token() + "'", line);
+      if (!std::isfinite(val))
+        lx.fail("motion line value " + std::to_string(count + 1) + " is not finite (NaN or Inf): '" + token() + "'", line);
+      v[static_cast<std::size_t>(count)] = val;
+      all_zero = all_zero && val == 0.0;
+      ++count;
+      p = static_cast<std::size_t>(ptr - t.data());
+    }
+    if (blank) continue;
+    if (count < total)
+      lx.fail("motion line has " + std::to_string(count) + " values, the hierarchy declares " + std::to_string(total) +
+                  " channels", line);
+    if (frames < capacity) {  // lines past 'Frames:' are checked, not kept
+      if (frames < skip) {
+        store(line0.ref());
+        line0_zero = all_zero;
+      } else {
+        store(m.frame(frames - skip));
+        zero[static_cast<std::size_t>(frames - skip)] = all_zero ? 1 : 0;
+      }
+    }
+    ++frames;
+  }
+  if (frames != static_cast<int>(declared)) {
+    std::ostringstream os;
+    os << "'Frames: " << static_cast<long>(declared) << "' but the file has " << frames << " motion lines";
+    if (opt.strict_frame_count || frames < static_cast<int>(declared)) lx.fail(os.str(), frames_line);
+    out.report.warnings.push_back(os.str() + "; using the " + std::to_string(static_cast<int>(declared)) + " declared frames");
+    frames = static_cast<int>(declared);
+  }
+  if (frames == 0) lx.fail("the file has no motion frames", frames_line);
+  out.report.declared_frames = static_cast<int>(declared);
+  if (skip == 1 && frames == 1) {  // nothing to drop: keep the only frame
+    m.resize(1);
+    m.set_frame(0, line0);
+    zero.assign(1, line0_zero ? 1 : 0);
+  }
+  out.report.dropped_first_frame = skip == 1 && frames > 1;
+
+  // Frames that are all zeros (a CMU export glitch) take the nearest real
+  // frame's pose; the dropped T-pose is never a source.
+  if (opt.repair_zero_frames && total > 0) {
+    const int count = m.frame_count();
+    std::vector<int> before(static_cast<std::size_t>(count), -1), after(static_cast<std::size_t>(count), -1);
+    for (int f = 0, last = -1; f < count; ++f) {
       before[static_cast<std::size_t>(f)] = last;
-      if (!zero[static_cast<std::size_t>(f)] && f >= lowest_source) last = f;
+      if (!zero[static_cast<std::size_t>(f)]) last = f;
     }
-    for (int f = frames - 1, next = -1; f >= 0; --f) {
+    for (int f = count - 1, next = -1; f >= 0; --f) {
       after[static_cast<std::size_t>(f)] = next;
-      if (!zero[static_cast<std::size_t>(f)] && f >= lowest_source) next = f;
+      if (!zero[static_cast<std::size_t>(f)]) next = f;
     }
-    for (int f = 0; f < frames; ++f) {
+    for (int f = 0; f < count; ++f) {
       const auto fu = static_cast<std::size_t>(f);
       if (!zero[fu]) continue;
       const int b = before[fu], a = after[fu];
       const int best = b < 0 ? a : a < 0 ? b : (f - b < a - f ? b : a);  // ties go to the later frame
-      if (best >= 0) {
-        source_frame[fu] = best;
-        ++out.report.repaired_zero_frames;
-      }
-    }
-  }
-
-  const int first = opt.drop_first_frame && frames > 1 ? 1 : 0;
-  out.report.dropped_first_frame = first == 1;
-  Motion m(skel, 1.0 / frame_time, frames - first);
-  for (int f = first; f < frames; ++f) {
-    const double* v = values.data() + static_cast<std::size_t>(source_frame[static_cast<std::size_t>(f)]) *
-                                          static_cast<std::size_t>(total);
-    PoseRef pose = m.frame(f - first);
-    for (int j = 0; j < n; ++j) {
-      const auto& jc = out.channels[static_cast<std::size_t>(j)].channels;
-      Vec3 tr = m.skeleton.rest_offsets[static_cast<std::size_t>(j)];
-      Quat q = Quat::Identity();
-      for (std::size_t k = 0; k < jc.size(); ++k) {
-        const Channel c = jc[k];
-        if (is_rotation(c)) {
-          q = q * axis_rotation(axis_of(c), v[k]);
-        } else {
-          tr[axis_of(c)] = v[k] * scale;
-        }
-      }
-      v += jc.size();
-      pose.rotations[static_cast<std::size_t>(j)] = q;
-      pose.translations[static_cast<std::size_t>(j)] = tr;
+      if (best < 0) continue;  // every frame is zero: nothing to repair from
+      m.set_frame(f, m.frame(best));  // sources are unrepaired real frames
+      ++out.report.repaired_zero_frames;
     }
   }
   if (opt.resolve_roles) out.report.missing_roles = resolve_roles(m.skeleton);

@@ -102,6 +102,21 @@ std::string format_bvh(const Motion& m, const BvhWriteOptions& opt) {
     if (rot != 3 && rot != 0)
       throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] +
                   "' has a layout with " + std::to_string(rot) + " rotation channels; legwork writes 0 or 3");
+    // A layout that cannot hold the motion would lose data silently.
+    const auto& ch = layout[static_cast<std::size_t>(j)].channels;
+    const int pos = static_cast<int>(ch.size()) - rot;
+    if (pos != 0 && pos != 3)
+      throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] + "' has a layout with " +
+                  std::to_string(pos) + " position channels; legwork writes 0 or 3");
+    if (pos == 0 && translates(m, j))
+      throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] +
+                  "' moves away from its rest offset but its layout has no position channels");
+    if (rot == 0) {
+      for (int f = 0; f < m.frame_count(); ++f)
+        if (m.frame(f).rotations[static_cast<std::size_t>(j)].angularDistance(Quat::Identity()) > 1e-9)
+          throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] +
+                      "' rotates but its layout has no rotation channels");
+    }
   }
   std::string out = "HIERARCHY\n";
   write_joint(out, s, layout, 0, 0, opt.scale);

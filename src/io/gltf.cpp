@@ -273,6 +273,8 @@ std::vector<float> read_floats(const tinygltf::Model& model, int accessor, int t
       static_cast<std::size_t>(acc.bufferView) >= model.bufferViews.size())
     throw Error(path + ": " + what + " is not a float accessor of the expected type");
   const auto& view = model.bufferViews[static_cast<std::size_t>(acc.bufferView)];
+  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
+    throw Error(path + ": " + what + " refers to a missing buffer");
   const auto& buf = model.buffers[static_cast<std::size_t>(view.buffer)].data;
   const int comps = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type));
   const int stride = acc.ByteStride(view);
@@ -318,6 +320,13 @@ Motion read_glb(const std::string& path, double fps) {
   if (!gltf.LoadBinaryFromFile(&model, &err, &warn, path)) throw Error(path + ": cannot read glTF binary: " + err);
   if (model.skins.empty()) throw Error(path + ": no skin (legwork reads skeletons from the first skin)");
   const auto& joints = model.skins[0].joints;
+  if (joints.empty()) throw Error(path + ": skin 0 has no joints");
+  const auto node_count = static_cast<int>(model.nodes.size());
+  for (int node : joints)
+    if (node < 0 || node >= node_count) throw Error(path + ": skin joint refers to missing node " + std::to_string(node));
+  for (const auto& node : model.nodes)
+    for (int c : node.children)
+      if (c < 0 || c >= node_count) throw Error(path + ": node '" + node.name + "' has a missing child " + std::to_string(c));
   std::map<int, int> joint_of_node;
   for (std::size_t j = 0; j < joints.size(); ++j) joint_of_node[joints[j]] = static_cast<int>(j);
 

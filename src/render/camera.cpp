@@ -124,13 +124,12 @@ void for_each_content_point(const Scene& scene, const std::function<void(const V
     for (const auto& p : footprint_outline(fp)) fn(p);
 }
 
-Layout layout_of(const Scene& scene, const Camera& cam) {
+Layout layout_of(const Scene& scene) {
   Layout l;
   l.top = scene.title.empty() ? 0 : 26;
   bool labels = false;
   for (const auto& f : scene.figures) labels = labels || !f.label.empty();
   l.bottom = labels ? 20 : 0;
-  (void)cam;
   return l;
 }
 
@@ -192,7 +191,7 @@ Framing frame_scene(const Scene& scene, const Camera& cam) {
   const Eigen::Vector2d mid = (lo + hi) / 2;
   const Eigen::Vector2d half = ((hi - lo) / 2).cwiseMax(0.25);
 
-  const Layout l = detail::layout_of(scene, cam);
+  const Layout l = detail::layout_of(scene);
   const double mx = cam.margin * cam.width, my = cam.margin * cam.height;
   const double avail_w = std::max(8.0, cam.width - 2 * mx);
   const double avail_h = std::max(8.0, cam.height - 2 * my - l.top - l.bottom);

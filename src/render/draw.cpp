@@ -81,6 +81,7 @@ void draw_footprints(cairo_t* cr, const Scene& scene, const Framing& fr) {
   cairo_save(cr);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   for (const auto& fp : scene.footprints) {
+    if (!fp.position.allFinite() || !std::isfinite(fp.heading)) continue;
     const auto outline = footprint_outline(fp);
     for (std::size_t i = 0; i < outline.size(); ++i) {
       if (i == 0)
@@ -146,7 +147,7 @@ void draw_curves(cairo_t* cr, const Scene& scene, const Framing& fr) {
     cairo_stroke(cr);
     for (std::size_t m = 0; m < c.marks.size(); ++m) {
       const int i = c.marks[m];
-      if (i < 0 || i >= static_cast<int>(c.points.size())) continue;
+      if (i < 0 || i >= static_cast<int>(c.points.size()) || !c.points[static_cast<std::size_t>(i)].allFinite()) continue;
       const auto q = fr.to_pixel(c.points[static_cast<std::size_t>(i)]);
       cairo_arc(cr, q.x(), q.y(), c.width + 2.5, 0, 2 * kPi);
       set_color(cr, c.color);
@@ -156,7 +157,7 @@ void draw_curves(cairo_t* cr, const Scene& scene, const Framing& fr) {
       cairo_stroke(cr);
       if (m < c.mark_labels.size()) place_label(cr, q, c.mark_labels[m], c.color, placed);
     }
-    if (!c.label.empty()) {
+    if (!c.label.empty() && c.points.back().allFinite()) {
       // At the curve's end, inside the panel (to the left of the end if needed).
       const auto q = fr.to_pixel(c.points.back());
       const double w = text_width(cr, c.label, 12, true);
@@ -193,11 +194,11 @@ void draw_figure(cairo_t* cr, const Figure& f, const Framing& fr) {
     const int p = skel.parents[ju];
     if (p >= 0) {
       const Vec3 &a = f.positions[static_cast<std::size_t>(p)], &b = f.positions[ju];
-      if ((a - b).norm() > 1e-6) segs.push_back({a, b, color_of(j), (a + b).dot(toward) / 2});
+      if (a.allFinite() && b.allFinite() && (a - b).norm() > 1e-6) segs.push_back({a, b, color_of(j), (a + b).dot(toward) / 2});
     }
     if (f.end_sites.size() == f.positions.size() && ju < skel.has_end_site.size() && skel.has_end_site[ju]) {
       const Vec3 &a = f.positions[ju], &b = f.end_sites[ju];
-      if ((a - b).norm() > 1e-6) segs.push_back({a, b, color_of(j), (a + b).dot(toward) / 2});
+      if (a.allFinite() && b.allFinite() && (a - b).norm() > 1e-6) segs.push_back({a, b, color_of(j), (a + b).dot(toward) / 2});
     }
   }
   // Painter's order: far bones first, so the near leg is drawn over the far one.
@@ -217,7 +218,8 @@ void draw_figure(cairo_t* cr, const Figure& f, const Framing& fr) {
   }
   // Head: a circle through the head joint and its tip, so the figure reads as a person.
   const int head = skel.roles[Role::Head];
-  if (head >= 0 && head < n && f.end_sites.size() == f.positions.size() && skel.has_end_site[static_cast<std::size_t>(head)]) {
+  if (head >= 0 && head < n && f.end_sites.size() == f.positions.size() && skel.has_end_site[static_cast<std::size_t>(head)] &&
+      f.positions[static_cast<std::size_t>(head)].allFinite() && f.end_sites[static_cast<std::size_t>(head)].allFinite()) {
     const Vec3 a = f.positions[static_cast<std::size_t>(head)], b = f.end_sites[static_cast<std::size_t>(head)];
     const auto c = fr.to_pixel((a + b) / 2);
     const double r = std::max(0.6 * (fr.to_pixel(a) - fr.to_pixel(b)).norm(), 0.07 / fr.metres_per_pixel);
@@ -230,6 +232,7 @@ void draw_figure(cairo_t* cr, const Figure& f, const Framing& fr) {
   }
   // Joints as small dots.
   for (int j = 0; j < n; ++j) {
+    if (!f.positions[static_cast<std::size_t>(j)].allFinite()) continue;  // bad data must not break the picture
     const auto q = fr.to_pixel(f.positions[static_cast<std::size_t>(j)]);
     cairo_arc(cr, q.x(), q.y(), w * 0.75, 0, 2 * kPi);
     set_color(cr, color_of(j));
@@ -243,12 +246,13 @@ void draw_figure(cairo_t* cr, const Figure& f, const Framing& fr) {
 }
 
 void draw_label(cairo_t* cr, const Figure& f, const Framing& fr, const Layout& l) {
-  if (f.label.empty() || f.positions.empty()) return;
+  if (f.label.empty() || f.positions.empty() || !f.positions[0].allFinite()) return;
   // Centred under the figure's root, just below the panel's content area.
   (void)l;
   const double x = fr.to_pixel(f.positions[0]).x();
   double lowest = -1e300;
-  for (const auto& p : f.positions) lowest = std::max(lowest, fr.to_pixel(p).y());
+  for (const auto& p : f.positions)
+    if (p.allFinite()) lowest = std::max(lowest, fr.to_pixel(p).y());
   if (fr.view != View::Top) lowest = std::max(lowest, fr.to_pixel(Vec3(f.positions[0].x(), 0, f.positions[0].z())).y());
   text(cr, x, std::min(lowest + 18, fr.height - 4.0), f.label, 12, Align::Centre, kInk, std::max(f.alpha, 0.6));
 }
@@ -299,10 +303,7 @@ std::vector<Vec3> footprint_outline(const Footprint& fp) {
 }
 
 void draw_scene(cairo_t* cr, const Scene& scene, const Framing& fr) {
-  Camera cam;
-  cam.width = fr.width;
-  cam.height = fr.height;
-  const Layout l = layout_of(scene, cam);
+  const Layout l = layout_of(scene);
   cairo_save(cr);
   cairo_rectangle(cr, 0, 0, fr.width, fr.height);
   cairo_clip(cr);

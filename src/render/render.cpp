@@ -204,6 +204,7 @@ void render_trajectory(const Motion& m, int joint, const std::vector<int>& marke
   }
   path_curve.label = name;
   scene.curves.push_back(std::move(path_curve));
+  scene.footprints = opt.footprints;
   scene.title = !opt.title.empty() ? opt.title
                                    : name + " path over " + std::to_string(last - first + 1) + " frames (" +
                                          view_name(cam.view) + " view; dots = marked frames)";

@@ -11,7 +11,7 @@ namespace legwork::render::detail {
 struct Layout {
   double top = 0, bottom = 0;
 };
-Layout layout_of(const Scene& scene, const Camera& cam);
+Layout layout_of(const Scene& scene);
 
 // View-plane box (metres) of the scene's content and its floor shadow; false if empty.
 bool plane_bounds(const Scene& scene, View view, Eigen::Vector2d& lo, Eigen::Vector2d& hi);

@@ -196,7 +196,7 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
   for (int i = 0; i < n; ++i) {
     auto& fr = tracks[static_cast<std::size_t>(i)].framing;
     fr = frame_scene(extent[static_cast<std::size_t>(i)], cam);
-    if (vlo <= vhi) fr.centre_plane.y() = (vlo + vhi) / 2;
+    if (vlo <= vhi && !cam.fixed_bounds) fr.centre_plane.y() = (vlo + vhi) / 2;
   }
 
   double duration = 0;

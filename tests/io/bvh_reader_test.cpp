@@ -351,3 +351,19 @@ TEST(BvhSharedData, BoxingToesFrameCountMismatch) {
   EXPECT_GT(h, 1.4);
   EXPECT_LT(h, 2.0);
 }
+
+TEST(BvhReader, WriterRefusesALayoutThatWouldLoseData) {
+  auto f = io::parse_bvh(kBase, "base.bvh", metres());
+  f.motion.frame(1).translations[1] += Vec3(0, 0.1, 0);  // Spine translates, its layout has rotations only
+  io::BvhWriteOptions w;
+  w.channels = f.channels;
+  try {
+    io::format_bvh(f.motion, w);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("joint 'Spine' moves away from its rest offset"), std::string::npos) << e.what();
+  }
+  // The default layout adds position channels and keeps the translation.
+  const auto back = io::parse_bvh(io::format_bvh(f.motion), "back.bvh", metres());
+  expect_same_motion(f.motion, back.motion, 1e-6);
+}

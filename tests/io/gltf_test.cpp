@@ -84,4 +84,16 @@ TEST(Gltf, ErrorsAreClear) {
   Motion empty(m.skeleton, 30, 0);
   EXPECT_THROW(io::write_glb(temp("legwork_empty.glb"), empty), Error);
   EXPECT_THROW(io::read_glb(testdata::sample("cmu/bvh/walking/07_01.bvh").string()), Error);
+  // A truncated GLB is an error naming the file, not a crash.
+  const auto path = temp("legwork_truncated.glb");
+  io::write_glb(path, m);
+  const std::string bytes = io::read_text_file(path);
+  io::write_text_file(path, bytes.substr(0, bytes.size() / 2));
+  try {
+    io::read_glb(path);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
 }

@@ -138,6 +138,20 @@ TEST(RenderScene, SvgHasPaths) {
   EXPECT_NE(text.find("<path"), std::string::npos);
 }
 
+TEST(RenderScene, NonFinitePositionsAreSkippedNotFatal) {
+  const Motion& m = walk();
+  Scene s;
+  Figure f = make_figure(m.skeleton, m.frame(40), 1.0, "broken hand");
+  f.positions[static_cast<std::size_t>(m.skeleton.require("LeftHand"))] = Vec3::Constant(std::nan(""));
+  s.figures.push_back(f);
+  s.footprints.push_back({Vec3(std::nan(""), 0, 0), 0.0, true});
+  const auto file = out("nan.png");
+  ASSERT_NO_THROW(render_scene(s, Camera{}, file));
+  Image img(file);
+  ASSERT_TRUE(img.ok());
+  EXPECT_GT(img.count([](int, int, const auto& p) { return near_color(p, kRightColor); }), 100);
+}
+
 TEST(RenderScene, BadExtensionIsAnError) {
   Scene s;
   EXPECT_THROW(render_scene(s, Camera{}, out("x.jpg")), Error);
@@ -182,6 +196,42 @@ TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
   EXPECT_GT(right_on_left, 200);
   EXPECT_LT(left_on_left, left_on_right / 10);
   EXPECT_LT(right_on_right, right_on_left / 10);
+}
+
+// A walking frame turned to walk along -z: the contact sheet's face_forward
+// must turn it back, so the front row still shows the left side on the right
+// (and without face_forward the picture shows the back: left on the left).
+TEST(ContactSheet, FrontRowFacesTheViewerWhateverTheWalkingDirection) {
+  const Motion& m = walk();
+  const auto fr = m.frame(100);
+  Pose p;
+  p.rotations.assign(fr.rotations.begin(), fr.rotations.end());
+  p.translations.assign(fr.translations.begin(), fr.translations.end());
+  const Quat half_turn(Eigen::AngleAxisd(kPi, Vec3::UnitY()));
+  p.rotations[0] = half_turn * p.rotations[0];
+  p.translations[0] = half_turn * p.translations[0];
+  auto left_minus_right_x = [&](bool face_forward) {
+    SheetOptions opt;
+    opt.views = {View::Front};
+    opt.face_forward = face_forward;
+    const auto file = out(face_forward ? "sheet_turned_ff.png" : "sheet_turned_raw.png");
+    render_contact_sheet(m.skeleton, {p}, opt, file);
+    Image img(file);
+    EXPECT_TRUE(img.ok());
+    double lx = 0, rx = 0;
+    int ln = 0, rn = 0;
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        const auto px = img.at(x, y);
+        if (near_color(px, kLeftColor)) lx += x, ++ln;
+        if (near_color(px, kRightColor)) rx += x, ++rn;
+      }
+    EXPECT_GT(ln, 100);
+    EXPECT_GT(rn, 100);
+    return lx / std::max(ln, 1) - rx / std::max(rn, 1);
+  };
+  EXPECT_GT(left_minus_right_x(true), 10);
+  EXPECT_LT(left_minus_right_x(false), -10);
 }
 
 TEST(ContactSheet, RowsPerViewPosesSideBySide) {
@@ -258,4 +308,32 @@ TEST(Footprints, TopViewPutsLeftFootAboveRight) {
   ASSERT_GT(rn, 20);
   EXPECT_LT(ly / ln, ry / rn);  // left foot higher in the picture
   EXPECT_LT(lx / ln, rx / rn);  // right foot further forward (+z = right)
+}
+
+TEST(RenderPanels, GridOfViewsHasEveryPanelDrawn) {
+  const Motion& m = walk();
+  std::vector<Panel> panels;
+  for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
+    Panel p;
+    p.scene.figures.push_back(make_figure(m.skeleton, m.frame(80)));
+    p.scene.title = view_name(v);
+    p.camera.view = v;
+    p.camera.width = 240;
+    p.camera.height = 200;
+    panels.push_back(p);
+  }
+  const auto file = out("panels.png");
+  render_panels(panels, 2, file, "four views");
+  Image img(file);
+  ASSERT_TRUE(img.ok());
+  EXPECT_EQ(img.width(), 480);
+  EXPECT_EQ(img.height(), 400 + 34);
+  for (int q = 0; q < 4; ++q) {
+    const int x0 = (q % 2) * 240, y0 = 34 + (q / 2) * 200;
+    const int n = img.count([&](int x, int y, const auto& p) {
+      return x >= x0 && x < x0 + 240 && y >= y0 + 30 && y < y0 + 200 && (near_color(p, kLeftColor) || near_color(p, kRightColor));
+    });
+    EXPECT_GT(n, 80) << "panel " << q;
+  }
+  EXPECT_THROW(render_panels({}, 2, file), Error);
 }

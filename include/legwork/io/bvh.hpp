@@ -49,7 +49,11 @@ struct BvhFile {
   BvhReport report;
 };
 
-// Parses BVH text. `source` names the file in error messages.
+// Parses BVH text. `source` names the file in error messages
+// ("source:line: what was expected"). Accepts any channel order, 0-6 channels
+// on any joint (position channels replace the OFFSET), End Sites, tabs, CRLF,
+// scientific notation. Limits: joints nested <= 256 deep, frames x joints
+// <= 2^26. Thread-safe (no shared state). See docs/io.md.
 BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadOptions& opt = {});
 BvhFile read_bvh(const std::string& path, const BvhReadOptions& opt = {});
 // Convenience: the motion only.

@@ -4,6 +4,8 @@
 // inverse bind matrices of the rest pose) and a stick-figure mesh skinned to it
 // so viewers (Blender, three.js) show something; the motion becomes one
 // animation with translation + rotation channels per joint (LINEAR sampling).
+// BVH End Sites become leaf nodes "<joint>_end" (not skin joints). Data is
+// stored as 32-bit floats. Checked with the Khronos glTF validator (docs/io.md).
 // Units and axes are already glTF's (metres, y up, +z forward).
 #include <legwork/core/motion.hpp>
 

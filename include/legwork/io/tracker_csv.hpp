@@ -30,9 +30,12 @@ struct TrackerTable {
   bool has(std::string_view name) const;
 };
 
-// Errors (legwork::Error) name the file, line and column: missing "time"
-// column, a point without all of _x/_y/_z, non-numeric cells, time not
-// strictly increasing, rows with the wrong number of cells.
+// Errors (legwork::Error) read "file:line:column: message" (column = the
+// character column of the offending cell): empty file, missing "time" column,
+// a point without all of _x/_y/_z (or with 1-3 of the _q* columns), unknown or
+// duplicate columns, non-numeric cells, time not strictly increasing, rows
+// with the wrong number of cells. A partly filled sample is dropped whole
+// (valid = 0, NaN values). Quaternions are normalised.
 TrackerTable parse_tracker_csv(std::string_view text, std::string_view source);
 TrackerTable read_tracker_csv(const std::string& path);
 std::string format_tracker_csv(const TrackerTable& t);

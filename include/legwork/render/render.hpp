@@ -1,7 +1,10 @@
 #pragma once
 // Pictures: stick figures, contact sheets, trajectories and videos, drawn with
 // cairo through orthographic cameras. Offline/tool code: may allocate and
-// throw legwork::Error (bad path, ffmpeg missing...).
+// throw legwork::Error (bad path, ffmpeg missing...). All positions are
+// model-space metres. Functions keep no global state and may run on several
+// threads at once, except the video writers, which ignore SIGPIPE process-wide
+// while they run (so a dying ffmpeg becomes an Error, not a crash).
 #include <legwork/core/motion.hpp>
 
 #include <array>
@@ -154,6 +157,7 @@ struct TrajectoryOptions {
   int first_frame = 0;
   int last_frame = -1;
   std::string title;  // empty: "<joint> path over N frames (<view> view)"
+  std::vector<Footprint> footprints;  // drawn on the floor under the path
 };
 void render_trajectory(const Motion& m, int joint, const std::vector<int>& marked_frames,
                        const Camera& cam, const std::string& path, const TrajectoryOptions& opt);

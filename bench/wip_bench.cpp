@@ -1,0 +1,84 @@
+// Walking-in-place runtime cost: one avatar's per-frame update (signal
+// processing, gait machines, equations, speed, FK and two-bone IK for both
+// legs), driven by a real CMU walk's ankles; and one two-bone IK solve.
+// Counters: avatars_per_core_30Hz = how many avatars one core updates at 30 Hz.
+#include <benchmark/benchmark.h>
+
+#include <legwork/core/fk.hpp>
+#include <legwork/io/bvh.hpp>
+#include <legwork/wip/wip.hpp>
+
+#include <string>
+
+namespace {
+
+using namespace legwork;
+using namespace legwork::wip;
+
+Motion load_walk(const char* name) {
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  return io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/" + name, opt);
+}
+
+void BM_WipUpdatePerAvatarFrame(benchmark::State& state) {
+  const Motion walk = load_walk("16_15.bvh");
+  const WipModel model = make_wip_model(walk.skeleton);
+  const auto samples = samples_from_motion(walk, 30.0);
+  WipWorkspace ws = make_workspace(model);
+  std::size_t i = 0;
+  double offset = 0;
+  const double period = samples.back().time + 1.0 / 30;
+  for (auto _ : state) {
+    TrackerSample s = samples[i];
+    s.time += offset;  // loop the clip with time still increasing
+    benchmark::DoNotOptimize(update(model, s, ws));
+    if (++i == samples.size()) i = 0, offset += period;
+  }
+  state.counters["avatars_per_core_30Hz"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) / 30.0, benchmark::Counter::kIsRate);
+  state.counters["joints"] = model.skeleton.joint_count();
+}
+BENCHMARK(BM_WipUpdatePerAvatarFrame);
+
+void BM_WipUpdateSynthetic(benchmark::State& state) {
+  const WipModel model = make_wip_model(load_walk("07_01.bvh").skeleton);
+  const auto samples = synthetic_stepping({}).samples;
+  WipWorkspace ws = make_workspace(model);
+  std::size_t i = 0;
+  double offset = 0;
+  const double period = samples.back().time + 1.0 / 30;
+  for (auto _ : state) {
+    TrackerSample s = samples[i];
+    s.time += offset;
+    benchmark::DoNotOptimize(update(model, s, ws));
+    if (++i == samples.size()) i = 0, offset += period;
+  }
+  state.counters["avatars_per_core_30Hz"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) / 30.0, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_WipUpdateSynthetic);
+
+void BM_TwoBoneIkSolve(benchmark::State& state) {
+  const Motion walk = load_walk("07_01.bvh");
+  const Skeleton& s = walk.skeleton;
+  const auto leg = ik::left_leg(s);
+  Pose pose(s);
+  std::vector<Transform> model(static_cast<std::size_t>(s.joint_count()));
+  forward_kinematics(s, pose, model);
+  const Vec3 hip = model[static_cast<std::size_t>(leg.root)].translation;
+  double phase = 0;
+  for (auto _ : state) {
+    ik::TwoBoneTarget t;
+    t.position = hip + Vec3(0.02, -0.7 + 0.05 * std::sin(phase), 0.2 * std::cos(phase));
+    t.hint = hip + Vec3(0, -0.35, 0.3);
+    ik::solve_two_bone(s, leg, t, pose.ref(), model);
+    benchmark::DoNotOptimize(model.data());
+    phase += 0.1;
+  }
+}
+BENCHMARK(BM_TwoBoneIkSolve);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,109 @@
+#pragma once
+// Per-foot signal processing (floor, ring buffer, Butterworth low-pass,
+// velocity, hold-last-value with confidence decay) and the gait-phase state
+// machine of one foot. Runtime: fixed-size state, no allocation, no
+// exceptions. Heights are metres above the (calibrated or tracked) floor;
+// velocities m/s, positive up.
+#include <legwork/wip/filter.hpp>
+
+#include <array>
+#include <string_view>
+
+namespace legwork::wip {
+
+struct SignalParams {
+  double rate = 30.0;           // nominal sample rate, Hz (30/60/90/120 all work)
+  double cutoff = 4.0;          // low-pass cutoff, Hz
+  int order = 2;                // Butterworth order
+  double buffer_seconds = 1.0;  // ring buffer length (the document: 30 samples at 30 Hz)
+  double confidence_tau = 0.25; // s: confidence decays as exp(-t/tau) over dropped samples
+  // Rolling floor: the floor follows the ankle down at once and relaxes toward
+  // it with this time constant while the foot is in double support (the
+  // capture floor drifts by a few cm in real recordings). 0 = fixed floor.
+  double floor_tau = 2.0;
+};
+
+// One foot's processed signal.
+struct FootSignal {
+  static constexpr int kCapacity = 512;  // ring buffer samples (>= buffer_seconds * rate)
+
+  Butterworth filter;
+  std::array<double, kCapacity> ring{};  // filtered heights above the floor, newest at head
+  int head = -1, size = 0, capacity = 30;
+  double floor = 0;        // tracker-space ankle height of this foot standing
+  bool has_floor = false;  // set by calibration or the first valid sample
+  double raw = 0;          // last valid raw ankle height (tracker y)
+  double h = 0;            // filtered height above floor, metres
+  double v = 0;            // velocity of the filtered height, m/s
+  double confidence = 0;   // 1 = fresh samples, decays toward 0 over dropped ones
+  double held_time = 0;    // seconds since the last valid sample
+
+  void init(const SignalParams& p);
+  // Feeds one sample (valid=false: hold the last value). dt: seconds since the
+  // previous sample. `in_support` lets the rolling floor relax.
+  void push(const SignalParams& p, double y, bool valid, double dt, bool in_support);
+  // Filtered height `back` samples ago (0 = newest), clamped to the buffer.
+  double recent(int back) const;
+  // Highest filtered height over the buffer (about the last second).
+  double recent_max() const;
+};
+
+enum class GaitPhase : unsigned char { DoubleSupport, InitialSwing, MidSwing, TerminalSwing };
+std::string_view phase_name(GaitPhase p);
+inline bool in_swing(GaitPhase p) { return p != GaitPhase::DoubleSupport; }
+
+// Thresholds: the document's H1, V1, V2 as defaults. Transitions (decided
+// here, the document's diagram is lost; see docs/wip.md):
+//   DoubleSupport -> InitialSwing  h > H1 and v > V1            (foot-off detected)
+//   InitialSwing  -> MidSwing      v < V1                       (ascent ends near the apex)
+//   MidSwing      -> TerminalSwing v < -V2 or h < H1            (descending)
+//   any swing     -> DoubleSupport h < land_fraction * H1 (0.3) (foot-strike detected)
+//   TerminalSwing -> DoubleSupport also when the descent stops (v > -V1) below H1
+// With `adaptive`, H1/V1/V2 shrink toward fractions of the user's own step
+// (running estimates of apex height and peak speeds), never above the
+// document's values and never below the noise floors, so real walking's low
+// start/stop steps are seen.
+struct GaitParams {
+  double h1 = 0.10;  // m
+  double v1 = 0.20;  // m/s
+  double v2 = 0.60;  // m/s
+  double land_fraction = 0.3;    // landing height = land_fraction * H1 (hysteresis)
+  double min_stance_time = 0.07; // s in double support before a new lift counts
+  double max_ascent_time = 1.0;  // s: an ascent longer than this is treated as held (mid-swing)
+  double lost_confidence = 0.1;  // below this, a swinging foot is put down
+  bool adaptive = true;
+  double height_fraction = 0.4;    // adaptive H1 = fraction * apex estimate
+  double velocity_fraction = 0.25; // adaptive V1, V2 = fraction * peak speed estimates
+  double min_h1 = 0.03, min_v1 = 0.08;  // noise floors for the adaptive thresholds
+  double estimate_rate = 0.3;      // EMA weight of each new step in the estimates
+};
+
+// What happened on one update.
+enum GaitEvent : unsigned {
+  kEventNone = 0,
+  kEventFootOff = 1u << 0,    // DoubleSupport -> InitialSwing
+  kEventMidSwing = 1u << 1,   // InitialSwing -> MidSwing
+  kEventTerminal = 1u << 2,   // -> TerminalSwing
+  kEventFootStrike = 1u << 3, // swing -> DoubleSupport
+  kEventLost = 1u << 4,       // put down because tracking was lost
+};
+
+struct GaitMachine {
+  GaitPhase phase = GaitPhase::DoubleSupport;
+  double time_in_phase = 0;   // s
+  double apex = 0;            // highest h of the current/last swing
+  double peak_up = 0, peak_down = 0;  // fastest rise/fall (m/s, positive) this swing
+  // Running estimates of the user's step (seeded so that the adaptive
+  // thresholds start at the document's values).
+  double apex_estimate = 0, up_estimate = 0, down_estimate = 0;
+  int swings = 0;
+
+  void init(const GaitParams& p);
+  double h1(const GaitParams& p) const;
+  double v1(const GaitParams& p) const;
+  double v2(const GaitParams& p) const;
+  // One step of the machine; returns the events that fired.
+  unsigned update(const GaitParams& p, double h, double v, double confidence, double dt);
+};
+
+}  // namespace legwork::wip

@@ -1,0 +1,201 @@
+// Gait-phase state machines on scripted foot-height sequences, through the
+// whole runtime (signal processing included).
+#include <legwork/io/bvh.hpp>
+#include <legwork/wip/wip.hpp>
+
+#include "testdata.hpp"
+
+#include <cmath>
+#include <functional>
+#include <random>
+
+namespace legwork::wip {
+namespace {
+
+const WipModel& cmu_model() {
+  static const WipModel m = [] {
+    io::BvhReadOptions opt;
+    opt.drop_first_frame = true;
+    return make_wip_model(io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), opt).skeleton);
+  }();
+  return m;
+}
+
+// A smooth lift of `height` between t0 and t1 (0 outside).
+double bump(double t, double t0, double t1, double height) {
+  if (t <= t0 || t >= t1) return 0;
+  return height * std::pow(std::sin(kPi * (t - t0) / (t1 - t0)), 2);
+}
+
+using Heights = std::function<std::pair<double, double>(double)>;
+
+std::vector<WipFrame> run(const Heights& h, double duration, double rate = 30.0, double floor_y = 0.1) {
+  WipWorkspace ws = make_workspace(cmu_model());
+  set_floor(ws, floor_y, floor_y);
+  std::vector<WipFrame> out;
+  for (int i = 0; i <= static_cast<int>(duration * rate); ++i) {
+    TrackerSample s;
+    s.time = i / rate;
+    const auto [l, r] = h(s.time);
+    s.ankle[0] = Vec3(0.1, floor_y + l, 0);
+    s.ankle[1] = Vec3(-0.1, floor_y + r, 0);
+    out.push_back(update(cmu_model(), s, ws));
+  }
+  return out;
+}
+
+// Distinct consecutive phases of one foot.
+std::vector<GaitPhase> phases(const std::vector<WipFrame>& frames, int foot) {
+  std::vector<GaitPhase> seq;
+  for (const auto& f : frames)
+    if (seq.empty() || seq.back() != f.phase[foot]) seq.push_back(f.phase[foot]);
+  return seq;
+}
+
+int count_events(const std::vector<WipFrame>& frames, int foot, unsigned ev) {
+  int n = 0;
+  for (const auto& f : frames) n += (f.events[foot] & ev) ? 1 : 0;
+  return n;
+}
+
+using P = GaitPhase;
+
+TEST(Gait, FirstStepRunsThroughAllPhasesAndEndsWithTheFeetApart) {
+  const auto frames = run([](double t) { return std::pair{bump(t, 1.0, 1.5, 0.25), 0.0}; }, 2.0);
+  EXPECT_EQ(phases(frames, kLeft),
+            (std::vector<P>{P::DoubleSupport, P::InitialSwing, P::MidSwing, P::TerminalSwing, P::DoubleSupport}));
+  EXPECT_EQ(phases(frames, kRight), (std::vector<P>{P::DoubleSupport}));
+  bool first = false;
+  for (const auto& f : frames) first |= f.kind == StepKind::First && f.driver == kLeft;
+  EXPECT_TRUE(first);
+  const double S = cmu_model().shape.S;
+  EXPECT_NEAR(frames.back().z_target[kLeft], 0.5 * S, 1e-12);
+  EXPECT_NEAR(frames.back().z_target[kRight], -0.5 * S, 1e-12);
+  EXPECT_TRUE(frames.back().walking);
+}
+
+TEST(Gait, SeveralStepsAlternateAndStopAfterOneAndAHalfSeconds) {
+  // Six alternating steps of 0.45 s with 0.1 s double support, then standing.
+  auto h = [](double t) {
+    double l = 0, r = 0;
+    for (int k = 0; k < 6; ++k) {
+      const double t0 = 1.0 + 0.55 * k;
+      (k % 2 == 0 ? l : r) += bump(t, t0, t0 + 0.45, 0.2);
+    }
+    return std::pair{l, r};
+  };
+  const auto frames = run(h, 7.0);
+  EXPECT_EQ(count_events(frames, kLeft, kEventFootOff), 3);
+  EXPECT_EQ(count_events(frames, kRight, kEventFootOff), 3);
+  EXPECT_EQ(count_events(frames, kLeft, kEventFootStrike), 3);
+  int firsts = 0, consecutive_starts = 0;
+  for (std::size_t i = 1; i < frames.size(); ++i)
+    if (frames[i].driver >= 0 && frames[i - 1].driver < 0)
+      (frames[i].kind == StepKind::First ? firsts : consecutive_starts)++;
+  EXPECT_EQ(firsts, 1);
+  EXPECT_EQ(consecutive_starts, 5);
+  // The stop rule: walking ends 1.5 s after the last landing (within a frame).
+  double last_strike = 0, stop = -1;
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    if (frames[i].events[0] & kEventFootStrike || frames[i].events[1] & kEventFootStrike) last_strike = frames[i].time;
+    if (frames[i - 1].walking && !frames[i].walking) stop = frames[i].time;
+  }
+  ASSERT_GT(stop, 0);
+  EXPECT_NEAR(stop - last_strike, 1.5, 1.0 / 30 + 1e-9);
+  EXPECT_NEAR(frames.back().z[kLeft], 0.0, 0.01);
+  EXPECT_NEAR(frames.back().z[kRight], 0.0, 0.01);
+  EXPECT_NEAR(frames.back().root_offset, 0.0, 0.005);
+}
+
+TEST(Gait, BothFeetUpOrOneHeldForLongDoesNotWedge) {
+  // Both feet up together for 3 s (a jump or a sit), then the left foot held up 8 s, then a normal step.
+  auto h = [](double t) {
+    double l = bump(t, 1.0, 4.0, 0.25), r = bump(t, 1.05, 4.0, 0.25);
+    if (t > 5.0 && t < 13.0) l = std::min(0.2, 0.2 * (t - 5.0) / 0.2) * std::min(1.0, (13.0 - t) / 0.2);
+    r += bump(t, 14.0, 14.5, 0.2);
+    return std::pair{l, r};
+  };
+  const auto frames = run(h, 16.0);
+  for (int foot : {0, 1}) EXPECT_EQ(frames.back().phase[foot], P::DoubleSupport);
+  // The held foot is in swing while held and lands once.
+  bool held_in_swing = true;
+  for (const auto& f : frames)
+    if (f.time > 7 && f.time < 12.5) held_in_swing &= in_swing(f.phase[kLeft]);
+  EXPECT_TRUE(held_in_swing);
+  // The final right step is seen.
+  bool right_step = false;
+  for (const auto& f : frames) right_step |= f.time > 14 && (f.events[kRight] & kEventFootOff);
+  EXPECT_TRUE(right_step);
+  for (const auto& f : frames)
+    for (int foot : {0, 1}) ASSERT_TRUE(std::isfinite(f.z[foot]) && std::isfinite(f.y[foot]));
+}
+
+TEST(Gait, JitterAroundTheHeightThresholdGivesOneSwingNotMany) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.012, 0.012);
+  std::vector<double> noise(400);
+  for (double& n : noise) n = jitter(rng);
+  auto h = [&](double t) {
+    double l = 0;
+    if (t > 1.0) l = std::min(0.1, 0.1 * (t - 1.0) / 0.3) + noise[static_cast<std::size_t>(t * 30) % noise.size()];
+    if (t > 6.0) l = std::max(0.0, 0.1 - 0.5 * (t - 6.0));
+    return std::pair{l, 0.0};
+  };
+  const auto frames = run(h, 8.0);
+  EXPECT_LE(count_events(frames, kLeft, kEventFootOff), 1);
+  EXPECT_EQ(frames.back().phase[kLeft], P::DoubleSupport);
+}
+
+TEST(Gait, LostTrackingPutsTheFootDownWithoutNan) {
+  WipWorkspace ws = make_workspace(cmu_model());
+  set_floor(ws, 0.0, 0.0);
+  bool was_swing = false, lost = false;
+  for (int i = 0; i < 120; ++i) {
+    TrackerSample s;
+    s.time = i / 30.0;
+    s.ankle[0] = Vec3(0, bump(s.time, 0.5, 2.0, 0.25), 0);
+    s.ankle[1] = Vec3::Zero();
+    if (s.time > 0.9 && s.time < 2.5) {  // tracking drops out mid-swing
+      s.valid[0] = false;
+      s.ankle[0] = Vec3::Constant(std::nan(""));
+    }
+    const auto& f = update(cmu_model(), s, ws);
+    was_swing |= in_swing(f.phase[0]);
+    lost |= (f.events[0] & kEventLost) != 0;
+    ASSERT_TRUE(std::isfinite(f.h[0]) && std::isfinite(f.z[0]) && std::isfinite(f.speed));
+    for (const auto& q : ws.pose.rotations) ASSERT_TRUE(std::isfinite(q.w()));
+  }
+  EXPECT_TRUE(was_swing);
+  EXPECT_TRUE(lost);
+  EXPECT_EQ(ws.frame.phase[0], P::DoubleSupport);
+}
+
+TEST(Gait, OutOfOrderSamplesAreIgnored) {
+  WipWorkspace ws = make_workspace(cmu_model());
+  TrackerSample s;
+  s.time = 1.0;
+  update(cmu_model(), s, ws);
+  s.time = 0.5;
+  s.ankle[0] = Vec3(0, 5, 0);
+  const auto& f = update(cmu_model(), s, ws);
+  EXPECT_DOUBLE_EQ(f.time, 1.0);
+  EXPECT_NEAR(f.h[0], 0.0, 1e-12);
+}
+
+TEST(Calibration, RefusesWhenTheUserIsNotStill) {
+  SyntheticOptions o;
+  o.stand_time = 0.2;  // stepping starts almost at once
+  const auto moving = synthetic_stepping(o);
+  const auto bad = calibrate_floor(moving.samples);
+  EXPECT_FALSE(bad.ok);
+  EXPECT_NE(bad.message.find("not standing still"), std::string::npos) << bad.message;
+  o.stand_time = 3.0;
+  const auto still = synthetic_stepping(o);
+  const auto good = calibrate_floor(still.samples);
+  ASSERT_TRUE(good.ok) << good.message;
+  EXPECT_NEAR(good.floor[0], o.floor_y + o.ankle_height, 0.005);
+  EXPECT_THROW(run_wip(cmu_model(), moving.samples), Error);
+}
+
+}  // namespace
+}  // namespace legwork::wip
