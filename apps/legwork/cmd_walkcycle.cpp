@@ -481,7 +481,7 @@ void register_walkcycle(CLI::App& app) {
       "Example: legwork walkcycle --keys data/walks/normal.json --straight 6 --out walk.glb --sheet keys.png \\\n"
       "           --arc LeftHand,LeftToeBase --report walk.json\n"
       "         legwork walkcycle --keys data/walks/sneak.json --path path.json --out sneak.bvh --video sneak.mp4\n"
-      "         legwork walkcycle --from-bvh data/cmu/bvh/walking/07_01.bvh --keys 61,75,90,104 --frames 24 --out cycle.bvh\n"
+      "         legwork walkcycle --from-bvh data/cmu/bvh/walking/07_01.bvh --keys 53,60,100,101 --frames 24 --out cycle.bvh\n"
       "         legwork walkcycle extract data/cmu/bvh/walking/07_01.bvh --out my_walk.json");
   auto a = std::make_shared<WalkArgs>();
   cmd->add_option("--keys", a->keys, "walk key-pose file (JSON, see docs/walkcycle.md); with --from-bvh: frames C,D,P,U");
