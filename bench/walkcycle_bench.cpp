@@ -63,11 +63,11 @@ void BM_Walk100StepsCurved(benchmark::State& st) {
   for (auto _ : st) {
     const WalkResult w = walk_path(m, path, o);
     frames = w.motion.frame_count();
-    turning = w.turning;
+    turning = w.turning_abs;
     benchmark::DoNotOptimize(w.motion.all_rotations().data());
   }
   st.counters["frames"] = frames;
-  st.counters["abs_turning_deg"] = std::abs(rad2deg(turning));
+  st.counters["total_turning_deg"] = rad2deg(turning);
 }
 BENCHMARK(BM_Walk100StepsCurved)->Unit(benchmark::kMillisecond);
 

@@ -33,6 +33,7 @@ done
   --out "$out/16_15_s_curve.bvh" --top "$out/16_15_s_curve_top.png" --report "$out/16_15_s_curve_report.json"
 
 # A summary table of the figures every report carries.
+if command -v python3 >/dev/null 2>&1; then
 {
   echo "# Walk-cycle demo figures"
   echo
@@ -49,6 +50,7 @@ print(f"| {r.get('walk')} | {name} | {r.get('steps')} | {r.get('frames')} | {r.g
 PY
   done
 } > "$out/figures.md"
+fi
 
 {
   for w in normal sneak double-bounce; do
