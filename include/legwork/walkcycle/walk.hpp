@@ -19,8 +19,10 @@
 // in), corrected towards the path by atan(offset / two steps).
 // At the path's end the last step blends into the standing pose.
 //
-// walk_path() is offline (allocates the output motion once it knows its
-// length; the inner loop itself allocates nothing).
+// walk_path() is offline code: it sizes the output motion from the expected
+// walk (growing it if the walk runs longer) and may throw legwork::Error
+// (a walk that does not advance, an unreachable path). It only reads the
+// model, so several walks can be generated from one model in parallel.
 #include <legwork/walkcycle/cycle.hpp>
 #include <legwork/walkcycle/path.hpp>
 
