@@ -4,6 +4,7 @@
 
 #include <legwork/io/bvh.hpp>
 #include <legwork/walkcycle/measure.hpp>
+#include <legwork/walkcycle/walker.hpp>
 
 #include <cstdio>
 #include <string>
@@ -70,6 +71,21 @@ void BM_Walk100StepsCurved(benchmark::State& st) {
   st.counters["total_turning_deg"] = rad2deg(turning);
 }
 BENCHMARK(BM_Walk100StepsCurved)->Unit(benchmark::kMillisecond);
+
+// One character steered live: one walker_update per frame at 30 Hz.
+void BM_WalkerUpdate(benchmark::State& st) {
+  const CycleModel m = build_cycle(skeleton(), keys());
+  WalkerState s;
+  Pose p(skeleton());
+  walker_reset(m, s, Vec3::Zero(), 0.0, p.ref());
+  double desired = 0;
+  for (auto _ : st) {
+    desired += 0.001;
+    walker_update(m, s, 1.0 / 30.0, desired, p.ref());
+    benchmark::DoNotOptimize(p.translations.data());
+  }
+}
+BENCHMARK(BM_WalkerUpdate);
 
 }  // namespace
 
