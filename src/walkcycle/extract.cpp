@@ -1,3 +1,4 @@
+#include <legwork/core/series.hpp>
 #include <legwork/walkcycle/extract.hpp>
 
 #include <legwork/core/fk.hpp>
@@ -22,22 +23,6 @@ double percentile(std::vector<double> v, double p) {
   return v[i];
 }
 
-// Rolling minimum over +-w samples (monotone deque, O(n)).
-std::vector<double> rolling_min(const std::vector<double>& x, int w) {
-  const int n = static_cast<int>(x.size());
-  std::vector<double> out(x.size());
-  std::deque<int> q;
-  int right = 0;
-  for (int i = 0; i < n; ++i) {
-    while (right < n && right <= i + w) {
-      while (!q.empty() && x[static_cast<std::size_t>(q.back())] >= x[static_cast<std::size_t>(right)]) q.pop_back();
-      q.push_back(right++);
-    }
-    while (q.front() < i - w) q.pop_front();
-    out[static_cast<std::size_t>(i)] = x[static_cast<std::size_t>(q.front())];
-  }
-  return out;
-}
 
 // Pose with the heading `psi` taken out of the root and the root put at
 // (0, y, 0); mirrored (left <-> right) if `mirror`.
