@@ -26,7 +26,7 @@ endfunction()
 function(legwork_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wno-psabi
     # GCC 12 false positives in std::string concatenation (GCC bug 105329).
-    -Wno-restrict)
+    $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   if(LEGWORK_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -80,7 +80,7 @@ void print_info(const io::BvhFile& f) {
 
 void register_info(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Show a BVH file's joints, roles, frames, rate, duration and height.\n"
-                                         "Example: legwork info data/cmu/walking/07_01.bvh");
+                                         "Example: legwork info data/cmu/bvh/walking/07_01.bvh");
   auto in = std::make_shared<MotionInput>();
   auto json = std::make_shared<bool>(false);
   in->add_options(cmd);
@@ -102,7 +102,7 @@ void register_convert(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "convert",
       "Convert a motion: BVH -> BVH or GLB, with optional resampling, mirroring, trimming and unit scaling.\n"
-      "Example: legwork convert data/cmu/walking/07_01.bvh walk.glb --frames 1: --rate 30");
+      "Example: legwork convert data/cmu/bvh/walking/07_01.bvh walk.glb --frames 1: --rate 30");
   auto in = std::make_shared<MotionInput>();
   auto out = std::make_shared<std::string>();
   auto rate = std::make_shared<double>(0);

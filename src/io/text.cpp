@@ -1,5 +1,7 @@
 #include <legwork/io/text.hpp>
 
+#include <legwork/core/files.hpp>
+
 #include <legwork/core/types.hpp>
 
 #include <algorithm>
@@ -30,13 +32,6 @@ void write_text_file(const std::string& path, const std::string& text) {
   if (!out) throw Error(path + ": write failed");
 }
 
-std::string extension_of(const std::string& path) {
-  auto slash = path.find_last_of("/\\");
-  auto dot = path.rfind('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
+std::string extension_of(const std::string& path) { return legwork::extension_of(path); }
 
 }  // namespace legwork::io

@@ -1,5 +1,6 @@
 #include "canvas.hpp"
 
+#include <legwork/core/files.hpp>
 
 #include <cairo-svg.h>
 
@@ -9,19 +10,8 @@
 
 namespace legwork::render::detail {
 
-namespace {
-std::string lower_extension(const std::string& path) {
-  auto dot = path.find_last_of('.');
-  auto slash = path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string e = path.substr(dot);
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
-}  // namespace
-
 Format format_of(const std::string& path) {
-  const auto e = lower_extension(path);
+  const auto e = legwork::extension_of(path);
   if (e == ".png") return Format::Png;
   if (e == ".svg") return Format::Svg;
   throw Error("picture '" + path + "' must end in .png or .svg");

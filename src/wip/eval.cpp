@@ -1,3 +1,4 @@
+#include <legwork/core/series.hpp>
 #include <legwork/wip/eval.hpp>
 
 #include <legwork/core/fk.hpp>
@@ -11,22 +12,6 @@ namespace legwork::wip {
 
 namespace {
 
-// Rolling minimum over +-w samples (monotonic deque, O(n)).
-std::vector<double> rolling_min(const std::vector<double>& x, int w) {
-  const int n = static_cast<int>(x.size());
-  std::vector<double> out(x.size());
-  std::deque<int> dq;
-  int next = 0;
-  for (int i = 0; i < n; ++i) {
-    for (; next < n && next <= i + w; ++next) {
-      while (!dq.empty() && x[static_cast<std::size_t>(dq.back())] >= x[static_cast<std::size_t>(next)]) dq.pop_back();
-      dq.push_back(next);
-    }
-    while (dq.front() < i - w) dq.pop_front();
-    out[static_cast<std::size_t>(i)] = x[static_cast<std::size_t>(dq.front())];
-  }
-  return out;
-}
 
 }  // namespace
 

@@ -7,22 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
-namespace {
-std::atomic<long> g_allocations{0};
-std::atomic<bool> g_counting{false};
-}  // namespace
-
-void* operator new(std::size_t n) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "alloc_counter.hpp"
 
 namespace legwork::accent {
 namespace {
@@ -36,15 +21,12 @@ TEST(AccentAlloc, UpdateIsAllocationFree) {
     cfg.search = mode;
     Accentuator acc(db, cfg);
     for (std::size_t f = 0; f < 10; ++f) acc.update(frames[f]);
-    g_allocations = 0;
-    g_counting = true;
-    for (std::size_t f = 10; f < frames.size(); ++f) {
-      TrackerFrame t = frames[f];
-      if (f % 50 == 0) t.left.valid = false;  // the fallback path too
-      acc.update(t);
-    }
-    g_counting = false;
-    EXPECT_EQ(g_allocations.load(), 0) << "mode " << static_cast<int>(mode);
+    std::vector<TrackerFrame> live(frames.begin() + 10, frames.end());
+    for (std::size_t f = 0; f < live.size(); f += 50) live[f].left.valid = false;  // the fallback path too
+    const long allocations = legwork::alloc_count::count_allocations([&] {
+      for (const TrackerFrame& t : live) acc.update(t);
+    });
+    EXPECT_EQ(allocations, 0) << "mode " << static_cast<int>(mode);
   }
 }
 

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bvh_fixture.hpp"
+
 #include <set>
 #include <string>
 
@@ -11,29 +13,10 @@ using namespace legwork;
 
 namespace {
 
-// A tiny valid file; the cases below each break one thing in it.
-// Line numbers:  1 HIERARCHY, 2 ROOT, 4 OFFSET, 5 CHANNELS, 6 JOINT Spine,
-// 8 OFFSET, 9 CHANNELS, 10 End Site, 12 OFFSET, 16 MOTION, 17 Frames,
-// 18 Frame Time, 19-20 motion lines.
+// A tiny valid file (line numbers in bvh_fixture.hpp); the cases below each
+// break one thing in it.
 const std::string kValid =
-    "HIERARCHY\n"
-    "ROOT Hips\n"
-    "{\n"
-    "  OFFSET 0 0 0\n"
-    "  CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation\n"
-    "  JOINT Spine\n"
-    "  {\n"
-    "    OFFSET 0 0.5 0\n"
-    "    CHANNELS 3 Zrotation Yrotation Xrotation\n"
-    "    End Site\n"
-    "    {\n"
-    "      OFFSET 0 0.5 0\n"
-    "    }\n"
-    "  }\n"
-    "}\n"
-    "MOTION\n"
-    "Frames: 2\n"
-    "Frame Time: 0.1\n"
+    legwork::testdata::kTinyBvhHeader +
     "0 1 0 0 0 0 10 20 30\n"
     "0 1 0.1 0 0 0 10 20 30\n";
 

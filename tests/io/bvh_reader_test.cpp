@@ -5,6 +5,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/io/text.hpp>
 
+#include "bvh_fixture.hpp"
 #include "testdata.hpp"
 
 #include <algorithm>
@@ -21,24 +22,7 @@ using namespace legwork;
 namespace {
 
 const std::string kBase =
-    "HIERARCHY\n"
-    "ROOT Hips\n"
-    "{\n"
-    "  OFFSET 0 0 0\n"
-    "  CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation\n"
-    "  JOINT Spine\n"
-    "  {\n"
-    "    OFFSET 0 0.5 0\n"
-    "    CHANNELS 3 Zrotation Yrotation Xrotation\n"
-    "    End Site\n"
-    "    {\n"
-    "      OFFSET 0 0.5 0\n"
-    "    }\n"
-    "  }\n"
-    "}\n"
-    "MOTION\n"
-    "Frames: 2\n"
-    "Frame Time: 0.1\n"
+    legwork::testdata::kTinyBvhHeader +
     "0 1 0 0 0 0 10 20 30\n"
     "0.25 1 0.1 5 -7 3 10 20 30\n";
 

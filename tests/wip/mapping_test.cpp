@@ -4,25 +4,13 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/wip/eval.hpp>
 
+#include "alloc_counter.hpp"
 #include "testdata.hpp"
 
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <new>
 
-// Counts heap allocations so the runtime's allocation-free promise is tested.
-namespace {
-std::atomic<long> g_allocations{0};
-}
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace legwork::wip {
 namespace {
@@ -146,9 +134,10 @@ TEST(Mapping, UpdateDoesNotAllocate) {
   const auto track = synthetic_stepping({});
   const WipModel& m = cmu_model();
   WipWorkspace ws = make_workspace(m);
-  const long before = g_allocations.load();
-  for (const auto& s : track.samples) update(m, s, ws);
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  const long allocations = legwork::alloc_count::count_allocations([&] {
+    for (const auto& s : track.samples) update(m, s, ws);
+  });
+  EXPECT_EQ(allocations, 0);
 }
 
 TEST(Speed, ComfortableSteppingGivesAboutWalkingSpeedAndTheCapHolds) {

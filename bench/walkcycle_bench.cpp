@@ -1,0 +1,92 @@
+// Walk-cycle generator speed: building a cycle, sampling it, and generating a
+// 100-step walk along a curved path (target <= 5 ms, file output excluded).
+#include <benchmark/benchmark.h>
+
+#include <legwork/io/bvh.hpp>
+#include <legwork/walkcycle/measure.hpp>
+#include <legwork/walkcycle/walker.hpp>
+
+#include <cstdio>
+#include <string>
+
+using namespace legwork;
+using namespace legwork::walkcycle;
+
+namespace {
+
+const Skeleton& skeleton() {
+  static const Skeleton s = [] {
+    io::BvhReadOptions o;
+    o.drop_first_frame = true;
+    return io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/07_01.bvh", o).skeleton;
+  }();
+  return s;
+}
+
+const WalkKeys& keys() {
+  static const WalkKeys k = read_walk_keys(std::string(LEGWORK_SOURCE_DIR) + "/data/walks/normal.json", skeleton());
+  return k;
+}
+
+// A long winding path: Catmull-Rom through points zig-zagging every 6 m,
+// long enough for 100 steps of the normal walk.
+Path winding_path(double length) {
+  std::string pts;
+  for (int i = 0; i * 6.0 <= length + 6; ++i)
+    pts += (i ? "," : "") + std::string("[") + (i % 2 ? "2.5" : "-2.5") + "," + std::to_string(i * 6.0) + "]";
+  return parse_path_json("{\"catmull_rom\": [" + pts + "]}", "bench");
+}
+
+void BM_BuildCycle(benchmark::State& st) {
+  for (auto _ : st) benchmark::DoNotOptimize(build_cycle(skeleton(), keys()));
+}
+BENCHMARK(BM_BuildCycle)->Unit(benchmark::kMicrosecond);
+
+void BM_SampleCycle(benchmark::State& st) {
+  const CycleModel m = build_cycle(skeleton(), keys());
+  Pose p(skeleton());
+  double t = 0;
+  for (auto _ : st) {
+    sample_cycle(m, t, p.ref());
+    t += 0.37;
+    benchmark::DoNotOptimize(p.rotations.data());
+  }
+}
+BENCHMARK(BM_SampleCycle);
+
+void BM_Walk100StepsCurved(benchmark::State& st) {
+  const CycleModel m = build_cycle(skeleton(), keys());
+  const Path path = winding_path(200.0);
+  WalkOptions o;
+  o.steps = 100;  // exactly 100 steps (then the stop step)
+  int frames = 0;
+  double turning = 0;
+  for (auto _ : st) {
+    const WalkResult w = walk_path(m, path, o);
+    frames = w.motion.frame_count();
+    turning = w.turning_abs;
+    benchmark::DoNotOptimize(w.motion.all_rotations().data());
+  }
+  st.counters["frames"] = frames;
+  st.counters["total_turning_deg"] = rad2deg(turning);
+}
+BENCHMARK(BM_Walk100StepsCurved)->Unit(benchmark::kMillisecond);
+
+// One character steered live: one walker_update per frame at 30 Hz.
+void BM_WalkerUpdate(benchmark::State& st) {
+  const CycleModel m = build_cycle(skeleton(), keys());
+  WalkerState s;
+  Pose p(skeleton());
+  walker_reset(m, s, Vec3::Zero(), 0.0, p.ref());
+  double desired = 0;
+  for (auto _ : st) {
+    desired += 0.001;
+    walker_update(m, s, 1.0 / 30.0, desired, p.ref());
+    benchmark::DoNotOptimize(p.translations.data());
+  }
+}
+BENCHMARK(BM_WalkerUpdate);
+
+}  // namespace
+
+BENCHMARK_MAIN();

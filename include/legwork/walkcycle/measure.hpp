@@ -1,0 +1,74 @@
+#pragma once
+// Figures that check a walk: stance-foot slip, loop seam continuity, joint
+// arcs and their smoothness, foot heights at the key poses. Offline (they
+// allocate); all positions in metres, model or world space as stated.
+#include <legwork/walkcycle/walk.hpp>
+
+#include <array>
+#include <span>
+#include <vector>
+
+namespace legwork::walkcycle {
+
+// Stance slip: for every pivot phase (one stance foot pivoting on its heel or
+// on its ball), the largest horizontal distance the pivot point moves from
+// where it was when the phase began, measured by full FK of the output frames.
+struct SlipReport {
+  double max_mm = 0;
+  double mean_mm = 0;  // mean over phases of each phase's maximum
+  int phases = 0;
+  int worst_step = -1;
+  std::vector<double> per_step_mm;  // max per step
+};
+SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels);
+
+// Seam of the in-place loop: every joint's model-space position and velocity
+// just before frame N (left limit, quadratic extrapolation) against frame 0
+// (right limit). Largest difference over joints: metres and metres/second.
+struct SeamReport {
+  double position_m = 0;
+  double velocity_mps = 0;
+};
+SeamReport measure_loop_seam(const CycleModel& m);
+
+// A joint's model-space path over one in-place cycle, `samples_per_frame`
+// points per frame (frame N left out: the polyline is closed).
+struct Arc {
+  int joint = -1;
+  int samples_per_frame = 1;
+  std::vector<Vec3> points;
+  std::vector<int> key_indices;  // points at the 8 key poses of the cycle
+};
+Arc trace_arc(const CycleModel& m, int joint, int samples_per_frame = 1);
+
+// Arc smoothness. The turning angle at each point (ignoring points where the
+// joint barely moves) should change gradually; a key pose that breaks the
+// arc shows as a jump. jerk_ratio = largest |third difference| of the
+// points over the median one (a smooth loop stays low; a key pose that
+// kinks the arc raises it, and jerk_frame says where).
+struct ArcSmoothness {
+  double extent_m = 0;  // bounding-box diagonal of the arc (tiny arcs: ratios mean little)
+  double max_curvature_jump_deg = 0;
+  double jump_frame = 0;
+  double jerk_ratio = 0;
+  double jerk_frame = 0;
+};
+ArcSmoothness arc_smoothness(const Arc& arc);
+
+// Lowest foot point (heel, ball, toe tip) above the floor at each of the
+// five key poses of the step, metres (0 = touching; < 0 = below the floor).
+std::array<double, kKeyCount + 1> key_foot_heights(const CycleModel& m);
+
+// The same lowest foot point over the whole in-place cycle (4 samples per
+// frame): the minimum (metres, negative = below the floor; >= 0 with
+// floor_clamp) and where, and how far the floor clamp had to lift the root
+// (how far the spline alone would dip a foot below the floor between keys).
+struct FloorReport {
+  double lowest_m = 0;
+  double at_frame = 0;
+  double max_lift_m = 0;
+  double lift_frame = 0;
+};
+FloorReport cycle_floor_contact(const CycleModel& m);
+
+}  // namespace legwork::walkcycle

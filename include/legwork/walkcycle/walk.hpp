@@ -1,0 +1,78 @@
+#pragma once
+// Walking forward without foot slip, straight or along a curved path
+// (document 001, section 3.5).
+//
+// Per frame, the root is moved so the stance foot's pivot stays where it
+// was on the previous frame: the heel from contact until the pass key, the
+// ball from the pass key to the next contact (the document's heel-then-ball
+// rule, extended to any skeleton: heel = ankle projected to the floor,
+// ball = toe base projected to the floor, both fixed in the foot's frame).
+// The paper tracks only the pivot's z; here both horizontal axes are kept,
+// which also carries the pelvis's side sway into the root.
+//
+// Curved paths: the character turns only about y (the paper's root rotate Y,
+// heading theta_n per path segment); heading changes are spread from the
+// middle of one step to the middle of the next, and every rotation is applied
+// about the planted pivot, so the stance foot stays put while the body turns.
+// Each step's heading is decided at the middle of the previous step: the
+// path's direction one step further on (where the heading will have blended
+// in), corrected towards the path by atan(offset / two steps).
+// At the path's end the last step blends into the standing pose.
+//
+// walk_path() is offline code: it sizes the output motion from the expected
+// walk (growing it if the walk runs longer) and may throw legwork::Error
+// (a walk that does not advance, an unreachable path). It only reads the
+// model, so several walks can be generated from one model in parallel.
+#include <legwork/walkcycle/cycle.hpp>
+#include <legwork/walkcycle/path.hpp>
+
+#include <vector>
+
+namespace legwork::walkcycle {
+
+struct WalkOptions {
+  double fps = 0;              // output rate; 0 = the walk's own rate
+  double lookahead_steps = 1.0;  // heading lead along the path, in step lengths
+  bool stop = true;            // end in the standing pose at the path's end
+  int max_steps = 100000;      // safety limit
+  int steps = -1;              // >= 0: walk exactly this many steps (then stop), ignoring the path's end
+};
+
+// What each output frame's interval (frame-1, frame] pivots on.
+struct FrameLabel {
+  int step = 0;
+  bool left_stance = true;
+  Pivot pivot = Pivot::Heel;
+  bool stopping = false;  // in the stop step or the final hold
+};
+
+// Where a stance foot was planted (world, floor).
+struct Footstep {
+  Vec3 heel = Vec3::Zero();
+  Vec3 ball = Vec3::Zero();
+  double heading = 0;  // radians about y, 0 = facing +z
+  bool left = true;
+  int step = 0;
+  int frame = 0;  // output frame where it takes the weight
+};
+
+struct WalkResult {
+  Motion motion;                   // world-space walk
+  std::vector<FrameLabel> labels;  // per frame (label of frame 0 = frame 1's)
+  std::vector<double> heading;     // per frame, radians
+  std::vector<Footstep> footsteps;
+  int steps = 0;                   // steps taken, the stop step included
+  double step_length = 0;          // straight-walk advance per step, metres
+  double path_length = 0;
+  double end_distance = 0;         // final root (floor) distance to the path's end
+  double max_path_deviation = 0;   // largest root distance from the path, metres
+  double turning = 0;              // net heading change, radians (+ = to the left)
+  double turning_abs = 0;          // sum of |heading changes| between steps, radians
+};
+
+// Straight-walk advance per step of the cycle (metres); the walk's stride.
+double step_length(const CycleModel& m);
+
+WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt = {});
+
+}  // namespace legwork::walkcycle

@@ -1,0 +1,170 @@
+#include <legwork/walkcycle/measure.hpp>
+
+#include <legwork/core/fk.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace legwork::walkcycle {
+
+namespace {
+
+Vec3 pivot_world(const CycleModel& m, std::span<const Transform> g, bool left, Pivot pv) {
+  const FootPivots& f = m.foot(left);
+  return g[static_cast<std::size_t>(f.ankle)].apply(pv == Pivot::Heel ? f.heel_local : f.ball_local);
+}
+
+}  // namespace
+
+SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels) {
+  SlipReport r;
+  const int n = walk.frame_count();
+  if (n < 2 || static_cast<int>(labels.size()) != n) return r;
+  std::vector<Transform> g(static_cast<std::size_t>(walk.joint_count()));
+  std::vector<Transform> g_prev(g.size());
+  forward_kinematics(walk.skeleton, walk.frame(0), g_prev);
+  std::map<int, double> per_step;
+  Vec3 anchor = Vec3::Zero();
+  double phase_max = 0, sum = 0;
+  for (int f = 1; f < n; ++f) {
+    forward_kinematics(walk.skeleton, walk.frame(f), g);
+    const FrameLabel& l = labels[static_cast<std::size_t>(f)];
+    const FrameLabel& lp = labels[static_cast<std::size_t>(f - 1)];
+    const bool new_phase = f == 1 || l.step != lp.step || l.left_stance != lp.left_stance || l.pivot != lp.pivot;
+    if (new_phase) {
+      if (f > 1) sum += phase_max, ++r.phases;
+      anchor = pivot_world(m, g_prev, l.left_stance, l.pivot);  // where the pivot was as the phase began
+      phase_max = 0;
+    }
+    const Vec3 d = pivot_world(m, g, l.left_stance, l.pivot) - anchor;
+    const double mm = std::hypot(d.x(), d.z()) * 1000.0;
+    phase_max = std::max(phase_max, mm);
+    per_step[l.step] = std::max(per_step[l.step], mm);
+    if (mm > r.max_mm) r.max_mm = mm, r.worst_step = l.step;
+    std::swap(g, g_prev);
+  }
+  sum += phase_max, ++r.phases;
+  r.mean_mm = sum / r.phases;
+  for (auto& [s, v] : per_step) r.per_step_mm.push_back(v);
+  return r;
+}
+
+SeamReport measure_loop_seam(const CycleModel& m) {
+  const double n = m.frames_per_cycle, h = 1e-3;
+  Pose pose(m.skeleton);
+  auto pos = [&](double t) {
+    sample_cycle(m, t, pose.ref());
+    return joint_positions(m.skeleton, pose);
+  };
+  // Left of the seam: t = N - h, N - 2h, N - 3h (sampled inside the last
+  // segment, not wrapped); right of it: t = 0, h, 2h.
+  const auto l1 = pos(n - h), l2 = pos(n - 2 * h), l3 = pos(n - 3 * h);
+  const auto r0 = pos(0), r1 = pos(h), r2 = pos(2 * h);
+  SeamReport s;
+  for (std::size_t j = 0; j < r0.size(); ++j) {
+    const Vec3 p_left = 3 * l1[j] - 3 * l2[j] + l3[j];
+    const Vec3 v_left = (2.5 * l1[j] - 4 * l2[j] + 1.5 * l3[j]) / h * m.fps;
+    const Vec3 v_right = (-1.5 * r0[j] + 2 * r1[j] - 0.5 * r2[j]) / h * m.fps;
+    s.position_m = std::max(s.position_m, (p_left - r0[j]).norm());
+    s.velocity_mps = std::max(s.velocity_mps, (v_left - v_right).norm());
+  }
+  return s;
+}
+
+Arc trace_arc(const CycleModel& m, int joint, int samples_per_frame) {
+  if (joint < 0 || joint >= m.skeleton.joint_count()) throw Error("arc: joint index out of range");
+  Arc a;
+  a.joint = joint;
+  a.samples_per_frame = std::max(1, samples_per_frame);
+  const int count = m.frames_per_cycle * a.samples_per_frame;
+  Pose pose(m.skeleton);
+  std::vector<Vec3> p(static_cast<std::size_t>(m.skeleton.joint_count()));
+  for (int i = 0; i < count; ++i) {
+    sample_cycle(m, static_cast<double>(i) / a.samples_per_frame, pose.ref());
+    forward_positions(m.skeleton, pose, p);
+    a.points.push_back(p[static_cast<std::size_t>(joint)]);
+  }
+  for (int step = 0; step < 2; ++step)
+    for (double kf : m.key_frames) {
+      const double t = kf + step * m.half_cycle();
+      a.key_indices.push_back(static_cast<int>(std::lround(t * a.samples_per_frame)) % count);
+    }
+  return a;
+}
+
+ArcSmoothness arc_smoothness(const Arc& arc) {
+  ArcSmoothness s;
+  const int n = static_cast<int>(arc.points.size());
+  if (n < 5) return s;
+  auto P = [&](int i) -> const Vec3& { return arc.points[static_cast<std::size_t>(((i % n) + n) % n)]; };
+  Vec3 lo = arc.points.front(), hi = arc.points.front();
+  for (const auto& p : arc.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  s.extent_m = (hi - lo).norm();
+  double mean_seg = 0;
+  for (int i = 0; i < n; ++i) mean_seg += (P(i + 1) - P(i)).norm();
+  mean_seg /= n;
+  // Turning angle per point, NaN where the joint nearly stops.
+  std::vector<double> turn(static_cast<std::size_t>(n), std::nan(""));
+  for (int i = 0; i < n; ++i) {
+    const Vec3 a = P(i) - P(i - 1), b = P(i + 1) - P(i);
+    if (a.norm() < 0.05 * mean_seg || b.norm() < 0.05 * mean_seg) continue;
+    turn[static_cast<std::size_t>(i)] = rad2deg(std::atan2(a.cross(b).norm(), a.dot(b)));
+  }
+  for (int i = 0; i < n; ++i) {
+    const double a = turn[static_cast<std::size_t>(i)], b = turn[static_cast<std::size_t>((i + 1) % n)];
+    if (std::isnan(a) || std::isnan(b)) continue;
+    if (std::abs(b - a) > s.max_curvature_jump_deg) {
+      s.max_curvature_jump_deg = std::abs(b - a);
+      s.jump_frame = static_cast<double>((i + 1) % n) / arc.samples_per_frame;
+    }
+  }
+  std::vector<double> jerk(static_cast<std::size_t>(n));
+  double best = 0;
+  for (int i = 0; i < n; ++i) {
+    const double j = (P(i + 2) - 3 * P(i + 1) + 3 * P(i) - P(i - 1)).norm();
+    jerk[static_cast<std::size_t>(i)] = j;
+    if (j > best) best = j, s.jerk_frame = (i + 0.5) / arc.samples_per_frame;
+  }
+  std::nth_element(jerk.begin(), jerk.begin() + n / 2, jerk.end());
+  const double median = jerk[static_cast<std::size_t>(n / 2)];
+  s.jerk_ratio = median > 1e-15 ? best / median : 0.0;
+  return s;
+}
+
+FloorReport cycle_floor_contact(const CycleModel& m) {
+  FloorReport r;
+  r.lowest_m = 1e9;
+  CycleModel unclamped = m;
+  unclamped.floor_clamp = false;
+  Pose p(m.skeleton);
+  for (int i = 0; i < 4 * m.frames_per_cycle; ++i) {
+    const double t = i / 4.0;
+    sample_cycle(m, t, p.ref());
+    const double lo = lowest_foot_height(m, p);
+    if (lo < r.lowest_m) r.lowest_m = lo, r.at_frame = t;
+    sample_cycle(unclamped, t, p.ref());
+    const double dip = -lowest_foot_height(m, p);
+    if (dip > r.max_lift_m) r.max_lift_m = dip, r.lift_frame = t;
+  }
+  return r;
+}
+
+std::array<double, kKeyCount + 1> key_foot_heights(const CycleModel& m) {
+  std::array<double, kKeyCount + 1> out{};
+  std::vector<Transform> g(static_cast<std::size_t>(m.skeleton.joint_count()));
+  for (int k = 0; k <= kKeyCount; ++k) {
+    forward_kinematics(m.skeleton, m.step_keys[static_cast<std::size_t>(k)], g);
+    double lo = 1e9;
+    for (bool left : {true, false}) {
+      lo = std::min(lo, pivot_world(m, g, left, Pivot::Heel).y());
+      lo = std::min(lo, pivot_world(m, g, left, Pivot::Ball).y());
+      const FootPivots& f = m.foot(left);
+      if (f.toe >= 0) lo = std::min(lo, end_site_position(m.skeleton, g, f.toe).y());
+    }
+    out[static_cast<std::size_t>(k)] = lo;
+  }
+  return out;
+}
+
+}  // namespace legwork::walkcycle

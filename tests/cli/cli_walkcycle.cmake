@@ -1,0 +1,29 @@
+# legwork walkcycle: the shipped walks straight, along paths, pictures and reports; bad input fails.
+set(W ${PROJECT_SOURCE_DIR}/data/walks)
+legwork_cli_test(walkcycle_help walkcycle --help)
+legwork_cli_test(walkcycle_cycle walkcycle --keys ${W}/normal.json --out ${O}/wc_cycle.bvh)
+legwork_cli_test(walkcycle_straight walkcycle --keys ${W}/normal.json --straight 6 --out ${O}/wc_normal.glb
+                 --sheet ${O}/wc_normal_sheet.png --arc LeftHand,LeftToeBase --report ${O}/wc_normal.json --top ${O}/wc_normal_top.svg)
+legwork_cli_test(walkcycle_path walkcycle --keys ${W}/sneak.json --path ${W}/paths/quarter-turn.json --out ${O}/wc_sneak.bvh --fps 30
+                 --report ${O}/wc_sneak.json)
+legwork_cli_test(walkcycle_svg walkcycle --keys ${W}/double-bounce.json --svg-path "M 0 0 C 0 2 2 2 2 4" --out ${O}/wc_db.bvh
+                 --shift LeftShoulder=0,LeftArm=1,LeftForeArm=2 --frames 32)
+legwork_cli_test(walkcycle_steps walkcycle --keys ${W}/normal.json --steps 4 --out ${O}/wc_steps.bvh)
+legwork_cli_test(walkcycle_from_bvh walkcycle --from-bvh ${D}/walking/07_01.bvh --keys 53,60,100,101 --frames 24 --out ${O}/wc_from_bvh.bvh
+                 --straight 3)
+legwork_cli_test(walkcycle_extract walkcycle extract ${D}/walking/16_15.bvh --out ${O}/wc_16_15.json --report ${O}/wc_16_15_report.json)
+legwork_cli_fail(walkcycle_no_keys walkcycle --straight 3 --out ${O}/x.bvh)
+legwork_cli_fail(walkcycle_bad_joint walkcycle --keys ${W}/normal.json --shift NoSuchJoint=1 --out ${O}/x.bvh)
+legwork_cli_fail(walkcycle_bad_ext walkcycle --keys ${W}/normal.json --out ${O}/x.txt)
+legwork_cli_fail(walkcycle_bad_path walkcycle --keys ${W}/normal.json --svg-path "M 0 0 L 0 0" --out ${O}/x.bvh)
+legwork_cli_fail(walkcycle_not_json walkcycle --keys ${D}/walking/07_01.bvh --out ${O}/x.bvh)
+legwork_cli_fail(walkcycle_extract_not_walk walkcycle extract ${PROJECT_SOURCE_DIR}/data/cmu/bvh/swimming/79_02.bvh --out ${O}/x.json)
+# Same input, same bytes: two runs of a curved walk (BVH and report) compared.
+foreach(run a b)
+  legwork_cli_test(walkcycle_repro_${run} walkcycle --keys ${W}/double-bounce.json --path ${W}/paths/s-curve.json
+                   --out ${O}/wc_repro_${run}.bvh --report ${O}/wc_repro_${run}.json)
+  set_tests_properties(cli.walkcycle_repro_${run} PROPERTIES FIXTURES_SETUP wc_repro)
+endforeach()
+add_test(NAME cli.walkcycle_repro_same_bvh COMMAND ${CMAKE_COMMAND} -E compare_files ${O}/wc_repro_a.bvh ${O}/wc_repro_b.bvh)
+add_test(NAME cli.walkcycle_repro_same_report COMMAND ${CMAKE_COMMAND} -E compare_files ${O}/wc_repro_a.json ${O}/wc_repro_b.json)
+set_tests_properties(cli.walkcycle_repro_same_bvh cli.walkcycle_repro_same_report PROPERTIES FIXTURES_REQUIRED wc_repro)
