@@ -46,6 +46,20 @@ Quat clamp_rotation(const Quat& q, const Vec3& axis, double max_swing, double ma
   return (swing * twist).normalized();
 }
 
+// Rotation vector (axis * angle) of a unit quaternion and back.
+Vec3 rotation_log(Quat q) {
+  if (q.w() < 0) q.coeffs() = -q.coeffs();
+  const Vec3 v(q.x(), q.y(), q.z());
+  const double s = v.norm();
+  if (s < 1e-12) return 2.0 * v;
+  return v * (2.0 * std::atan2(s, q.w()) / s);
+}
+Quat rotation_exp(const Vec3& r) {
+  const double angle = r.norm();
+  if (angle < 1e-12) return Quat(1.0, 0.5 * r.x(), 0.5 * r.y(), 0.5 * r.z()).normalized();
+  return Quat(Eigen::AngleAxisd(angle, r / angle));
+}
+
 double yaw_of(const Quat& q) {
   const Vec3 f = q * Vec3::UnitZ();
   return std::atan2(f.x(), f.z());
@@ -138,6 +152,9 @@ Accentuator::Accentuator(const Database& db, AccentConfig cfg) : db_(&db), cfg_(
   synth_ = smoothed_ = direct_ = out_ = neutral_;
   model_.resize(nu);
   model_rot_.resize(nu);
+  spring_rot_.assign(nu, Quat::Identity());
+  spring_vel_.assign(nu, Vec3::Zero());
+  if (!(cfg_.smooth_halflife >= 0) || !std::isfinite(cfg_.smooth_halflife)) throw Error("accent: smoothing half-life must be >= 0 seconds");
   reset();
 }
 
@@ -145,7 +162,7 @@ void Accentuator::reset() {
   ring_head_ = -1;
   ring_size_ = 0;
   hand_offset_ = {Vec3(0.2, -0.6, 0.1) * scale_, Vec3(-0.2, -0.6, 0.1) * scale_};
-  have_head_ = started_ = have_smoothed_ = false;
+  have_head_ = started_ = have_smoothed_ = have_spring_ = false;
   last_time_ = 0;
   fallback_ = 0;
   match_count_ = {0, 0};
@@ -159,7 +176,7 @@ std::span<const Match> Accentuator::matches(int hand) const {
 
 std::size_t Accentuator::state_bytes() const {
   const auto nj = static_cast<std::size_t>(skel_.joint_count());
-  return sizeof(*this) + 5 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Transform) + sizeof(Quat) + sizeof(Limit) + 1) +
+  return sizeof(*this) + 5 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Transform) + sizeof(Quat) + sizeof(Limit) + 1) +
          class_mask_.size() + skel_.joint_count() * (sizeof(Vec3) * 2 + 40);
 }
 
@@ -300,6 +317,31 @@ void Accentuator::make_direct_pose(const TrackerFrame&) {
   direct_.rotations[0] = Quat(Eigen::AngleAxisd(yaw_of(last_head_rot_), Vec3::UnitY())) * neutral_.rotations[0];
 }
 
+// Exact critically damped spring per joint toward this frame's rotation
+// (closed form, so any dt gives the same curve): unlike the EWMA alone, the
+// output's angular velocity stays continuous when the candidate set switches.
+void Accentuator::spring_filter(double dt) {
+  const std::size_t n = out_.rotations.size();
+  if (!have_spring_) {
+    for (std::size_t j = 0; j < n; ++j) {
+      spring_rot_[j] = out_.rotations[j];
+      spring_vel_[j] = Vec3::Zero();
+    }
+    have_spring_ = true;
+    return;
+  }
+  const double y = 2.0 * std::log(2.0) / cfg_.smooth_halflife;  // half the damping
+  const double decay = std::exp(-y * dt);
+  for (std::size_t j = 0; j < n; ++j) {
+    const Quat& goal = out_.rotations[j];
+    const Vec3 j0 = rotation_log(spring_rot_[j] * goal.conjugate());
+    const Vec3 j1 = spring_vel_[j] + j0 * y;
+    spring_rot_[j] = (rotation_exp(decay * (j0 + j1 * dt)) * goal).normalized();
+    spring_vel_[j] = decay * (spring_vel_[j] - j1 * y * dt);
+    out_.rotations[j] = spring_rot_[j];
+  }
+}
+
 void Accentuator::finish_pose(const Quat& head_rotation, const Vec3& head_position, double ik_weight) {
   const int n = skel_.joint_count();
   const auto& r = skel_.roles;
@@ -404,6 +446,7 @@ FrameInfo Accentuator::update(const TrackerFrame& in) {
     out_.rotations[j] = fallback_ <= 0 ? smoothed_.rotations[j]
                         : fallback_ >= 1 ? direct_.rotations[j]
                                          : slerp(smoothed_.rotations[j], direct_.rotations[j], fallback_);
+  if (cfg_.smooth && cfg_.smooth_halflife > 0 && !cfg_.direct_only) spring_filter(dt);
   finish_pose(last_head_rot_, last_head_, std::max(cfg_.hand_ik, fallback_));
   // Never hand out a broken pose: fall back to the neutral one.
   bool ok = finite(out_.translations[0]);
