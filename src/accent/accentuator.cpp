@@ -224,7 +224,7 @@ bool Accentuator::blend_candidates(double threshold) {
     const int ns = match_count_[static_cast<std::size_t>(h)];
     for (int i = 0; i < ns; ++i) seeds[static_cast<std::size_t>(i)] = m[static_cast<std::size_t>(i)].window;
     // With the head-tilt gate, look further so k candidates usually survive it.
-    const int k_search = cfg_.max_head_tilt_deg > 0 ? std::min(kMaxK, 2 * k[h]) : k[h];
+    const int k_search = cfg_.max_head_tilt_deg > 0 ? std::min(kMaxK, k[h] + std::max(3, k[h] / 3)) : k[h];
     int got = search_knn(db, h, f, k_search, cfg_.search, cfg_.fast_eps, class_mask_, m, std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)),
                          cfg_.fast_max_checks);
     if (threshold > 0)
@@ -246,6 +246,7 @@ bool Accentuator::blend_candidates(double threshold) {
       const auto iu = static_cast<std::size_t>(i);
       const int win = m[iu].window;
       const auto root = db.pose_rotations(static_cast<int>(db.source(win).pose));
+      pose_rot_[static_cast<std::size_t>(h)][iu] = root.data();
       Quat q0(root[0], root[1], root[2], root[3]);
       if (cfg_.align) q0 = Quat(Eigen::AngleAxisd(align_yaw(query_xz, db.align(win)), Vec3::UnitY())) * q0;
       root_aligned_[static_cast<std::size_t>(h)][iu] = q0;
@@ -297,7 +298,7 @@ bool Accentuator::blend_candidates(double threshold) {
           const Quat& r0 = root_aligned_[static_cast<std::size_t>(h)][iu];
           q = {r0.w(), r0.x(), r0.y(), r0.z()};
         } else {
-          const auto rot = db.pose_rotations(static_cast<int>(db.source(matches_[static_cast<std::size_t>(h)][iu].window).pose));
+          const float* rot = pose_rot_[static_cast<std::size_t>(h)][iu];
           q = {rot[4 * ju], rot[4 * ju + 1], rot[4 * ju + 2], rot[4 * ju + 3]};
         }
         if (ref.isZero()) ref = q;

@@ -142,9 +142,13 @@ TEST_F(HeldOutSubject, SmoothingCutsJitterWithoutCostingAccuracy) {
     paper.hand_ik = 0;
     paper.smooth_halflife = 0;
     print("paper (k 5, no hand IK)", run(paper));
-    AccentConfig k5 = def;
-    k5.k_left = k5.k_right = 5;
-    print("default with k 5", run(k5));
+    for (int k : {5, 8, 10, 12}) {
+      AccentConfig c = def;
+      c.k_left = c.k_right = k;
+      char name[64];
+      std::snprintf(name, sizeof name, "default with k %d", k);
+      print(name, run(c));
+    }
     AccentConfig no_ik = def;
     no_ik.hand_ik = 0;
     print("default with hand_ik 0", run(no_ik));

@@ -161,6 +161,7 @@ class Accentuator {
   std::array<Feature, 2> live_{};
   std::array<std::array<Quat, kMaxK>, 2> root_aligned_{};
   std::array<std::array<double, kMaxK>, 2> weight_{}, confidence_{};
+  std::array<std::array<const float*, kMaxK>, 2> pose_rot_{};  // each candidate's pose rotations
   std::vector<Quat> model_rot_;
   Pose synth_, smoothed_, direct_, out_;
   std::vector<Transform> model_;
