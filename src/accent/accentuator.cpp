@@ -377,7 +377,8 @@ void Accentuator::finish_pose(const Quat& head_rotation, const Vec3& head_positi
     for (int h = 0; h < 2; ++h) {
       const auto chain = h == 0 ? ik::left_arm(skel_) : ik::right_arm(skel_);
       ik::TwoBoneTarget target;
-      target.position = head_position + hand_offset_[static_cast<std::size_t>(h)];
+      // Exaggerated hands (as matched), so the style control survives hand IK.
+      target.position = head_position + cfg_.exaggeration * hand_offset_[static_cast<std::size_t>(h)];
       // Elbows bend down and back, slightly outward.
       target.hint = model_[static_cast<std::size_t>(chain.mid)].translation + yaw * Vec3(h == 0 ? 0.3 : -0.3, -0.5, -0.4) * scale_;
       target.position_weight = std::clamp(ik_weight, 0.0, 1.0);

@@ -60,7 +60,7 @@ struct AccentConfig {
   double smooth_halflife = 0.06;  // seconds the spring takes to halve an error; 0 = EWMA only (the paper)
   double min_smoothing_weight = 0.1;  // lower bound on w so the pose never freezes
   double user_height = 0;    // metres; 0 = the database skeleton's height
-  double exaggeration = 1.0; // scales the input hands about the head before matching
+  double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
   std::vector<std::string> classes;  // activity classes to match (empty = all)
   bool joint_limits = true;
   bool drive_head = true;    // head joint takes the headset's orientation
