@@ -52,9 +52,8 @@ Setup& setup() {
   return s;
 }
 
-void update_loop(benchmark::State& state, SearchMode mode) {
+void update_loop(benchmark::State& state, SearchMode mode, AccentConfig cfg = {}) {
   Setup& s = setup();
-  AccentConfig cfg;
   cfg.search = mode;
   cfg.user_height = s.height;
   Accentuator acc(s.db, cfg);
@@ -83,6 +82,22 @@ void BM_UpdateFast(benchmark::State& state) { update_loop(state, SearchMode::Fas
 BENCHMARK(BM_UpdateBruteForce)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
 BENCHMARK(BM_UpdateExact)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
 BENCHMARK(BM_UpdateFast)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
+// The paper's settings: k = 5, no hand IK, EWMA smoothing only.
+void BM_UpdateFastPaper(benchmark::State& state) {
+  AccentConfig cfg;
+  cfg.k_left = cfg.k_right = 5;
+  cfg.hand_ik = 0;
+  cfg.smooth_halflife = 0;
+  update_loop(state, SearchMode::Fast, cfg);
+}
+// Default with another k (what k costs).
+void BM_UpdateFastK(benchmark::State& state) {
+  AccentConfig cfg;
+  cfg.k_left = cfg.k_right = static_cast<int>(state.range(0));
+  update_loop(state, SearchMode::Fast, cfg);
+}
+BENCHMARK(BM_UpdateFastPaper)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
+BENCHMARK(BM_UpdateFastK)->Arg(5)->Arg(8)->Arg(10)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
 
 void BM_LoadMmap(benchmark::State& state) {
   Setup& s = setup();

@@ -186,8 +186,9 @@ struct RunArgs {
   std::string db, out, video, json_path, classes, mode = "fast", target, save_session;
   MotionInput input;
   bool compare_ik = false, no_align = false, no_smooth = false, no_limits = false;
-  int k = 5, k_left = -1, k_right = -1;
-  double threshold = 6.0, height = 0, exaggerate = 1.0, hand_ik = 0.0, max_tilt = AccentConfig{}.max_head_tilt_deg;
+  int k = AccentConfig{}.k_left, k_left = -1, k_right = -1;
+  double threshold = 6.0, height = 0, exaggerate = 1.0, hand_ik = AccentConfig{}.hand_ik, max_tilt = AccentConfig{}.max_head_tilt_deg;
+  double smooth_halflife = AccentConfig{}.smooth_halflife;
 };
 
 // A headset session CSV: time, head_x/y/z + head_qw/qx/qy/qz, left_x/y/z, right_x/y/z.
@@ -279,17 +280,25 @@ void register_run(CLI::App& parent) {
   cmd->add_flag("--compare-ik", a->compare_ik, "add the IK baseline (direct mapping) to the video and the JSON");
   cmd->add_option("--json", a->json_path, "per-frame match statistics and summary as JSON");
   cmd->add_option("--mode", a->mode, "search: fast (KD-tree, approximate), exact (KD-tree) or brute");
-  cmd->add_option("--k", a->k, "matches per hand")->check(CLI::Range(1, kMaxK));
+  cmd->add_option("--k", a->k, "matches per hand (the paper used 5)")->capture_default_str()->check(CLI::Range(1, kMaxK));
   cmd->add_option("--k-left", a->k_left, "matches for the left hand (default --k)")->check(CLI::Range(0, kMaxK));
   cmd->add_option("--k-right", a->k_right, "matches for the right hand (default --k)")->check(CLI::Range(0, kMaxK));
   cmd->add_option("--threshold", a->threshold, "match distance limit in typical-distance units (0 = none)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-align", a->no_align, "skip the rotation alignment of candidates");
-  cmd->add_flag("--no-smooth", a->no_smooth, "skip the temporal smoothing");
+  cmd->add_flag("--no-smooth", a->no_smooth, "skip the temporal smoothing (both the paper's EWMA and the spring filter)");
+  cmd->add_option("--smooth-halflife", a->smooth_halflife,
+                  "seconds for the spring filter on the blended rotations to halve an error (0 = the paper's EWMA only)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-limits", a->no_limits, "skip the joint angle limits");
   cmd->add_option("--height", a->height, "user height in metres (default: the BVH's standing height, or the database's)")->check(CLI::PositiveNumber);
   cmd->add_option("--exaggerate", a->exaggerate, "scale the input hands about the head before matching")->check(CLI::PositiveNumber);
   cmd->add_option("--classes", a->classes, "comma-separated classes to match against (default: all in the database)");
-  cmd->add_option("--hand-ik", a->hand_ik, "0..1: pull the synthesized arms onto the real hands (needs legwork::ik)")->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--hand-ik", a->hand_ik,
+                  "0..1: pull the synthesized arms onto the real hands (needs legwork::ik); 1 = wrists on the controllers, "
+                  "0 = the paper's pure synthesis")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--max-head-tilt", a->max_tilt, "reject candidates whose head tilt differs from the headset's by more than this (degrees, 0 = off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");
@@ -308,6 +317,7 @@ void register_run(CLI::App& parent) {
     cfg.threshold = a->threshold;
     cfg.align = !a->no_align;
     cfg.smooth = !a->no_smooth;
+    cfg.smooth_halflife = a->smooth_halflife;
     cfg.joint_limits = !a->no_limits;
     cfg.exaggeration = a->exaggerate;
     cfg.classes = split_commas(a->classes);
@@ -446,7 +456,7 @@ void register_run(CLI::App& parent) {
 struct BenchArgs {
   std::string db, json_path, data, classes;
   MotionInput input;
-  int repeat = 3, k = 5, max_checks = AccentConfig{}.fast_max_checks;
+  int repeat = 3, k = AccentConfig{}.k_left, max_checks = AccentConfig{}.fast_max_checks;
   float eps = 5.0f;
 };
 

@@ -46,6 +46,20 @@ Quat clamp_rotation(const Quat& q, const Vec3& axis, double max_swing, double ma
   return (swing * twist).normalized();
 }
 
+// Rotation vector (axis * angle) of a unit quaternion and back.
+Vec3 rotation_log(Quat q) {
+  if (q.w() < 0) q.coeffs() = -q.coeffs();
+  const Vec3 v(q.x(), q.y(), q.z());
+  const double s = v.norm();
+  if (s < 1e-12) return 2.0 * v;
+  return v * (2.0 * std::atan2(s, q.w()) / s);
+}
+Quat rotation_exp(const Vec3& r) {
+  const double angle = r.norm();
+  if (angle < 1e-12) return Quat(1.0, 0.5 * r.x(), 0.5 * r.y(), 0.5 * r.z()).normalized();
+  return Quat(Eigen::AngleAxisd(angle, r / angle));
+}
+
 double yaw_of(const Quat& q) {
   const Vec3 f = q * Vec3::UnitZ();
   return std::atan2(f.x(), f.z());
@@ -138,6 +152,9 @@ Accentuator::Accentuator(const Database& db, AccentConfig cfg) : db_(&db), cfg_(
   synth_ = smoothed_ = direct_ = out_ = neutral_;
   model_.resize(nu);
   model_rot_.resize(nu);
+  spring_rot_.assign(nu, Quat::Identity());
+  spring_vel_.assign(nu, Vec3::Zero());
+  if (!(cfg_.smooth_halflife >= 0) || !std::isfinite(cfg_.smooth_halflife)) throw Error("accent: smoothing half-life must be >= 0 seconds");
   reset();
 }
 
@@ -145,7 +162,7 @@ void Accentuator::reset() {
   ring_head_ = -1;
   ring_size_ = 0;
   hand_offset_ = {Vec3(0.2, -0.6, 0.1) * scale_, Vec3(-0.2, -0.6, 0.1) * scale_};
-  have_head_ = started_ = have_smoothed_ = false;
+  have_head_ = started_ = have_smoothed_ = have_spring_ = false;
   last_time_ = 0;
   fallback_ = 0;
   match_count_ = {0, 0};
@@ -159,7 +176,7 @@ std::span<const Match> Accentuator::matches(int hand) const {
 
 std::size_t Accentuator::state_bytes() const {
   const auto nj = static_cast<std::size_t>(skel_.joint_count());
-  return sizeof(*this) + 5 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Transform) + sizeof(Quat) + sizeof(Limit) + 1) +
+  return sizeof(*this) + 5 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Transform) + sizeof(Quat) + sizeof(Limit) + 1) +
          class_mask_.size() + skel_.joint_count() * (sizeof(Vec3) * 2 + 40);
 }
 
@@ -207,7 +224,7 @@ bool Accentuator::blend_candidates(double threshold) {
     const int ns = match_count_[static_cast<std::size_t>(h)];
     for (int i = 0; i < ns; ++i) seeds[static_cast<std::size_t>(i)] = m[static_cast<std::size_t>(i)].window;
     // With the head-tilt gate, look further so k candidates usually survive it.
-    const int k_search = cfg_.max_head_tilt_deg > 0 ? std::min(kMaxK, 2 * k[h]) : k[h];
+    const int k_search = cfg_.max_head_tilt_deg > 0 ? std::min(kMaxK, k[h] + std::max(3, k[h] / 3)) : k[h];
     int got = search_knn(db, h, f, k_search, cfg_.search, cfg_.fast_eps, class_mask_, m, std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)),
                          cfg_.fast_max_checks);
     if (threshold > 0)
@@ -229,6 +246,7 @@ bool Accentuator::blend_candidates(double threshold) {
       const auto iu = static_cast<std::size_t>(i);
       const int win = m[iu].window;
       const auto root = db.pose_rotations(static_cast<int>(db.source(win).pose));
+      pose_rot_[static_cast<std::size_t>(h)][iu] = root.data();
       Quat q0(root[0], root[1], root[2], root[3]);
       if (cfg_.align) q0 = Quat(Eigen::AngleAxisd(align_yaw(query_xz, db.align(win)), Vec3::UnitY())) * q0;
       root_aligned_[static_cast<std::size_t>(h)][iu] = q0;
@@ -280,7 +298,7 @@ bool Accentuator::blend_candidates(double threshold) {
           const Quat& r0 = root_aligned_[static_cast<std::size_t>(h)][iu];
           q = {r0.w(), r0.x(), r0.y(), r0.z()};
         } else {
-          const auto rot = db.pose_rotations(static_cast<int>(db.source(matches_[static_cast<std::size_t>(h)][iu].window).pose));
+          const float* rot = pose_rot_[static_cast<std::size_t>(h)][iu];
           q = {rot[4 * ju], rot[4 * ju + 1], rot[4 * ju + 2], rot[4 * ju + 3]};
         }
         if (ref.isZero()) ref = q;
@@ -298,6 +316,31 @@ bool Accentuator::blend_candidates(double threshold) {
 void Accentuator::make_direct_pose(const TrackerFrame&) {
   for (std::size_t j = 0; j < direct_.rotations.size(); ++j) direct_.rotations[j] = neutral_.rotations[j];
   direct_.rotations[0] = Quat(Eigen::AngleAxisd(yaw_of(last_head_rot_), Vec3::UnitY())) * neutral_.rotations[0];
+}
+
+// Exact critically damped spring per joint toward this frame's rotation
+// (closed form, so any dt gives the same curve): unlike the EWMA alone, the
+// output's angular velocity stays continuous when the candidate set switches.
+void Accentuator::spring_filter(double dt) {
+  const std::size_t n = out_.rotations.size();
+  if (!have_spring_) {
+    for (std::size_t j = 0; j < n; ++j) {
+      spring_rot_[j] = out_.rotations[j];
+      spring_vel_[j] = Vec3::Zero();
+    }
+    have_spring_ = true;
+    return;
+  }
+  const double y = 2.0 * std::log(2.0) / cfg_.smooth_halflife;  // half the damping
+  const double decay = std::exp(-y * dt);
+  for (std::size_t j = 0; j < n; ++j) {
+    const Quat& goal = out_.rotations[j];
+    const Vec3 j0 = rotation_log(spring_rot_[j] * goal.conjugate());
+    const Vec3 j1 = spring_vel_[j] + j0 * y;
+    spring_rot_[j] = (rotation_exp(decay * (j0 + j1 * dt)) * goal).normalized();
+    spring_vel_[j] = decay * (spring_vel_[j] - j1 * y * dt);
+    out_.rotations[j] = spring_rot_[j];
+  }
 }
 
 void Accentuator::finish_pose(const Quat& head_rotation, const Vec3& head_position, double ik_weight) {
@@ -334,7 +377,8 @@ void Accentuator::finish_pose(const Quat& head_rotation, const Vec3& head_positi
     for (int h = 0; h < 2; ++h) {
       const auto chain = h == 0 ? ik::left_arm(skel_) : ik::right_arm(skel_);
       ik::TwoBoneTarget target;
-      target.position = head_position + hand_offset_[static_cast<std::size_t>(h)];
+      // Exaggerated hands (as matched), so the style control survives hand IK.
+      target.position = head_position + cfg_.exaggeration * hand_offset_[static_cast<std::size_t>(h)];
       // Elbows bend down and back, slightly outward.
       target.hint = model_[static_cast<std::size_t>(chain.mid)].translation + yaw * Vec3(h == 0 ? 0.3 : -0.3, -0.5, -0.4) * scale_;
       target.position_weight = std::clamp(ik_weight, 0.0, 1.0);
@@ -404,6 +448,7 @@ FrameInfo Accentuator::update(const TrackerFrame& in) {
     out_.rotations[j] = fallback_ <= 0 ? smoothed_.rotations[j]
                         : fallback_ >= 1 ? direct_.rotations[j]
                                          : slerp(smoothed_.rotations[j], direct_.rotations[j], fallback_);
+  if (cfg_.smooth && cfg_.smooth_halflife > 0 && !cfg_.direct_only) spring_filter(dt);
   finish_pose(last_head_rot_, last_head_, std::max(cfg_.hand_ik, fallback_));
   // Never hand out a broken pose: fall back to the neutral one.
   bool ok = finite(out_.translations[0]);

@@ -84,6 +84,32 @@ TEST_F(HeldOut, HandsFollowTheInputAndThePoseIsSane) {
   }
 }
 
+// Exaggeration is a style control: with the hands on the controllers (hand
+// IK) the avatar's hands still move away from the head by the factor.
+TEST_F(HeldOut, ExaggerationWidensTheHandsUnderHandIk) {
+  auto reach = [&](double factor) {
+    AccentConfig cfg;
+    cfg.exaggeration = factor;
+    const Motion out = accentuate_motion(*db_, cfg, *input_).output;
+    const auto& r = out.skeleton.roles;
+    double sum = 0;
+    for (int f = 0; f < out.frame_count(); ++f) {
+      const auto p = joint_positions(out.skeleton, out.frame(f));
+      for (Role hand : {Role::LeftHand, Role::RightHand})
+      {
+        // Horizontal offset: walking arms hang near full reach, their swing can still widen.
+        const Vec3 d = p[static_cast<std::size_t>(r[hand])] - p[static_cast<std::size_t>(r[Role::Head])];
+        sum += std::hypot(d.x(), d.z());
+      }
+    }
+    return sum / out.frame_count();
+  };
+  const double plain = reach(1.0), wide = reach(1.25);
+  std::printf("[ figures  ] mean horizontal hand-head distance: %.1f cm plain, %.1f cm at exaggeration 1.25\n", 100 * plain, 100 * wide);
+  if (have_arm_ik()) EXPECT_GT(wide, 1.08 * plain);
+  else EXPECT_GT(wide, plain);
+}
+
 }  // namespace
 }  // namespace legwork::accent
 

@@ -48,19 +48,26 @@ struct AccentConfig {
   SearchMode search = SearchMode::Fast;
   float fast_eps = 5.0f;  // Fast mode: KD-tree pruning slack (squared-distance factor 1 + eps)
   int fast_max_checks = 1500;  // Fast mode: candidates examined per class tree (bounds p99)
-  int k_left = 5, k_right = 5;  // matches per hand (at most kMaxK)
+  int k_left = 15, k_right = 15;  // matches per hand (at most kMaxK; the paper used 5, 15 measured better)
   // Match distance limit in units of Database::typical_distance(); <= 0: none.
   double threshold = 6.0;
   bool align = true;   // rotation alignment of candidates about y
-  bool smooth = true;  // EWMA temporal smoothing
+  // Temporal smoothing: the paper's EWMA driven by the match weight, then a
+  // critically damped spring on every local rotation (frame-rate independent,
+  // continuous velocity, so candidate-set switches do not show as jerks).
+  // false: neither (the ablation's "no smoothing").
+  bool smooth = true;
+  double smooth_halflife = 0.06;  // seconds the spring takes to halve an error; 0 = EWMA only (the paper)
   double min_smoothing_weight = 0.1;  // lower bound on w so the pose never freezes
   double user_height = 0;    // metres; 0 = the database skeleton's height
-  double exaggeration = 1.0; // scales the input hands about the head before matching
+  double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
   std::vector<std::string> classes;  // activity classes to match (empty = all)
   bool joint_limits = true;
   bool drive_head = true;    // head joint takes the headset's orientation
   double fallback_seconds = 0.4;  // time to converge to / from the direct mapping
-  double hand_ik = 0.0;      // 0..1: pull the synthesized arms onto the real hands (needs legwork::ik)
+  // 0..1: pull the synthesized arms onto the real hands (needs legwork::ik);
+  // 1 = wrists on the controllers (the default for VR), 0 = the paper's pure synthesis.
+  double hand_ik = 1.0;
   bool direct_only = false;  // skip matching: always the direct mapping (the IK baseline)
   // Reject candidates whose head tilt (angle of the head's up axis from
   // vertical) differs from the headset's by more than this (degrees; 0 = off):
@@ -126,6 +133,7 @@ class Accentuator {
   bool blend_candidates(double threshold);
   void make_direct_pose(const TrackerFrame& in);
   void finish_pose(const Quat& head_rotation, const Vec3& head_position, double ik_weight);
+  void spring_filter(double dt);
 
   const Database* db_;
   AccentConfig cfg_;
@@ -153,11 +161,16 @@ class Accentuator {
   std::array<Feature, 2> live_{};
   std::array<std::array<Quat, kMaxK>, 2> root_aligned_{};
   std::array<std::array<double, kMaxK>, 2> weight_{}, confidence_{};
+  std::array<std::array<const float*, kMaxK>, 2> pose_rot_{};  // each candidate's pose rotations
   std::vector<Quat> model_rot_;
   Pose synth_, smoothed_, direct_, out_;
   std::vector<Transform> model_;
   double match_weight_ = 0;
   bool have_smoothed_ = false;
+  // Spring filter state: filtered local rotations and their angular velocities.
+  std::vector<Quat> spring_rot_;
+  std::vector<Vec3> spring_vel_;
+  bool have_spring_ = false;
 };
 
 // Helpers for BVH-driven sessions and evaluations (allocate).

@@ -1,0 +1,171 @@
+// Temporal smoothing measured on real held-out CMU trials (cross-subject:
+// the held-out subject is in no database): error, velocity error and jitter
+// (mean jerk of the role joints) of the output with and without smoothing.
+#include <legwork/accent/accentuator.hpp>
+#include <legwork/accent/builder.hpp>
+#include <legwork/core/fk.hpp>
+#include <legwork/core/interpolate.hpp>
+#include <legwork/io/bvh.hpp>
+
+#include "testdata.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace legwork::accent {
+namespace {
+
+struct Figures {
+  double error_cm = 0;   // mean role-joint position error
+  double mpjve_cms = 0;  // mean role-joint velocity error
+  double jitter = 0;     // mean jerk of the role joints, 10^2 m/s^3
+  double jitter_truth = 0;
+  double hands_cm = 0;
+};
+
+// Role-joint positions per frame of a motion, role-indexed (-1 rows skipped).
+std::vector<std::vector<Vec3>> role_tracks(const Motion& m, const Motion& other) {
+  std::vector<std::vector<Vec3>> out;
+  const auto all = joint_positions(m);
+  const int nj = m.joint_count();
+  for (int r = 0; r < kRoleCount; ++r) {
+    const int j = m.skeleton.roles.joint[static_cast<std::size_t>(r)];
+    if (j < 0 || other.skeleton.roles.joint[static_cast<std::size_t>(r)] < 0) continue;
+    std::vector<Vec3> t(static_cast<std::size_t>(m.frame_count()));
+    for (int f = 0; f < m.frame_count(); ++f) t[static_cast<std::size_t>(f)] = all[static_cast<std::size_t>(f * nj + j)];
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+double mean_jerk(const std::vector<std::vector<Vec3>>& tracks, double fps) {
+  double sum = 0;
+  long n = 0;
+  for (const auto& t : tracks)
+    for (std::size_t f = 0; f + 3 < t.size(); ++f, ++n) sum += (t[f + 3] - 3.0 * t[f + 2] + 3.0 * t[f + 1] - t[f]).norm();
+  return n ? sum / n * fps * fps * fps / 100.0 : 0.0;
+}
+
+Figures measure(const Motion& truth, const Motion& out) {
+  const auto a = role_tracks(truth, out), b = role_tracks(out, truth);
+  Figures fig;
+  long n = 0, nv = 0;
+  for (std::size_t r = 0; r < a.size(); ++r)
+    for (std::size_t f = 0; f < a[r].size(); ++f) {
+      fig.error_cm += 100 * (a[r][f] - b[r][f]).norm();
+      ++n;
+      if (f > 0 && f + 1 < a[r].size()) {
+        const Vec3 va = (a[r][f + 1] - a[r][f - 1]) * (truth.fps / 2), vb = (b[r][f + 1] - b[r][f - 1]) * (truth.fps / 2);
+        fig.mpjve_cms += 100 * (va - vb).norm();
+        ++nv;
+      }
+    }
+  fig.error_cm /= static_cast<double>(n);
+  fig.mpjve_cms /= static_cast<double>(nv);
+  fig.jitter = mean_jerk(b, out.fps);
+  fig.jitter_truth = mean_jerk(a, truth.fps);
+  const auto pi = joint_positions(truth), po = joint_positions(out);
+  for (Role hand : {Role::LeftHand, Role::RightHand})
+    for (int f = 0; f < truth.frame_count(); ++f)
+      fig.hands_cm += 50.0 * (pi[static_cast<std::size_t>(f * truth.joint_count() + truth.skeleton.roles[hand])] -
+                              po[static_cast<std::size_t>(f * out.joint_count() + out.skeleton.roles[hand])]).norm() / truth.frame_count();
+  return fig;
+}
+
+struct Fold {
+  std::string cls, held_out;  // held-out trial (its subject is in no database trial)
+};
+
+class HeldOutSubject : public ::testing::Test {
+ protected:
+  struct Case {
+    Database db;
+    Motion truth;
+  };
+  static void SetUpTestSuite() {
+    if (!testdata::have_shared_cmu()) return;
+    const std::string data = testdata::shared_cmu().string();
+    io::BvhReadOptions opt;
+    opt.drop_first_frame = true;
+    for (const Fold& f : {Fold{"boxing", "14_02"}, Fold{"basketball", "124_03"}}) {
+      const std::string subject = f.held_out.substr(0, f.held_out.find('_'));
+      std::vector<std::string> exclude;
+      for (const auto& e : std::filesystem::directory_iterator(data + "/bvh/" + f.cls))
+        if (e.path().filename().string().rfind(subject + "_", 0) == 0) exclude.push_back("bvh/" + f.cls + "/" + e.path().filename().string());
+      Database db = build_database(load_trials(data, {f.cls}, exclude), BuildConfig{});
+      db.build_index();
+      Motion truth = resample(io::load_bvh(data + "/bvh/" + f.cls + "/" + f.held_out + ".bvh", opt), db.feature_space().fps);
+      cases_->push_back({std::move(db), std::move(truth)});
+    }
+  }
+  static void TearDownTestSuite() { delete cases_; cases_ = nullptr; }
+  static Figures run(const AccentConfig& cfg) {
+    Figures sum;
+    for (const auto& c : *cases_) {
+      const Figures f = measure(c.truth, accentuate_motion(c.db, cfg, c.truth).output);
+      sum.error_cm += f.error_cm / cases_->size();
+      sum.mpjve_cms += f.mpjve_cms / cases_->size();
+      sum.jitter += f.jitter / cases_->size();
+      sum.jitter_truth += f.jitter_truth / cases_->size();
+      sum.hands_cm += f.hands_cm / cases_->size();
+    }
+    return sum;
+  }
+  static void print(const char* name, const Figures& f) {
+    std::printf("[ figures  ] %-28s error %5.1f cm  hands %5.1f cm  MPJVE %6.1f cm/s  jitter %6.1f (truth %.1f)\n", name, f.error_cm,
+                f.hands_cm, f.mpjve_cms, f.jitter, f.jitter_truth);
+  }
+  static inline std::vector<Case>* cases_ = new std::vector<Case>;
+};
+
+// The spring filter must cut the jitter of the unsmoothed output by far more
+// than the paper's EWMA alone, without costing accuracy.
+TEST_F(HeldOutSubject, SmoothingCutsJitterWithoutCostingAccuracy) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  ASSERT_FALSE(cases_->empty());
+  AccentConfig def;
+  AccentConfig off = def;
+  off.smooth = false;
+  AccentConfig ewma = def;
+  ewma.smooth_halflife = 0;
+  const Figures f_def = run(def), f_off = run(off), f_ewma = run(ewma);
+  print("default", f_def);
+  print("smoothing off", f_off);
+  print("EWMA only (paper)", f_ewma);
+  if (std::getenv("LEGWORK_ACCENT_SWEEP")) {
+    AccentConfig paper;
+    paper.k_left = paper.k_right = 5;
+    paper.hand_ik = 0;
+    paper.smooth_halflife = 0;
+    print("paper (k 5, no hand IK)", run(paper));
+    for (int k : {5, 8, 10, 12}) {
+      AccentConfig c = def;
+      c.k_left = c.k_right = k;
+      char name[64];
+      std::snprintf(name, sizeof name, "default with k %d", k);
+      print(name, run(c));
+    }
+    AccentConfig no_ik = def;
+    no_ik.hand_ik = 0;
+    print("default with hand_ik 0", run(no_ik));
+    for (double h : {0.03, 0.045, 0.08, 0.1, 0.15}) {
+      AccentConfig c = def;
+      c.smooth_halflife = h;
+      char name[64];
+      std::snprintf(name, sizeof name, "half-life %.3f s", h);
+      print(name, run(c));
+    }
+  }
+  EXPECT_LT(f_def.jitter, 0.4 * f_off.jitter);
+  EXPECT_LT(f_def.jitter, 0.6 * f_ewma.jitter);
+  EXPECT_LT(f_def.jitter, 4.0 * f_def.jitter_truth);
+  EXPECT_LT(f_def.error_cm, f_off.error_cm + 0.5);
+  EXPECT_LT(f_def.mpjve_cms, f_off.mpjve_cms);
+}
+
+}  // namespace
+}  // namespace legwork::accent
