@@ -172,25 +172,48 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
     tweak(x);
     v.push_back(std::move(x));
   };
-  add("nn", "NN only (no alignment, no smoothing)", [](Variant& x) {
+  // The document's steps run on the document's settings (k = 5, EWMA only,
+  // hands not pinned), so they compare with its 16.5 -> 13.2 -> 11.4 cm.
+  const auto paper = [](Variant& x) {
+    x.config.k_left = x.config.k_right = 5;
+    x.config.smooth_halflife = 0;
+    x.config.hand_ik = 0;
+  };
+  add("nn", "NN only (document's settings, no alignment, no smoothing)", [&](Variant& x) {
+    paper(x);
     x.config.align = false;
     x.config.smooth = false;
   });
-  add("nn_align", "NN + rotation alignment", [](Variant& x) {
-    x.config.align = true;
+  add("nn_align", "NN + rotation alignment", [&](Variant& x) {
+    paper(x);
     x.config.smooth = false;
   });
+  add("paper", "+ EWMA smoothing (the document's method)", [&](Variant& x) { paper(x); });
+  // legwork's additions, one at a time on top of the document's method; the
+  // full engine ("accent") adds hand IK last.
+  add("spring", "+ spring smoothing", [&](Variant& x) {
+    paper(x);
+    x.config.smooth_halflife = config.smooth_halflife;
+  });
+  add("spring_k", "+ spring smoothing + engine k", [&](Variant& x) {
+    paper(x);
+    x.config.smooth_halflife = config.smooth_halflife;
+    x.config.k_left = config.k_left;
+    x.config.k_right = config.k_right;
+  });
   if (quick) return v;
+  // Each other choice changed alone from the engine's defaults.
   add("hop_1", "hop 1 sample (11 ms)", [](Variant& x) { x.build.hop = 1; });
   add("hop_9", "hop 9 samples (100 ms)", [](Variant& x) { x.build.hop = 9; });
   add("no_augmentation", "no speed augmentation", [](Variant& x) { x.build.speed_variants = 0; });
   add("mirrored", "+ mirrored trials", [](Variant& x) { x.build.mirror = true; });
   add("k_1", "k = 1", [](Variant& x) { x.config.k_left = x.config.k_right = 1; });
-  add("k_15", "k = 15", [](Variant& x) { x.config.k_left = x.config.k_right = 15; });
+  add("k_5", "k = 5", [](Variant& x) { x.config.k_left = x.config.k_right = 5; });
   add("threshold_off", "no distance threshold", [](Variant& x) { x.config.threshold = 0; });
   add("threshold_2", "threshold 2 x typical distance", [](Variant& x) { x.config.threshold = 2; });
   add("exact_search", "exact k-NN search", [](Variant& x) { x.config.search = accent::SearchMode::Exact; });
-  add("hand_ik", "+ arms pulled onto the real hands (hand_ik = 1)", [](Variant& x) { x.config.hand_ik = 1.0; });
+  add("no_hand_ik", "hands not pinned (hand_ik = 0)", [](Variant& x) { x.config.hand_ik = 0.0; });
+  add("ewma_only", "EWMA smoothing only (no spring)", [](Variant& x) { x.config.smooth_halflife = 0; });
   return v;
 }
 
