@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian package legwork needs (idempotent) and builds it.
-# Usage: scripts/setup.sh [BUILD_DIR] [extra cmake args...]   (default build dir: build)
+# Usage: [LEGWORK_BUILD_TARGETS="t1 t2"] scripts/setup.sh [BUILD_DIR] [extra cmake args...]   (default build dir: build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -35,5 +35,7 @@ fi
 BUILD=${1:-build}
 shift || true
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-ninja -C "$BUILD" -j"$(nproc)"
+# LEGWORK_BUILD_TARGETS limits the build (e.g. "legwork" for the CLI only).
+# shellcheck disable=SC2086
+ninja -C "$BUILD" -j"$(nproc)" ${LEGWORK_BUILD_TARGETS:-}
 echo "setup: built legwork in $BUILD/ (CLI: $BUILD/apps/legwork/legwork)" >&2
