@@ -8,6 +8,8 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/wip/wip.hpp>
 
+#include "cmu_sample.hpp"
+
 #include <string>
 #include <vector>
 
@@ -16,11 +18,7 @@ namespace {
 using namespace legwork;
 using namespace legwork::wip;
 
-Motion load_walk(const char* name) {
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
-  return io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/" + name, opt);
-}
+Motion load_walk(const char* name) { return testdata::load_sample(std::string("bvh/walking/") + name); }
 
 // Feeds the 30 Hz samples to update() once per iteration and reports how
 // many avatars one core keeps up with.
