@@ -11,7 +11,7 @@
 namespace {
 
 const legwork::Motion& walk() {
-  static const legwork::Motion m = legwork::testdata::load_sample("bvh/walking/05_01.bvh");
+  static const legwork::Motion m = legwork::testdata::load_sample("cmu/bvh/walking/05_01.bvh");
   return m;
 }
 

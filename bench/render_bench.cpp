@@ -14,7 +14,7 @@ using namespace legwork;
 
 namespace {
 const Motion& walk() {
-  static const Motion m = testdata::load_sample("bvh/walking/07_01.bvh");
+  static const Motion m = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
   return m;
 }
 std::string tmp(const char* name) { return (std::filesystem::temp_directory_path() / name).string(); }

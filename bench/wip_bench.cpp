@@ -18,7 +18,7 @@ namespace {
 using namespace legwork;
 using namespace legwork::wip;
 
-Motion load_walk(const char* name) { return testdata::load_sample(std::string("bvh/walking/") + name); }
+Motion load_walk(const char* name) { return testdata::load_sample(std::string("cmu/bvh/walking/") + name); }
 
 // Feeds the 30 Hz samples to update() once per iteration and reports how
 // many avatars one core keeps up with.

@@ -8,16 +8,16 @@
 
 namespace legwork::testdata {
 
-// A trial under data/cmu, e.g. "bvh/walking/07_01.bvh".
+// A trial under the repo's data/ (as testdata::sample), e.g. "cmu/bvh/walking/07_01.bvh".
 inline Motion load_sample(const std::string& rel) {
   io::BvhReadOptions o;
   o.drop_first_frame = true;
-  return io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/" + rel, o);
+  return io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/" + rel, o);
 }
 
 // The CMU skeleton of walking/07_01, loaded once.
 inline const Skeleton& sample_skeleton() {
-  static const Skeleton s = load_sample("bvh/walking/07_01.bvh").skeleton;
+  static const Skeleton s = load_sample("cmu/bvh/walking/07_01.bvh").skeleton;
   return s;
 }
 

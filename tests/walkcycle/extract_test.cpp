@@ -79,12 +79,12 @@ TEST(Extract, SampleWalks) {
 }
 
 TEST(Extract, SameClipSameFile) {
-  const Motion clip = testdata::load_sample("bvh/walking/16_15.bvh");
+  const Motion clip = testdata::load_sample("cmu/bvh/walking/16_15.bvh");
   EXPECT_EQ(format_walk_keys(extract_walk(clip).keys, clip.skeleton), format_walk_keys(extract_walk(clip).keys, clip.skeleton));
 }
 
 TEST(Extract, KeysFromFramesPutTheLeftFootForward) {
-  const Motion clip = testdata::load_sample("bvh/walking/07_01.bvh");
+  const Motion clip = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
   const auto ex = extract_walk(clip);
   const StepEvents& s = ex.steps.front();
   const WalkKeys k = keys_from_frames(clip, {s.contact, s.down, s.pass, s.up}, 24, 24);
