@@ -6,14 +6,12 @@
 
 #include <benchmark/benchmark.h>
 
+#include "cmu_sample.hpp"
+
 namespace {
 
 const legwork::Motion& walk() {
-  static const legwork::Motion m = [] {
-    legwork::io::BvhReadOptions opt;
-    opt.drop_first_frame = true;
-    return legwork::io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/05_01.bvh", opt);
-  }();
+  static const legwork::Motion m = legwork::testdata::load_sample("cmu/bvh/walking/05_01.bvh");
   return m;
 }
 

@@ -5,6 +5,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "cmu_sample.hpp"
+
 #include <filesystem>
 #include <string>
 
@@ -12,8 +14,7 @@ using namespace legwork;
 
 namespace {
 const Motion& walk() {
-  static const Motion m =
-      io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/07_01.bvh", {.drop_first_frame = true});
+  static const Motion m = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
   return m;
 }
 std::string tmp(const char* name) { return (std::filesystem::temp_directory_path() / name).string(); }

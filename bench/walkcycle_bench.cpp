@@ -6,6 +6,8 @@
 #include <legwork/walkcycle/measure.hpp>
 #include <legwork/walkcycle/walker.hpp>
 
+#include "cmu_sample.hpp"
+
 #include <cstdio>
 #include <string>
 
@@ -14,17 +16,10 @@ using namespace legwork::walkcycle;
 
 namespace {
 
-const Skeleton& skeleton() {
-  static const Skeleton s = [] {
-    io::BvhReadOptions o;
-    o.drop_first_frame = true;
-    return io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/07_01.bvh", o).skeleton;
-  }();
-  return s;
-}
+const Skeleton& skeleton() { return testdata::sample_skeleton(); }
 
 const WalkKeys& keys() {
-  static const WalkKeys k = read_walk_keys(std::string(LEGWORK_SOURCE_DIR) + "/data/walks/normal.json", skeleton());
+  static const WalkKeys k = read_walk_keys(testdata::walk_keys_file("normal"), skeleton());
   return k;
 }
 

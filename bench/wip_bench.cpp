@@ -8,23 +8,21 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/wip/wip.hpp>
 
+#include "cmu_sample.hpp"
+
 #include <string>
+#include <vector>
 
 namespace {
 
 using namespace legwork;
 using namespace legwork::wip;
 
-Motion load_walk(const char* name) {
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
-  return io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/" + name, opt);
-}
+Motion load_walk(const char* name) { return testdata::load_sample(std::string("cmu/bvh/walking/") + name); }
 
-void BM_WipUpdatePerAvatarFrame(benchmark::State& state) {
-  const Motion walk = load_walk("16_15.bvh");
-  const WipModel model = make_wip_model(walk.skeleton);
-  const auto samples = samples_from_motion(walk, 30.0);
+// Feeds the 30 Hz samples to update() once per iteration and reports how
+// many avatars one core keeps up with.
+void run_updates(benchmark::State& state, const WipModel& model, const std::vector<TrackerSample>& samples) {
   WipWorkspace ws = make_workspace(model);
   std::size_t i = 0;
   double offset = 0;
@@ -37,6 +35,13 @@ void BM_WipUpdatePerAvatarFrame(benchmark::State& state) {
   }
   state.counters["avatars_per_core_30Hz"] =
       benchmark::Counter(static_cast<double>(state.iterations()) / 30.0, benchmark::Counter::kIsRate);
+}
+
+void BM_WipUpdatePerAvatarFrame(benchmark::State& state) {
+  const Motion walk = load_walk("16_15.bvh");
+  const WipModel model = make_wip_model(walk.skeleton);
+  const auto samples = samples_from_motion(walk, 30.0);
+  run_updates(state, model, samples);
   state.counters["joints"] = model.skeleton.joint_count();
 }
 BENCHMARK(BM_WipUpdatePerAvatarFrame);
@@ -44,18 +49,7 @@ BENCHMARK(BM_WipUpdatePerAvatarFrame);
 void BM_WipUpdateSynthetic(benchmark::State& state) {
   const WipModel model = make_wip_model(load_walk("07_01.bvh").skeleton);
   const auto samples = synthetic_stepping({}).samples;
-  WipWorkspace ws = make_workspace(model);
-  std::size_t i = 0;
-  double offset = 0;
-  const double period = samples.back().time + 1.0 / 30;
-  for (auto _ : state) {
-    TrackerSample s = samples[i];
-    s.time += offset;
-    benchmark::DoNotOptimize(update(model, s, ws));
-    if (++i == samples.size()) i = 0, offset += period;
-  }
-  state.counters["avatars_per_core_30Hz"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) / 30.0, benchmark::Counter::kIsRate);
+  run_updates(state, model, samples);
 }
 BENCHMARK(BM_WipUpdateSynthetic);
 

@@ -295,11 +295,11 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
   const auto t0 = std::chrono::steady_clock::now();
   if (cfg.hop < 1) throw Error("accent build: hop must be at least 1 sample");
   BlockParts parts;
-  parts.skeleton = reference;
-  resolve_roles(parts.skeleton);
-  parts.height = measure_body(parts.skeleton).standing_height;
-  parts.settings = {cfg.fps, cfg.hop, cfg.correlation_threshold, speed_factors(cfg), cfg.mirror};
-  const auto& speeds = parts.settings.speeds;
+  parts.meta.skeleton = reference;
+  resolve_roles(parts.meta.skeleton);
+  parts.meta.height = measure_body(parts.meta.skeleton).standing_height;
+  parts.meta.settings = {cfg.fps, cfg.hop, cfg.correlation_threshold, speed_factors(cfg), cfg.mirror};
+  const auto& speeds = parts.meta.settings.speeds;
   const int nj = reference.joint_count();
 
   // Kept trials in class order (windows of a class must be contiguous).
@@ -310,17 +310,17 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
 
   std::vector<std::array<PosVec, 2>> windows;
   std::vector<int> window_counts;
-  const int head_joint = parts.skeleton.roles[Role::Head];
+  const int head_joint = parts.meta.skeleton.roles[Role::Head];
   if (head_joint < 0) throw Error("accent build: the reference skeleton has no head joint");
   for (const auto* t : kept) {
     if (t->motion.joint_count() != nj) throw Error("accent build: trial '" + t->info.file + "' is not on the reference skeleton");
-    if (parts.classes.empty() || parts.classes.back() != t->info.cls) {
-      if (!parts.ranges.empty()) parts.ranges.back().second = static_cast<int>(parts.sources.size());
-      parts.classes.push_back(t->info.cls);
-      parts.ranges.emplace_back(static_cast<int>(parts.sources.size()), 0);
+    if (parts.meta.classes.empty() || parts.meta.classes.back() != t->info.cls) {
+      if (!parts.meta.ranges.empty()) parts.meta.ranges.back().second = static_cast<int>(parts.sources.size());
+      parts.meta.classes.push_back(t->info.cls);
+      parts.meta.ranges.emplace_back(static_cast<int>(parts.sources.size()), 0);
     }
-    const auto trial_index = static_cast<std::uint32_t>(parts.trials.size());
-    parts.trials.push_back(t->info);
+    const auto trial_index = static_cast<std::uint32_t>(parts.meta.trials.size());
+    parts.meta.trials.push_back(t->info);
     const int before = static_cast<int>(parts.sources.size());
     for (int mir = 0; mir < (cfg.mirror ? 2 : 1); ++mir) {
       const Motion& m = mir ? t->mirrored : t->motion;
@@ -350,14 +350,14 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
           AlignXZ a;
           fill_align(w[0], w[1], a);
           parts.align.push_back(a);
-          parts.sources.push_back({pose, trial_index, static_cast<std::uint32_t>(e), static_cast<std::uint16_t>(parts.classes.size() - 1),
+          parts.sources.push_back({pose, trial_index, static_cast<std::uint32_t>(e), static_cast<std::uint16_t>(parts.meta.classes.size() - 1),
                                    static_cast<std::uint8_t>(si), static_cast<std::uint8_t>(mir)});
         }
       }
     }
     window_counts.push_back(static_cast<int>(parts.sources.size()) - before);
   }
-  if (!parts.ranges.empty()) parts.ranges.back().second = static_cast<int>(parts.sources.size());
+  if (!parts.meta.ranges.empty()) parts.meta.ranges.back().second = static_cast<int>(parts.sources.size());
   // Per-trial verdicts (also when the build fails, so the CLI can show why).
   auto fill_verdicts = [&] {
     if (!report) return;
@@ -386,14 +386,14 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
   for (const auto& w : windows)
     for (const auto& p : w) cov.noalias() += (p - mean) * (p - mean).transpose();
   cov /= count;
-  parts.space.fps = cfg.fps;
-  parts.space.group_weight = cfg.group_weight;
+  parts.meta.space.fps = cfg.fps;
+  parts.meta.space.group_weight = cfg.group_weight;
   Eigen::Matrix<double, kRawDim, 1> scale;
   for (int d = 0; d < kRawDim; ++d) {
     const double var = W.row(d) * cov * W.row(d).transpose();
     const double sd = std::sqrt(std::max(var, 0.0));
     scale(d) = cfg.group_weight[static_cast<std::size_t>(group_of(d))] / std::max(sd, 1e-9);
-    parts.space.scale[static_cast<std::size_t>(d)] = scale(d);
+    parts.meta.space.scale[static_cast<std::size_t>(d)] = scale(d);
   }
   // Metric on positions M = W^T S^2 W = A^T A, then rotate onto the principal
   // axes of the data in that metric (distances unchanged, KD-trees split well).
@@ -406,7 +406,7 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
   const Eigen::Matrix<double, kPosDim, kPosDim> U = pca.eigenvectors().rowwise().reverse();  // descending variance
   const Eigen::Matrix<double, kPosDim, kPosDim> P = U.transpose() * A;
   for (int r = 0; r < kDim; ++r)
-    for (int c = 0; c < kPosDim; ++c) parts.space.projection[static_cast<std::size_t>(r * kPosDim + c)] = P(r, c);
+    for (int c = 0; c < kPosDim; ++c) parts.meta.space.projection[static_cast<std::size_t>(r * kPosDim + c)] = P(r, c);
   for (int h = 0; h < 2; ++h) {
     auto& out = parts.features[h];
     out.resize(windows.size());
@@ -442,9 +442,9 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
     }
     if (!nn.empty()) {
       std::nth_element(nn.begin(), nn.begin() + static_cast<std::ptrdiff_t>(nn.size() / 2), nn.end());
-      parts.typical_distance = std::max(nn[nn.size() / 2], 1e-6);
+      parts.meta.typical_distance = std::max(nn[nn.size() / 2], 1e-6);
     } else {
-      parts.typical_distance = 1.0;  // a single trial: no cross-trial distance to measure
+      parts.meta.typical_distance = 1.0;  // a single trial: no cross-trial distance to measure
     }
   }
 

@@ -23,7 +23,7 @@ std::size_t align64(std::size_t n) { return (n + 63) & ~static_cast<std::size_t>
 json vec3_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 Vec3 json_vec3(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
 
-json meta_json(const BlockParts& p) {
+json meta_json(const DatabaseMeta& p) {
   json j;
   const Skeleton& s = p.skeleton;
   json sk;
@@ -65,7 +65,7 @@ json meta_json(const BlockParts& p) {
   throw Error("accent database '" + source + "': " + what);
 }
 
-void parse_meta(Database::Impl& d, const std::string& text, const std::string& source) {
+void parse_meta(DatabaseMeta& m, const std::string& text, const std::string& source) {
   json j;
   try {
     j = json::parse(text);
@@ -85,32 +85,32 @@ void parse_meta(Database::Impl& d, const std::string& text, const std::string& s
     }
     s.validate();
     resolve_roles(s);
-    d.skeleton = std::move(s);
-    d.height = j.at("height_m").get<double>();
+    m.skeleton = std::move(s);
+    m.height = j.at("height_m").get<double>();
     const auto& b = j.at("build");
-    d.settings.fps = b.at("fps").get<double>();
-    d.settings.hop = b.at("hop").get<int>();
-    d.settings.correlation_threshold = b.at("correlation_threshold").get<double>();
-    d.settings.speeds = b.at("speeds").get<std::vector<double>>();
-    d.settings.mirrored = b.at("mirrored").get<bool>();
+    m.settings.fps = b.at("fps").get<double>();
+    m.settings.hop = b.at("hop").get<int>();
+    m.settings.correlation_threshold = b.at("correlation_threshold").get<double>();
+    m.settings.speeds = b.at("speeds").get<std::vector<double>>();
+    m.settings.mirrored = b.at("mirrored").get<bool>();
     const auto& f = j.at("features");
     if (f.at("window").get<int>() != kWindow) fail(source, "window size differs from this build's " + std::to_string(kWindow));
-    d.space.fps = f.at("fps").get<double>();
-    d.space.scale = f.at("scale").get<std::array<double, kRawDim>>();
-    d.space.group_weight = f.at("group_weight").get<std::array<double, 3>>();
-    d.space.projection = f.at("projection").get<std::array<double, kDim * kDim>>();
-    d.typical_distance = j.at("typical_distance").get<double>();
-    d.classes = j.at("classes").get<std::vector<std::string>>();
-    d.ranges.clear();
-    for (const auto& r : j.at("class_ranges")) d.ranges.emplace_back(r.at(0).get<int>(), r.at(1).get<int>());
-    d.trials.clear();
+    m.space.fps = f.at("fps").get<double>();
+    m.space.scale = f.at("scale").get<std::array<double, kRawDim>>();
+    m.space.group_weight = f.at("group_weight").get<std::array<double, 3>>();
+    m.space.projection = f.at("projection").get<std::array<double, kDim * kDim>>();
+    m.typical_distance = j.at("typical_distance").get<double>();
+    m.classes = j.at("classes").get<std::vector<std::string>>();
+    m.ranges.clear();
+    for (const auto& r : j.at("class_ranges")) m.ranges.emplace_back(r.at(0).get<int>(), r.at(1).get<int>());
+    m.trials.clear();
     for (const auto& t : j.at("trials"))
-      d.trials.push_back({t.at("file").get<std::string>(), t.at("class").get<std::string>(), t.at("subject").get<int>(),
+      m.trials.push_back({t.at("file").get<std::string>(), t.at("class").get<std::string>(), t.at("subject").get<int>(),
                           t.at("trial").get<int>(), t.at("correlation").get<double>()});
   } catch (const json::exception& e) {
     fail(source, std::string("metadata is malformed: ") + e.what());
   }
-  if (d.ranges.size() != d.classes.size()) fail(source, "class ranges do not match the class list");
+  if (m.ranges.size() != m.classes.size()) fail(source, "class ranges do not match the class list");
 }
 
 template <class T>
@@ -143,10 +143,10 @@ void open_block(Database::Impl& d, const std::string& source, bool verify) {
     if (sum != h.checksum) fail(source, "checksum mismatch: the file is corrupted");
   }
   const char* meta = reinterpret_cast<const char*>(section<char>(d, h.meta_offset, h.meta_bytes, source, "metadata"));
-  parse_meta(d, std::string(meta, h.meta_bytes), source);
-  if (static_cast<std::uint32_t>(d.skeleton.joint_count()) != h.joint_count) fail(source, "joint count disagrees with the skeleton");
-  if (d.classes.size() != h.class_count) fail(source, "class count disagrees with the class list");
-  for (auto [a, b] : d.ranges)
+  parse_meta(d.meta, std::string(meta, h.meta_bytes), source);
+  if (static_cast<std::uint32_t>(d.meta.skeleton.joint_count()) != h.joint_count) fail(source, "joint count disagrees with the skeleton");
+  if (d.meta.classes.size() != h.class_count) fail(source, "class count disagrees with the class list");
+  for (auto [a, b] : d.meta.ranges)
     if (a < 0 || b < a || static_cast<std::uint32_t>(b) > h.window_count) fail(source, "class range outside the windows");
   for (int hand = 0; hand < 2; ++hand)
     d.features[hand] = section<Feature>(d, h.feature_offset[hand], h.window_count, source, "features");
@@ -155,7 +155,7 @@ void open_block(Database::Impl& d, const std::string& source, bool verify) {
   d.poses = section<float>(d, h.pose_offset, std::uint64_t{h.pose_count} * h.joint_count * 4, source, "poses");
   d.head_up = section<float>(d, h.head_up_offset, std::uint64_t{h.pose_count} * 3, source, "head up axes");
   for (std::uint32_t w = 0; w < h.window_count; ++w)
-    if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.trials.size() || d.sources[w].cls >= h.class_count)
+    if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count)
       fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
 }
 
@@ -185,9 +185,9 @@ std::uint64_t block_checksum(std::span<const std::byte> block) {
 }
 
 std::vector<std::byte> serialize_block(const BlockParts& p) {
-  const std::string meta = meta_json(p).dump();
+  const std::string meta = meta_json(p.meta).dump();
   const std::size_t nw = p.sources.size();
-  const std::size_t nj = static_cast<std::size_t>(p.skeleton.joint_count());
+  const std::size_t nj = static_cast<std::size_t>(p.meta.skeleton.joint_count());
   const std::size_t np = nj ? p.poses.size() / (nj * 4) : 0;
   FileHeader h{};
   std::memcpy(h.magic, kMagic, sizeof(kMagic));
@@ -196,7 +196,7 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   h.window_count = static_cast<std::uint32_t>(nw);
   h.pose_count = static_cast<std::uint32_t>(np);
   h.joint_count = static_cast<std::uint32_t>(nj);
-  h.class_count = static_cast<std::uint32_t>(p.classes.size());
+  h.class_count = static_cast<std::uint32_t>(p.meta.classes.size());
   h.feature_dim = kDim;
   h.window = kWindow;
   std::size_t at = align64(sizeof(FileHeader));
@@ -240,20 +240,20 @@ Database& Database::operator=(Database&&) noexcept = default;
 
 int Database::window_count() const { return static_cast<int>(impl_->header.window_count); }
 int Database::pose_count() const { return static_cast<int>(impl_->header.pose_count); }
-int Database::class_count() const { return static_cast<int>(impl_->classes.size()); }
-const Skeleton& Database::skeleton() const { return impl_->skeleton; }
-double Database::height() const { return impl_->height; }
-const BuildSettings& Database::settings() const { return impl_->settings; }
-const FeatureSpace& Database::feature_space() const { return impl_->space; }
-double Database::typical_distance() const { return impl_->typical_distance; }
-const std::vector<std::string>& Database::classes() const { return impl_->classes; }
-const std::vector<TrialInfo>& Database::trials() const { return impl_->trials; }
+int Database::class_count() const { return static_cast<int>(impl_->meta.classes.size()); }
+const Skeleton& Database::skeleton() const { return impl_->meta.skeleton; }
+double Database::height() const { return impl_->meta.height; }
+const BuildSettings& Database::settings() const { return impl_->meta.settings; }
+const FeatureSpace& Database::feature_space() const { return impl_->meta.space; }
+double Database::typical_distance() const { return impl_->meta.typical_distance; }
+const std::vector<std::string>& Database::classes() const { return impl_->meta.classes; }
+const std::vector<TrialInfo>& Database::trials() const { return impl_->meta.trials; }
 int Database::find_class(const std::string& name) const {
-  for (std::size_t c = 0; c < impl_->classes.size(); ++c)
-    if (impl_->classes[c] == name) return static_cast<int>(c);
+  for (std::size_t c = 0; c < impl_->meta.classes.size(); ++c)
+    if (impl_->meta.classes[c] == name) return static_cast<int>(c);
   return -1;
 }
-std::pair<int, int> Database::class_range(int c) const { return impl_->ranges[static_cast<std::size_t>(c)]; }
+std::pair<int, int> Database::class_range(int c) const { return impl_->meta.ranges[static_cast<std::size_t>(c)]; }
 const Feature& Database::feature(int hand, int window) const { return impl_->features[hand][window]; }
 std::span<const Feature> Database::features(int hand) const {
   return {impl_->features[hand], static_cast<std::size_t>(window_count())};
@@ -279,7 +279,7 @@ bool Database::has_index() const { return impl_->all.tree[0] != nullptr; }
 void Database::build_index(int leaf_size) {
   Impl& d = *impl_;
   d.index.clear();
-  d.index.resize(d.classes.size());
+  d.index.resize(d.meta.classes.size());
   d.all = ClassIndex{};
   for (int hand = 0; hand < 2; ++hand) {
     d.all.cloud[hand].data = reinterpret_cast<const float*>(d.features[hand]);
@@ -287,9 +287,9 @@ void Database::build_index(int leaf_size) {
     d.all.tree[hand] = std::make_unique<KdTree>(kTreeDim, d.all.cloud[hand],
                                                 nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(leaf_size)));
   }
-  if (d.classes.size() == 1) return;  // the class tree would equal the whole-database tree
-  for (std::size_t c = 0; c < d.classes.size(); ++c) {
-    const auto [a, b] = d.ranges[c];
+  if (d.meta.classes.size() == 1) return;  // the class tree would equal the whole-database tree
+  for (std::size_t c = 0; c < d.meta.classes.size(); ++c) {
+    const auto [a, b] = d.meta.ranges[c];
     for (int hand = 0; hand < 2; ++hand) {
       auto& ci = d.index[c];
       ci.cloud[hand].data = reinterpret_cast<const float*>(d.features[hand] + a);

@@ -62,14 +62,9 @@ struct ClassIndex {
   std::array<std::unique_ptr<KdTree>, 2> tree;
 };
 
-struct Database::Impl {
-  std::vector<std::byte> owned;  // in-memory block (empty when mapped)
-  void* map = nullptr;
-  std::size_t map_bytes = 0;
-  const std::byte* base = nullptr;
-  std::size_t size = 0;
-  FileHeader header{};
-
+// What the block's JSON metadata section holds; shared by the builder's parts
+// and the opened database.
+struct DatabaseMeta {
   Skeleton skeleton;
   double height = 0;
   BuildSettings settings;
@@ -78,6 +73,17 @@ struct Database::Impl {
   std::vector<std::string> classes;
   std::vector<std::pair<int, int>> ranges;
   std::vector<TrialInfo> trials;
+};
+
+struct Database::Impl {
+  std::vector<std::byte> owned;  // in-memory block (empty when mapped)
+  void* map = nullptr;
+  std::size_t map_bytes = 0;
+  const std::byte* base = nullptr;
+  std::size_t size = 0;
+  FileHeader header{};
+
+  DatabaseMeta meta;
 
   const Feature* features[2] = {nullptr, nullptr};
   const AlignXZ* align = nullptr;
@@ -93,14 +99,7 @@ struct Database::Impl {
 
 // Serializes the parts into a block (used by the builder).
 struct BlockParts {
-  Skeleton skeleton;
-  double height = 0;
-  BuildSettings settings;
-  FeatureSpace space;
-  double typical_distance = 1;
-  std::vector<std::string> classes;
-  std::vector<std::pair<int, int>> ranges;
-  std::vector<TrialInfo> trials;
+  DatabaseMeta meta;
   std::vector<Feature> features[2];
   std::vector<AlignXZ> align;
   std::vector<WindowSource> sources;

@@ -76,9 +76,9 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
         if (!dup) push_top(out, k, n, w, squared_distance(feats + static_cast<std::ptrdiff_t>(w) * kDim, query.data()));
       }
     const int seeded = n;
-    for (std::size_t c = 0; c < d.ranges.size(); ++c) {
+    for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) {
       if (!allowed(class_mask, c)) continue;
-      for (int w = d.ranges[c].first; w < d.ranges[c].second; ++w) {
+      for (int w = d.meta.ranges[c].first; w < d.meta.ranges[c].second; ++w) {
         const float* row = feats + static_cast<std::ptrdiff_t>(w) * kDim;
         // The principal dimensions come first: most windows are rejected on them.
         float s = 0;
@@ -106,15 +106,15 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
     const nanoflann::SearchParams params(32, mode == SearchMode::Fast ? eps : 0.0f);
     const int budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
     bool every_class = true;
-    for (std::size_t c = 0; c < d.ranges.size(); ++c) every_class = every_class && allowed(class_mask, c);
-    if (every_class || d.index.size() != d.ranges.size()) {
+    for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) every_class = every_class && allowed(class_mask, c);
+    if (every_class || d.index.size() != d.meta.ranges.size()) {
       rs.base = 0;
       rs.budget = budget;
       d.all.tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
     } else {
-      for (std::size_t c = 0; c < d.ranges.size(); ++c) {
-        if (!allowed(class_mask, c) || d.ranges[c].first == d.ranges[c].second) continue;
-        rs.base = d.ranges[c].first;
+      for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) {
+        if (!allowed(class_mask, c) || d.meta.ranges[c].first == d.meta.ranges[c].second) continue;
+        rs.base = d.meta.ranges[c].first;
         rs.budget = budget;
         d.index[c].tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
       }

@@ -176,6 +176,21 @@ double value_of(const json& r, const std::string& protocol, const std::string& m
   return get(r[protocol][method], key);
 }
 
+// Calls row(protocol, method, results, document's figures) for each protocol
+// and main method (accent engine, IK baseline) the report holds, in table order.
+template <class Row>
+void for_each_method(const json& r, Row&& row) {
+  const json& paper = r["paper"];
+  for (const auto& p : kProtocols) {
+    if (!r.contains(p)) continue;
+    for (const char* m : {"accent", "ik"}) {
+      if (!r[p].contains(m)) continue;
+      const json pp = paper.contains(p) && paper[p].contains(m) ? paper[p][m] : json::object();
+      row(p, std::string(m), r[p][m], pp);
+    }
+  }
+}
+
 }  // namespace
 
 const std::vector<MetricKey>& metric_keys() {
@@ -319,50 +334,34 @@ std::string report_markdown(const json& r) {
   md << "## Per body part (document's Figure 4 A)\n\n";
   md << "| protocol | method | left hand | right hand | upper body | lower body | full body | doc. full body | "
         "doc. hands (L/R) |\n|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& p : kProtocols) {
-    if (!r.contains(p)) continue;
-    for (const char* m : {"accent", "ik"}) {
-      if (!r[p].contains(m)) continue;
-      const json& x = r[p][m];
-      const json pp = paper.contains(p) && paper[p].contains(m) ? paper[p][m] : json::object();
-      md << "| " << p << " | " << (std::string(m) == "ik" ? "IK baseline" : "accent engine") << " | "
-         << fmt_sd(x, "left_hand_cm") << " | " << fmt_sd(x, "right_hand_cm") << " | " << fmt_sd(x, "upper_body_cm")
-         << " | " << fmt_sd(x, "lower_body_cm") << " | **" << fmt_sd(x, "full_body_cm") << "** | "
-         << paper_cell(pp, "full_body_cm") << " | " << paper_cell(pp, "left_hand_cm") << " / "
-         << paper_cell(pp, "right_hand_cm") << " |\n";
-    }
-  }
+  for_each_method(r, [&](const std::string& p, const std::string& m, const json& x, const json& pp) {
+    md << "| " << p << " | " << (m == "ik" ? "IK baseline" : "accent engine") << " | " << fmt_sd(x, "left_hand_cm")
+       << " | " << fmt_sd(x, "right_hand_cm") << " | " << fmt_sd(x, "upper_body_cm") << " | "
+       << fmt_sd(x, "lower_body_cm") << " | **" << fmt_sd(x, "full_body_cm") << "** | " << paper_cell(pp, "full_body_cm")
+       << " | " << paper_cell(pp, "left_hand_cm") << " / " << paper_cell(pp, "right_hand_cm") << " |\n";
+  });
   md << "\nAveraged over classes instead (each class once, whatever its number of folds):\n\n"
         "| protocol | method | left hand | right hand | upper body | lower body | full body |\n|---|---|---|---|---|---|---|\n";
-  for (const auto& p : kProtocols) {
-    if (!r.contains(p)) continue;
-    for (const char* m : {"accent", "ik"}) {
-      if (!r[p].contains(m) || !r[p][m].contains("class_mean")) continue;
-      const json& x = r[p][m]["class_mean"];
-      md << "| " << p << " | " << m << " | " << fmt(get(x, "left_hand_cm")) << " | " << fmt(get(x, "right_hand_cm"))
-         << " | " << fmt(get(x, "upper_body_cm")) << " | " << fmt(get(x, "lower_body_cm")) << " | "
-         << fmt(get(x, "full_body_cm")) << " |\n";
-    }
-  }
+  for_each_method(r, [&](const std::string& p, const std::string& m, const json& results, const json&) {
+    if (!results.contains("class_mean")) return;
+    const json& x = results["class_mean"];
+    md << "| " << p << " | " << m << " | " << fmt(get(x, "left_hand_cm")) << " | " << fmt(get(x, "right_hand_cm"))
+       << " | " << fmt(get(x, "upper_body_cm")) << " | " << fmt(get(x, "lower_body_cm")) << " | "
+       << fmt(get(x, "full_body_cm")) << " |\n";
+  });
   md << "\n## Motion quality and speed\n\n";
   md << "| protocol | method | MPJVE (cm/s) | jitter (10² m/s³) | jitter of truth | hand corr. (L/R) | doc. hand corr. "
         "| foot skating (cm/frame) | truth skating | frames/s | doc. frames/s |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& p : kProtocols) {
-    if (!r.contains(p)) continue;
-    for (const char* m : {"accent", "ik"}) {
-      if (!r[p].contains(m)) continue;
-      const json& x = r[p][m];
-      const json pp = paper.contains(p) && paper[p].contains(m) ? paper[p][m] : json::object();
-      md << "| " << p << " | " << m << " | " << fmt_sd(x, "mpjve_cm_s") << " | " << fmt(get(x, "jitter"), 2) << " | "
-         << fmt(get(x, "jitter_truth"), 2) << " | " << fmt(get(x, "left_hand_correlation"), 3) << " / "
-         << fmt(get(x, "right_hand_correlation"), 3) << " | "
-         << (pp.contains("left_hand_correlation")
-                 ? fmt(pp["left_hand_correlation"].get<double>(), 2) + " / " + fmt(pp["right_hand_correlation"].get<double>(), 2)
-                 : (pp.contains("hand_correlation") ? fmt(pp["hand_correlation"].get<double>(), 2) : "–"))
-         << " | " << fmt(get(x, "foot_skating_cm"), 2) << " | " << fmt(get(x, "foot_skating_truth_cm"), 2) << " | "
-         << fmt(get(x, "frames_per_second"), 0) << " | " << paper_cell(pp, "frames_per_second", 0) << " |\n";
-    }
-  }
+  for_each_method(r, [&](const std::string& p, const std::string& m, const json& x, const json& pp) {
+    md << "| " << p << " | " << m << " | " << fmt_sd(x, "mpjve_cm_s") << " | " << fmt(get(x, "jitter"), 2) << " | "
+       << fmt(get(x, "jitter_truth"), 2) << " | " << fmt(get(x, "left_hand_correlation"), 3) << " / "
+       << fmt(get(x, "right_hand_correlation"), 3) << " | "
+       << (pp.contains("left_hand_correlation")
+               ? fmt(pp["left_hand_correlation"].get<double>(), 2) + " / " + fmt(pp["right_hand_correlation"].get<double>(), 2)
+               : (pp.contains("hand_correlation") ? fmt(pp["hand_correlation"].get<double>(), 2) : "–"))
+       << " | " << fmt(get(x, "foot_skating_cm"), 2) << " | " << fmt(get(x, "foot_skating_truth_cm"), 2) << " | "
+       << fmt(get(x, "frames_per_second"), 0) << " | " << paper_cell(pp, "frames_per_second", 0) << " |\n";
+});
 
   // Per class.
   for (const auto& p : kProtocols) {

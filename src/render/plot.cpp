@@ -27,6 +27,16 @@ constexpr Rgb kInk{0.12, 0.12, 0.14};
 constexpr Rgb kAxis{0.35, 0.35, 0.38};
 constexpr Rgb kGridLine{0.9, 0.9, 0.92};
 
+// A y-axis label read bottom to top, centred on (x, y); nothing when empty.
+void y_axis_label(cairo_t* cr, double x, double y, const std::string& label) {
+  if (label.empty()) return;
+  cairo_save(cr);
+  cairo_translate(cr, x, y);
+  cairo_rotate(cr, -kPi / 2);
+  text(cr, 0, 0, label, 12, Align::Centre, kInk);
+  cairo_restore(cr);
+}
+
 struct Range {
   double lo = 0, hi = 1, step = 0.2;
 };
@@ -204,13 +214,7 @@ void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, d
     text(cr, left + w / 2, top + h + 34, x_label, 12, Align::Centre, kInk);
   }
   // Rotated y label, centred on the panel.
-  if (!p.y_label.empty()) {
-    cairo_save(cr);
-    cairo_translate(cr, left - 48, top + h / 2);
-    cairo_rotate(cr, -kPi / 2);
-    text(cr, 0, 0, p.y_label, 12, Align::Centre, kInk);
-    cairo_restore(cr);
-  }
+  y_axis_label(cr, left - 48, top + h / 2, p.y_label);
   text(cr, left, top - 7, p.title, 12, Align::Left, kInk, 1.0, true);
   cairo_restore(cr);
 
@@ -336,13 +340,7 @@ void plot_bars(const BarChart& chart, const std::string& path) {
   cairo_stroke(cr);
   cairo_rectangle(cr, std::round(left) + 0.5, std::round(title_h) + 0.5, std::round(w), std::round(h));
   cairo_stroke(cr);
-  if (!chart.y_label.empty()) {
-    cairo_save(cr);
-    cairo_translate(cr, left - 52, title_h + h / 2);
-    cairo_rotate(cr, -kPi / 2);
-    text(cr, 0, 0, chart.y_label, 12, Align::Centre, kInk);
-    cairo_restore(cr);
-  }
+  y_axis_label(cr, left - 52, title_h + h / 2, chart.y_label);
   std::vector<LegendItem> items;
   for (std::size_t s = 0; s < chart.series.size(); ++s)
     if (!chart.series[s].name.empty())

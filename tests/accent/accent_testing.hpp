@@ -1,6 +1,7 @@
 #pragma once
 // Shared helpers for the accent tests: sample trials from the repo's data/cmu.
 #include <legwork/accent/builder.hpp>
+#include <legwork/core/interpolate.hpp>
 #include <legwork/io/bvh.hpp>
 
 #include "testdata.hpp"
@@ -28,6 +29,19 @@ inline std::vector<TrialInput> sample_trials(const std::vector<std::string>& nam
   std::vector<TrialInput> out;
   for (const auto& n : names) out.push_back(sample_trial(n));
   return out;
+}
+
+// A database over sample trials with its KD-trees built, as searches need it.
+inline Database indexed_database(const std::vector<std::string>& names, const BuildConfig& cfg = {},
+                                 BuildReport* report = nullptr) {
+  Database db = build_database(sample_trials(names), cfg, report);
+  db.build_index();
+  return db;
+}
+
+// A sample trial at the 90 Hz tracker rate the accentuator runs at.
+inline Motion tracker_rate_trial(const std::string& cls_slash_name) {
+  return resample(sample_trial(cls_slash_name).motion, 90.0);
 }
 
 }  // namespace legwork::accent::testing

@@ -47,12 +47,10 @@ HandErrors measure(const Motion& input90, const Motion& out) {
 class HeldOut : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const auto trials = testing::sample_trials({"walking/05_01", "walking/07_01", "walking/07_12", "walking/10_04",
-                                                "walking/16_15", "walking/16_21", "running/09_01", "running/16_36",
-                                                "boxing/13_18"});
-    db_ = new Database(build_database(trials, BuildConfig{}));
-    db_->build_index();
-    input_ = new Motion(resample(testing::sample_trial("walking/07_02").motion, 90.0));
+    db_ = new Database(testing::indexed_database({"walking/05_01", "walking/07_01", "walking/07_12", "walking/10_04",
+                                                  "walking/16_15", "walking/16_21", "running/09_01", "running/16_36",
+                                                  "boxing/13_18"}));
+    input_ = new Motion(testing::tracker_rate_trial("walking/07_02"));
   }
   static void TearDownTestSuite() {
     delete db_;
@@ -149,7 +147,7 @@ TEST(AccentLive, LiveFeaturisationEqualsDatabaseFeaturisation) {
 TEST(AccentLive, BadTrackingNeverBreaksThePose) {
   const auto trials = testing::sample_trials({"walking/07_01", "walking/05_01"});
   const Database db = build_database(trials, BuildConfig{});
-  const Motion m = resample(testing::sample_trial("walking/07_02").motion, 90.0);
+  const Motion m = testing::tracker_rate_trial("walking/07_02");
   auto frames = tracker_frames_from_motion(m);
   AccentConfig ac;
   ac.user_height = 1.7;
@@ -187,7 +185,7 @@ TEST(AccentLive, BadTrackingNeverBreaksThePose) {
 TEST(AccentLive, BoneLengthsEqualTheTargetsAndHeadSitsAtTheHeadset) {
   const auto trials = testing::sample_trials({"walking/07_01", "running/09_01"});
   const Database db = build_database(trials, BuildConfig{});
-  const Motion m = resample(testing::sample_trial("walking/07_02").motion, 90.0);
+  const Motion m = testing::tracker_rate_trial("walking/07_02");
   AccentConfig ac;
   ac.user_height = 1.86;
   const AccentRun run = accentuate(db, ac, tracker_frames_from_motion(m), 90.0);
@@ -205,10 +203,8 @@ TEST(AccentLive, BoneLengthsEqualTheTargetsAndHeadSitsAtTheHeadset) {
 }
 
 TEST(AccentLive, ManyAvatarsShareOneDatabaseAcrossThreads) {
-  const auto trials = testing::sample_trials({"walking/07_01", "walking/05_01", "boxing/13_18"});
-  Database db = build_database(trials, BuildConfig{});
-  db.build_index();
-  const Motion m = resample(testing::sample_trial("walking/07_02").motion, 90.0);
+  const Database db = testing::indexed_database({"walking/07_01", "walking/05_01", "boxing/13_18"});
+  const Motion m = testing::tracker_rate_trial("walking/07_02");
   const auto frames = tracker_frames_from_motion(m);
   AccentConfig ac;
   const AccentRun reference = accentuate(db, ac, frames, 90.0);
@@ -310,7 +306,7 @@ TEST(AccentTilt, MatchedHeadsAreAboutAsUprightAsTheHeadset) {
   // Swimmers (head near horizontal) next to walkers: an upright walker must
   // only get candidates whose head tilt is within the gate.
   const Database db = build_database(testing::sample_trials({"swimming/79_02", "walking/07_01", "boxing/13_18"}), BuildConfig{});
-  const Motion input = resample(testing::sample_trial("walking/07_02").motion, 90.0);
+  const Motion input = testing::tracker_rate_trial("walking/07_02");
   const auto frames = tracker_frames_from_motion(input);
   AccentConfig cfg;
   cfg.max_head_tilt_deg = 30;

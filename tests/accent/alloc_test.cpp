@@ -13,9 +13,8 @@ namespace legwork::accent {
 namespace {
 
 TEST(AccentAlloc, UpdateIsAllocationFree) {
-  Database db = build_database(testing::sample_trials({"walking/07_01", "walking/05_01", "running/09_01"}), BuildConfig{});
-  db.build_index();
-  const auto frames = tracker_frames_from_motion(resample(testing::sample_trial("walking/07_02").motion, 90.0));
+  const Database db = testing::indexed_database({"walking/07_01", "walking/05_01", "running/09_01"});
+  const auto frames = tracker_frames_from_motion(testing::tracker_rate_trial("walking/07_02"));
   for (SearchMode mode : {SearchMode::BruteForce, SearchMode::Exact, SearchMode::Fast}) {
     AccentConfig cfg;
     cfg.search = mode;

@@ -39,8 +39,7 @@ class SampleDb : public ::testing::Test {
     report_ = new BuildReport();
     BuildConfig cfg;
     cfg.mirror = true;
-    db_ = new Database(build_database(testing::sample_trials(kSample), cfg, report_));
-    db_->build_index();
+    db_ = new Database(testing::indexed_database(kSample, cfg, report_));
   }
   static void TearDownTestSuite() {
     delete db_;

@@ -5,6 +5,7 @@
 #include <legwork/core/mirror.hpp>
 #include <legwork/io/bvh.hpp>
 
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 #include <random>
@@ -12,11 +13,7 @@
 using namespace legwork;
 
 namespace {
-Motion walk() {
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
-  return io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), opt);
-}
+Motion walk() { return testdata::load_sample("cmu/bvh/walking/07_01.bvh"); }
 double quat_distance(const Quat& a, const Quat& b) { return 1.0 - std::abs(a.dot(b)); }
 }  // namespace
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 namespace legwork::eval {
@@ -159,9 +160,7 @@ TEST(EvalMetrics, CombineIsFrameWeighted) {
 }
 
 TEST(EvalMetrics, RealTrialAgainstItselfIsPerfect) {
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
-  const Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), opt);
+  const Motion m = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
   const RoleTrack t = role_track(m);
   ASSERT_EQ(t.frames, m.frame_count());
   EXPECT_TRUE(t.has(Role::LeftHand) && t.has(Role::RightAnkle) && t.has(Role::Head));

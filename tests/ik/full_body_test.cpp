@@ -8,16 +8,13 @@
 
 #include <cmath>
 
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 namespace legwork::ik {
 namespace {
 
-Motion load90(const std::string& rel) {
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
-  return resample(io::load_bvh(testdata::sample(rel).string(), opt), 90.0);
-}
+Motion load90(const std::string& rel) { return resample(testdata::load_sample(rel), 90.0); }
 
 TrackerFrame tracker_of(const Skeleton& s, std::span<const Transform> g) {
   TrackerFrame t;

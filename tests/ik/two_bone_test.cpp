@@ -4,6 +4,7 @@
 #include <legwork/ik/two_bone.hpp>
 #include <legwork/io/bvh.hpp>
 
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 #include <cmath>
@@ -19,10 +20,8 @@ struct Rig {
 };
 
 Rig cmu_rig(int frame = 100) {
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
   Rig r;
-  r.motion = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), opt);
+  r.motion = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
   r.pose = Pose(r.motion.skeleton);
   auto f = r.motion.frame(frame);
   std::copy(f.rotations.begin(), f.rotations.end(), r.pose.rotations.begin());

@@ -10,6 +10,7 @@
 #include <string>
 
 using namespace legwork;
+using legwork::testdata::metres;
 
 namespace {
 
@@ -25,12 +26,6 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   EXPECT_NE(at, std::string::npos) << "test setup: '" << from << "' not in the file";
   if (at != std::string::npos) s.replace(at, from.size(), to);
   return s;
-}
-
-io::BvhReadOptions metres() {
-  io::BvhReadOptions o;
-  o.scale = 1.0;  // the toy skeleton is 1 m tall: no unit guessing
-  return o;
 }
 
 struct Case {

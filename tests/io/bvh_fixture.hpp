@@ -4,6 +4,8 @@
 // Line numbers:  1 HIERARCHY, 2 ROOT, 4 OFFSET, 5 CHANNELS, 6 JOINT Spine,
 // 8 OFFSET, 9 CHANNELS, 10 End Site, 12 OFFSET, 16 MOTION, 17 Frames,
 // 18 Frame Time, 19-20 motion lines.
+#include <legwork/io/bvh.hpp>
+
 #include <string>
 
 namespace legwork::testdata {
@@ -26,4 +28,11 @@ inline const std::string kTinyBvhHeader =
     "MOTION\n"
     "Frames: 2\n"
     "Frame Time: 0.1\n";
+
+// Reads the tiny file as metres: the toy skeleton is 1 m tall, so no unit guessing.
+inline io::BvhReadOptions metres() {
+  io::BvhReadOptions o;
+  o.scale = 1.0;
+  return o;
+}
 }  // namespace legwork::testdata

@@ -18,6 +18,7 @@
 #include <sstream>
 
 using namespace legwork;
+using legwork::testdata::metres;
 
 namespace {
 
@@ -25,12 +26,6 @@ const std::string kBase =
     legwork::testdata::kTinyBvhHeader +
     "0 1 0 0 0 0 10 20 30\n"
     "0.25 1 0.1 5 -7 3 10 20 30\n";
-
-io::BvhReadOptions metres() {
-  io::BvhReadOptions o;
-  o.scale = 1.0;
-  return o;
-}
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
   for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);

@@ -4,6 +4,7 @@
 #include <legwork/io/gltf.hpp>
 #include <legwork/io/text.hpp>
 
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 #include <filesystem>
@@ -41,9 +42,7 @@ void expect_round_trip(const Motion& m, const std::string& path) {
 }  // namespace
 
 TEST(Gltf, CmuWalkRoundTripsWithin0p1mm) {
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
-  const Motion m = first_frames(io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), opt), 240);
+  const Motion m = first_frames(testdata::load_sample("cmu/bvh/walking/07_01.bvh"), 240);
   const auto path = temp("legwork_walk.glb");
   expect_round_trip(m, path);
   const std::string bytes = io::read_text_file(path);

@@ -6,6 +6,7 @@
 #include <legwork/render/plot.hpp>
 
 #include "render_test_util.hpp"
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 #include <fstream>
@@ -61,7 +62,7 @@ TEST(PlotLines, CurvesAtTheirHeightsAndBandsOnTheirInterval) {
 }
 
 TEST(PlotLines, AnkleHeightsOfARealWalk) {
-  const Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), {.drop_first_frame = true});
+  const Motion m = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
   const auto pos = joint_positions(m);
   const auto nj = static_cast<std::size_t>(m.joint_count());
   const auto la = static_cast<std::size_t>(m.skeleton.roles[Role::LeftAnkle]);

@@ -15,6 +15,7 @@
 
 using namespace legwork;
 using namespace legwork::render;
+using legwork::render::testing::camera;
 using legwork::render::testing::Image;
 using legwork::render::testing::is_background;
 using legwork::render::testing::near_color;
@@ -75,10 +76,7 @@ TEST(Projection, PixelsMatchTheDrawing) {
     c.width = 3;
     c.marks = {1};
     s.curves.push_back(c);
-    Camera cam;
-    cam.view = v;
-    cam.width = 300;
-    cam.height = 200;
+    const Camera cam = camera(v, 300, 200);
     const auto file = out("proj_" + view_name(v) + ".png");
     render_scene(s, cam, file);
     const Framing fr = frame_scene(s, cam);
@@ -101,10 +99,7 @@ TEST(RenderScene, PngHasSizeContentAndFigureInsideFrame) {
   s.figures.push_back(make_figure(m.skeleton, m.frame(60), 1.0, "frame 60"));
   s.title = "07_01 frame 60";
   for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
-    Camera cam;
-    cam.view = v;
-    cam.width = 320;
-    cam.height = 400;
+    const Camera cam = camera(v, 320, 400);
     const auto file = out("scene_" + view_name(v) + ".png");
     render_scene(s, cam, file);
     Image img(file);
@@ -178,10 +173,7 @@ TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
   Scene s;
   s.floor = false;
   s.figures.push_back(make_figure(skel, Pose(skel)));
-  Camera cam;
-  cam.view = View::Front;
-  cam.width = 400;
-  cam.height = 400;
+  const Camera cam = camera(View::Front, 400, 400);
   const auto file = out("front_rest.png");
   render_scene(s, cam, file);
   Image img(file);
@@ -269,10 +261,7 @@ TEST(ContactSheet, RowsPerViewPosesSideBySide) {
 TEST(Trajectory, PathDrawnWithMarks) {
   const Motion& m = walk();
   const int foot = m.skeleton.require("LeftFoot");
-  Camera cam;
-  cam.view = View::Side;
-  cam.width = 800;
-  cam.height = 360;
+  const Camera cam = camera(View::Side, 800, 360);
   const auto file = out("trajectory.png");
   render_trajectory(m, foot, {30, 60, 90, 120}, cam, file);
   Image img(file);
@@ -288,10 +277,7 @@ TEST(Footprints, TopViewPutsLeftFootAboveRight) {
   Scene s;
   s.footprints.push_back({Vec3(0.15, 0, 0), 0.0, true});
   s.footprints.push_back({Vec3(-0.15, 0, 0.4), 0.0, false});
-  Camera cam;
-  cam.view = View::Top;
-  cam.width = 300;
-  cam.height = 300;
+  const Camera cam = camera(View::Top, 300, 300);
   const auto file = out("footprints.png");
   render_scene(s, cam, file);
   Image img(file);
@@ -317,9 +303,7 @@ TEST(RenderPanels, GridOfViewsHasEveryPanelDrawn) {
     Panel p;
     p.scene.figures.push_back(make_figure(m.skeleton, m.frame(80)));
     p.scene.title = view_name(v);
-    p.camera.view = v;
-    p.camera.width = 240;
-    p.camera.height = 200;
+    p.camera = camera(v, 240, 200);
     panels.push_back(p);
   }
   const auto file = out("panels.png");

@@ -21,6 +21,15 @@ inline std::filesystem::path out_dir() {
   return d;
 }
 
+// A camera on view v making a width x height picture.
+inline Camera camera(View v, int width, int height) {
+  Camera cam;
+  cam.view = v;
+  cam.width = width;
+  cam.height = height;
+  return cam;
+}
+
 struct Rgba {
   double r, g, b, a;
 };

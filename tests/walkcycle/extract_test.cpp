@@ -5,6 +5,7 @@
 #include <legwork/walkcycle/extract.hpp>
 #include <legwork/walkcycle/measure.hpp>
 
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 #include <cstdio>
@@ -78,16 +79,12 @@ TEST(Extract, SampleWalks) {
 }
 
 TEST(Extract, SameClipSameFile) {
-  io::BvhReadOptions o;
-  o.drop_first_frame = true;
-  const Motion clip = io::load_bvh(testdata::sample("cmu/bvh/walking/16_15.bvh").string(), o);
+  const Motion clip = testdata::load_sample("cmu/bvh/walking/16_15.bvh");
   EXPECT_EQ(format_walk_keys(extract_walk(clip).keys, clip.skeleton), format_walk_keys(extract_walk(clip).keys, clip.skeleton));
 }
 
 TEST(Extract, KeysFromFramesPutTheLeftFootForward) {
-  io::BvhReadOptions o;
-  o.drop_first_frame = true;
-  const Motion clip = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), o);
+  const Motion clip = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
   const auto ex = extract_walk(clip);
   const StepEvents& s = ex.steps.front();
   const WalkKeys k = keys_from_frames(clip, {s.contact, s.down, s.pass, s.up}, 24, 24);

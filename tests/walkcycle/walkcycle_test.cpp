@@ -5,6 +5,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/walkcycle/measure.hpp>
 
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 #include <cstdio>
@@ -14,16 +15,9 @@ using namespace legwork::walkcycle;
 
 namespace {
 
-const Skeleton& cmu_skeleton() {
-  static const Skeleton s = [] {
-    io::BvhReadOptions o;
-    o.drop_first_frame = true;
-    return io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), o).skeleton;
-  }();
-  return s;
-}
+const Skeleton& cmu_skeleton() { return testdata::sample_skeleton(); }
 
-std::string walk_file(const std::string& name) { return (testdata::source_dir() / "data" / "walks" / (name + ".json")).string(); }
+std::string walk_file(const std::string& name) { return testdata::walk_keys_file(name); }
 
 const std::vector<std::string> kWalks{"normal", "sneak", "double-bounce"};
 

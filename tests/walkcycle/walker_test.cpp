@@ -5,6 +5,7 @@
 #include <legwork/walkcycle/measure.hpp>
 #include <legwork/walkcycle/walker.hpp>
 
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 #include <cstdio>
@@ -14,10 +15,8 @@ using namespace legwork::walkcycle;
 
 namespace {
 CycleModel model(const std::string& name) {
-  io::BvhReadOptions o;
-  o.drop_first_frame = true;
-  const Skeleton s = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), o).skeleton;
-  return build_cycle(s, read_walk_keys((testdata::source_dir() / "data" / "walks" / (name + ".json")).string(), s));
+  const Skeleton& s = testdata::sample_skeleton();
+  return build_cycle(s, read_walk_keys(testdata::walk_keys_file(name), s));
 }
 }  // namespace
 

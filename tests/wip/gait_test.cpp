@@ -3,6 +3,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/wip/wip.hpp>
 
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 #include <cmath>
@@ -13,11 +14,7 @@ namespace legwork::wip {
 namespace {
 
 const WipModel& cmu_model() {
-  static const WipModel m = [] {
-    io::BvhReadOptions opt;
-    opt.drop_first_frame = true;
-    return make_wip_model(io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string(), opt).skeleton);
-  }();
+  static const WipModel m = make_wip_model(testdata::sample_skeleton());
   return m;
 }
 

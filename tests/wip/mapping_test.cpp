@@ -5,6 +5,7 @@
 #include <legwork/wip/eval.hpp>
 
 #include "alloc_counter.hpp"
+#include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 #include <cmath>
@@ -15,11 +16,7 @@
 namespace legwork::wip {
 namespace {
 
-Motion load(const std::string& rel) {
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
-  return io::load_bvh(testdata::sample(rel).string(), opt);
-}
+Motion load(const std::string& rel) { return testdata::load_sample(rel); }
 
 const WipModel& cmu_model() {
   static const WipModel m = make_wip_model(load("cmu/bvh/walking/07_01.bvh").skeleton);
