@@ -9,6 +9,7 @@
 #include <legwork/core/measure.hpp>
 #include <legwork/core/mirror.hpp>
 #include <legwork/io/bvh.hpp>
+#include <legwork/io/catalogue.hpp>
 #include <legwork/io/text.hpp>
 
 #include <Eigen/Eigenvalues>
@@ -28,34 +29,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> split_tabs(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, '\t')) out.push_back(cell);
-  if (!line.empty() && line.back() == '\t') out.emplace_back();
-  return out;
-}
-
 bool excluded(const std::string& file, const std::vector<std::string>& exclude) {
   for (const auto& e : exclude)
     if (file == e || fs::path(file).filename() == fs::path(e).filename()) return true;
   return false;
-}
-
-// "07_12.bvh" -> subject 7, trial 12 (0 if the name has another form).
-void parse_cmu_name(const std::string& file, int& subject, int& trial) {
-  const std::string stem = fs::path(file).stem().string();
-  const auto us = stem.find('_');
-  subject = trial = 0;
-  try {
-    if (us != std::string::npos) {
-      subject = std::stoi(stem.substr(0, us));
-      trial = std::stoi(stem.substr(us + 1));
-    }
-  } catch (const std::exception&) {
-    subject = trial = 0;
-  }
 }
 
 double pearson(const std::vector<double>& a, const std::vector<double>& b) {
@@ -133,68 +110,11 @@ std::vector<double> speed_factors(const BuildConfig& cfg) {
 
 std::vector<TrialInput> load_trials(const std::string& dir, const std::vector<std::string>& classes,
                                     const std::vector<std::string>& exclude, const Progress& progress) {
-  struct Row {
-    std::string file, cls;
-    int subject = 0, trial = 0;
-  };
-  std::vector<Row> rows;
-  const fs::path root(dir);
-  if (!fs::is_directory(root)) throw Error("data folder '" + dir + "' does not exist");
-  const fs::path manifest = root / "MANIFEST.tsv";
-  if (fs::exists(manifest)) {
-    std::istringstream in(io::read_text_file(manifest.string()));
-    std::string line;
-    std::getline(in, line);
-    const auto head = split_tabs(line);
-    auto col = [&](const std::string& name) {
-      const auto it = std::find(head.begin(), head.end(), name);
-      if (it == head.end()) throw Error(manifest.string() + ":1: no '" + name + "' column");
-      return static_cast<std::size_t>(it - head.begin());
-    };
-    const std::size_t cf = col("file"), cc = col("class"), cs = col("subject"), ct = col("trial");
-    int lineno = 1;
-    while (std::getline(in, line)) {
-      ++lineno;
-      if (line.empty()) continue;
-      const auto cells = split_tabs(line);
-      if (cells.size() <= std::max({cf, cc, cs, ct}))
-        throw Error(manifest.string() + ":" + std::to_string(lineno) + ": too few columns");
-      Row r{cells[cf], cells[cc], 0, 0};
-      try {
-        r.subject = std::stoi(cells[cs]);
-        r.trial = std::stoi(cells[ct]);
-      } catch (const std::exception&) {
-        throw Error(manifest.string() + ":" + std::to_string(lineno) + ": subject/trial are not numbers");
-      }
-      rows.push_back(r);
-    }
-  } else {
-    for (const auto& sub : fs::directory_iterator(root)) {
-      if (!sub.is_directory() || sub.path().filename().string().rfind("bvh", 0) != 0) continue;
-      for (const auto& cdir : fs::directory_iterator(sub.path())) {
-        if (!cdir.is_directory()) continue;
-        for (const auto& f : fs::directory_iterator(cdir.path())) {
-          if (io::extension_of(f.path().string()) != ".bvh") continue;
-          Row r{fs::relative(f.path(), root).string(), cdir.path().filename().string(), 0, 0};
-          parse_cmu_name(r.file, r.subject, r.trial);
-          rows.push_back(r);
-        }
-      }
-    }
-    std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.file < b.file; });
-  }
-  std::set<std::string> present;
-  for (const auto& r : rows) present.insert(r.cls);
-  for (const auto& c : classes)
-    if (!present.count(c)) {
-      std::string list;
-      for (const auto& p : present) list += (list.empty() ? "" : ", ") + p;
-      throw Error("class '" + c + "' is not in " + dir + " (classes present: " + list + ")");
-    }
-  std::vector<Row> chosen;
-  for (const auto& r : rows)
-    if ((classes.empty() || std::find(classes.begin(), classes.end(), r.cls) != classes.end()) && !excluded(r.file, exclude))
-      chosen.push_back(r);
+  if (!fs::is_directory(dir)) throw Error("data folder '" + dir + "' does not exist");
+  const io::Catalogue catalogue = io::read_catalogue(dir, "", classes, /*cmu_names=*/false);
+  std::vector<io::TrialEntry> chosen;
+  for (const auto& t : catalogue.trials)
+    if (!excluded(t.file, exclude)) chosen.push_back(t);
   std::vector<TrialInput> out;
   out.reserve(chosen.size());
   for (std::size_t i = 0; i < chosen.size(); ++i) {
@@ -202,7 +122,7 @@ std::vector<TrialInput> load_trials(const std::string& dir, const std::vector<st
     if (progress) progress(static_cast<int>(i), static_cast<int>(chosen.size()), r.file);
     io::BvhReadOptions opt;
     opt.drop_first_frame = true;  // CMU's synthetic T-pose (DAZ: the reference pose)
-    TrialInput t{r.file, r.cls, r.subject, r.trial, io::load_bvh((root / r.file).string(), opt)};
+    TrialInput t{r.file, r.cls, r.subject, r.trial, io::load_bvh(r.path, opt)};
     out.push_back(std::move(t));
   }
   if (progress) progress(static_cast<int>(chosen.size()), static_cast<int>(chosen.size()), "");

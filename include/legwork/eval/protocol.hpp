@@ -9,32 +9,19 @@
 //   cross-dataset: database = a class's trials of one folder, test = every
 //                  trial of that class in another folder.
 // Offline code: allocates, throws legwork::Error naming the file/line at fault.
+#include <legwork/io/catalogue.hpp>
+
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace legwork::eval {
 
-struct TrialEntry {
-  std::string path;  // absolute or relative to the working directory
-  std::string file;  // as listed (relative to the data folder)
-  std::string cls;
-  int subject = 0, trial = 0;
-  std::string id() const;  // "SS_TT", e.g. "16_21"
-};
-
-struct Catalogue {
-  std::string root;  // the data folder
-  std::vector<TrialEntry> trials;
-  std::vector<std::string> classes() const;  // sorted, unique
-};
-
-// Reads DIR's trials: from `manifest` if given, else DIR/MANIFEST.tsv if it
-// exists, else every DIR/bvh*/<class>/*.bvh (subject and trial from the
-// "SS_TT" file name). Only `classes` are kept (empty = all); an unknown class
-// name is an error listing the classes present.
-Catalogue read_catalogue(const std::string& dir, const std::string& manifest = "",
-                         const std::vector<std::string>& classes = {});
+// The trial catalogue (manifest or folder layout) is shared with the database
+// builder: see legwork/io/catalogue.hpp.
+using io::Catalogue;
+using io::read_catalogue;
+using io::TrialEntry;
 
 enum class Protocol { CrossSubject, CrossTrial, CrossDataset };
 const char* protocol_key(Protocol p);  // "cross_subject", "cross_trial", "cross_dataset"
