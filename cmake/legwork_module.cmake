@@ -1,9 +1,15 @@
-# legwork_module(NAME DEPS a b ... LIBS x y ...)
-# One static library per module: sources are src/NAME/*.cpp, public headers
-# include/legwork/NAME/*.hpp. Exposed as legwork::NAME.
+# legwork_module(NAME [DIR d] DEPS a b ... LIBS x y ...)
+# One static library per module: sources are src/NAME/*.cpp (or src/DIR/*.cpp),
+# public headers include/legwork/NAME/*.hpp. Exposed as legwork::NAME.
+# Runtime modules (per-frame code) are NAME; their offline tools (builders,
+# file formats, whole-clip helpers) are NAME_offline with DIR NAME/offline,
+# headers in include/legwork/NAME/offline/.
 function(legwork_module name)
-  cmake_parse_arguments(ARG "" "" "DEPS;LIBS" ${ARGN})
-  file(GLOB srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${name}/*.cpp)
+  cmake_parse_arguments(ARG "" "DIR" "DEPS;LIBS" ${ARGN})
+  if(NOT ARG_DIR)
+    set(ARG_DIR ${name})
+  endif()
+  file(GLOB srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${ARG_DIR}/*.cpp)
   if(NOT srcs)
     message(STATUS "legwork: module ${name} has no sources yet; skipped")
     return()

@@ -18,6 +18,7 @@ PACKAGES=(
   libbenchmark-dev                      # benchmarks
   libassimp-dev                         # benchmark baseline: assimp's BVH importer
   clang libclang-rt-14-dev              # libFuzzer target for the BVH reader
+  ccache                                # compiler cache: rebuilds (CI on the same machine, sanitizer builds) reuse objects
 )
 
 missing=()
@@ -34,7 +35,12 @@ fi
 
 BUILD=${1:-build}
 shift || true
-cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+LAUNCHER=()
+if command -v ccache >/dev/null 2>&1; then
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-true}
+  LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release "${LAUNCHER[@]}" "$@" >/dev/null
 # LEGWORK_BUILD_TARGETS limits the build (e.g. "legwork" for the CLI only).
 # shellcheck disable=SC2086
 ninja -C "$BUILD" -j"$(nproc)" ${LEGWORK_BUILD_TARGETS:-}

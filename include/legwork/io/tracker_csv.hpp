@@ -6,6 +6,8 @@
 // headset's). Empty cells or "nan" mark a dropped sample for that point.
 #include <legwork/core/types.hpp>
 
+#include <initializer_list>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,5 +42,28 @@ TrackerTable parse_tracker_csv(std::string_view text, std::string_view source);
 TrackerTable read_tracker_csv(const std::string& path);
 std::string format_tracker_csv(const TrackerTable& t);
 void write_tracker_csv(const std::string& path, const TrackerTable& t);
+
+}  // namespace legwork::io
+
+#include <legwork/core/tracker.hpp>
+
+namespace legwork::io {
+
+// A table's points as TrackerFrames. Point names (first match wins):
+//   head:       head, hmd, headset
+//   left hand:  left_hand, left, lhand, left_wrist
+//   right hand: right_hand, right, rhand, right_wrist
+//   left foot:  left_foot, left_ankle, ankle_l, l_ankle, LeftAnkle, LeftFoot
+//   right foot: right_foot, right_ankle, ankle_r, r_ankle, RightAnkle, RightFoot
+// Devices absent from the table stay invalid. `need` lists the devices the
+// caller requires: a table without one throws legwork::Error naming `source`,
+// the device, the accepted names and the points present. Rotation columns are
+// required for the head when `need` has it (the head's orientation drives
+// every runtime); hands/feet without them get identity rotations.
+std::vector<TrackerFrame> frames_from_table(const TrackerTable& table, const std::string& source,
+                                            std::initializer_list<Device> need = {});
+// The inverse: one point per device valid in any frame, named head,
+// left_hand, right_hand, left_foot, right_foot (head with rotation columns).
+TrackerTable table_from_frames(std::span<const TrackerFrame> frames);
 
 }  // namespace legwork::io
