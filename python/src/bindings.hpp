@@ -1,0 +1,61 @@
+#pragma once
+// Shared helpers of the legwork Python extension (_legwork): numpy argument
+// checks with messages naming the argument and the expected shape, and the
+// conversions between legwork's types and numpy arrays.
+//
+// Conventions at this boundary: float64 arrays, C-contiguous, quaternions as
+// (w, x, y, z) in the last axis, positions in metres, times in seconds.
+#include <legwork/core/motion.hpp>
+#include <legwork/core/tracker.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+namespace legwork::py {
+
+namespace pb = pybind11;
+using Array = pb::array_t<double, pb::array::c_style>;
+
+// One expected axis: a fixed size, or any size (kAny) named in the message.
+inline constexpr pb::ssize_t kAny = -1;
+
+// Checks that `obj` is a numpy float64, C-contiguous array whose shape
+// matches `shape` (kAny = any length), and (finite = true) holds no NaN or
+// infinity. Throws ValueError "name: expected ... of shape (frames, 3), got ..."
+// naming `name` and `shape_text`. Returns the array (no copy).
+Array require_array(const pb::handle& obj, const char* name, std::initializer_list<pb::ssize_t> shape,
+                    const char* shape_text, bool finite = true);
+// ValueError with `message`.
+[[noreturn]] void value_error(const std::string& message);
+
+// A new uninitialised float64 array of the given shape.
+Array new_array(std::initializer_list<pb::ssize_t> shape);
+// A numpy view of `data` (rows x cols doubles) owned by `owner` (kept alive).
+pb::array view(const double* data, std::initializer_list<pb::ssize_t> shape, const pb::handle& owner, bool writable);
+
+// Quaternion rows (w, x, y, z) <-> Eigen quaternions.
+void quats_to_wxyz(std::span<const Quat> q, double* out);
+void wxyz_to_quats(const double* in, std::span<Quat> q);
+
+// Frame rate check: finite and positive (ValueError naming `name`).
+void require_rate(double fps, const char* name);
+
+void bind_core(pb::module_& m);
+void bind_tracker(pb::module_& m);  // part of legwork.core
+// Tracker frames from arrays (NaN rows = lost tracking): see legwork.core.tracker_frames.
+std::vector<TrackerFrame> frames_from_arrays(double fps, const pb::handle& head_position, const pb::handle& head_rotation,
+                                             const pb::handle& left_hand, const pb::handle& right_hand,
+                                             const pb::handle& left_foot, const pb::handle& right_foot, double start_time);
+void bind_io(pb::module_& m);
+void bind_accent(pb::module_& m);
+void bind_eval(pb::module_& m);
+void bind_ik(pb::module_& m);
+void bind_wip(pb::module_& m);
+void bind_walkcycle(pb::module_& m);
+
+}  // namespace legwork::py
