@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 
@@ -54,8 +55,12 @@ SyntheticTrack synthetic_stepping(const SyntheticOptions& o) {
     throw Error("synthetic stepping: rate, duration and cadence must be positive");
   const double n_real = std::floor(o.duration * o.rate) + 1;
   if (!(n_real <= static_cast<double>(o.max_frames)))
-    throw Error("synthetic stepping: " + std::to_string(o.duration) + " s at " + std::to_string(o.rate) +
-                " Hz is more than the limit of " + std::to_string(o.max_frames) + " frames");
+  {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "synthetic stepping: %g s at %g Hz is more than the limit of %zu frames", o.duration,
+                  o.rate, o.max_frames);
+    throw Error(buf);
+  }
   SyntheticTrack tr;
   std::mt19937_64 rng(o.seed);
   std::normal_distribution<double> jitter(0.0, 1.0);
