@@ -5,6 +5,7 @@
 
 #include <legwork/eval/wip.hpp>
 #include <legwork/io/bvh.hpp>
+#include <legwork/io/data_files.hpp>
 #include <legwork/io/gltf.hpp>
 #include <legwork/io/text.hpp>
 #include <legwork/io/tracker_csv.hpp>
@@ -17,45 +18,12 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <unistd.h>
 
 namespace legwork::cli {
 namespace {
 
 namespace fs = std::filesystem;
 using namespace legwork::wip;
-
-// The repo root: the first of the working directory and the executable's
-// ancestors that holds data/cmu/bvh/walking.
-fs::path find_repo_root() {
-  std::vector<fs::path> starts{fs::current_path()};
-  char buf[4096];
-  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n > 0) starts.push_back(fs::path(std::string(buf, static_cast<std::size_t>(n))).parent_path());
-  for (auto p : starts)
-    for (int up = 0; up < 5 && !p.empty(); ++up, p = p.parent_path())
-      if (fs::exists(p / "data" / "cmu" / "bvh" / "walking" / "07_01.bvh")) return p;
-  return {};
-}
-
-std::string default_avatar() {
-  const fs::path root = find_repo_root();
-  if (root.empty())
-    throw Error("--avatar not given and the default avatar data/cmu/bvh/walking/07_01.bvh was not found "
-                "(run from the repository or pass --avatar FILE.bvh)");
-  return (root / "data" / "cmu" / "bvh" / "walking" / "07_01.bvh").string();
-}
-
-fs::path default_eval_data(std::string* note) {
-  const fs::path root = find_repo_root();
-  std::vector<fs::path> shared{fs::current_path() / ".." / "shared" / "data" / "cmu" / "bvh" / "walking"};
-  if (!root.empty()) shared.push_back(root.parent_path() / "shared" / "data" / "cmu" / "bvh" / "walking");
-  for (const auto& p : shared)
-    if (fs::is_directory(p)) return fs::weakly_canonical(p);
-  if (root.empty()) throw Error("--data not given and no walking trials found (../shared/data/cmu/bvh/walking or data/cmu/bvh/walking)");
-  *note = "the full CMU walking set (../shared/data/cmu/bvh/walking) is absent: evaluating only the repo's sample trials";
-  return root / "data" / "cmu" / "bvh" / "walking";
-}
 
 Motion load_bvh_motion(const std::string& path, bool keep_first) {
   io::BvhReadOptions opt;
@@ -121,22 +89,9 @@ void check_run_options(const WipArgs& a) {
   if (!a.plot.empty() && io::extension_of(a.plot) != ".png") throw Error("--plot '" + a.plot + "' must end in .png");
 }
 
-void print_summary(const Run& run, const TrackerInput& in) {
-  int steps = 0;
-  for (const auto& f : run.frames) steps += ((f.events[0] | f.events[1]) & kEventFootOff) ? 1 : 0;
-  const auto& last = run.frames.back();
-  const double span = last.time - run.frames.front().time;
-  std::printf("%zu frames at %.4g Hz: %d steps detected, walked %.2f m (mean %.2f m/s over %.1f s)\n", run.frames.size(),
-              in.rate, steps, last.distance, last.distance / std::max(1e-9, span), span);
-  if (in.truth.empty()) return;
-  const auto sc = eval::score_steps(eval::detected_swings(run.frames), in.truth, 0.5, last.time - 0.1);
-  std::printf("against the input's true steps: precision %.3f, recall %.3f, F1 %.3f, foot-off latency %.0f ms\n",
-              sc.precision, sc.recall, sc.f1, sc.off_latency_ms);
-}
-
 void run_wip_command(const WipArgs& a) {
   check_run_options(a);
-  const std::string avatar_path = a.avatar.empty() ? default_avatar() : a.avatar;
+  const std::string avatar_path = a.avatar.empty() ? io::sample_walk_file("--avatar") : a.avatar;
   const Motion avatar_file = load_bvh_motion(avatar_path, a.keep_first);
   const TrackerInput in = load_input(a);
   const Settings settings = settings_from(a, in.rate);
@@ -163,7 +118,7 @@ void run_wip_command(const WipArgs& a) {
   Motion out = run.motion;
   BaselineRun base;
   if (!a.baseline.empty() || !a.plot.empty()) {
-    const std::string clip_path = a.clip.empty() ? default_avatar() : a.clip;
+    const std::string clip_path = a.clip.empty() ? io::sample_walk_file("--clip") : a.clip;
     const Motion cycle = extract_walk_cycle(load_bvh_motion(clip_path, false));
     try {
       base = run_keyframe_baseline(model, cycle, run.frames, in.rate, a.baseline.empty() ? nullptr : &out);
@@ -179,7 +134,7 @@ void run_wip_command(const WipArgs& a) {
   } else {
     io::write_bvh(a.out, out);
   }
-  print_summary(run, in);
+  std::printf("%s", eval::describe_wip_run(run.frames, in.rate, in.truth).c_str());
   announce(a.baseline.empty() ? "legs" : "key-frame baseline", a.out);
   if (!a.csv.empty()) io::write_text_file(a.csv, format_info_csv(run.frames)), announce("frames", a.csv);
   if (!a.tracker_out.empty())
@@ -194,7 +149,7 @@ void run_wip_command(const WipArgs& a) {
 void run_eval_command(const WipArgs& a) {
   if (a.eval_out.empty()) throw Error("--out DIR is required");
   eval::WipEvalRun run;
-  const fs::path data = a.data.empty() ? default_eval_data(&run.note) : fs::path(a.data);
+  const fs::path data = a.data.empty() ? io::walking_data(&run.note) : fs::path(a.data);
   if (!fs::is_directory(data)) throw Error("--data '" + data.string() + "' is not a directory");
   if (fs::exists(a.eval_out) && !fs::is_directory(a.eval_out)) throw Error("--out '" + a.eval_out + "' is not a folder");
   if (!run.note.empty()) std::cerr << "legwork wip eval: note: " << run.note << "\n";
@@ -204,7 +159,7 @@ void run_eval_command(const WipArgs& a) {
   if (a.limit > 0 && static_cast<int>(run.files.size()) > a.limit) run.files.resize(static_cast<std::size_t>(a.limit));
   if (run.files.empty()) throw Error("--data '" + data.string() + "' holds no .bvh files");
   run.data = data.string();
-  run.clip = a.clip.empty() ? default_avatar() : a.clip;
+  run.clip = a.clip.empty() ? io::sample_walk_file("--clip") : a.clip;
   run.out = a.eval_out;
   run.options.settings = settings_from(a, a.rate);
   run.options.noise = a.noise;

@@ -312,6 +312,24 @@ void plot_wip_phases(const std::string& path, const std::string& title, std::spa
   std::filesystem::remove(tmp_strip);
 }
 
+std::string describe_wip_run(std::span<const wip::Info> frames, double rate, std::span<const SwingEvent> truth) {
+  if (frames.empty()) return "no frames\n";
+  int steps = 0;
+  for (const auto& f : frames) steps += ((f.events[0] | f.events[1]) & wip::kEventFootOff) ? 1 : 0;
+  const auto& last = frames.back();
+  const double span = last.time - frames.front().time;
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "%zu frames at %.4g Hz: %d steps detected, walked %.2f m (mean %.2f m/s over %.1f s)\n",
+                frames.size(), rate, steps, last.distance, last.distance / std::max(1e-9, span), span);
+  std::string out = buf;
+  if (truth.empty()) return out;
+  const auto sc = score_steps(detected_swings(frames), truth, 0.5, last.time - 0.1);
+  std::snprintf(buf, sizeof buf,
+                "against the input's true steps: precision %.3f, recall %.3f, F1 %.3f, foot-off latency %.0f ms\n",
+                sc.precision, sc.recall, sc.f1, sc.off_latency_ms);
+  return out + buf;
+}
+
 std::vector<int> strip_frames(const std::string& spec, std::span<const wip::Info> frames) {
   std::vector<int> out;
   if (!spec.empty()) {

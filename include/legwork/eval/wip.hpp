@@ -100,6 +100,10 @@ struct WipEvalSummary {
 // into `out`. Throws if no trial could be evaluated.
 WipEvalSummary run_wip_evaluation(const WipEvalRun& run);
 
+// What a run of `legwork wip` did, as printed lines: frames, steps, distance,
+// mean speed; with `truth` (true swings of the input) the step scores.
+std::string describe_wip_run(std::span<const wip::Info> frames, double rate, std::span<const SwingEvent> truth);
+
 // Plots of one run of `legwork wip`: the document's Figure 2-like curves
 // (heights, velocities, phases, depths, speed) and, when `strip` lists
 // frames of `avatar`, a side-view strip of the avatar under them.
