@@ -62,10 +62,11 @@ double approach(double current, double target, double dt, double tau) {
   return current + (target - current) * (1 - std::exp(-dt / tau));
 }
 
-// Yaw about +y of a rotation (0 = looking along +z).
-double yaw_of(const Quat& q) {
+// Yaw about +y of a rotation (0 = looking along +z); `fallback` when it
+// looks (almost) straight up or down and has no usable yaw.
+double yaw_of(const Quat& q, double fallback) {
   const Vec3 f = q * Vec3::UnitZ();
-  return std::atan2(f.x(), f.z());
+  return std::hypot(f.x(), f.z()) > 1e-3 ? std::atan2(f.x(), f.z()) : fallback;
 }
 
 }  // namespace
@@ -355,7 +356,7 @@ UpdateStatus update(const Model& m, const TrackerFrame& frame, State& st, PoseRe
   const auto& p = m.settings();
   // The first frame (and the first after a restart) integrates one nominal sample period.
   const double dt = step.dt > 0 ? std::min(step.dt, p.mapping.max_dt) : 1.0 / p.signal.rate;
-  if (usable(frame.head())) st.heading = yaw_of(frame.head().rotation);
+  if (usable(frame.head())) st.heading = yaw_of(frame.head().rotation, st.heading);
 
   unsigned ev[2];
   const bool feet_ok = track_feet(m, frame, st, dt, ev);
