@@ -181,8 +181,13 @@ void bind_pose(pb::module_& m) {
           "positions",
           [](const Pose& p, const Skeleton& s) {
             if (s.joint_count() != p.joint_count()) value_error("skeleton: has " + std::to_string(s.joint_count()) + " joints, the pose " + std::to_string(p.joint_count()));
+            // forward_kinematics (not forward_positions), as the C API's lw_avatar_pose: bit-identical figures.
+            std::vector<Transform> tf(static_cast<std::size_t>(p.joint_count()));
+            forward_kinematics(s, p.ref(), tf);
             Array a = new_array({p.joint_count(), 3});
-            forward_positions(s, p.ref(), {reinterpret_cast<Vec3*>(a.mutable_data()), static_cast<std::size_t>(p.joint_count())});
+            double* o = a.mutable_data();
+            for (const Transform& x : tf)
+              for (int i = 0; i < 3; ++i) *o++ = x.translation[i];
             return a;
           },
           "skeleton"_a, "model-space joint positions, float64 (joints, 3) metres")
