@@ -18,6 +18,12 @@ PACKAGES=(
   libbenchmark-dev                      # benchmarks
   libassimp-dev                         # benchmark baseline: assimp's BVH importer
   clang libclang-rt-14-dev              # libFuzzer target for the BVH reader
+  python3-dev pybind11-dev python3-pybind11  # Python bindings (legwork package, built against Debian's /usr/bin/python3)
+  python3-numpy                         # Python bindings: arrays in and out
+  python3-pytest                        # Python binding tests (python/tests, compared with the CLI)
+  python3-matplotlib                    # python/examples/plot_accent.py (run in CI)
+  python3-setuptools python3-wheel python3-venv python3-pip  # offline `pip install --no-build-isolation .` (python/README.md)
+  mono-mcs mono-runtime                 # C# binding (bindings/csharp): compiled and run against liblegwork.so in CI
   ccache                                # compiler cache: rebuilds (CI on the same machine, sanitizer builds) reuse objects
 )
 
