@@ -84,8 +84,9 @@ Motion make_motion(const Skeleton& skel, double fps, const pb::handle& rotations
   Motion m(skel, fps, static_cast<int>(r.shape(0)));
   wxyz_to_quats(r.data(), m.all_rotations());
   for (Quat& q : m.all_rotations()) {
-    if (q.norm() < 1e-9) value_error("rotations: a quaternion has zero length (expected unit quaternions w, x, y, z)");
-    q.normalize();
+    const double n = q.norm();
+    if (n < 1e-9) value_error("rotations: a quaternion has zero length (expected unit quaternions w, x, y, z)");
+    if (std::abs(n - 1.0) > 1e-12) q.normalize();  // unit input is kept bit for bit
   }
   std::copy(t.data(), t.data() + t.size(), m.all_translations().front().data());
   return m;

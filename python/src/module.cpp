@@ -33,7 +33,10 @@ Array require_array(const pb::handle& obj, const char* name, std::initializer_li
     value_error(expected + ", got dtype " + std::string(pb::str(a.dtype())) + " (convert with .astype(numpy.float64))");
   bool ok = a.ndim() == static_cast<pb::ssize_t>(shape.size());
   pb::ssize_t axis = 0;
-  for (const pb::ssize_t s : shape) ok = ok && (s == kAny || a.shape(axis++) == s);
+  for (const pb::ssize_t s : shape) {
+    ok = ok && (s == kAny || a.shape(axis) == s);
+    ++axis;
+  }
   if (!ok) value_error(expected + ", got shape " + shape_string(a));
   if (!(a.flags() & pb::array::c_style))
     value_error(expected + ", got a non-contiguous array (use numpy.ascontiguousarray)");

@@ -121,8 +121,8 @@ def test_bad_settings_and_arrays(db, truth):
     with pytest.raises(legwork.Error, match=r"flying.*walking|walking.*flying"):
         accent.make_model(db, s)
     s = accent.Settings()
-    s.k_left = 0
-    with pytest.raises(legwork.Error, match="k"):
+    s.k_left = 33
+    with pytest.raises(legwork.Error, match="k must be between 0 and 32"):
         accent.make_model(db, s)
     head, head_rot, left, right = tracks(truth)
     with pytest.raises(ValueError, match=r"head_rotation: .*\(frames, 4\)"):
