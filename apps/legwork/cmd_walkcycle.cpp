@@ -10,8 +10,9 @@
 #include <legwork/io/gltf.hpp>
 #include <legwork/io/text.hpp>
 #include <legwork/render/render.hpp>
-#include <legwork/walkcycle/extract.hpp>
-#include <legwork/walkcycle/measure.hpp>
+#include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/offline/extract.hpp>
+#include <legwork/walkcycle/offline/measure.hpp>
 
 #include <nlohmann/json.hpp>
 

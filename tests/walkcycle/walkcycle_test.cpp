@@ -3,7 +3,8 @@
 #include <legwork/core/fk.hpp>
 #include <legwork/core/mirror.hpp>
 #include <legwork/io/bvh.hpp>
-#include <legwork/walkcycle/measure.hpp>
+#include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/offline/measure.hpp>
 
 #include "cmu_sample.hpp"
 #include "testdata.hpp"

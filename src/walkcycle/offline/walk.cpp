@@ -1,4 +1,4 @@
-#include <legwork/walkcycle/walk.hpp>
+#include <legwork/walkcycle/offline/walk.hpp>
 
 #include <legwork/core/interpolate.hpp>
 

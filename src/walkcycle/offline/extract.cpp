@@ -1,5 +1,5 @@
 #include <legwork/core/series.hpp>
-#include <legwork/walkcycle/extract.hpp>
+#include <legwork/walkcycle/offline/extract.hpp>
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/mirror.hpp>
