@@ -78,153 +78,178 @@ double stop_advance(const CycleModel& m) {
   return c.norm();
 }
 
-WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) {
-  WalkResult r;
-  const double out_fps = opt.fps > 0 ? opt.fps : m.fps;
-  const double dt = m.fps / out_fps;  // cycle frames per output frame
-  const double half = m.half_cycle();
-  r.step_length = step_length(m);
-  r.path_length = path.length();
-  const double L = r.step_length;
-  if (opt.steps < 0 && L < 0.01)
-    throw Error("the walk advances only " + std::to_string(L * 1000) +
-                " mm per step; its key poses do not move the stance foot backwards, so it cannot follow a path");
-  const double lookahead = std::max(opt.lookahead_steps * L, 0.05);  // lead of the heading decisions
-  const double hold = half / 2;
-  const double stop_travel = opt.steps < 0 && opt.stop ? stop_advance(m) : 0.5 * L;
+namespace {
 
-  std::vector<double> target{std::atan2(path.tangent(0).x(), path.tangent(0).z())};
-  int stop_step = opt.steps >= 0 ? opt.steps : -1;
-  double end_time = opt.steps >= 0 && !opt.stop ? opt.steps * half : -1;
+// One walk along a path: walk_path's state and its stages.
+class PathWalk {
+ public:
+  PathWalk(const CycleModel& m, const Path& path, const WalkOptions& opt);
+  WalkResult run();
+
+ private:
+  double heading_at(double t) const;
+  void decide_headings(int f, double t);
+  double decide_heading(int k, const Vec3& here, const Vec3& prev_here, double remaining) const;
+  bool local_pose(double t);
+  FrameLabel label_at(double t, bool stopping) const;
+  void place(int f, double theta, const FootPoints& cur, const FrameLabel& label);
+  void record(int f, double theta, const FootPoints& cur, const FrameLabel& label);
+  void finish();
+
+  const CycleModel& m;
+  const Path& path;
+  const WalkOptions& opt;
+  WalkResult r;
+  double out_fps = 0, dt = 0, half = 0, L = 0, lookahead = 0, hold = 0, stop_travel = 0;
+  std::vector<double> target;
+  int stop_step = -1;
+  double end_time = -1;
   double s_track = 0;
   int seg_track = 0;
-  Vec3 last_here = path.points.front();
-
-  auto heading_at = [&](double t) {
-    const int j = static_cast<int>(std::floor(t / half + 0.5));
-    const double a = target[static_cast<std::size_t>(std::max(0, j - 1))];
-    const double b = target[static_cast<std::size_t>(std::max(0, j))];
-    return a + (b - a) * smoothstep((t - (j - 0.5) * half) / half);
-  };
-
-  Motion& out = r.motion;
-  // Frames are written into a motion sized from the expected walk (grown by
-  // doubling if needed, trimmed at the end) instead of appended one by one.
-  const double expected_steps = opt.steps >= 0 ? opt.steps + 2.0 : path.length() / std::max(L, 0.01) + 3.0;
-  out = Motion(m.skeleton, out_fps, static_cast<int>(std::min(1e6, (expected_steps * half + half) / dt)) + 2);
-  r.labels.reserve(static_cast<std::size_t>(out.frame_count()));
-  r.heading.reserve(static_cast<std::size_t>(out.frame_count()));
+  Vec3 last_here = Vec3::Zero();
   int written = 0;
-  Pose local(m.skeleton), stand_blend(m.skeleton), world(m.skeleton);
+  Pose local, stand_blend, world;
   FootPoints prev{};
   Vec3 c = Vec3::Zero();
   double theta_prev = 0;
   int last_step_recorded = -1;
-  for (int f = 0;; ++f) {
-    const double t = f * dt;
-    if (stop_step >= 0 && end_time < 0) end_time = (stop_step + 1) * half + (opt.stop ? hold : 0.0);
-    if (end_time >= 0 && t > end_time + 1e-9) break;
-    if (f > 0 && t / half > opt.max_steps + 2)
-      throw Error("walk: more than " + std::to_string(opt.max_steps) + " steps; is the path reachable?");
+};
 
-    // Heading decisions for every step whose blend has begun, from where the
-    // character is now.
-    const int need = static_cast<int>(std::floor(t / half + 0.5));
-    while (static_cast<int>(target.size()) <= need) {
-      const int k = static_cast<int>(target.size());
-      const Vec3 here = f > 0 ? horizontal(out.frame(f - 1).translations[0]) : path.points.front();
-      double dist = 0;
-      s_track = std::max(s_track, path.project(here, seg_track, s_track + 3 * L + lookahead, &seg_track, &dist));
-      const double remaining = path.length() - s_track;
-      double th = target.back();
-      const Vec3 prev_here = last_here;
-      last_here = here;
-      if (stop_step >= 0 && k > stop_step) {
-        // Stopping: keep the last heading.
-      } else if (remaining > 0.25 * L) {
-        // The path's direction where the body will be once this heading has
-        // blended in (a step on: the chord over the step around s + lead),
-        // steered back towards the path in proportion to how far off it is.
-        const Vec3 chord = path.at(s_track + lookahead + 0.5 * L) - path.at(s_track + lookahead - 0.5 * L);
-        const Vec3 t0 = path.tangent(s_track);
-        // (Averaged with the previous decision's position: the body sways
-        // to the stance side every step, which is not an error to steer out.)
-        const Vec3 steady = k >= 2 ? Vec3(0.5 * (here + prev_here)) : here;
-        const double off_left = (steady - path.at(s_track)).dot(Vec3(t0.z(), 0, -t0.x()));
-        th = std::atan2(chord.x(), chord.z()) - std::atan(off_left / (2 * L));
-        while (th - target.back() > kPi) th -= 2 * kPi;
-        while (th - target.back() < -kPi) th += 2 * kPi;
-      }
-      // Stop when going on would overshoot the end by more than stopping now
-      // falls short: from mid-step, half a step remains before the stop
-      // step, which itself travels `stop_travel`.
-      if (opt.steps < 0 && stop_step < 0 && remaining - 0.5 * L - stop_travel < 0.5 * L) {
-        if (opt.stop) stop_step = k;
-        else end_time = k * half;
-      }
-      target.push_back(th);
-    }
+PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o)
+    : m(model), path(p), opt(o), local(model.skeleton), stand_blend(model.skeleton), world(model.skeleton) {
+  out_fps = opt.fps > 0 ? opt.fps : m.fps;
+  dt = m.fps / out_fps;  // cycle frames per output frame
+  half = m.half_cycle();
+  r.step_length = step_length(m);
+  r.path_length = path.length();
+  L = r.step_length;
+  if (opt.steps < 0 && L < 0.01)
+    throw Error("the walk advances only " + std::to_string(L * 1000) +
+                " mm per step; its key poses do not move the stance foot backwards, so it cannot follow a path");
+  lookahead = std::max(opt.lookahead_steps * L, 0.05);  // lead of the heading decisions
+  hold = half / 2;
+  stop_travel = opt.steps < 0 && opt.stop ? stop_advance(m) : 0.5 * L;
+  target = {std::atan2(path.tangent(0).x(), path.tangent(0).z())};
+  stop_step = opt.steps >= 0 ? opt.steps : -1;
+  end_time = opt.steps >= 0 && !opt.stop ? opt.steps * half : -1;
+  last_here = path.points.front();
+}
 
-    // Local (in-place) pose: the cycle, blended into the standing pose while stopping.
-    sample_cycle(m, t, local.ref());
-    bool stopping = false;
-    if (stop_step >= 0 && opt.stop && t >= stop_step * half) {
-      stopping = true;
-      const double w = smoothstep((t - stop_step * half) / half);
-      blend_poses(local, m.stand, w, stand_blend.ref());
-      std::swap(local, stand_blend);
-    }
-    const FootPoints cur = foot_points(m, local);
-    const double theta = heading_at(t);
+double PathWalk::heading_at(double t) const {
+  const int j = static_cast<int>(std::floor(t / half + 0.5));
+  const double a = target[static_cast<std::size_t>(std::max(0, j - 1))];
+  const double b = target[static_cast<std::size_t>(std::max(0, j))];
+  return a + (b - a) * smoothstep((t - (j - 0.5) * half) / half);
+}
 
-    FrameLabel label;
-    {
-      StanceAt s = stance_at(m, std::max(0.0, t - 0.5 * dt));
-      if (stop_step >= 0 && s.step > stop_step) {
-        s.step = stop_step;
-        s.left = stop_step % 2 == 0;
-        s.pivot = Pivot::Ball;
-      }
-      label = {s.step, s.left, s.pivot, stopping};
-    }
-    if (f == 0) {
-      c = horizontal(path.points.front() - yaw(theta) * horizontal(local.translations[0]));
-    } else {
-      const Vec3 was = yaw(theta_prev) * prev.get(label.left_stance, label.pivot) + c;
-      c = planted_offset(was, cur.get(label.left_stance, label.pivot), theta);
-    }
-    // World pose: the whole in-place body turned by the heading about y and
-    // placed so the pivot stays put.
-    world.rotations = local.rotations;
-    world.translations = local.translations;
-    world.rotations[0] = yaw(theta) * local.rotations[0];
-    world.translations[0] = yaw(theta) * local.translations[0] + c;
-    if (f >= out.frame_count()) out.resize(2 * out.frame_count());
-    out.set_frame(f, world);
-    written = f + 1;
-    r.heading.push_back(theta);
-    r.labels.push_back(label);
+// The path's direction where the body will be once this heading has blended
+// in (a step on: the chord over the step around s + lead), steered back
+// towards the path in proportion to how far off it is.
+double PathWalk::decide_heading(int k, const Vec3& here, const Vec3& prev_here, double remaining) const {
+  double th = target.back();
+  if (stop_step >= 0 && k > stop_step) return th;  // stopping: keep the last heading
+  if (!(remaining > 0.25 * L)) return th;
+  const Vec3 chord = path.at(s_track + lookahead + 0.5 * L) - path.at(s_track + lookahead - 0.5 * L);
+  const Vec3 t0 = path.tangent(s_track);
+  // (Averaged with the previous decision's position: the body sways
+  // to the stance side every step, which is not an error to steer out.)
+  const Vec3 steady = k >= 2 ? Vec3(0.5 * (here + prev_here)) : here;
+  const double off_left = (steady - path.at(s_track)).dot(Vec3(t0.z(), 0, -t0.x()));
+  th = std::atan2(chord.x(), chord.z()) - std::atan(off_left / (2 * L));
+  while (th - target.back() > kPi) th -= 2 * kPi;
+  while (th - target.back() < -kPi) th += 2 * kPi;
+  return th;
+}
 
-    if (label.step != last_step_recorded && (stop_step < 0 || label.step <= stop_step)) {
-      last_step_recorded = label.step;
-      Footstep fs;
-      fs.heel = horizontal(yaw(theta) * cur.get(label.left_stance, Pivot::Heel) + c);
-      fs.ball = horizontal(yaw(theta) * cur.get(label.left_stance, Pivot::Ball) + c);
-      fs.heading = theta;
-      fs.left = label.left_stance;
-      fs.step = label.step;
-      fs.frame = f;
-      r.footsteps.push_back(fs);
+// Heading decisions for every step whose blend has begun, from where the
+// character is now.
+void PathWalk::decide_headings(int f, double t) {
+  const int need = static_cast<int>(std::floor(t / half + 0.5));
+  while (static_cast<int>(target.size()) <= need) {
+    const int k = static_cast<int>(target.size());
+    const Vec3 here = f > 0 ? horizontal(r.motion.frame(f - 1).translations[0]) : path.points.front();
+    double dist = 0;
+    s_track = std::max(s_track, path.project(here, seg_track, s_track + 3 * L + lookahead, &seg_track, &dist));
+    const double remaining = path.length() - s_track;
+    const Vec3 prev_here = last_here;
+    last_here = here;
+    const double th = decide_heading(k, here, prev_here, remaining);
+    // Stop when going on would overshoot the end by more than stopping now
+    // falls short: from mid-step, half a step remains before the stop
+    // step, which itself travels `stop_travel`.
+    if (opt.steps < 0 && stop_step < 0 && remaining - 0.5 * L - stop_travel < 0.5 * L) {
+      if (opt.stop) stop_step = k;
+      else end_time = k * half;
     }
-    if (!stopping) {  // (past the end, distance to the end point is not deviation)
-      double dist = 0;
-      int seg = seg_track;
-      path.project(world.translations[0], std::max(0, seg_track - 2), s_track + 3 * L + lookahead, &seg, &dist);
-      r.max_path_deviation = std::max(r.max_path_deviation, dist);
-    }
-    prev = cur;
-    theta_prev = theta;
+    target.push_back(th);
   }
+}
+
+// Local (in-place) pose: the cycle, blended into the standing pose while
+// stopping (returns whether it is).
+bool PathWalk::local_pose(double t) {
+  sample_cycle(m, t, local.ref());
+  if (!(stop_step >= 0 && opt.stop && t >= stop_step * half)) return false;
+  const double w = smoothstep((t - stop_step * half) / half);
+  blend_poses(local, m.stand, w, stand_blend.ref());
+  std::swap(local, stand_blend);
+  return true;
+}
+
+FrameLabel PathWalk::label_at(double t, bool stopping) const {
+  StanceAt s = stance_at(m, std::max(0.0, t - 0.5 * dt));
+  if (stop_step >= 0 && s.step > stop_step) {
+    s.step = stop_step;
+    s.left = stop_step % 2 == 0;
+    s.pivot = Pivot::Ball;
+  }
+  return {s.step, s.left, s.pivot, stopping};
+}
+
+// World pose: the whole in-place body turned by the heading about y and
+// placed so the pivot stays put.
+void PathWalk::place(int f, double theta, const FootPoints& cur, const FrameLabel& label) {
+  if (f == 0) {
+    c = horizontal(path.points.front() - yaw(theta) * horizontal(local.translations[0]));
+  } else {
+    const Vec3 was = yaw(theta_prev) * prev.get(label.left_stance, label.pivot) + c;
+    c = planted_offset(was, cur.get(label.left_stance, label.pivot), theta);
+  }
+  world.rotations = local.rotations;
+  world.translations = local.translations;
+  world.rotations[0] = yaw(theta) * local.rotations[0];
+  world.translations[0] = yaw(theta) * local.translations[0] + c;
+  Motion& out = r.motion;
+  if (f >= out.frame_count()) out.resize(2 * out.frame_count());
+  out.set_frame(f, world);
+  written = f + 1;
+}
+
+// Per-frame results: heading, label, footsteps, deviation from the path.
+void PathWalk::record(int f, double theta, const FootPoints& cur, const FrameLabel& label) {
+  r.heading.push_back(theta);
+  r.labels.push_back(label);
+  if (label.step != last_step_recorded && (stop_step < 0 || label.step <= stop_step)) {
+    last_step_recorded = label.step;
+    Footstep fs;
+    fs.heel = horizontal(yaw(theta) * cur.get(label.left_stance, Pivot::Heel) + c);
+    fs.ball = horizontal(yaw(theta) * cur.get(label.left_stance, Pivot::Ball) + c);
+    fs.heading = theta;
+    fs.left = label.left_stance;
+    fs.step = label.step;
+    fs.frame = f;
+    r.footsteps.push_back(fs);
+  }
+  if (!label.stopping) {  // (past the end, distance to the end point is not deviation)
+    double dist = 0;
+    int seg = seg_track;
+    path.project(world.translations[0], std::max(0, seg_track - 2), s_track + 3 * L + lookahead, &seg, &dist);
+    r.max_path_deviation = std::max(r.max_path_deviation, dist);
+  }
+}
+
+void PathWalk::finish() {
+  Motion& out = r.motion;
   out.resize(written);
   if (r.labels.size() > 1) r.labels[0] = r.labels[1];
   // The other foot, where it ends up beside the stance foot.
@@ -239,7 +264,37 @@ WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& o
   r.turning = target.back() - target.front();
   for (std::size_t i = 1; i < target.size(); ++i) r.turning_abs += std::abs(target[i] - target[i - 1]);
   r.end_distance = out.frame_count() ? (horizontal(out.frame(out.frame_count() - 1).translations[0]) - path.points.back()).norm() : 0;
-  return r;
 }
+
+WalkResult PathWalk::run() {
+  // Frames are written into a motion sized from the expected walk (grown by
+  // doubling if needed, trimmed at the end) instead of appended one by one.
+  const double expected_steps = opt.steps >= 0 ? opt.steps + 2.0 : path.length() / std::max(L, 0.01) + 3.0;
+  r.motion = Motion(m.skeleton, out_fps, static_cast<int>(std::min(1e6, (expected_steps * half + half) / dt)) + 2);
+  r.labels.reserve(static_cast<std::size_t>(r.motion.frame_count()));
+  r.heading.reserve(static_cast<std::size_t>(r.motion.frame_count()));
+  for (int f = 0;; ++f) {
+    const double t = f * dt;
+    if (stop_step >= 0 && end_time < 0) end_time = (stop_step + 1) * half + (opt.stop ? hold : 0.0);
+    if (end_time >= 0 && t > end_time + 1e-9) break;
+    if (f > 0 && t / half > opt.max_steps + 2)
+      throw Error("walk: more than " + std::to_string(opt.max_steps) + " steps; is the path reachable?");
+    decide_headings(f, t);
+    const bool stopping = local_pose(t);
+    const FootPoints cur = foot_points(m, local);
+    const double theta = heading_at(t);
+    const FrameLabel label = label_at(t, stopping);
+    place(f, theta, cur, label);
+    record(f, theta, cur, label);
+    prev = cur;
+    theta_prev = theta;
+  }
+  finish();
+  return std::move(r);
+}
+
+}  // namespace
+
+WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) { return PathWalk(m, path, opt).run(); }
 
 }  // namespace legwork::walkcycle
