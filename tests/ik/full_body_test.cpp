@@ -53,6 +53,15 @@ bool same_pose(const Pose& a, const Pose& b) {
   return true;
 }
 
+// One avatar on the sample walk at 90 Hz, with its tracker frames.
+struct WalkAvatar {
+  Motion walk = load90("cmu/bvh/walking/07_01.bvh");
+  Model model = make_model(walk.skeleton);
+  State state{model};
+  Pose pose{walk.skeleton};
+  std::vector<TrackerFrame> frames = trackers_of(walk);
+};
+
 struct IkRun {
   Motion out;
   double head_err = 0, hand_err = 0, max_hand_err = 0, max_head_err = 0;
@@ -150,12 +159,12 @@ TEST(FullBodyIk, StandingStillPlantsTheFeetAndCrouchesWhenTheHeadDrops) {
 }
 
 TEST(FullBodyIk, BadDeviceSamplesNeverReachThePose) {
-  const Motion walk = load90("cmu/bvh/walking/07_01.bvh");
-  const Skeleton& skel = walk.skeleton;
-  const Model model = make_model(skel);
-  State state(model);
-  const std::vector<TrackerFrame> frames = trackers_of(walk);
-  Pose pose(skel);
+  WalkAvatar a;
+  const Skeleton& skel = a.walk.skeleton;
+  const Model& model = a.model;
+  State& state = a.state;
+  Pose& pose = a.pose;
+  const std::vector<TrackerFrame>& frames = a.frames;
   std::vector<Transform> g(static_cast<std::size_t>(skel.joint_count()));
   EXPECT_EQ(update(model, frames[10], state, pose.ref()), UpdateStatus::Ok);
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -198,11 +207,11 @@ TEST(FullBodyIk, BadDeviceSamplesNeverReachThePose) {
 }
 
 TEST(FullBodyIk, NoHeadYetStandsAtTheOriginThenStartsWhereTheHeadIs) {
-  const Motion walk = load90("cmu/bvh/walking/07_01.bvh");
-  const Model model = make_model(walk.skeleton);
-  State state(model);
-  Pose pose(walk.skeleton);
-  std::vector<TrackerFrame> frames = trackers_of(walk);
+  WalkAvatar a;
+  const Model& model = a.model;
+  State& state = a.state;
+  Pose& pose = a.pose;
+  const std::vector<TrackerFrame>& frames = a.frames;
   for (int f = 0; f < 5; ++f) {
     TrackerFrame x = frames[static_cast<std::size_t>(f)];
     x.head().valid = false;
@@ -216,11 +225,11 @@ TEST(FullBodyIk, NoHeadYetStandsAtTheOriginThenStartsWhereTheHeadIs) {
 }
 
 TEST(FullBodyIk, TimeRules) {
-  const Motion walk = load90("cmu/bvh/walking/07_01.bvh");
-  const Model model = make_model(walk.skeleton);
-  State state(model);
-  Pose pose(walk.skeleton);
-  std::vector<TrackerFrame> frames = trackers_of(walk);
+  WalkAvatar a;
+  const Model& model = a.model;
+  State& state = a.state;
+  Pose& pose = a.pose;
+  const std::vector<TrackerFrame>& frames = a.frames;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // A NaN first time: rejected, the stream starts at the next good frame.
   TrackerFrame x = frames[0];
@@ -260,11 +269,11 @@ TEST(FullBodyIk, TimeRules) {
 }
 
 TEST(FullBodyIk, AllocatesNothingPerFrame) {
-  const Motion walk = load90("cmu/bvh/walking/07_01.bvh");
-  const Model model = make_model(walk.skeleton);
-  State state(model);
-  Pose pose(walk.skeleton);
-  const std::vector<TrackerFrame> frames = trackers_of(walk);
+  WalkAvatar a;
+  const Model& model = a.model;
+  State& state = a.state;
+  Pose& pose = a.pose;
+  const std::vector<TrackerFrame>& frames = a.frames;
   Info info;
   const long n = alloc_count::count_allocations([&] {
     for (const TrackerFrame& x : frames) update(model, x, state, pose.ref(), &info);
