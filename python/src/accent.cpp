@@ -140,17 +140,9 @@ void bind_runtime(pb::module_& m) {
       .def(pb::init<const Model&>(), "model"_a)
       .def_property_readonly("bytes", &State::bytes);
   m.def("reset", &reset, "model"_a, "state"_a, "Resets an avatar.");
-  m.def(
-      "update",
-      [](const Model& model, const TrackerFrame& frame, State& state, Pose& out, Info* info) {
-        if (out.joint_count() != model.skeleton().joint_count())
-          value_error("out: a Pose of the model's skeleton (" + std::to_string(model.skeleton().joint_count()) +
-                      " joints) expected, got " + std::to_string(out.joint_count()) + " joints");
-        return update(model, frame, state, out.ref(), info);
-      },
-      "model"_a, "frame"_a, "state"_a, "out"_a, "info"_a = nullptr,
-      "One frame: head and hands of `frame` in, `out` (a legwork.core.Pose of model.skeleton()) written; returns\n"
-      "legwork.core.UpdateStatus. Rejected frames leave state and out untouched.");
+  def_update(m, &update,
+             "One frame: head and hands of `frame` in, `out` (a legwork.core.Pose of model.skeleton()) written; returns\n"
+             "legwork.core.UpdateStatus. Rejected frames leave state and out untouched.");
   m.def("accentuate", &accentuate_arrays, "db"_a, "head_position"_a, "head_rotation"_a, "left_hand"_a, "right_hand"_a, "fps"_a,
         "settings"_a = Settings{},
         "Whole clip: head_position (frames, 3) metres, head_rotation (frames, 4) w,x,y,z, left_hand/right_hand\n"

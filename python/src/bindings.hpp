@@ -45,6 +45,23 @@ void wxyz_to_quats(const double* in, std::span<Quat> q);
 // Frame rate check: finite and positive (ValueError naming `name`).
 void require_rate(double fps, const char* name);
 
+// ValueError unless `out` is a pose of `skel` (same joint count).
+void require_pose(const Skeleton& skel, const Pose& out);
+
+// Defines `update(model, frame, state, out, info=None) -> UpdateStatus` of one
+// runtime module: the C++ update() with the output pose's size checked.
+template <class M, class S, class I>
+void def_update(pb::module_& m, UpdateStatus (*fn)(const M&, const TrackerFrame&, S&, PoseRef, I*), const char* doc) {
+  using namespace pybind11::literals;
+  m.def(
+      "update",
+      [fn](const M& model, const TrackerFrame& frame, S& state, Pose& out, I* info) {
+        require_pose(model.skeleton(), out);
+        return fn(model, frame, state, out.ref(), info);
+      },
+      "model"_a, "frame"_a, "state"_a, "out"_a, "info"_a = nullptr, doc);
+}
+
 void bind_core(pb::module_& m);
 void bind_tracker(pb::module_& m);  // part of legwork.core
 // Tracker frames from arrays (NaN rows = lost tracking): see legwork.core.tracker_frames.

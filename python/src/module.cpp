@@ -74,6 +74,12 @@ void wxyz_to_quats(const double* in, std::span<Quat> q) {
   }
 }
 
+void require_pose(const Skeleton& skel, const Pose& out) {
+  if (out.joint_count() != skel.joint_count())
+    value_error("out: a Pose of the model's skeleton (" + std::to_string(skel.joint_count()) + " joints) expected, got " +
+                std::to_string(out.joint_count()) + " joints");
+}
+
 void require_rate(double fps, const char* name) {
   if (!(std::isfinite(fps) && fps > 0 && fps < 1e6))
     value_error(std::string(name) + ": expected a finite frame rate in Hz (0 < fps < 1e6), got " + std::to_string(fps));

@@ -1,8 +1,58 @@
-// legwork.walkcycle: bound once the walkcycle runtime is on the per-frame contract.
+// legwork.walkcycle: walk cycles from key-pose files and the frame-by-frame walker.
 #include "bindings.hpp"
+
+#include <legwork/walkcycle/cycle.hpp>
+#include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/walker.hpp>
 
 namespace legwork::py {
 
-void bind_walkcycle(pb::module_& /*m*/) {}
+void bind_walkcycle(pb::module_& m) {
+  using namespace pybind11::literals;
+  using namespace legwork::walkcycle;
+  pb::class_<CycleModel>(m, "CycleModel", "A walk cycle built from four key poses (immutable).")
+      .def_readonly("skeleton", &CycleModel::skeleton)
+      .def_readonly("frames_per_cycle", &CycleModel::frames_per_cycle)
+      .def_readonly("fps", &CycleModel::fps, "cycle frames per second");
+  m.def(
+      "load_cycle",
+      [](const std::string& walk_path, const std::string& skeleton_bvh) {
+        const WalkFile w = load_walk(walk_path, skeleton_bvh);
+        return build_cycle(w.skeleton, w.keys);
+      },
+      "walk_path"_a, "skeleton_bvh"_a = "",
+      "load_walk + build_cycle: a walk file (data/walks/*.json) and its skeleton (next to it, or skeleton_bvh);\n"
+      "legwork.Error naming the file and field at fault.");
+  pb::enum_<Pivot>(m, "Pivot").value("Heel", Pivot::Heel).value("Ball", Pivot::Ball);
+  pb::class_<Settings>(m, "Settings", "Walker options (legwork::walkcycle::Settings).")
+      .def(pb::init<>())
+      .def_readwrite("max_turn_per_step", &Settings::max_turn_per_step, "radians of heading change per step")
+      .def_property(
+          "start_position", [](const Settings& s) { return std::vector<double>{s.start_position.x(), s.start_position.y(), s.start_position.z()}; },
+          [](Settings& s, const pb::handle& p) {
+            const Array a = require_array(p, "start_position", {3}, "(3,) metres");
+            s.start_position = Vec3(a.at(0), a.at(1), a.at(2));
+          },
+          "floor point under the root at the start, metres (y ignored)")
+      .def_readwrite("start_heading", &Settings::start_heading, "radians about y, 0 = facing +z");
+  pb::class_<Model>(m, "Model", "Immutable walker model (owns its cycle).")
+      .def("skeleton", &Model::skeleton, pb::return_value_policy::reference_internal)
+      .def("settings", &Model::settings, pb::return_value_policy::reference_internal)
+      .def("cycle", &Model::cycle, pb::return_value_policy::reference_internal);
+  m.def("make_model", &make_model, "cycle"_a, "settings"_a = Settings{}, "Walker from a cycle.");
+  pb::class_<State>(m, "State", "One walker's memory between frames.").def(pb::init<const Model&>(), "model"_a);
+  m.def("reset", static_cast<void (*)(const Model&, State&)>(&reset), "model"_a, "state"_a);
+  pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
+      .def(pb::init<>())
+      .def_readonly("step", &Info::step)
+      .def_readonly("cycle_time", &Info::cycle_time, "cycle frames since the start")
+      .def_readonly("heading", &Info::heading, "radians")
+      .def_readonly("desired_heading", &Info::desired_heading, "radians")
+      .def_readonly("left_planted", &Info::left_planted)
+      .def_readonly("pivot", &Info::pivot);
+  def_update(m, &update,
+             "One frame: the head device's yaw steers (held when not usable); the walk advances by the frame's dt;\n"
+             "`out` (a legwork.core.Pose of model.skeleton()) gets the world pose; returns legwork.core.UpdateStatus.");
+}
 
 }  // namespace legwork::py
