@@ -129,17 +129,14 @@ pb::dict accentuate_arrays(const Database& db, const pb::handle& head_position, 
 }
 
 void bind_runtime(pb::module_& m) {
-  pb::class_<Model>(m, "Model", "Immutable accentuation model (database + settings); keeps its database alive.")
-      .def("skeleton", &Model::skeleton, pb::return_value_policy::reference_internal, "the output skeleton (scaled to the user)")
-      .def("settings", &Model::settings, pb::return_value_policy::reference_internal)
-      .def_property_readonly("scale", &Model::scale, "user height / database height");
+  auto [model, state] = def_model_state<Model, State>(
+      m, &reset, "Immutable accentuation model (database + settings; skeleton scaled to the user); keeps its database alive.",
+      "One avatar's memory between frames.");
+  model.def_property_readonly("scale", &Model::scale, "user height / database height");
+  state.def_property_readonly("bytes", &State::bytes);
   m.def("make_model", &make_model, "db"_a, "settings"_a = Settings{}, pb::keep_alive<0, 1>(),
         "Model from a database and settings; legwork.Error for an unknown class (listing the database's), k out of\n"
         "range, a non-positive exaggeration or height.");
-  pb::class_<State>(m, "State", "One avatar's memory between frames.")
-      .def(pb::init<const Model&>(), "model"_a)
-      .def_property_readonly("bytes", &State::bytes);
-  m.def("reset", &reset, "model"_a, "state"_a, "Resets an avatar.");
   def_update(m, &update,
              "One frame: head and hands of `frame` in, `out` (a legwork.core.Pose of model.skeleton()) written; returns\n"
              "legwork.core.UpdateStatus. Rejected frames leave state and out untouched.");

@@ -13,6 +13,7 @@
 #include <pybind11/stl.h>
 
 #include <initializer_list>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,20 @@ void def_update(pb::module_& m, UpdateStatus (*fn)(const M&, const TrackerFrame&
         return fn(model, frame, state, out.ref(), info);
       },
       "model"_a, "frame"_a, "state"_a, "out"_a, "info"_a = nullptr, doc);
+}
+
+// Binds a runtime's Model (skeleton(), settings()), State(model) and
+// reset(model, state); returns both classes for module-specific extras.
+template <class M, class S>
+std::pair<pb::class_<M>, pb::class_<S>> def_model_state(pb::module_& m, void (*reset_fn)(const M&, S&), const char* model_doc, const char* state_doc) {
+  using namespace pybind11::literals;
+  pb::class_<S> state(m, "State", state_doc);
+  state.def(pb::init<const M&>(), "model"_a);
+  m.def("reset", reset_fn, "model"_a, "state"_a, "Resets one avatar (calibrations such as a WIP floor are kept).");
+  pb::class_<M> model(m, "Model", model_doc);
+  model.def("skeleton", &M::skeleton, pb::return_value_policy::reference_internal, "the output pose's skeleton")
+      .def("settings", &M::settings, pb::return_value_policy::reference_internal);
+  return {model, state};
 }
 
 void bind_core(pb::module_& m);

@@ -30,15 +30,12 @@ void bind_ik(pb::module_& m) {
       .def_readwrite("step_height", &Settings::step_height, "metres")
       .def_readwrite("velocity_lead", &Settings::velocity_lead)
       .def_readwrite("max_step_length", &Settings::max_step_length, "metres");
-  pb::class_<Model>(m, "Model", "Immutable full-body IK model of a skeleton (copied).")
-      .def("skeleton", &Model::skeleton, pb::return_value_policy::reference_internal)
-      .def("settings", &Model::settings, pb::return_value_policy::reference_internal)
-      .def_property_readonly("standing_head_height", &Model::standing_head_height, "metres")
+  def_model_state<Model, State>(m, &reset, "Immutable full-body IK model of a skeleton (copied).",
+                                "One IK avatar's memory between frames.")
+      .first.def_property_readonly("standing_head_height", &Model::standing_head_height, "metres")
       .def_property_readonly("standing_pelvis_height", &Model::standing_pelvis_height, "metres");
   m.def("make_model", &make_model, "skeleton"_a, "settings"_a = Settings{},
         "Model from a skeleton with head, hands and legs; legwork.Error naming missing roles.");
-  pb::class_<State>(m, "State", "One IK avatar's memory between frames.").def(pb::init<const Model&>(), "model"_a);
-  m.def("reset", &reset, "model"_a, "state"_a);
   pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
       .def(pb::init<>())
       .def_readonly("steps_taken", &Info::steps_taken)

@@ -91,18 +91,23 @@ PYBIND11_MODULE(_legwork, m) {
   namespace lp = legwork::py;
   m.doc() = "legwork's compiled core; use the legwork package (legwork.core, legwork.io, ...).";
   pybind11::register_exception<legwork::Error>(m, "Error", PyExc_RuntimeError);
-  auto core = m.def_submodule("core", "Skeleton, poses, motions, forward kinematics, resampling, mirroring, tracker frames.");
-  lp::bind_core(core);
-  auto io = m.def_submodule("io", "BVH reading and writing into numpy arrays.");
-  lp::bind_io(io);
-  auto ik = m.def_submodule("ik", "Full-body IK avatar (the VRIK-style baseline) on the per-frame contract.");
-  lp::bind_ik(ik);
-  auto wip = m.def_submodule("wip", "Walking-in-place legs on the per-frame contract.");
-  lp::bind_wip(wip);
-  auto walkcycle = m.def_submodule("walkcycle", "Walk cycles from key poses; the frame-by-frame walker.");
-  lp::bind_walkcycle(walkcycle);
-  auto accent = m.def_submodule("accent", "Accentuation: full body from a headset and two controllers.");
-  lp::bind_accent(accent);
-  auto ev = m.def_submodule("eval", "Evaluation metrics: MPJPE, MPJVE, jitter, foot skating.");
-  lp::bind_eval(ev);
+  struct Submodule {
+    const char* name;
+    const char* doc;
+    void (*bind)(pybind11::module_&);
+  };
+  // Innermost first: later modules use the core types.
+  const Submodule submodules[] = {
+      {"core", "Skeleton, poses, motions, forward kinematics, resampling, mirroring, tracker frames.", &lp::bind_core},
+      {"io", "BVH reading and writing into numpy arrays.", &lp::bind_io},
+      {"ik", "Full-body IK avatar (the VRIK-style baseline) on the per-frame contract.", &lp::bind_ik},
+      {"wip", "Walking-in-place legs on the per-frame contract.", &lp::bind_wip},
+      {"walkcycle", "Walk cycles from key poses; the frame-by-frame walker.", &lp::bind_walkcycle},
+      {"accent", "Accentuation: full body from a headset and two controllers.", &lp::bind_accent},
+      {"eval", "Evaluation metrics: MPJPE, MPJVE, jitter, foot skating.", &lp::bind_eval},
+  };
+  for (const Submodule& sub : submodules) {
+    auto child = m.def_submodule(sub.name, sub.doc);
+    sub.bind(child);
+  }
 }

@@ -35,13 +35,10 @@ void bind_walkcycle(pb::module_& m) {
           },
           "floor point under the root at the start, metres (y ignored)")
       .def_readwrite("start_heading", &Settings::start_heading, "radians about y, 0 = facing +z");
-  pb::class_<Model>(m, "Model", "Immutable walker model (owns its cycle).")
-      .def("skeleton", &Model::skeleton, pb::return_value_policy::reference_internal)
-      .def("settings", &Model::settings, pb::return_value_policy::reference_internal)
-      .def("cycle", &Model::cycle, pb::return_value_policy::reference_internal);
+  def_model_state<Model, State>(m, static_cast<void (*)(const Model&, State&)>(&reset), "Immutable walker model (owns its cycle).",
+                                "One walker's memory between frames.")
+      .first.def("cycle", &Model::cycle, pb::return_value_policy::reference_internal);
   m.def("make_model", &make_model, "cycle"_a, "settings"_a = Settings{}, "Walker from a cycle.");
-  pb::class_<State>(m, "State", "One walker's memory between frames.").def(pb::init<const Model&>(), "model"_a);
-  m.def("reset", static_cast<void (*)(const Model&, State&)>(&reset), "model"_a, "state"_a);
   pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
       .def(pb::init<>())
       .def_readonly("step", &Info::step)

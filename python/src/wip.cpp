@@ -57,18 +57,14 @@ void bind_runtime(pb::module_& m) {
       .value("InitialSwing", GaitPhase::InitialSwing)
       .value("MidSwing", GaitPhase::MidSwing)
       .value("TerminalSwing", GaitPhase::TerminalSwing);
-  pb::class_<Model>(m, "Model", "Immutable walking-in-place model of an avatar skeleton (copied).")
-      .def("skeleton", &Model::skeleton, pb::return_value_policy::reference_internal)
-      .def("settings", &Model::settings, pb::return_value_policy::reference_internal)
-      .def_property_readonly("leg_length", &Model::leg_length, "metres")
+  auto [model, state] = def_model_state<Model, State>(m, &reset, "Immutable walking-in-place model of an avatar skeleton (copied).",
+                                                      "One avatar's memory between frames (filters, gait machines, floor).");
+  state.def_readonly("calibrated", &State::calibrated);
+  model.def_property_readonly("leg_length", &Model::leg_length, "metres")
       .def_property_readonly("root_height", &Model::root_height, "standing root height above the floor, metres");
   m.def(
       "make_model", [](const Skeleton& s, const Settings& st) { return make_model(s, st); }, "avatar"_a, "settings"_a = Settings{},
       "Model from an avatar skeleton with legs; legwork.Error naming missing roles.");
-  pb::class_<State>(m, "State", "One avatar's memory between frames (filters, gait machines, floor).")
-      .def(pb::init<const Model&>(), "model"_a)
-      .def_readonly("calibrated", &State::calibrated);
-  m.def("reset", &reset, "model"_a, "state"_a, "Resets the avatar (keeps the floor calibration).");
   m.def("set_floor", &set_floor, "state"_a, "left"_a, "right"_a, "Tracker-space floor height under each ankle, metres.");
   pb::class_<Info>(m, "Info", "Per-frame diagnostics ([left, right] pairs).")
       .def(pb::init<>())
