@@ -9,7 +9,7 @@ Submodules mirror the C++ modules one to one:
     legwork.ik         the full-body IK avatar (VRIK-style baseline)
     legwork.wip        walking-in-place legs
     legwork.walkcycle  walk cycles from key poses; the frame-by-frame walker
-    legwork.eval       MPJPE, MPJVE, jitter, foot skating
+    legwork.eval       MPJPE, MPJVE, jitter, foot skating, step F1
 
 Units: metres, seconds, radians unless a name says otherwise; legwork's frame is right-handed,
 y up, characters face +z. Arrays are float64 and C-contiguous; quaternions are (w, x, y, z) in

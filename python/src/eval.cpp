@@ -2,6 +2,7 @@
 #include "bindings.hpp"
 
 #include <legwork/eval/metrics.hpp>
+#include <legwork/eval/wip.hpp>
 
 namespace legwork::py {
 namespace {
@@ -87,11 +88,35 @@ void bind_metrics(pb::module_& m) {
       "Mean per-joint velocity error over the role joints, cm/s.");
 }
 
+void bind_steps(pb::module_& m) {
+  pb::class_<StepScore>(m, "StepScore", "Step detection against true gait events (one-to-one matching).")
+      .def_readonly("true_steps", &StepScore::true_steps)
+      .def_readonly("detected", &StepScore::detected)
+      .def_readonly("matched", &StepScore::matched)
+      .def_readonly("precision", &StepScore::precision)
+      .def_readonly("recall", &StepScore::recall)
+      .def_readonly("f1", &StepScore::f1)
+      .def_readonly("off_latency_ms", &StepScore::off_latency_ms, "mean detected - true foot-off, ms")
+      .def_readonly("strike_latency_ms", &StepScore::strike_latency_ms, "mean detected - true foot-strike, ms");
+  m.def(
+      "detected_swings", [](const std::vector<wip::Info>& frames) { return detected_swings(frames); }, "frames"_a,
+      "Swings (legwork.wip.SwingEvent) seen by the gait machines in a list of legwork.wip.Info, one per consumed frame.");
+  m.def(
+      "score_steps",
+      [](const std::vector<SwingEvent>& detected, const std::vector<SwingEvent>& truth, double t_begin, double t_end) {
+        return score_steps(detected, truth, t_begin, t_end);
+      },
+      "detected"_a, "truth"_a, "t_begin"_a, "t_end"_a,
+        "Step precision/recall/F1 and latencies: swings of the same foot whose intervals overlap are matched one to\n"
+        "one; swings outside [t_begin, t_end] seconds are ignored. truth: legwork.wip.true_swings(motion).");
+}
+
 }  // namespace
 
 void bind_eval(pb::module_& m) {
   bind_track(m);
   bind_metrics(m);
+  bind_steps(m);
 }
 
 }  // namespace legwork::py

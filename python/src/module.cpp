@@ -104,7 +104,7 @@ PYBIND11_MODULE(_legwork, m) {
       {"wip", "Walking-in-place legs on the per-frame contract.", &lp::bind_wip},
       {"walkcycle", "Walk cycles from key poses; the frame-by-frame walker.", &lp::bind_walkcycle},
       {"accent", "Accentuation: full body from a headset and two controllers.", &lp::bind_accent},
-      {"eval", "Evaluation metrics: MPJPE, MPJVE, jitter, foot skating.", &lp::bind_eval},
+      {"eval", "Evaluation metrics: MPJPE, MPJVE, jitter, foot skating, step detection F1.", &lp::bind_eval},
   };
   for (const Submodule& sub : submodules) {
     auto child = m.def_submodule(sub.name, sub.doc);

@@ -1,6 +1,7 @@
 // legwork.wip: walking-in-place legs on the per-frame contract.
 #include "bindings.hpp"
 
+#include <legwork/wip/offline/truth.hpp>
 #include <legwork/wip/wip.hpp>
 
 namespace legwork::py {
@@ -88,6 +89,14 @@ void bind_runtime(pb::module_& m) {
 void bind_wip(pb::module_& m) {
   bind_settings(m);
   bind_runtime(m);
+  pb::class_<SwingEvent>(m, "SwingEvent", "One swing of a foot: foot (0 left, 1 right), off/strike times (s), apex (m).")
+      .def_readonly("foot", &SwingEvent::foot)
+      .def_readonly("off", &SwingEvent::off)
+      .def_readonly("strike", &SwingEvent::strike)
+      .def_readonly("apex", &SwingEvent::apex);
+  m.def(
+      "true_swings", [](const Motion& mo) { return true_swings(mo); }, "motion"_a,
+      "Ground-truth swings of a walking motion (toe off to first contact; default TruthOptions).");
 }
 
 }  // namespace legwork::py

@@ -113,3 +113,28 @@ def test_walker_walks_forward_and_turns_to_the_head():
     assert steps.max() <= settings.max_turn_per_step + 1e-9
     with pytest.raises(legwork.Error, match="missing.json"):
         walkcycle.load_cycle(str(SOURCE / "data/walks/missing.json"))
+
+
+def test_step_f1_equals_cli_wip_eval(cli, tmp_path):
+    """Walking in place driven frame by frame from Python, scored by legwork.eval, against `legwork wip eval`."""
+    folder = SOURCE / "data/cmu/bvh/walking"
+    cli("wip", "eval", "--data", folder, "--clip", folder / "07_01.bvh", "--out", tmp_path)
+    report = json.loads((tmp_path / "report.json").read_text())
+    assert report["per_trial"]
+    for trial in report["per_trial"]:
+        motion = legwork.io.read_bvh(str(folder / (trial["trial"] + ".bvh")), drop_first=True)
+        settings = wip.Settings()  # the CLI's defaults: 30 Hz trackers
+        model = wip.make_model(motion.skeleton, settings)
+        state, pose = wip.State(model), core.Pose(model.skeleton())
+        infos = []
+        for frame in core.tracker_frames_from_motion(motion, settings.signal.rate):
+            info = wip.Info()
+            if wip.update(model, frame, state, pose, info) != core.UpdateStatus.Rejected:
+                infos.append(info)
+        score = legwork.eval.score_steps(legwork.eval.detected_swings(infos), wip.true_swings(motion), 0.5,
+                                         motion.duration - 0.1)
+        cli_steps = trial["steps"]
+        assert (score.true_steps, score.detected, score.matched) == (
+            cli_steps["true_steps"], cli_steps["detected"], cli_steps["matched"]), trial["trial"]
+        assert score.f1 == pytest.approx(cli_steps["f1"], rel=1e-12)
+        assert score.off_latency_ms == pytest.approx(cli_steps["foot_off_latency_ms"], rel=1e-12)
