@@ -1,0 +1,118 @@
+// One avatar session on the server's WebSocket (/ws): hello -> welcome, then
+// frame -> pose. Keeps the numbers the UI and the tests read: poses received,
+// round-trip latency (send -> pose with the same t), pose rate, and how far the
+// avatar's hands are from the input hands.
+import { helloMessage, frameJSON, frameBinary, decodePoseBinary, findJoint, distance } from './protocol.js';
+
+export function wsURL(base) {
+  const u = new URL('ws', base);
+  u.protocol = u.protocol === 'https:' ? 'wss:' : 'ws:';
+  return u.toString();
+}
+
+export class LiveSession {
+  // opts: hello options (method, classes, exaggeration, user_height, format, ...)
+  constructor(base, opts, { onPose, onError, onWelcome } = {}) {
+    this.opts = { format: 'json', ...opts };
+    this.onPose = onPose || (() => {});
+    this.onError = onError || (() => {});
+    this.onWelcome = onWelcome || (() => {});
+    this.stats = { method: opts.method, state: 'connecting', posesReceived: 0, framesSent: 0, errors: 0, lastError: '',
+      lastHandError: NaN, maxHandError: 0, lastHeadError: NaN, rttMs: NaN, rttAvgMs: NaN, poseHz: 0, statusCounts: {}, serverUs: NaN };
+    this.skeleton = null;
+    this.hands = [-1, -1];
+    this.sent = new Map(); // t -> {sentAt, frame}
+    this.lastPose = null;
+    this.handErrors = [];
+    this._rateWindow = [];
+    this.ws = new WebSocket(wsURL(base));
+    this.ws.binaryType = 'arraybuffer';
+    this.ready = new Promise((resolve, reject) => { this._ready = resolve; this._fail = reject; });
+    this.ws.onopen = () => this.ws.send(JSON.stringify(helloMessage(this.opts)));
+    this.ws.onmessage = (ev) => this._message(ev.data);
+    this.ws.onerror = () => { this.stats.state = 'error'; this._fail(new Error(`WebSocket to ${wsURL(base)} failed`)); };
+    this.ws.onclose = (ev) => { this.stats.state = `closed (${ev.code})`; this._fail(new Error(`closed ${ev.code}`)); };
+  }
+
+  get open() { return this.ws.readyState === WebSocket.OPEN && this.skeleton !== null; }
+
+  send(frame) {
+    if (!this.open) return false;
+    this.sent.set(frame.t, { sentAt: performance.now(), frame });
+    if (this.sent.size > 512) this.sent.delete(this.sent.keys().next().value);
+    this.ws.send(this.opts.format === 'binary' ? frameBinary(frame) : frameJSON(frame));
+    this.stats.framesSent++;
+    return true;
+  }
+
+  setOptions(o) {
+    Object.assign(this.opts, o);
+    if (this.open) this.ws.send(JSON.stringify({ type: 'options', ...o }));
+  }
+
+  close() { try { this.ws.close(1000); } catch { /* already closed */ } }
+
+  _message(data) {
+    let m;
+    if (typeof data === 'string') {
+      try { m = JSON.parse(data); } catch { return; }
+    } else {
+      m = decodePoseBinary(data);
+      if (!m) return;
+    }
+    if (m.type === 'welcome') {
+      this.skeleton = m.skeleton;
+      this.hands = [findJoint(m.skeleton.names, 'left_hand'), findJoint(m.skeleton.names, 'right_hand')];
+      this.headJoint = findJoint(m.skeleton.names, 'head');
+      this.stats.state = 'open';
+      this.stats.session = m.session;
+      this.stats.maxRateHz = m.max_rate_hz;
+      this.onWelcome(m);
+      this._ready(m);
+    } else if (m.type === 'pose') {
+      this._pose(m);
+    } else if (m.type === 'error') {
+      this.stats.errors++;
+      this.stats.lastError = `${m.code}: ${m.message}`;
+      this.onError(m);
+    }
+  }
+
+  _pose(m) {
+    const now = performance.now();
+    const s = this.stats;
+    s.posesReceived++;
+    s.statusCounts[m.status] = (s.statusCounts[m.status] || 0) + 1;
+    if (m.server_us !== undefined) s.serverUs = m.server_us;
+    const sent = this.sent.get(m.t);
+    if (sent) {
+      const rtt = now - sent.sentAt;
+      s.rttMs = rtt;
+      s.rttAvgMs = Number.isNaN(s.rttAvgMs) ? rtt : s.rttAvgMs * 0.95 + rtt * 0.05;
+      for (const k of this.sent.keys()) { if (k > m.t) break; this.sent.delete(k); }
+      if (m.status !== 'rejected' && m.positions) this._errors(m, sent.frame);
+    }
+    this._rateWindow.push(now);
+    while (this._rateWindow.length && now - this._rateWindow[0] > 1000) this._rateWindow.shift();
+    s.poseHz = this._rateWindow.length;
+    if (m.positions && m.positions.length) this.lastPose = m;
+    this.onPose(m, sent ? sent.frame : null);
+  }
+
+  _errors(m, frame) {
+    const errs = [];
+    ['left', 'right'].forEach((side, k) => {
+      const j = this.hands[k];
+      if (j >= 0 && frame[side] && m.positions[j]) errs.push(distance(m.positions[j], frame[side].p));
+    });
+    if (errs.length) {
+      this.stats.lastHandError = Math.max(...errs);
+      this.stats.maxHandError = Math.max(this.stats.maxHandError, this.stats.lastHandError);
+      this.handErrors.push(this.stats.lastHandError);
+      if (this.handErrors.length > 300) this.handErrors.shift();
+      const sorted = [...this.handErrors].sort((a, b) => a - b);
+      this.stats.medianHandError = sorted[sorted.length >> 1];
+    }
+    if (this.headJoint >= 0 && frame.head && m.positions[this.headJoint]) this.stats.lastHeadError = distance(m.positions[this.headJoint], frame.head.p);
+  }
+}
