@@ -2,32 +2,15 @@
 // Captures PNGs of the viewer's replay from a running `legwork serve` (or the mock)
 // in headless Chromium (Debian's /usr/bin/chromium, driven by web/'s playwright-core).
 //   node scripts/screenshot.mjs --url http://127.0.0.1:8080 [--out shot.png] [--trial walking/07_02]
-//        [--seq N --interval-ms 100] [--width 1280 --height 720] [--wait-poses 60] [--query "a=accent&b=ik"]
+//        [--seq N --interval-ms 100] [--width 1280 --height 720] [--wait-poses 60] [--query "quality=high&a=accent&b=ik"]
 // --seq N writes N PNGs (out-000.png, ...) spaced --interval-ms apart instead of one.
-import { createRequire } from 'node:module';
-import { mkdtempSync, rmSync, mkdirSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join, dirname, resolve } from 'node:path';
+import { mkdirSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-
-const here = dirname(fileURLToPath(import.meta.url));
-const require = createRequire(join(here, '..', 'web', 'package.json'));
-const { chromium } = require('playwright-core');
-
-export const CHROMIUM_ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync',
-  '--use-angle=swiftshader', '--enable-unsafe-swiftshader']; // WebGL on the CPU (no GPU here)
-
-// A browser context on a fresh profile (--user-data-dir; playwright passes it itself).
-export async function launch(viewport = { width: 1280, height: 720 }) {
-  const profile = mkdtempSync(join(tmpdir(), 'legwork-chromium-'));
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: CHROMIUM_ARGS, viewport });
-  return { context, close: async () => { await context.close(); rmSync(profile, { recursive: true, force: true }); } };
-}
+import { launch } from '../web/test/browser.mjs'; // needs `npm ci` in web/ (scripts/setup.sh does it)
 
 function args() {
-  const a = { url: 'http://127.0.0.1:8080', out: 'legwork-replay.png', trial: '', seq: 0, intervalMs: 100, width: 1280, height: 720, waitPoses: 60, query: '' };
+  const a = { url: 'http://127.0.0.1:8080', out: 'legwork-replay.png', trial: '', seq: 0, intervalMs: 100, width: 1280, height: 720, waitPoses: 60, query: 'quality=high' };
   const argv = process.argv.slice(2);
   for (let i = 0; i < argv.length; i += 2) {
     const k = argv[i].replace(/^--/, '').replace(/-([a-z])/g, (_, c) => c.toUpperCase());
@@ -39,9 +22,8 @@ function args() {
 
 async function main() {
   const a = args();
-  const { context, close } = await launch({ width: a.width, height: a.height });
+  const { page, close } = await launch({ width: a.width, height: a.height });
   try {
-    const page = context.pages()[0] || (await context.newPage());
     page.on('console', (m) => m.type() === 'error' && console.error(`page: ${m.text()}`));
     const q = new URLSearchParams(a.query);
     if (a.trial) q.set('trial', a.trial);

@@ -19,6 +19,8 @@ PACKAGES=(
   libassimp-dev                         # benchmark baseline: assimp's BVH importer
   clang libclang-rt-14-dev              # libFuzzer target for the BVH reader
   ccache                                # compiler cache: rebuilds (CI on the same machine, sanitizer builds) reuse objects
+  nodejs npm                            # the browser viewer (web/): bundling with esbuild, its tests
+  chromium                              # headless browser for the viewer's end-to-end test (driven by playwright-core)
 )
 
 missing=()
@@ -45,3 +47,15 @@ cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release "${LAUNCHER[@]}" "$@"
 # shellcheck disable=SC2086
 ninja -C "$BUILD" -j"$(nproc)" ${LEGWORK_BUILD_TARGETS:-}
 echo "setup: built legwork in $BUILD/ (CLI: $BUILD/apps/legwork/legwork)" >&2
+
+# The browser viewer (web/, served by `legwork serve`): npm packages from the
+# npm registry, pinned by web/package-lock.json:
+#   three           - the 3D scene (WebGL renderer, GLTFLoader for walk-cycle GLBs, WebXR)
+#   esbuild         - bundles web/src/*.js into web/dist/ (not committed)
+#   playwright-core - drives Debian's chromium in the end-to-end test (no browser download)
+#   ws              - WebSocket server of the test's mock of `legwork serve`
+# LEGWORK_SKIP_WEB=1 skips it (C++-only machines).
+if [ "${LEGWORK_SKIP_WEB:-0}" != 1 ]; then
+  ( cd web && npm ci --no-audit --no-fund --loglevel=error && npm run build --silent )
+  echo "setup: built the viewer in web/dist/ (test: cd web && npm test)" >&2
+fi

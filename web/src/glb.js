@@ -17,7 +17,7 @@ export class GLBPlayer {
     this.nodes = [];
     this.body = null;
     this.label = stage.addLabel('Walk cycle', '#7ee2a8');
-    this.label.at.set(0, 2.15, 0);
+    this.label.at.set(0, 2.05, 0);
     this.label.visible = false;
     this.info = { loaded: false, name: '', duration: 0, joints: 0, time: 0 };
   }
@@ -46,7 +46,7 @@ export class GLBPlayer {
     this.mixer = new THREE.AnimationMixer(root);
     this.clip = gltf.animations[0] || null;
     this.action = this.clip ? this.mixer.clipAction(this.clip).play() : null;
-    this.info = { loaded: true, name, duration: this.clip ? this.clip.duration : 0, joints: nodes.length, time: 0, clip: this.clip?.name || '' };
+    Object.assign(this.info, { loaded: true, name, duration: this.clip ? this.clip.duration : 0, joints: nodes.length, time: 0, clip: this.clip?.name || '' });
     this.label.title.textContent = `Walk cycle · ${name.split('/').pop()}`;
     this.update(0);
     return this.info;
@@ -64,6 +64,8 @@ export class GLBPlayer {
     for (const p of pts) { p[0] -= rx; p[2] -= rz; }
     this.stage.setGridOffset(rx, rz, 0);
     this.body.setPositions(pts);
+    this.info.positions = pts;
+    this.info.updates = (this.info.updates || 0) + 1;
     this.info.time = this.clip ? this.mixer.time % this.clip.duration : 0;
     this.label.stats.textContent = `${this.info.joints} joints · ${this.info.duration.toFixed(2)} s loop · t ${this.info.time.toFixed(2)} s`;
   }

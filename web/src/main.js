@@ -48,7 +48,7 @@ function setMode(mode) {
   mirror.label.visible = mode === 'xr';
   if (mode === 'replay') { stage.camera.position.set(0.6, 1.75, 5.6); stage.controls.target.set(0, 0.95, 0); replay.start(); }
   else replay.stop();
-  if (mode === 'glb') { stage.camera.position.set(2.6, 1.5, 3.2); stage.controls.target.set(0, 0.9, 0); stage.setGridOffset(0, 0, 0); }
+  if (mode === 'glb') { stage.camera.position.set(2.8, 1.6, 4.2); stage.controls.target.set(0, 1.0, 0); stage.setGridOffset(0, 0, 0); }
   if (mode === 'xr') { mirror.frameCamera(); stage.setGridOffset(0, 0, 0); }
   else mirror.stopFake();
 }

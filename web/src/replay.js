@@ -7,7 +7,7 @@ import * as THREE from 'three';
 import { Body, DeviceMarkers } from './avatar.js';
 import { LiveSession } from './session.js';
 
-const LANE_X = [-1.35, 0, 1.35];
+const LANE_X = [-1.6, 0, 1.6];
 const RESTART_GAP = 6; // seconds forward: more than the server's FrameClock::kMaxGap (5 s) -> restart
 
 export const LANE_COLORS = { accent: 0xff9a3c, ik: 0x4aa3ff, wip: 0xc792ea, combined: 0xffd166, truth: 0xb8c2cc };
@@ -44,7 +44,12 @@ export class Replay {
     lane.body = new Body(LANE_COLORS[method] ?? 0xcccccc);
     this.group.add(lane.body.group);
     if (!lane.label) lane.label = this.stage.addLabel('', '#fff');
-    lane.label.title.textContent = method === 'truth' ? LANE_TITLES.truth : `${LANE_TITLES[method] || method} · ${method}`;
+    if (lane.disc) this.group.remove(lane.disc);
+    lane.disc = new THREE.Mesh(new THREE.RingGeometry(0.5, 0.56, 48), new THREE.MeshBasicMaterial({ color: LANE_COLORS[method] ?? 0xcccccc, transparent: true, opacity: 0.55 }));
+    lane.disc.rotation.x = -Math.PI / 2;
+    lane.disc.position.set(LANE_X[i], 0.004, 0);
+    this.group.add(lane.disc);
+    lane.label.title.textContent = LANE_TITLES[method] || method;
     lane.label.el.style.color = hex(LANE_COLORS[method] ?? 0xcccccc);
     lane.label.at.set(LANE_X[i], 2.15, 0);
   }
@@ -196,10 +201,10 @@ export class Replay {
       const s = lane.session?.stats;
       if (!s) continue;
       const err = Number.isFinite(s.lastHandError) ? `${(s.lastHandError * 100).toFixed(1)} cm` : '–';
-      const rtt = Number.isFinite(s.rttAvgMs) ? `${s.rttAvgMs.toFixed(1)} ms` : '–';
-      lane.label.stats.textContent = `hand err ${err} · rtt ${rtt} · ${s.poseHz} Hz`;
+      const rtt = Number.isFinite(s.rttAvgMs) ? `${s.rttAvgMs.toFixed(s.rttAvgMs < 10 ? 1 : 0)} ms` : '–';
+      lane.label.stats.textContent = `${lane.method} · hands ${err} · ${rtt}`;
     }
     const tr = this.trial;
-    if (tr) this.lanes[2].label.stats.textContent = `${tr.name} · ${tr.fps} Hz input`;
+    if (tr) this.lanes[2].label.stats.textContent = `${tr.name} · input ${tr.fps} Hz`;
   }
 }

@@ -18,7 +18,7 @@ export class LiveSession {
     this.onError = onError || (() => {});
     this.onWelcome = onWelcome || (() => {});
     this.stats = { method: opts.method, state: 'connecting', posesReceived: 0, framesSent: 0, errors: 0, lastError: '',
-      lastHandError: NaN, maxHandError: 0, lastHeadError: NaN, rttMs: NaN, rttAvgMs: NaN, poseHz: 0, statusCounts: {}, serverUs: NaN };
+      lastHandError: NaN, maxHandError: 0, lastHeadError: NaN, rttMs: NaN, rttAvgMs: NaN, poseHz: 0, statusCounts: {}, serverUs: NaN, inputHandTravel: 0, medianHandError: NaN };
     this.skeleton = null;
     this.hands = [-1, -1];
     this.sent = new Map(); // t -> {sentAt, frame}
@@ -100,6 +100,9 @@ export class LiveSession {
   }
 
   _errors(m, frame) {
+    // How far the input hands moved over the answered frames: "the hands follow" means something only if they moved.
+    if (this._prevHands) for (const side of ['left', 'right']) if (frame[side] && this._prevHands[side]) this.stats.inputHandTravel += distance(frame[side].p, this._prevHands[side].p);
+    this._prevHands = { left: frame.left, right: frame.right };
     const errs = [];
     ['left', 'right'].forEach((side, k) => {
       const j = this.hands[k];

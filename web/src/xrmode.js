@@ -15,18 +15,28 @@ export class XRMirror {
     this.base = base;
     this.group = new THREE.Group();
     stage.scene.add(this.group);
-    const frame = new THREE.Mesh(new THREE.BoxGeometry(2.2, 2.4, 0.04), new THREE.MeshStandardMaterial({ color: 0x3a4350, roughness: 0.4 }));
-    frame.position.set(0, 1.2, MIRROR_Z - 0.02);
-    const glass = new THREE.Mesh(new THREE.PlaneGeometry(2.05, 2.25), new THREE.MeshStandardMaterial({ color: 0x9fb8d0, roughness: 0.05, metalness: 0.6, transparent: true, opacity: 0.18 }));
-    glass.position.set(0, 1.2, MIRROR_Z + 0.001);
-    this.group.add(frame, glass);
+    // The mirror: a frame around see-through glass; the avatar stands behind it, reflected.
+    const metal = new THREE.MeshStandardMaterial({ color: 0x8a96a8, roughness: 0.3, metalness: 0.7 });
+    for (const [w, h, x, y] of [[2.2, 0.06, 0, 2.37], [2.2, 0.06, 0, 0.03], [0.06, 2.4, -1.07, 1.2], [0.06, 2.4, 1.07, 1.2]]) {
+      const bar = new THREE.Mesh(new THREE.BoxGeometry(w, h, 0.05), metal);
+      bar.position.set(x, y, MIRROR_Z);
+      this.group.add(bar);
+    }
+    const glass = new THREE.Mesh(new THREE.PlaneGeometry(2.1, 2.3), new THREE.MeshStandardMaterial({ color: 0xb8d4f0, roughness: 0.05, metalness: 0.2, transparent: true, opacity: 0.12, depthWrite: false }));
+    glass.position.set(0, 1.2, MIRROR_Z);
+    this.group.add(glass);
+    // The user's own devices: marker geometry is in legwork's device frame, so they sit in a
+    // group turned 180 degrees about y (legwork -> WebXR) and take legwork poses unchanged.
     this.markers = new DeviceMarkers();
-    this.group.add(this.markers.group);
+    this.userFrame = new THREE.Group();
+    this.userFrame.rotation.y = Math.PI;
+    this.userFrame.add(this.markers.group);
+    this.group.add(this.userFrame);
     this.body = null;
     this.session = null;
     this.xrSession = null;
     this.label = stage.addLabel('Mirror', '#ffd166');
-    this.label.at.set(0, 2.55, MIRROR_Z);
+    this.label.at.set(0, 2.5, MIRROR_Z);
     this.label.visible = false;
     this.stats = { active: false, fake: false, framesRead: 0, posesReceived: 0, lastHandError: NaN, lastFrame: null };
     this.input = new XRInput((f) => this._frame(f));
@@ -49,9 +59,7 @@ export class XRMirror {
     this.stats.framesRead = this.input.framesRead;
     this.stats.lastFrame = f;
     if (this.session) this.session.send(f);
-    // the user's own devices, back in WebXR's frame
-    const back = (d) => d && { p: legworkToXRPosition(d.p), q: [d.q[0], -d.q[1], d.q[2], -d.q[3]] };
-    this.markers.set({ head: back(f.head), left: back(f.left), right: back(f.right) }, new THREE.Vector3());
+    this.markers.set(f, new THREE.Vector3());
   }
 
   // legwork pose -> WebXR frame -> reflected in the mirror plane z = MIRROR_Z.
@@ -108,7 +116,7 @@ export class XRMirror {
 
   // Third-person view for the screen: behind and beside the user, facing the mirror.
   frameCamera() {
-    this.stage.camera.position.set(1.6, 1.9, 2.2);
-    this.stage.controls.target.set(0, 1.1, -0.7);
+    this.stage.camera.position.set(1.4, 1.55, 3.9);
+    this.stage.controls.target.set(0, 1.3, -1.4);
   }
 }
