@@ -5,7 +5,7 @@
 import * as THREE from 'three';
 
 const BONE_RADIUS = [
-  [/spine|chest|hips|pelvis|torso|abdomen/, 0.085],
+  [/spine|chest|hip|pelvis|torso|abdomen|lowerback/, 0.085],
   [/neck/, 0.045],
   [/upleg|thigh|upperleg/, 0.07],
   [/leg|shin|calf|knee/, 0.05],

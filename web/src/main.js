@@ -158,6 +158,7 @@ window.__legworkFakeXR = {
   stop: () => mirror.stopFake(),
 };
 window.__legworkControl = {
+  stage, replay, glb, mirror,
   setMode, startReplay, seek: (i) => replay.seek(i), play: (p) => replay.setPlaying(p),
   loadGLB: async (url) => { setMode('glb'); const i = await glb.loadURL(url); showGLB(i); return i; },
 };
@@ -187,7 +188,10 @@ function loop(now) {
   if (++frames, now - fpsStart > 500) { state.renderFps = (frames * 1000) / (now - fpsStart); frames = 0; fpsStart = now; $('fps').textContent = `${state.renderFps.toFixed(0)} fps`; }
   if (state.mode === 'glb' && !glbPaused) {
     glb.update(dt * +$('speed').value);
-    if (glb.info.duration) $('scrub').value = Math.round((glb.info.time / glb.info.duration) * 1000);
+    if (glb.info.duration) {
+      if (document.activeElement !== $('scrub')) $('scrub').value = Math.round((glb.info.time / glb.info.duration) * 1000);
+      $('time').textContent = `${glb.info.time.toFixed(2)} / ${glb.info.duration.toFixed(2)} s`;
+    }
   }
   if (state.mode === 'replay' && replay.trial) {
     state.frame = replay.shown;

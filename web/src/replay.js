@@ -200,7 +200,8 @@ export class Replay {
     for (const lane of this.lanes.slice(0, 2)) {
       const s = lane.session?.stats;
       if (!s) continue;
-      const err = Number.isFinite(s.lastHandError) ? `${(s.lastHandError * 100).toFixed(1)} cm` : '–';
+      const e = s.lastHandError;
+      const err = !Number.isFinite(e) ? '–' : e < 0.01 ? `${(e * 1000).toFixed(1)} mm` : `${(e * 100).toFixed(1)} cm`;
       const rtt = Number.isFinite(s.rttAvgMs) ? `${s.rttAvgMs.toFixed(s.rttAvgMs < 10 ? 1 : 0)} ms` : '–';
       lane.label.stats.textContent = `${lane.method} · hands ${err} · ${rtt}`;
     }

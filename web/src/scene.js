@@ -42,16 +42,29 @@ export class Stage {
     rim.position.set(-4, 3, -5);
     s.add(rim);
 
-    const floor = new THREE.Mesh(new THREE.CircleGeometry(30, 64), new THREE.MeshStandardMaterial({ color: 0x262d37, roughness: 0.95 }));
+    // Floor with a 1 m grid (0.5 m fine lines) painted into a texture: mip-mapped lines
+    // look the same on every GPU (GL line primitives vanish on some software renderers).
+    const c = document.createElement('canvas');
+    c.width = c.height = 256;
+    const g = c.getContext('2d');
+    g.fillStyle = '#262d37';
+    g.fillRect(0, 0, 256, 256);
+    g.fillStyle = '#323b48';
+    g.fillRect(127, 0, 2, 256);
+    g.fillRect(0, 127, 256, 2);
+    g.fillStyle = '#46536a';
+    g.fillRect(0, 0, 256, 3);
+    g.fillRect(0, 0, 3, 256);
+    const tex = new THREE.CanvasTexture(c);
+    tex.wrapS = tex.wrapT = THREE.RepeatWrapping;
+    tex.repeat.set(60, 60);
+    tex.anisotropy = r.capabilities.getMaxAnisotropy();
+    tex.colorSpace = THREE.SRGBColorSpace;
+    const floor = new THREE.Mesh(new THREE.PlaneGeometry(60, 60), new THREE.MeshStandardMaterial({ map: tex, roughness: 0.95 }));
     floor.rotation.x = -Math.PI / 2;
     floor.receiveShadow = true;
-    s.add(floor);
     this.grid = new THREE.Group();
-    const fine = new THREE.GridHelper(40, 80, 0x3a4453, 0x2f3845);
-    const coarse = new THREE.GridHelper(40, 40, 0x55627a, 0x47536a);
-    fine.position.y = 0.001;
-    coarse.position.y = 0.002;
-    this.grid.add(fine, coarse);
+    this.grid.add(floor);
     s.add(this.grid);
 
     this.labels = [];
