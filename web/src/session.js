@@ -18,7 +18,7 @@ export class LiveSession {
     this.onError = onError || (() => {});
     this.onWelcome = onWelcome || (() => {});
     this.stats = { method: opts.method, state: 'connecting', posesReceived: 0, framesSent: 0, errors: 0, lastError: '',
-      lastHandError: NaN, maxHandError: 0, lastHeadError: NaN, rttMs: NaN, rttAvgMs: NaN, poseHz: 0, statusCounts: {}, serverUs: NaN, inputHandTravel: 0, medianHandError: NaN };
+      lastHandError: NaN, maxHandError: 0, lastHeadError: NaN, rttMs: NaN, rttAvgMs: NaN, poseHz: 0, statusCounts: {}, serverUs: NaN, inputHandTravel: 0, medianHandError: NaN, lastCrossHandError: NaN };
     this.skeleton = null;
     this.hands = [-1, -1];
     this.sent = new Map(); // t -> {sentAt, frame}
@@ -108,6 +108,8 @@ export class LiveSession {
       const j = this.hands[k];
       if (j >= 0 && frame[side] && m.positions[j]) errs.push(distance(m.positions[j], frame[side].p));
     });
+    // the same distance to the other side's input: shows the measure tells the hands apart
+    if (this.hands[0] >= 0 && frame.right && m.positions[this.hands[0]]) this.stats.lastCrossHandError = distance(m.positions[this.hands[0]], frame.right.p);
     if (errs.length) {
       this.stats.lastHandError = Math.max(...errs);
       this.stats.maxHandError = Math.max(this.stats.maxHandError, this.stats.lastHandError);

@@ -64,8 +64,9 @@ test('replay: poses arrive and the IK avatar\'s hands follow the input', { timeo
   const st = await legwork();
   assert.equal(st.trial, trial);
   const { ik, accent } = st.sessions;
-  console.log(`# ${trial}: ik ${ik.posesReceived} poses, median hand error ${(ik.medianHandError * 100).toFixed(2)} cm, ` +
-    `rtt ${ik.rttAvgMs.toFixed(1)} ms; accent ${accent.posesReceived} poses, median hand error ${(accent.medianHandError * 100).toFixed(2)} cm`);
+  console.log(`# ${trial}: ik ${ik.posesReceived} poses, median hand error ${(ik.medianHandError * 1000).toFixed(3)} mm, ` +
+    `rtt ${ik.rttAvgMs.toFixed(1)} ms; accent ${accent.posesReceived} poses, median hand error ${(accent.medianHandError * 1000).toFixed(3)} mm; ` +
+    `left hand to right input ${(ik.lastCrossHandError * 100).toFixed(1)} cm; input hands travelled ${ik.inputHandTravel.toFixed(2)} m`);
   for (const s of [ik, accent]) {
     assert.equal(s.state, 'open', `${s.method} session state`);
     assert.equal(s.errors, 0, `${s.method}: server errors: ${s.lastError}`);
@@ -74,6 +75,7 @@ test('replay: poses arrive and the IK avatar\'s hands follow the input', { timeo
   // the input hands moved (a walk swings them), and the IK wrists stayed on them
   assert.ok(ik.inputHandTravel > 0.3, `input hands travelled ${ik.inputHandTravel} m over the answered frames`);
   assert.ok(ik.medianHandError < 0.02, `ik: median hand error ${ik.medianHandError} m (want < 2 cm)`);
+  assert.ok(ik.lastCrossHandError > 0.1, `the left hand is ${ik.lastCrossHandError} m from the right input: the measure cannot tell hands apart`);
   // accentuation synthesizes a body from the database: its hands go where the controllers are, not exactly
   assert.ok(accent.medianHandError < 0.3, `accent: median hand error ${accent.medianHandError} m (want < 30 cm)`);
 });
@@ -109,6 +111,30 @@ test('replay: the screenshot shows the three bodies (not blank)', { timeout: TIM
   assert.equal(m.width, 1280);
   assert.ok(m.variance > 100, `luminance variance ${m.variance}: blank screenshot?`);
   for (const k of ['orange', 'blue', 'grey']) assert.ok(m[k] > 800, `${k} body pixels: ${m[k]}`);
+});
+
+test('replay in the binary format; exaggeration and class options are accepted', { timeout: TIMEOUT * 2 }, async () => {
+  const trial = await pickTrial();
+  await page.goto(`${url}/?trial=${encodeURIComponent(trial)}&a=accent&b=ik&format=binary`);
+  await page.waitForFunction(() => {
+    const s = window.__legwork.sessions;
+    return window.__legwork.error || (s.ik && s.accent && s.ik.posesReceived >= 20 && s.accent.posesReceived >= 20);
+  }, null, { timeout: TIMEOUT, polling: 250 });
+  assert.equal((await legwork()).error, '', 'viewer error');
+  const before = (await legwork()).sessions;
+  // the slider sends {"type":"options","exaggeration":1.6}; a class chip sends the remaining classes
+  await page.evaluate(() => {
+    const e = document.getElementById('exag');
+    e.value = '1.6';
+    e.dispatchEvent(new Event('input'));
+    const chips = [...document.querySelectorAll('#classes input')];
+    if (chips.length > 1) { chips[chips.length - 1].checked = false; chips[0].dispatchEvent(new Event('change', { bubbles: true })); }
+  });
+  await page.waitForFunction((n) => window.__legwork.sessions.accent.posesReceived >= n + 20, before.accent.posesReceived, { timeout: TIMEOUT, polling: 250 });
+  const { ik, accent } = (await legwork()).sessions;
+  console.log(`# binary: ik ${ik.posesReceived} poses, median hand error ${(ik.medianHandError * 100).toFixed(2)} cm; accent ${accent.posesReceived} poses after options`);
+  for (const s of [ik, accent]) assert.equal(s.errors, 0, `${s.method}: server errors: ${s.lastError}`);
+  assert.ok(ik.medianHandError < 0.02, `ik (binary): median hand error ${ik.medianHandError} m`);
 });
 
 test('WebXR emulated input: frames convert to legwork axes and produce poses', { timeout: TIMEOUT }, async () => {
