@@ -3,6 +3,7 @@
 // name so any skeleton (CMU, the server's database, a GLB) looks like a body.
 // Plus the tracked devices as markers: a headset box and two controllers.
 import * as THREE from 'three';
+import { material } from './materials.js';
 
 const BONE_RADIUS = [
   [/spine|chest|hip|pelvis|torso|abdomen|lowerback/, 0.085],
@@ -29,7 +30,7 @@ const sphereGeo = new THREE.SphereGeometry(1, 20, 14);
 export class Body {
   constructor(color, { opacity = 1 } = {}) {
     this.group = new THREE.Group();
-    this.material = new THREE.MeshStandardMaterial({ color, roughness: 0.55, metalness: 0.05, transparent: opacity < 1, opacity });
+    this.material = material({ color, roughness: 0.55, metalness: 0.05, transparent: opacity < 1, opacity });
     this.names = [];
     this.parents = [];
     this.bones = [];
@@ -111,8 +112,8 @@ export class Body {
 export class DeviceMarkers {
   constructor(color = 0x20252b) {
     this.group = new THREE.Group();
-    const mat = new THREE.MeshStandardMaterial({ color, roughness: 0.35, metalness: 0.3 });
-    const lens = new THREE.MeshStandardMaterial({ color: 0x66ccff, emissive: 0x1166aa, emissiveIntensity: 0.6 });
+    const mat = material({ color, roughness: 0.35, metalness: 0.3 });
+    const lens = material({ color: 0x66ccff, emissive: 0x1166aa, emissiveIntensity: 0.6 });
     this.headset = new THREE.Group();
     const shell = new THREE.Mesh(new THREE.BoxGeometry(0.19, 0.1, 0.1), mat);
     shell.position.set(0, 0.08, 0.1);
@@ -123,7 +124,7 @@ export class DeviceMarkers {
       const g = new THREE.Group();
       const grip = new THREE.Mesh(new THREE.CylinderGeometry(0.018, 0.022, 0.12, 12), mat);
       const ring = new THREE.Mesh(new THREE.TorusGeometry(0.045, 0.008, 8, 24),
-        new THREE.MeshStandardMaterial({ color: side === 'left' ? 0xff5a5f : 0x3ddc97, emissive: side === 'left' ? 0x551010 : 0x105533 }));
+        material({ color: side === 'left' ? 0xff5a5f : 0x3ddc97, emissive: side === 'left' ? 0x551010 : 0x105533 }));
       ring.position.y = 0.07;
       g.add(grip, ring);
       return g;

@@ -1,6 +1,7 @@
 // The three.js stage: renderer, lights, floor + grid, orbit camera, and HTML
 // labels pinned to 3D points (crisp text at any resolution, also in screenshots).
 import * as THREE from 'three';
+import { material, quality as QUALITY } from './materials.js';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
 export class Stage {
@@ -10,6 +11,7 @@ export class Stage {
     this.labelLayer = labelLayer;
     this.quality = quality;
     const high = quality === 'high';
+    QUALITY.low = !high;
     const r = (this.renderer = new THREE.WebGLRenderer({ canvas, antialias: high, preserveDrawingBuffer: true }));
     r.setPixelRatio(high ? Math.min(window.devicePixelRatio || 1, 2) : 1);
     r.shadowMap.enabled = high;
@@ -60,7 +62,7 @@ export class Stage {
     tex.repeat.set(60, 60);
     tex.anisotropy = r.capabilities.getMaxAnisotropy();
     tex.colorSpace = THREE.SRGBColorSpace;
-    const floor = new THREE.Mesh(new THREE.PlaneGeometry(60, 60), new THREE.MeshStandardMaterial({ map: tex, roughness: 0.95 }));
+    const floor = new THREE.Mesh(new THREE.PlaneGeometry(60, 60), material({ map: tex, roughness: 0.95 }));
     floor.rotation.x = -Math.PI / 2;
     floor.receiveShadow = true;
     this.grid = new THREE.Group();

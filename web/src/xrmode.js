@@ -3,6 +3,7 @@
 // WebXR immersive-vr session or with window.__legworkFakeXR (emulated input
 // through the same XRInput path). Scene objects live in WebXR's frame.
 import * as THREE from 'three';
+import { material } from './materials.js';
 import { Body, DeviceMarkers } from './avatar.js';
 import { LiveSession } from './session.js';
 import { XRInput, FakeXRSession, demoXRPose, legworkToXRPosition } from './xr.js';
@@ -16,13 +17,13 @@ export class XRMirror {
     this.group = new THREE.Group();
     stage.scene.add(this.group);
     // The mirror: a frame around see-through glass; the avatar stands behind it, reflected.
-    const metal = new THREE.MeshStandardMaterial({ color: 0x8a96a8, roughness: 0.3, metalness: 0.7 });
+    const metal = material({ color: 0x8a96a8, roughness: 0.3, metalness: 0.7 });
     for (const [w, h, x, y] of [[2.2, 0.06, 0, 2.37], [2.2, 0.06, 0, 0.03], [0.06, 2.4, -1.07, 1.2], [0.06, 2.4, 1.07, 1.2]]) {
       const bar = new THREE.Mesh(new THREE.BoxGeometry(w, h, 0.05), metal);
       bar.position.set(x, y, MIRROR_Z);
       this.group.add(bar);
     }
-    const glass = new THREE.Mesh(new THREE.PlaneGeometry(2.1, 2.3), new THREE.MeshStandardMaterial({ color: 0xb8d4f0, roughness: 0.05, metalness: 0.2, transparent: true, opacity: 0.12, depthWrite: false }));
+    const glass = new THREE.Mesh(new THREE.PlaneGeometry(2.1, 2.3), material({ color: 0xb8d4f0, roughness: 0.05, metalness: 0.2, transparent: true, opacity: 0.12, depthWrite: false }));
     glass.position.set(0, 1.2, MIRROR_Z);
     this.group.add(glass);
     // The user's own devices: marker geometry is in legwork's device frame, so they sit in a
@@ -116,7 +117,7 @@ export class XRMirror {
 
   // Third-person view for the screen: behind and beside the user, facing the mirror.
   frameCamera() {
-    this.stage.camera.position.set(1.4, 1.55, 3.9);
+    this.stage.camera.position.set(0.7, 1.7, 3.6);
     this.stage.controls.target.set(0, 1.3, -1.4);
   }
 }
