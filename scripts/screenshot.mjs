@@ -2,7 +2,7 @@
 // Captures PNGs of the viewer's replay from a running `legwork serve` (or the mock)
 // in headless Chromium (Debian's /usr/bin/chromium, driven by web/'s playwright-core).
 //   node scripts/screenshot.mjs --url http://127.0.0.1:8080 [--out shot.png] [--trial walking/07_02]
-//        [--seq N --interval-ms 100] [--width 1280 --height 720] [--wait-poses 60] [--query "quality=high&a=accent&b=ik"]
+//        [--seq N --interval-ms 100] [--width 1280 --height 720] [--wait-poses 60] [--timeout-ms 120000] [--query "quality=high&a=accent&b=ik"]
 // --seq N writes N PNGs (out-000.png, ...) spaced --interval-ms apart instead of one.
 import { mkdirSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
@@ -10,7 +10,7 @@ import { fileURLToPath } from 'node:url';
 import { launch } from '../web/test/browser.mjs'; // needs `npm ci` in web/ (scripts/setup.sh does it)
 
 function args() {
-  const a = { url: 'http://127.0.0.1:8080', out: 'legwork-replay.png', trial: '', seq: 0, intervalMs: 100, width: 1280, height: 720, waitPoses: 60, query: 'quality=high' };
+  const a = { url: 'http://127.0.0.1:8080', out: 'legwork-replay.png', trial: '', seq: 0, intervalMs: 100, width: 1280, height: 720, waitPoses: 60, timeoutMs: 120000, query: 'quality=high' };
   const argv = process.argv.slice(2);
   for (let i = 0; i < argv.length; i += 2) {
     const k = argv[i].replace(/^--/, '').replace(/-([a-z])/g, (_, c) => c.toUpperCase());
@@ -28,7 +28,7 @@ async function main() {
     const q = new URLSearchParams(a.query);
     if (a.trial) q.set('trial', a.trial);
     await page.goto(`${a.url.replace(/\/$/, '')}/?${q}`);
-    await page.waitForFunction((n) => window.__legwork && (window.__legwork.error || window.__legwork.posesReceived >= n), a.waitPoses, { timeout: 30000 });
+    await page.waitForFunction((n) => window.__legwork && (window.__legwork.error || window.__legwork.posesReceived >= n), a.waitPoses, { timeout: a.timeoutMs, polling: 250 });
     const err = await page.evaluate(() => window.__legwork.error);
     if (err) throw new Error(`viewer: ${err}`);
     const out = resolve(a.out);

@@ -175,7 +175,7 @@ function readout() {
     add(`<b>${st.method}</b>`, st.state);
     add('poses', `${st.posesReceived} @ ${st.poseHz} Hz`);
     add('round trip', `${fmt(st.rttAvgMs, 2, ' ms')} (server ${fmt(st.serverUs, 0, ' µs')})`);
-    add('hand error', fmt(st.lastHandError * 100, 2, ' cm'));
+    add('hand error', st.lastHandError < 0.01 ? fmt(st.lastHandError * 1000, 2, ' mm') : fmt(st.lastHandError * 100, 1, ' cm'));
     if (st.errors) add('errors', `${st.errors} ${st.lastError}`);
   }
   $('readout').innerHTML = rows.join('');
@@ -199,7 +199,10 @@ function loop(now) {
     $('time').textContent = `${(replay.shown / replay.trial.fps).toFixed(2)} / ${replay.duration.toFixed(2)} s · frame ${replay.shown}`;
     replay.updateLabels();
   }
-  if (state.mode === 'xr') mirror.label.stats.textContent = `${mirror.stats.posesReceived} poses · hand err ${Number.isFinite(mirror.stats.lastHandError) ? (mirror.stats.lastHandError * 100).toFixed(1) + ' cm' : '–'}`;
+  if (state.mode === 'xr') {
+    const e = mirror.stats.lastHandError;
+    mirror.label.stats.textContent = `${mirror.stats.posesReceived} poses · hands ${!Number.isFinite(e) ? '–' : e < 0.01 ? (e * 1000).toFixed(1) + ' mm' : (e * 100).toFixed(1) + ' cm'}`;
+  }
   state.sessions = Object.fromEntries(replay.lanes.filter((l) => l.session).map((l) => [l.method, l.session.stats]));
   const all = Object.values(state.sessions);
   state.posesReceived = all.reduce((a, s) => a + s.posesReceived, 0);
