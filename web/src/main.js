@@ -5,6 +5,7 @@ import { Replay } from './replay.js';
 import { GLBPlayer } from './glb.js';
 import { XRMirror } from './xrmode.js';
 import { demoXRPose } from './xr.js';
+import { parseTrackerCSV } from './trackercsv.js';
 
 const $ = (id) => document.getElementById(id);
 const params = new URLSearchParams(location.search);
@@ -83,6 +84,19 @@ async function startReplay(name = $('trial').value) {
   replay.start();
 }
 
+// A recorded session (`legwork serve --record`): its head and hands replayed like a trial, no ground truth.
+async function startRecorded(file) {
+  const tr = parseTrackerCSV(await file.text(), file.name);
+  replay.options = sessionOptions();
+  await replay.connect([$('methodA').value, $('methodB').value]);
+  replay.setTrial(tr);
+  state.trial = tr.name;
+  state.frames = tr.frames.length;
+  $('scrub').max = tr.frames.length - 1;
+  replay.setPlaying(true);
+  replay.start();
+}
+
 async function init() {
   const get = async (path) => {
     const r = await fetch(new URL(path, base));
@@ -122,6 +136,7 @@ async function init() {
 for (const b of document.querySelectorAll('#modes button')) b.onclick = () => setMode(b.dataset.mode);
 $('trial').onchange = () => startReplay().catch((e) => fail(e.message));
 $('methodA').onchange = $('methodB').onchange = $('format').onchange = () => startReplay($('trial').value).catch((e) => fail(e.message));
+$('csvFile').onchange = () => $('csvFile').files[0] && startRecorded($('csvFile').files[0]).catch((e) => fail(e.message));
 $('follow').onchange = () => { replay.follow = $('follow').checked; };
 $('exag').oninput = () => {
   $('exagOut').textContent = (+$('exag').value).toFixed(2);

@@ -67,7 +67,7 @@ export class Replay {
       return lane.session.ready;
     });
     this._setLane(2, 'truth');
-    if (this.trial) this.lanes[2].body.setSkeleton(this.trial.truth.names, this.trial.truth.parents);
+    if (this.trial?.truth) this.lanes[2].body.setSkeleton(this.trial.truth.names, this.trial.truth.parents);
     this.clockBase = this.lastSentT + RESTART_GAP;
     await Promise.all(opened);
   }
@@ -75,21 +75,28 @@ export class Replay {
   async load(name, rate = 90) {
     const res = await fetch(new URL(`api/trial?name=${encodeURIComponent(name)}&rate=${rate}`, this.base));
     if (!res.ok) throw new Error(`GET /api/trial ${name}: HTTP ${res.status}`);
-    const trial = await res.json();
+    return this.setTrial(await res.json());
+  }
+
+  // A trial from /api/trial, or a recorded session (trackercsv.js: truth null).
+  setTrial(trial) {
     this.trial = trial;
-    this.lanes[2].body?.setSkeleton(trial.truth.names, trial.truth.parents);
+    const truth = this.lanes[2];
+    if (trial.truth) truth.body?.setSkeleton(trial.truth.names, trial.truth.parents);
+    else if (truth.body) truth.body.group.visible = false;
+    if (truth.label) truth.label.title.textContent = trial.truth ? LANE_TITLES.truth : 'Recorded input';
     this._frameOf(trial);
     this.seek(0);
     return trial;
   }
 
   _frameOf(trial) {
-    const f = trial.frames, first = f[0].head.p, last = f[f.length - 1].head.p;
+    const f = trial.frames, head = (k) => f[k].head || f[k]._heldHead, first = head(0).p, last = head(f.length - 1).p;
     const dx = last[0] - first[0], dz = last[2] - first[2];
     let heading;
     if (Math.hypot(dx, dz) > 1) heading = Math.atan2(dx, dz);
     else {
-      const [w, x, y, z] = f[0].head.q; // forward = q * (0,0,1)
+      const [w, x, y, z] = head(0).q || [1, 0, 0, 0]; // forward = q * (0,0,1)
       heading = Math.atan2(2 * (x * z + w * y), 1 - 2 * (x * x + y * y));
     }
     this.yaw = -heading;
@@ -153,7 +160,8 @@ export class Replay {
 
   _anchor(i) {
     if (!this.follow) return this.fixedAnchor;
-    const p = this.trial.frames[i].head.p;
+    const f = this.trial.frames[i];
+    const p = (f.head || f._heldHead).p;
     return new THREE.Vector3(p[0], 0, p[2]);
   }
 
@@ -171,7 +179,7 @@ export class Replay {
     const q = new THREE.Quaternion().setFromAxisAngle(new THREE.Vector3(0, 1, 0), this.yaw);
     const out = {};
     for (const d of ['head', 'left', 'right']) {
-      if (!frame[d]) continue;
+      if (!frame[d] || !frame[d].q) continue;
       const r = new THREE.Quaternion(frame[d].q[1], frame[d].q[2], frame[d].q[3], frame[d].q[0]).premultiply(q);
       out[d] = { p: this._display(frame[d].p, anchor, { offset: new THREE.Vector3() }), q: [r.w, r.x, r.y, r.z] };
     }
@@ -180,13 +188,14 @@ export class Replay {
 
   _showTruth(i) {
     const tr = this.trial, lane = this.lanes[2];
-    if (!tr || !lane.body || !lane.body.joints.length) return;
+    if (!tr) return;
     const anchor = this._anchor(i);
+    this.stage.setGridOffset(anchor.x, anchor.z, this.yaw);
+    this._devices(tr.frames[i], anchor, lane);
+    if (!tr.truth || !lane.body || !lane.body.joints.length) return;
     const flat = tr.truth.positions[i], n = flat.length / 3, pts = [];
     for (let j = 0; j < n; ++j) pts.push(this._display([flat[3 * j], flat[3 * j + 1], flat[3 * j + 2]], anchor, lane));
     lane.body.setPositions(pts);
-    this._devices(tr.frames[i], anchor, lane);
-    this.stage.setGridOffset(anchor.x, anchor.z, this.yaw);
   }
 
   _pose(lane, pose, frame) {
@@ -206,6 +215,6 @@ export class Replay {
       lane.label.stats.textContent = `${lane.method} · hands ${err} · ${rtt}`;
     }
     const tr = this.trial;
-    if (tr) this.lanes[2].label.stats.textContent = `${tr.name} · input ${tr.fps} Hz`;
+    if (tr) this.lanes[2].label.stats.textContent = `${tr.name.split('/').slice(-2).join('/')} · input ${tr.fps} Hz`;
   }
 }

@@ -137,6 +137,29 @@ test('replay in the binary format; exaggeration and class options are accepted',
   assert.ok(ik.medianHandError < 0.02, `ik (binary): median hand error ${ik.medianHandError} m`);
 });
 
+test('replay of a recorded session (tracker CSV, as legwork serve --record writes)', { timeout: TIMEOUT * 2 }, async () => {
+  const trial = await pickTrial();
+  const tr = await (await fetch(`${url}/api/trial?name=${encodeURIComponent(trial)}&rate=90`)).json();
+  const pts = [['head', 'head'], ['left', 'left_hand'], ['right', 'right_hand']];
+  const header = ['time', ...pts.flatMap(([, n]) => ['x', 'y', 'z', 'qw', 'qx', 'qy', 'qz'].map((c) => `${n}_${c}`))];
+  const rows = tr.frames.slice(0, 180).map((f, i) => [100 + f.t, ...pts.flatMap(([d]) =>
+    i === 20 && d === 'right' ? Array(7).fill('') : [...f[d].p, ...f[d].q])].join(','));
+  const csv = [header.join(','), ...rows].join('\n') + '\n';
+  writeFileSync(join(out, 'recorded-session.csv'), csv);
+  await page.goto(`${url}/?a=accent&b=ik&trial=${encodeURIComponent(trial)}`);
+  await page.waitForFunction(() => window.__legwork.ready || window.__legwork.error, null, { timeout: TIMEOUT });
+  await page.setInputFiles('#csvFile', { name: 'recorded-session.csv', mimeType: 'text/csv', buffer: Buffer.from(csv) });
+  await page.waitForFunction(() => window.__legwork.trial === 'recorded-session.csv' && window.__legwork.sessions.ik?.posesReceived >= 30,
+    null, { timeout: TIMEOUT, polling: 250 });
+  const st = await legwork();
+  assert.equal(st.error, '');
+  assert.equal(st.frames, 180);
+  const { ik } = st.sessions;
+  console.log(`# recorded session: ik ${ik.posesReceived} poses, median hand error ${(ik.medianHandError * 1000).toFixed(3)} mm`);
+  assert.equal(ik.errors, 0, ik.lastError);
+  assert.ok(ik.medianHandError < 0.02, `ik: median hand error ${ik.medianHandError} m`);
+});
+
 test('WebXR emulated input: frames convert to legwork axes and produce poses', { timeout: TIMEOUT }, async () => {
   await page.evaluate(() => window.__legworkFakeXR.start((t) => {
     const s = 0.04 * Math.sin(t * 3);
