@@ -72,10 +72,11 @@ function sessionOptions() {
   return o;
 }
 
-async function startReplay(name = $('trial').value) {
+// (Re)connects the two lane sessions, then plays `getTrial()`'s frames.
+async function play(getTrial) {
   replay.options = sessionOptions();
   await replay.connect([$('methodA').value, $('methodB').value]);
-  const tr = await replay.load(name, +(params.get('rate') || 90));
+  const tr = await getTrial();
   state.trial = tr.name;
   state.frames = tr.frames.length;
   $('scrub').max = tr.frames.length - 1;
@@ -84,18 +85,11 @@ async function startReplay(name = $('trial').value) {
   replay.start();
 }
 
+// A trial from the server's --trials folder, with its ground truth.
+const startReplay = (name = $('trial').value) => play(() => replay.load(name, +(params.get('rate') || 90)));
+
 // A recorded session (`legwork serve --record`): its head and hands replayed like a trial, no ground truth.
-async function startRecorded(file) {
-  const tr = parseTrackerCSV(await file.text(), file.name);
-  replay.options = sessionOptions();
-  await replay.connect([$('methodA').value, $('methodB').value]);
-  replay.setTrial(tr);
-  state.trial = tr.name;
-  state.frames = tr.frames.length;
-  $('scrub').max = tr.frames.length - 1;
-  replay.setPlaying(true);
-  replay.start();
-}
+const startRecorded = (file) => play(async () => replay.setTrial(parseTrackerCSV(await file.text(), file.name)));
 
 async function init() {
   const get = async (path) => {
