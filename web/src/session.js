@@ -38,6 +38,8 @@ export class LiveSession {
 
   send(frame) {
     if (!this.open) return false;
+    // Whole microseconds: JSON poses echo t with 6 decimals, and the echo finds the frame again.
+    frame = { ...frame, t: Math.round(frame.t * 1e6) / 1e6 };
     this.sent.set(frame.t, { sentAt: performance.now(), frame });
     if (this.sent.size > 512) this.sent.delete(this.sent.keys().next().value);
     this.ws.send(this.opts.format === 'binary' ? frameBinary(frame) : frameJSON(frame));
@@ -84,7 +86,7 @@ export class LiveSession {
     s.posesReceived++;
     s.statusCounts[m.status] = (s.statusCounts[m.status] || 0) + 1;
     if (m.server_us !== undefined) s.serverUs = m.server_us;
-    const sent = this.sent.get(m.t);
+    const sent = this.sent.get(m.t) ?? this.sent.get(Math.round(m.t * 1e6) / 1e6);
     if (sent) {
       const rtt = now - sent.sentAt;
       s.rttMs = rtt;
@@ -101,7 +103,11 @@ export class LiveSession {
 
   _errors(m, frame) {
     // How far the input hands moved over the answered frames: "the hands follow" means something only if they moved.
-    if (this._prevHands) for (const side of ['left', 'right']) if (frame[side] && this._prevHands[side]) this.stats.inputHandTravel += distance(frame[side].p, this._prevHands[side].p);
+    // (steps over 25 cm are loops, seeks or skipped frames, not motion)
+    if (this._prevHands) for (const side of ['left', 'right']) {
+      const step = frame[side] && this._prevHands[side] ? distance(frame[side].p, this._prevHands[side].p) : 0;
+      if (step < 0.25) this.stats.inputHandTravel += step;
+    }
     this._prevHands = { left: frame.left, right: frame.right };
     const errs = [];
     ['left', 'right'].forEach((side, k) => {

@@ -80,6 +80,18 @@ test('replay: poses arrive and the IK avatar\'s hands follow the input', { timeo
   assert.ok(accent.medianHandError < 0.3, `accent: median hand error ${accent.medianHandError} m (want < 30 cm)`);
 });
 
+test('replay: scrubbing restarts the stream and poses keep matching their frames', { timeout: TIMEOUT }, async () => {
+  const before = (await legwork()).sessions.ik;
+  await page.evaluate(() => window.__legworkControl.seek(Math.floor(window.__legwork.frames / 2)));
+  await page.waitForFunction((n) => window.__legwork.sessions.ik.posesReceived >= n + 20, before.posesReceived, { timeout: TIMEOUT, polling: 250 });
+  const ik = (await legwork()).sessions.ik;
+  console.log(`# after the seek: statuses ${JSON.stringify(ik.statusCounts)}, median hand error ${(ik.medianHandError * 1000).toFixed(3)} mm`);
+  // the time jump (> 5 s forward) restarts the server's clock for this avatar
+  assert.ok((ik.statusCounts.restarted || 0) > (before.statusCounts.restarted || 0), `no restarted pose after the seek: ${JSON.stringify(ik.statusCounts)}`);
+  assert.equal(ik.errors, 0, ik.lastError);
+  assert.ok(ik.medianHandError < 0.02, `ik after the seek: median hand error ${ik.medianHandError} m`);
+});
+
 test('replay: the screenshot shows the three bodies (not blank)', { timeout: TIMEOUT }, async () => {
   const file = join(out, 'replay.png');
   await page.screenshot({ path: file });
