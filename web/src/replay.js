@@ -60,10 +60,11 @@ export class Replay {
     const opened = methods.map((method, i) => {
       this._setLane(i, method);
       const lane = this.lanes[i];
-      lane.session = new LiveSession(this.base, { method, ...this.options }, {
+      const session = new LiveSession(this.base, { method, ...this.options }, {
         onWelcome: (w) => lane.body.setSkeleton(w.skeleton.names, w.skeleton.parents),
-        onPose: (pose, frame) => this._pose(lane, pose, frame),
+        onPose: (pose, frame) => lane.session === session && this._pose(lane, pose, frame),
       });
+      lane.session = session;
       return lane.session.ready;
     });
     this._setLane(2, 'truth');
@@ -150,7 +151,7 @@ export class Replay {
 
   _send(i) {
     const src = this.trial.frames[i];
-    const frame = { ...src, t: this.clockBase + src.t, _i: i };
+    const frame = { ...src, t: this.clockBase + src.t, _i: i, _trial: this.trial };
     let sent = false;
     for (const lane of this.lanes) if (lane.session && lane.session.send(frame)) sent = true;
     if (sent) this.lastSentT = frame.t;
@@ -199,7 +200,8 @@ export class Replay {
   }
 
   _pose(lane, pose, frame) {
-    if (!frame || pose.status === 'rejected' || !pose.positions || !lane.body.joints.length) return;
+    // late answers to a previous trial's frames (the lane has reconnected since) are dropped
+    if (!frame || frame._trial !== this.trial || pose.status === 'rejected' || !pose.positions || !lane.body.joints.length) return;
     const anchor = this._anchor(frame._i);
     lane.body.setPositions(pose.positions.map((p) => this._display(p, anchor, lane)));
     this._devices(this.trial.frames[frame._i], anchor, lane);
