@@ -111,11 +111,18 @@ export function startMock({ port = 0, host = '127.0.0.1', web = join(here, '..',
   const wss = new WebSocketServer({ server, path: '/ws', maxPayload: 64 * 1024 });
   let sessions = 0;
   wss.on('connection', (ws) => {
-    let opts = null, seq = 0;
+    let opts = null, seq = 0, last = null;
     const id = `m${++sessions}`;
     const error = (code, message) => ws.send(JSON.stringify({ type: 'error', code, message }));
+    // FrameClock's rules, minimally: time must increase; a jump over 5 s forward restarts.
     const answer = (frame) => {
+      let status = null;
+      if (last !== null && !(frame.t > last)) status = 'rejected';
+      else if (last !== null && frame.t - last > 5) status = 'restarted';
+      if (status !== 'rejected') last = frame.t;
       const pose = stickPose(frame, opts, ++seq);
+      if (status) pose.status = status;
+      if (status === 'rejected') pose.positions = pose.rotations = [];
       ws.send(opts.format === 'binary' ? Buffer.from(encodePoseBinary(pose)) : JSON.stringify(pose));
     };
     ws.on('message', (data, isBinary) => {
