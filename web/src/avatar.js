@@ -6,6 +6,7 @@ import * as THREE from 'three';
 import { material } from './materials.js';
 
 const BONE_RADIUS = [
+  [/hipjoint/, 0.06],
   [/spine|chest|hip|pelvis|torso|abdomen|lowerback/, 0.085],
   [/neck/, 0.045],
   [/upleg|thigh|upperleg/, 0.07],

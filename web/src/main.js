@@ -121,7 +121,7 @@ async function init() {
   const mode = params.get('mode') || 'replay';
   setMode(mode);
   if (mode === 'replay' && first) await startReplay(first);
-  if (params.get('glb')) await glb.loadURL(params.get('glb'));
+  if (params.get('glb')) showGLB(await glb.loadURL(params.get('glb')));
   if (mode === 'xr' && params.has('fakexr')) await mirror.startFake($('methodXR').value, sessionOptions());
   state.ready = true;
 }
