@@ -155,8 +155,8 @@ export class Replay {
     let sent = false;
     for (const lane of this.lanes) if (lane.session && lane.session.send(frame)) sent = true;
     if (sent) this.lastSentT = frame.t;
+    else this._showTruth(i); // no session answers: the truth alone keeps time
     this.shown = i;
-    this._showTruth(i);
   }
 
   _anchor(i) {
@@ -205,6 +205,8 @@ export class Replay {
     const anchor = this._anchor(frame._i);
     lane.body.setPositions(pose.positions.map((p) => this._display(p, anchor, lane)));
     this._devices(this.trial.frames[frame._i], anchor, lane);
+    // the truth shows the frame the middle lane just answered, so all three bodies are in step
+    if (lane === this.lanes[1] || !this.lanes[1].session?.open) this._showTruth(frame._i);
   }
 
   updateLabels() {
