@@ -19,7 +19,6 @@ PACKAGES=(
   libassimp-dev                         # benchmark baseline: assimp's BVH importer
   clang libclang-rt-14-dev              # libFuzzer target for the BVH reader
   ccache                                # compiler cache: rebuilds (CI on the same machine, sanitizer builds) reuse objects
-  nodejs npm                            # the browser viewer (web/): bundling with esbuild, its tests
   chromium                              # headless browser for the viewer's end-to-end test (driven by playwright-core)
 )
 
@@ -56,6 +55,14 @@ echo "setup: built legwork in $BUILD/ (CLI: $BUILD/apps/legwork/legwork)" >&2
 #   ws              - WebSocket server of the test's mock of `legwork serve`
 # LEGWORK_SKIP_WEB=1 skips it (C++-only machines).
 if [ "${LEGWORK_SKIP_WEB:-0}" != 1 ]; then
+  # node + npm run the bundler and the tests; Debian's only when none is installed
+  # (a NodeSource nodejs already ships npm and conflicts with Debian's npm package).
+  if ! command -v npm >/dev/null 2>&1; then
+    echo "setup: installing nodejs npm" >&2
+    SUDO=""
+    if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+  fi
   ( cd web && npm ci --no-audit --no-fund --loglevel=error && npm run build --silent )
   echo "setup: built the viewer in web/dist/ (test: cd web && npm test)" >&2
 fi
