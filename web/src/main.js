@@ -186,6 +186,7 @@ function readout() {
     add('round trip', `${fmt(st.rttAvgMs, 2, ' ms')} (server ${fmt(st.serverUs, 0, ' µs')})`);
     add('hand error', st.lastHandError < 0.01 ? fmt(st.lastHandError * 1000, 2, ' mm') : fmt(st.lastHandError * 100, 1, ' cm'));
     if (st.errors) add('errors', `${st.errors} ${st.lastError}`);
+    for (const w of st.warnings || []) add('warning', w);
   }
   $('readout').innerHTML = rows.join('');
 }

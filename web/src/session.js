@@ -10,6 +10,20 @@ export function wsURL(base) {
   return u.toString();
 }
 
+// The skeleton of the joints each pose carries (welcome.joints: all, or the subset the hello
+// asked for, in pose order); a joint's parent is its nearest ancestor that is in the subset.
+export function outputSkeleton(welcome) {
+  const { names, parents } = welcome.skeleton;
+  const joints = welcome.joints;
+  if (!joints || (joints.length === names.length && joints.every((n, i) => n === names[i]))) return welcome.skeleton;
+  const index = joints.map((n) => names.indexOf(n));
+  const out = index.map((j) => {
+    for (let p = parents[j]; p >= 0; p = parents[p]) if (index.includes(p)) return index.indexOf(p);
+    return -1;
+  });
+  return { names: joints, parents: out };
+}
+
 export class LiveSession {
   // opts: hello options (method, classes, exaggeration, user_height, format, ...)
   constructor(base, opts, { onPose, onError, onWelcome } = {}) {
@@ -63,13 +77,14 @@ export class LiveSession {
       if (!m) return;
     }
     if (m.type === 'welcome') {
-      this.skeleton = m.skeleton;
+      this.skeleton = outputSkeleton(m);
+      this.stats.warnings = m.warnings || [];
       this.hands = [findJoint(m.skeleton.names, 'left_hand'), findJoint(m.skeleton.names, 'right_hand')];
       this.headJoint = findJoint(m.skeleton.names, 'head');
       this.stats.state = 'open';
       this.stats.session = m.session;
       this.stats.maxRateHz = m.max_rate_hz;
-      this.onWelcome(m);
+      this.onWelcome({ ...m, skeleton: this.skeleton });
       this._ready(m);
     } else if (m.type === 'pose') {
       this._pose(m);

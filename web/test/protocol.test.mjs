@@ -2,6 +2,7 @@
 // docs/protocol.md: 156-byte "LWF1" frames, "LWP1" poses, joint lookup by name.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { outputSkeleton } from '../src/session.js';
 import { frameBinary, decodeFrameBinary, encodePoseBinary, decodePoseBinary, frameJSON, helloMessage, findJoint } from '../src/protocol.js';
 
 const frame = { t: 12.345678901, head: { p: [0.1, 1.6, -0.2], q: [1, 0, 0, 0] }, right: { p: [-0.3, 1.0, 0.25], q: [0.5, 0.5, 0.5, 0.5] }, left_foot: { p: [0.1, 0.08, 0] } };
@@ -52,4 +53,11 @@ test('hand and head joints are found in CMU, Mixamo and Unity names', () => {
   assert.equal(findJoint(['mixamorig:Hips', 'mixamorig:LeftHand'], 'left_hand'), 1);
   assert.equal(findJoint(['hips', 'left_wrist'], 'left_hand'), 1);
   assert.equal(findJoint(['Hips'], 'right_hand'), -1);
+});
+
+test('a joint subset in welcome.joints becomes the skeleton of the poses', () => {
+  const skeleton = { names: ['Hips', 'Spine', 'Neck', 'Head', 'LeftArm', 'LeftHand'], parents: [-1, 0, 1, 2, 1, 4] };
+  assert.equal(outputSkeleton({ skeleton, joints: skeleton.names }), skeleton);
+  assert.equal(outputSkeleton({ skeleton }), skeleton);
+  assert.deepEqual(outputSkeleton({ skeleton, joints: ['Hips', 'Head', 'LeftHand'] }), { names: ['Hips', 'Head', 'LeftHand'], parents: [-1, 0, 0] });
 });
