@@ -213,7 +213,8 @@ function loop(now) {
     const e = mirror.stats.lastHandError;
     mirror.label.stats.textContent = `${mirror.stats.posesReceived} poses · hands ${!Number.isFinite(e) ? '–' : e < 0.01 ? (e * 1000).toFixed(1) + ' mm' : (e * 100).toFixed(1) + ' cm'}`;
   }
-  state.sessions = Object.fromEntries(replay.lanes.filter((l) => l.session).map((l) => [l.method, l.session.stats]));
+  state.sessions = {};
+  for (const l of replay.lanes) if (l.session) state.sessions[l.method in state.sessions ? `${l.method}2` : l.method] = l.session.stats;
   const all = Object.values(state.sessions);
   state.posesReceived = all.reduce((a, s) => a + s.posesReceived, 0);
   state.lastHandError = state.sessions.ik ? state.sessions.ik.lastHandError : NaN;
