@@ -14,15 +14,14 @@ void bind_walkcycle(pb::module_& m) {
       .def_readonly("skeleton", &CycleModel::skeleton)
       .def_readonly("frames_per_cycle", &CycleModel::frames_per_cycle)
       .def_readonly("fps", &CycleModel::fps, "cycle frames per second");
-  m.def(
-      "load_cycle",
-      [](const std::string& walk_path, const std::string& skeleton_bvh) {
-        const WalkFile w = load_walk(walk_path, skeleton_bvh);
-        return build_cycle(w.skeleton, w.keys);
-      },
-      "walk_path"_a, "skeleton_bvh"_a = "",
-      "load_walk + build_cycle: a walk file (data/walks/*.json) and its skeleton (next to it, or skeleton_bvh);\n"
-      "legwork.Error naming the file and field at fault.");
+  pb::class_<WalkKeys>(m, "WalkKeys", "Four key poses and timing of a walk (from a walk file).");
+  pb::class_<WalkFile>(m, "WalkFile", "A walk file's skeleton and key poses.")
+      .def_readonly("skeleton", &WalkFile::skeleton)
+      .def_readonly("keys", &WalkFile::keys);
+  m.def("load_walk", &load_walk, "walk_path"_a, "skeleton_bvh"_a = "",
+        "A walk file (data/walks/*.json) and its skeleton (the BVH next to it, or skeleton_bvh); legwork.Error\n"
+        "naming the file and field at fault.");
+  m.def("build_cycle", &build_cycle, "skeleton"_a, "keys"_a, "The mirrored walk cycle of four key poses.");
   pb::enum_<Pivot>(m, "Pivot").value("Heel", Pivot::Heel).value("Ball", Pivot::Ball);
   pb::class_<Settings>(m, "Settings", "Walker options (legwork::walkcycle::Settings).")
       .def(pb::init<>())

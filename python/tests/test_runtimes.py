@@ -94,7 +94,8 @@ def test_wip_walks_while_the_feet_step_and_stands_when_they_stop():
 
 
 def test_walker_walks_forward_and_turns_to_the_head():
-    cycle = walkcycle.load_cycle(str(SOURCE / "data/walks/normal.json"))
+    walk = walkcycle.load_walk(str(SOURCE / "data/walks/normal.json"))
+    cycle = walkcycle.build_cycle(walk.skeleton, walk.keys)
     settings = walkcycle.Settings()
     model = walkcycle.make_model(cycle, settings)
     state, pose, info = walkcycle.State(model), core.Pose(model.skeleton()), walkcycle.Info()
@@ -112,7 +113,7 @@ def test_walker_walks_forward_and_turns_to_the_head():
     steps = np.abs(np.diff(headings))
     assert steps.max() <= settings.max_turn_per_step + 1e-9
     with pytest.raises(legwork.Error, match="missing.json"):
-        walkcycle.load_cycle(str(SOURCE / "data/walks/missing.json"))
+        walkcycle.load_walk(str(SOURCE / "data/walks/missing.json"))
 
 
 def test_step_f1_equals_cli_wip_eval(cli, tmp_path):
