@@ -560,4 +560,39 @@ std::string write_comparison_video(const EvalResult& r, const std::string& dir, 
   return path;
 }
 
+std::string report_summary(const nlohmann::json& r) {
+  auto val = [](const nlohmann::json& m, const char* k) {
+    return m.contains(k) && m[k].is_number() ? m[k].get<double>() : NAN;
+  };
+  std::string out;
+  char buf[1024];
+  for (const char* p : {"cross_subject", "cross_trial", "cross_dataset"}) {
+    if (!r.contains(p)) continue;
+    std::snprintf(buf, sizeof buf, "%s (%d folds):\n", p, r[p]["folds"].get<int>());
+    out += buf;
+    for (const char* m : {"accent", "ik"}) {
+      if (!r[p].contains(m)) continue;
+      const auto& x = r[p][m];
+      std::snprintf(buf, sizeof buf,
+                    "  %-6s full %5.2f cm (SD %.2f)  upper %5.2f  lower %5.2f  hands %.2f / %.2f cm  "
+                    "MPJVE %.1f cm/s  jitter %.2f  hand r %.3f  %.0f frames/s\n",
+                    m, val(x, "full_body_cm"), val(x, "full_body_cm_sd"), val(x, "upper_body_cm"), val(x, "lower_body_cm"),
+                    val(x, "left_hand_cm"), val(x, "right_hand_cm"), val(x, "mpjve_cm_s"), val(x, "jitter"),
+                    val(x, "hand_correlation"), val(x, "frames_per_second"));
+      out += buf;
+    }
+    if (r[p].contains("ablation"))
+      for (const auto& [k, x] : r[p]["ablation"].items()) {
+        std::snprintf(buf, sizeof buf, "  ablation %-16s full %5.2f cm  lower %5.2f cm\n", k.c_str(), val(x, "full_body_cm"),
+                      val(x, "lower_body_cm"));
+        out += buf;
+      }
+  }
+  for (const auto& t : r["targets"]) {
+    std::snprintf(buf, sizeof buf, "target %-58s ", t["target"].get<std::string>().c_str());
+    out += std::string(buf) + (t["met"].is_null() ? "n/a" : (t["met"].get<bool>() ? "met" : "NOT met")) + "\n";
+  }
+  return out;
+}
+
 }  // namespace legwork::eval
