@@ -440,6 +440,92 @@ std::string report_markdown(const json& r) {
   return md.str();
 }
 
+namespace {
+
+// Figure 4 A: per body part, this run's methods beside the document's figures.
+render::BarChart body_parts_chart(const json& r) {
+  render::BarChart c;
+  c.title = "Mean joint error per body part (cm)";
+  c.y_label = "cm";
+  const std::vector<std::pair<std::string, std::string>> parts{{"left_hand_cm", "left hand"},
+                                                               {"right_hand_cm", "right hand"},
+                                                               {"upper_body_cm", "upper body"},
+                                                               {"lower_body_cm", "lower body"},
+                                                               {"full_body_cm", "full body"}};
+  for (const auto& [k, label] : parts) c.groups.push_back(label);
+  for (const auto& p : kProtocols)
+    for (const char* m : {"accent", "ik"}) {
+      if (!r.contains(p) || !r[p].contains(m)) continue;
+      render::BarSeries s;
+      s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
+      for (const auto& [k, label] : parts) s.values.push_back(value_of(r, p, m, k));
+      c.series.push_back(s);
+    }
+  for (const auto& [p, m, name] : {std::tuple{"cross_subject", "accent", "document accent cross_subject"},
+                                   std::tuple{"cross_trial", "accent", "document accent cross_trial"},
+                                   std::tuple{"cross_subject", "ik", "document IK"}}) {
+    render::BarSeries s;
+    s.name = name;
+    const json& pp = r["paper"][p][m];
+    for (const auto& [k, label] : parts) s.values.push_back(pp.contains(k) ? pp[k].get<double>() : kNaN);
+    c.series.push_back(s);
+  }
+  c.width = 1000;
+  c.value_decimals = 1;
+  return c;
+}
+
+// Full-body error per class.
+render::BarChart classes_chart(const json& r) {
+  render::BarChart c;
+  c.title = "Full-body error per class (cm)";
+  c.y_label = "cm";
+  std::set<std::string> classes;
+  for (const auto& p : kProtocols)
+    for (const char* m : {"accent", "ik"})
+      if (r.contains(p) && r[p].contains(m))
+        for (const auto& [cls, v] : r[p][m]["classes"].items()) classes.insert(cls);
+  c.groups.assign(classes.begin(), classes.end());
+  for (const auto& p : kProtocols)
+    for (const char* m : {"accent", "ik"}) {
+      if (!r.contains(p) || !r[p].contains(m)) continue;
+      render::BarSeries s;
+      s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
+      for (const auto& cls : c.groups) {
+        const json& cj = r[p][m]["classes"];
+        s.values.push_back(cj.contains(cls) ? get(cj[cls], "full_body_cm") : kNaN);
+      }
+      c.series.push_back(s);
+    }
+  c.width = 1000;
+  c.value_decimals = 1;
+  return c;
+}
+
+// Cross-subject ablation, this run beside the document.
+render::BarChart ablation_chart(const json& r) {
+  render::BarChart c;
+  c.title = "Ablation, cross-subject full-body error (cm)";
+  c.y_label = "cm";
+  const json& ab = r["cross_subject"]["ablation"];
+  std::vector<std::string> order{"nn", "nn_align", "paper", "spring", "spring_k", "accent"};
+  for (const auto& [k, v] : ab.items())
+    if (std::find(order.begin(), order.end(), k) == order.end()) order.push_back(k);
+  render::BarSeries ours{"this run", {}}, doc{"document", {}};
+  for (const auto& k : order) {
+    if (!ab.contains(k)) continue;
+    c.groups.push_back(k);
+    ours.values.push_back(get(ab[k], "full_body_cm"));
+    doc.values.push_back(r["paper"]["ablation"].contains(k) ? r["paper"]["ablation"][k].get<double>() : kNaN);
+  }
+  c.series = {ours, doc};
+  c.width = std::max(800, 105 * static_cast<int>(c.groups.size()));
+  c.value_decimals = 1;
+  return c;
+}
+
+}  // namespace
+
 std::vector<std::string> write_report(const EvalResult& res, const std::string& dir) {
   namespace fs = std::filesystem;
   fs::create_directories(dir);
@@ -453,7 +539,6 @@ std::vector<std::string> write_report(const EvalResult& res, const std::string& 
   };
   write_text("report.json", r.dump(2) + "\n");
   write_text("report.md", report_markdown(r));
-
   auto both = [&](const render::BarChart& c, const std::string& stem) {
     for (const char* ext : {".png", ".svg"}) {
       const std::string path = (fs::path(dir) / (stem + ext)).string();
@@ -461,85 +546,9 @@ std::vector<std::string> write_report(const EvalResult& res, const std::string& 
       written.push_back(path);
     }
   };
-  // Figure 4 A: per body part.
-  {
-    render::BarChart c;
-    c.title = "Mean joint error per body part (cm)";
-    c.y_label = "cm";
-    const std::vector<std::pair<std::string, std::string>> parts{{"left_hand_cm", "left hand"},
-                                                                 {"right_hand_cm", "right hand"},
-                                                                 {"upper_body_cm", "upper body"},
-                                                                 {"lower_body_cm", "lower body"},
-                                                                 {"full_body_cm", "full body"}};
-    for (const auto& [k, label] : parts) c.groups.push_back(label);
-    for (const auto& p : kProtocols)
-      for (const char* m : {"accent", "ik"}) {
-        if (!r.contains(p) || !r[p].contains(m)) continue;
-        render::BarSeries s;
-        s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
-        for (const auto& [k, label] : parts) s.values.push_back(value_of(r, p, m, k));
-        c.series.push_back(s);
-      }
-    for (const auto& [p, m, name] : {std::tuple{"cross_subject", "accent", "document accent cross_subject"},
-                                     std::tuple{"cross_trial", "accent", "document accent cross_trial"},
-                                     std::tuple{"cross_subject", "ik", "document IK"}}) {
-      render::BarSeries s;
-      s.name = name;
-      const json& pp = r["paper"][p][m];
-      for (const auto& [k, label] : parts) s.values.push_back(pp.contains(k) ? pp[k].get<double>() : kNaN);
-      c.series.push_back(s);
-    }
-    c.width = 1000;
-    c.value_decimals = 1;
-    both(c, "body_parts");
-  }
-  // Per class.
-  {
-    render::BarChart c;
-    c.title = "Full-body error per class (cm)";
-    c.y_label = "cm";
-    std::set<std::string> classes;
-    for (const auto& p : kProtocols)
-      for (const char* m : {"accent", "ik"})
-        if (r.contains(p) && r[p].contains(m))
-          for (const auto& [cls, v] : r[p][m]["classes"].items()) classes.insert(cls);
-    c.groups.assign(classes.begin(), classes.end());
-    for (const auto& p : kProtocols)
-      for (const char* m : {"accent", "ik"}) {
-        if (!r.contains(p) || !r[p].contains(m)) continue;
-        render::BarSeries s;
-        s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
-        for (const auto& cls : c.groups) {
-          const json& cj = r[p][m]["classes"];
-          s.values.push_back(cj.contains(cls) ? get(cj[cls], "full_body_cm") : kNaN);
-        }
-        c.series.push_back(s);
-      }
-    c.width = 1000;
-    c.value_decimals = 1;
-    if (!c.groups.empty()) both(c, "classes");
-  }
-  // Ablation.
-  if (r.contains("cross_subject") && r["cross_subject"].contains("ablation")) {
-    render::BarChart c;
-    c.title = "Ablation, cross-subject full-body error (cm)";
-    c.y_label = "cm";
-    const json& ab = r["cross_subject"]["ablation"];
-    std::vector<std::string> order{"nn", "nn_align", "paper", "spring", "spring_k", "accent"};
-    for (const auto& [k, v] : ab.items())
-      if (std::find(order.begin(), order.end(), k) == order.end()) order.push_back(k);
-    render::BarSeries ours{"this run", {}}, doc{"document", {}};
-    for (const auto& k : order) {
-      if (!ab.contains(k)) continue;
-      c.groups.push_back(k);
-      ours.values.push_back(get(ab[k], "full_body_cm"));
-      doc.values.push_back(r["paper"]["ablation"].contains(k) ? r["paper"]["ablation"][k].get<double>() : kNaN);
-    }
-    c.series = {ours, doc};
-    c.width = std::max(800, 105 * static_cast<int>(c.groups.size()));
-    c.value_decimals = 1;
-    both(c, "ablation");
-  }
+  both(body_parts_chart(r), "body_parts");
+  if (const auto c = classes_chart(r); !c.groups.empty()) both(c, "classes");
+  if (r.contains("cross_subject") && r["cross_subject"].contains("ablation")) both(ablation_chart(r), "ablation");
   return written;
 }
 
