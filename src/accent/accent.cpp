@@ -12,10 +12,6 @@
 namespace legwork::accent {
 namespace {
 
-bool finite(const Vec3& v) { return all_finite(v); }
-bool finite(const Quat& q) { return all_finite(q) && q.norm() > 1e-6; }
-
-
 // Swing-twist clamp of a local rotation about the bone axis.
 Quat clamp_rotation(const Quat& q, const Vec3& axis, double max_swing, double max_twist) {
   const Vec3 v(q.x(), q.y(), q.z());
@@ -475,8 +471,8 @@ bool take_devices(const Model& model, const TrackerFrame& in, State& st) {
 }
 
 bool pose_finite(ConstPoseRef p) {
-  bool ok = finite(p.translations[0]);
-  for (const auto& q : p.rotations) ok = ok && finite(q);
+  bool ok = all_finite(p.translations[0]);
+  for (const auto& q : p.rotations) ok = ok && all_finite(q) && q.norm() > 1e-6;
   return ok;
 }
 

@@ -1,4 +1,5 @@
 #include <legwork/eval/report.hpp>
+#include <legwork/core/stats.hpp>
 
 #include <legwork/core/interpolate.hpp>
 #include <legwork/render/plot.hpp>
@@ -34,7 +35,7 @@ json summarize_folds(const std::vector<const MethodFold*>& folds) {
   for (const auto& k : metric_keys()) {
     std::vector<double> v;
     for (const MethodFold* f : folds) v.push_back(metric_value(f->metrics, k.key));
-    const Stats s = summarize(v);
+    const MeanSd s = mean_sd(v);
     out[k.key] = num(s.mean);
     out[std::string(k.key) + "_sd"] = num(s.sd);
   }
@@ -72,7 +73,7 @@ json summarize_method(const ProtocolResult& p, const std::string& method) {
   for (const auto& k : metric_keys()) {
     std::vector<double> v;
     for (const auto& [cls, c] : classes.items()) v.push_back(get(c, k.key));
-    macro[k.key] = num(summarize(v).mean);
+    macro[k.key] = num(mean_sd(v).mean);
   }
   out["class_mean"] = macro;
   if (!failures.empty()) out["failed_folds"] = failures;

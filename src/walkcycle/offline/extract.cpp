@@ -1,4 +1,6 @@
 #include <legwork/core/series.hpp>
+#include <legwork/core/stats.hpp>
+#include <legwork/core/rotation.hpp>
 #include <legwork/walkcycle/offline/extract.hpp>
 
 #include <legwork/core/fk.hpp>
@@ -14,15 +16,6 @@ namespace legwork::walkcycle {
 
 namespace {
 
-Quat yaw(double theta) { return Quat(Eigen::AngleAxisd(theta, Vec3::UnitY())); }
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const auto i = static_cast<std::size_t>(std::clamp(p, 0.0, 1.0) * static_cast<double>(v.size() - 1));
-  return v[i];
-}
-
 
 // Pose with the heading `psi` taken out of the root and the root put at
 // (0, y, 0); mirrored (left <-> right) if `mirror`.
@@ -31,7 +24,7 @@ Pose normalised_pose(const Motion& clip, int f, double psi, bool mirror) {
   const auto src = clip.frame(f);
   std::copy(src.rotations.begin(), src.rotations.end(), p.rotations.begin());
   std::copy(src.translations.begin(), src.translations.end(), p.translations.begin());
-  p.rotations[0] = yaw(-psi) * p.rotations[0];
+  p.rotations[0] = yaw_rotation(-psi) * p.rotations[0];
   p.translations[0] = Vec3(0, p.translations[0].y(), 0);
   if (!mirror) return p;
   Pose q(clip.skeleton);
