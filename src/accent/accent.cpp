@@ -266,7 +266,7 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
     const auto root = db.pose_rotations(static_cast<int>(db.source(win).pose));
     st.pose_rot[hu][iu] = root.data();
     Quat q0(root[0], root[1], root[2], root[3]);
-    if (model.settings().align) q0 = Quat(Eigen::AngleAxisd(align_yaw(query_xz, db.align(win)), Vec3::UnitY())) * q0;
+    if (model.settings().align) q0 = yaw_rotation(align_yaw(query_xz, db.align(win))) * q0;
     st.root_aligned[hu][iu] = q0;
     const double d = m[iu].distance;
     st.weight[hu][iu] = 1.0 / (d + 1e-3 * typical);

@@ -321,16 +321,10 @@ json report_json(const EvalResult& r) {
   return out;
 }
 
-std::string report_markdown(const json& r) {
-  std::ostringstream md;
-  const json& paper = r["paper"];
-  const json& meta = r["meta"];
-  md << "# Accentuation evaluation (CoolMoves section 4.1 protocol)\n\n";
-  md << "Data: `" << meta["data"].get<std::string>() << "`, " << meta["trials"] << " trials; run took "
-     << fmt(meta["seconds"].get<double>(), 0) << " s on " << meta["threads"] << " threads.\n\n";
-  md << "Every figure below comes from this run's report.json; the document's published figures are printed "
-        "beside ours (\"doc.\"). Errors in cm, mean (SD across folds).\n\n";
+namespace {
 
+// Per body part (the document's Figure 4 A), over folds and over classes.
+void md_body_parts(std::ostringstream& md, const json& r) {
   // Headline: per protocol and method, body parts.
   md << "## Per body part (document's Figure 4 A)\n\n";
   md << "| protocol | method | left hand | right hand | upper body | lower body | full body | doc. full body | "
@@ -350,6 +344,10 @@ std::string report_markdown(const json& r) {
        << " | " << fmt(get(x, "upper_body_cm")) << " | " << fmt(get(x, "lower_body_cm")) << " | "
        << fmt(get(x, "full_body_cm")) << " |\n";
   });
+}
+
+// Motion quality and speed per protocol and method.
+void md_quality(std::ostringstream& md, const json& r) {
   md << "\n## Motion quality and speed\n\n";
   md << "| protocol | method | MPJVE (cm/s) | jitter (10² m/s³) | jitter of truth | hand corr. (L/R) | doc. hand corr. "
         "| foot skating (cm/frame) | truth skating | frames/s | doc. frames/s |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -362,8 +360,11 @@ std::string report_markdown(const json& r) {
                : (pp.contains("hand_correlation") ? fmt(pp["hand_correlation"].get<double>(), 2) : "–"))
        << " | " << fmt(get(x, "foot_skating_cm"), 2) << " | " << fmt(get(x, "foot_skating_truth_cm"), 2) << " | "
        << fmt(get(x, "frames_per_second"), 0) << " | " << paper_cell(pp, "frames_per_second", 0) << " |\n";
-});
+  });
+}
 
+// Per protocol: per class, and the classes left out.
+void md_per_class(std::ostringstream& md, const json& r) {
   // Per class.
   for (const auto& p : kProtocols) {
     if (!r.contains(p)) continue;
@@ -390,7 +391,12 @@ std::string report_markdown(const json& r) {
       for (const auto& [c, why] : r[p]["skipped_classes"].items()) md << "- " << c << ": " << why.get<std::string>() << "\n";
     }
   }
+}
 
+// The cross-subject ablation beside the document's figures.
+void md_ablation(std::ostringstream& md, const json& r) {
+  const json& paper = r["paper"];
+  const json& meta = r["meta"];
   // Ablation.
   if (r.contains("cross_subject") && r["cross_subject"].contains("ablation")) {
     md << "\n## Ablation (cross-subject, full body cm)\n\n| variant | full body | lower body | hands L/R | MPJVE | "
@@ -410,7 +416,11 @@ std::string report_markdown(const json& r) {
          << " | " << (paper["ablation"].contains(k) ? fmt(paper["ablation"][k].get<double>()) : "–") << " |\n";
     }
   }
+}
 
+// The speed pass, the targets, the IK baseline against the document's, dropped trials.
+void md_speed_and_targets(std::ostringstream& md, const json& r) {
+  const json& meta = r["meta"];
   if (meta.contains("speed") && meta["speed"]["frames"].get<int>() > 0) {
     const json& sp = meta["speed"];
     md << "\n## Speed (measured in this run)\n\nSingle-threaded pass after the folds on held-out trial "
@@ -437,6 +447,24 @@ std::string report_markdown(const json& r) {
     for (const auto& [t, why] : meta["dropped_by_correlation_filter"].items())
       md << "- " << t << ": " << why.get<std::string>() << "\n";
   }
+}
+
+}  // namespace
+
+std::string report_markdown(const json& r) {
+  std::ostringstream md;
+  const json& meta = r["meta"];
+  md << "# Accentuation evaluation (CoolMoves section 4.1 protocol)\n\n";
+  md << "Data: `" << meta["data"].get<std::string>() << "`, " << meta["trials"] << " trials; run took "
+     << fmt(meta["seconds"].get<double>(), 0) << " s on " << meta["threads"] << " threads.\n\n";
+  md << "Every figure below comes from this run's report.json; the document's published figures are printed "
+        "beside ours (\"doc.\"). Errors in cm, mean (SD across folds).\n\n";
+
+  md_body_parts(md, r);
+  md_quality(md, r);
+  md_per_class(md, r);
+  md_ablation(md, r);
+  md_speed_and_targets(md, r);
   md << "\nDefinitions: " << meta["definitions"].get<std::string>() << "\n";
   return md.str();
 }

@@ -44,7 +44,7 @@ StanceAt advance(const CycleModel& m, double max_turn, State& s, double seconds,
   while ((s.decided_step + 0.5) * half <= t) {
     ++s.decided_step;
     s.heading_from = s.heading_to;
-    double d = std::remainder(s.desired_heading - s.heading_from, 2 * kPi);
+    double d = wrap_angle(s.desired_heading - s.heading_from);
     d = std::clamp(d, -max_turn, max_turn);
     s.heading_to = s.heading_from + d;
   }
@@ -70,7 +70,7 @@ bool head_heading(const DevicePose& head, double& heading) {
   if (!usable(head)) return false;
   const Vec3 f = head.rotation.normalized() * Vec3::UnitZ();
   if (f.x() * f.x() + f.z() * f.z() < 1e-8) return false;
-  heading = std::atan2(f.x(), f.z());
+  heading = heading_of(f);
   return true;
 }
 
