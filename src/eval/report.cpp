@@ -471,11 +471,19 @@ std::string report_markdown(const json& r) {
 
 namespace {
 
+// An empty bar chart in cm, values with one decimal, 1000 pixels wide.
+render::BarChart cm_chart(const std::string& title) {
+  render::BarChart c;
+  c.title = title;
+  c.y_label = "cm";
+  c.width = 1000;
+  c.value_decimals = 1;
+  return c;
+}
+
 // Figure 4 A: per body part, this run's methods beside the document's figures.
 render::BarChart body_parts_chart(const json& r) {
-  render::BarChart c;
-  c.title = "Mean joint error per body part (cm)";
-  c.y_label = "cm";
+  render::BarChart c = cm_chart("Mean joint error per body part (cm)");
   const std::vector<std::pair<std::string, std::string>> parts{{"left_hand_cm", "left hand"},
                                                                {"right_hand_cm", "right hand"},
                                                                {"upper_body_cm", "upper body"},
@@ -499,16 +507,12 @@ render::BarChart body_parts_chart(const json& r) {
     for (const auto& [k, label] : parts) s.values.push_back(pp.contains(k) ? pp[k].get<double>() : kNaN);
     c.series.push_back(s);
   }
-  c.width = 1000;
-  c.value_decimals = 1;
   return c;
 }
 
 // Full-body error per class.
 render::BarChart classes_chart(const json& r) {
-  render::BarChart c;
-  c.title = "Full-body error per class (cm)";
-  c.y_label = "cm";
+  render::BarChart c = cm_chart("Full-body error per class (cm)");
   std::set<std::string> classes;
   for (const auto& p : kProtocols)
     for (const char* m : {"accent", "ik"})
@@ -526,16 +530,12 @@ render::BarChart classes_chart(const json& r) {
       }
       c.series.push_back(s);
     }
-  c.width = 1000;
-  c.value_decimals = 1;
   return c;
 }
 
 // Cross-subject ablation, this run beside the document.
 render::BarChart ablation_chart(const json& r) {
-  render::BarChart c;
-  c.title = "Ablation, cross-subject full-body error (cm)";
-  c.y_label = "cm";
+  render::BarChart c = cm_chart("Ablation, cross-subject full-body error (cm)");
   const json& ab = r["cross_subject"]["ablation"];
   std::vector<std::string> order{"nn", "nn_align", "paper", "spring", "spring_k", "accent"};
   for (const auto& [k, v] : ab.items())
@@ -549,7 +549,6 @@ render::BarChart ablation_chart(const json& r) {
   }
   c.series = {ours, doc};
   c.width = std::max(800, 105 * static_cast<int>(c.groups.size()));
-  c.value_decimals = 1;
   return c;
 }
 
