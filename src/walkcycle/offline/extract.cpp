@@ -47,12 +47,6 @@ KeyPose key_from_pose(const Pose& p) {
   return k;
 }
 
-double wrap_pi(double a) {
-  while (a > kPi) a -= 2 * kPi;
-  while (a < -kPi) a += 2 * kPi;
-  return a;
-}
-
 }  // namespace
 
 std::vector<int> foot_strikes(const Motion& clip, bool left, double floor_window_s) {
@@ -144,7 +138,7 @@ void mark_steady(const Motion& clip, Extraction& ex) {
   const double median = percentile(durations, 0.5);
   for (auto& e : ex.steps) {
     const double d = e.next_contact - e.contact;
-    const double turn = wrap_pi(yaw_of(clip.frame(e.next_contact).rotations[0]) - yaw_of(clip.frame(e.contact).rotations[0]));
+    const double turn = wrap_angle(yaw_of(clip.frame(e.next_contact).rotations[0]) - yaw_of(clip.frame(e.contact).rotations[0]));
     e.used = std::abs(d - median) <= 0.25 * median && std::abs(turn) < deg2rad(25);
     ex.steps_used += e.used;
   }
