@@ -1,9 +1,14 @@
 // legwork: believable bodies for VR and game characters.
 #include "command.hpp"
 
+#include <legwork/io/bvh.hpp>
+#include <legwork/io/gltf.hpp>
+#include <legwork/io/text.hpp>
+
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <vector>
 
@@ -46,6 +51,50 @@ std::pair<int, int> parse_frame_range(const std::string& spec, int frames) {
 }
 
 void announce(const std::string& what, const std::string& path) { std::cout << "wrote " << what << ": " << path << "\n"; }
+
+std::vector<std::string> split_commas(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const std::size_t end = std::min(s.find(',', start), s.size());
+    if (end > start) out.push_back(s.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+void require_extension(const std::string& option, const std::string& path, const std::vector<std::string>& exts) {
+  const std::string ext = io::extension_of(path);
+  if (std::find(exts.begin(), exts.end(), ext) != exts.end()) return;
+  std::string list;
+  for (std::size_t i = 0; i < exts.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == exts.size() ? " or " : ", ") + exts[i];
+  throw Error(option + " '" + path + "' must end in " + list);
+}
+
+void ensure_parent(const std::string& path) {
+  const auto parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+}
+
+void write_motion(const std::string& path, const Motion& m, const std::string& what, const std::string& name) {
+  require_extension("output", path, {".bvh", ".glb"});
+  ensure_parent(path);
+  if (io::extension_of(path) == ".bvh") io::write_bvh(path, m);
+  else io::write_glb(path, m, {name, true});
+  announce(what, path);
+}
+
+std::function<void(int, int, const std::string&)> progress_bar(const std::string& what) {
+  return [what](int done, int total, const std::string& item) {
+    const int width = 30;
+    const int filled = total > 0 ? done * width / total : width;
+    std::fprintf(stderr, "\r%s [%s%s] %d/%d %-40.40s", what.c_str(), std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                 std::string(static_cast<std::size_t>(width - filled), '.').c_str(), done, total, item.c_str());
+    if (done >= total) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  };
+}
 
 }  // namespace legwork::cli
 

@@ -1,6 +1,7 @@
 // Walking-in-place evaluation: detected vs true swings, depth agreement,
 // the key-frame baseline, and the `legwork wip eval` report.
 #include <legwork/eval/wip.hpp>
+#include <legwork/core/stats.hpp>
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
@@ -368,12 +369,6 @@ nlohmann::json score_json(const StepScore& s) {
   return {{"true_steps", s.true_steps},          {"detected", s.detected},   {"matched", s.matched},
           {"precision", s.precision},            {"recall", s.recall},       {"f1", s.f1},
           {"foot_off_latency_ms", s.off_latency_ms}, {"foot_strike_latency_ms", s.strike_latency_ms}};
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
 }
 
 void write_trial_plot(const WipTrialEval& e, const std::string& path) {
