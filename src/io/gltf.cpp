@@ -327,7 +327,8 @@ void check_key_times(const std::vector<float>& times, const std::string& path, c
 }
 
 // glb files are self-contained: never let a crafted buffer URI read another
-// file (/dev/zero, /etc/...) on the reader's machine.
+// file (/dev/zero, /etc/...) on the reader's machine. tinygltf asks whether
+// the file exists first, so that answer ("File not found") is what refuses.
 bool refuse_external_file(std::vector<unsigned char>*, std::string* err, const std::string& file, void*) {
   if (err) *err += "external file '" + file + "' refused: legwork reads only self-contained .glb files\n";
   return false;
@@ -481,8 +482,10 @@ Motion parse_glb(std::string_view bytes, const std::string& path, double fps) {
   std::string err, warn;
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw Error(path + ": larger than 4 GB");
   if (!gltf.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                 static_cast<unsigned int>(bytes.size()), ""))
+                                 static_cast<unsigned int>(bytes.size()), "")) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     throw Error(path + ": cannot read glTF binary: " + printable_text(err));
+  }
   std::map<int, int> joint_of_node;
   const Skeleton skel = read_skin_skeleton(model, path, joint_of_node);
   std::vector<Track> tr, rot;
