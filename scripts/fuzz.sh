@@ -89,12 +89,12 @@ run() {  # name seeds dict max_len seconds|runs
 if [ $long = 1 ]; then
   run bvh "$seeds" "$root/fuzz/bvh.dict" 16384 "$runs"
   run tracker_csv "$csv_seeds" "$root/fuzz/tracker_csv.dict" 8192 "$runs"
-  run glb "$glb_seeds" "$root/fuzz/glb.dict" 65536 "$runs"
+  run glb "$glb_seeds" "$root/fuzz/glb.dict" 131072 "$runs"
 else
   # -max_total_time=0 would mean "forever": every run gets at least a second.
   share() { local s=$((seconds * $1 / 100)); echo $((s > 0 ? s : 1)); }
   run bvh "$seeds" "$root/fuzz/bvh.dict" 16384 "$(share 40)"
   run tracker_csv "$csv_seeds" "$root/fuzz/tracker_csv.dict" 8192 "$(share 25)"
-  run glb "$glb_seeds" "$root/fuzz/glb.dict" 65536 "$(share 35)"
+  run glb "$glb_seeds" "$root/fuzz/glb.dict" 131072 "$(share 35)"
 fi
 printf '%s\n' "${summary[@]}"

@@ -2,6 +2,7 @@
 // process that has the old one mapped keeps working; checksum-valid files
 // with absurd contents are rejected by name.
 #include <legwork/accent/builder.hpp>
+#include <legwork/io/text.hpp>
 
 #include "../../src/accent/database_impl.hpp"
 #include "accent_testing.hpp"
@@ -26,11 +27,9 @@ fs::path temp_dir() {
 }
 
 std::vector<std::byte> read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::vector<char> c((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::vector<std::byte> b(c.size());
-  std::memcpy(b.data(), c.data(), c.size());
-  return b;
+  const std::string bytes = io::read_binary_file(p.string());
+  const auto* b = reinterpret_cast<const std::byte*>(bytes.data());
+  return {b, b + bytes.size()};
 }
 
 // Writes `block` with its checksum recomputed, as a valid-looking file would be.

@@ -36,3 +36,8 @@ legwork_cli_error(convert_rate_too_high "--rate 1e\\+06 Hz is above the limit of
                   convert ${D}/walking/07_01.bvh ${O}/x.bvh --rate 1000000)
 legwork_cli_error(convert_missing_output_folder "${O}/no-such-dir/x.bvh: cannot write file \\(No such file or directory\\)"
                   convert ${D}/walking/07_01.bvh ${O}/no-such-dir/x.bvh)
+# A std::filesystem error reaches the user as "<path>: <reason>", not
+# "filesystem error: cannot create directories: Not a directory [...]".
+legwork_cli_error(filesystem_error_is_mapped "[^\n]*MANIFEST.tsv/report: Not a directory\n"
+                  eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --classes walking --quick
+                  --out ${PROJECT_SOURCE_DIR}/data/cmu/MANIFEST.tsv/report)
