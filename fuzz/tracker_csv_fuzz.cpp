@@ -35,8 +35,12 @@ void consume_frames(const io::TrackerTable& t) {
   if (frames.size() != t.time.size()) std::abort();
   FrameClock clock;
   for (const TrackerFrame& f : frames) {
+    const bool running = clock.started();
     const FrameClock::Step step = clock.advance(f.time);
-    if (step.verdict == FrameClock::Verdict::Accept && !(step.dt > 0 && std::isfinite(step.dt))) std::abort();
+    // The first accepted frame has dt = 0, every later one a positive finite dt.
+    if (step.verdict == FrameClock::Verdict::Accept &&
+        !(std::isfinite(step.dt) && (running ? step.dt > 0 : step.dt == 0)))
+      std::abort();
     for (const DevicePose& d : f.devices)
       if (usable(d) && (!d.position.allFinite() || d.position.cwiseAbs().maxCoeff() > kMaxCoordinate ||
                         !d.rotation.coeffs().allFinite()))
