@@ -1,11 +1,11 @@
 // Database files (reliability): saving replaces the file atomically, so a
 // process that has the old one mapped keeps working; checksum-valid files
 // with absurd contents are rejected by name.
-#include <legwork/accent/builder.hpp>
+#include <legwork/accent/database.hpp>
 #include <legwork/io/text.hpp>
 
 #include "../../src/accent/database_impl.hpp"
-#include "accent_testing.hpp"
+#include "accent_testing.hpp"  // the builder (its header moves with the module layout)
 
 #include <gtest/gtest.h>
 
