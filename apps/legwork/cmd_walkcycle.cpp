@@ -37,6 +37,7 @@ struct WalkArgs {
   std::string from_bvh;
   std::string skeleton;
   int frames = 0;
+  bool frames_given = false;  // --frames on the command line (then 0 and negatives are errors)
   double fps = 0;
   std::string shift;
   std::string path;
@@ -285,9 +286,10 @@ wc::WalkKeys load_keys(const WalkArgs& a, Skeleton& skel) {
 
 // The walk's keys: read (or taken from a clip), retimed and shifted as asked.
 wc::WalkKeys prepared_keys(const WalkArgs& a, Skeleton& skel) {
+  if (a.frames_given && (a.frames % 2 || a.frames < 8 || a.frames > 10000))
+    throw Error("--frames " + std::to_string(a.frames) + ": expected an even number of frames per cycle from 8 to 10000");
   wc::WalkKeys keys = load_keys(a, skel);
-  if (a.frames > 0) {
-    if (a.frames % 2 || a.frames < 8) throw Error("--frames: expected an even number of frames per cycle, at least 8");
+  if (a.frames_given) {
     keys = wc::retime(keys, a.frames);
   }
   if (!a.shift.empty()) {
@@ -343,7 +345,7 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkArgs& a, const std::
   else if (!a.svg_path.empty()) path = std::make_unique<wc::Path>(wc::parse_svg_path(a.svg_path, "--svg-path"));
   else if (a.straight > 0) path = std::make_unique<wc::Path>(wc::straight_path(a.straight));
   else if (a.steps >= 0) {
-    path = std::make_unique<wc::Path>(wc::straight_path(1e6));
+    path = std::make_unique<wc::Path>(wc::straight_path(1e6));  // (the report gives the length walked)
     wo.steps = a.steps;
   }
   Motion result;
@@ -367,6 +369,14 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkArgs& a, const std::
     report["turning_deg"] = r6(rad2deg(w.turning));
     report["turning_abs_deg"] = r6(rad2deg(w.turning_abs));
     report["end_distance_m"] = r6(w.end_distance);
+    report["end_position_m"] = {r6(w.end_position.x()), r6(w.end_position.z())};
+    report["end_heading_error_deg"] = r6(rad2deg(w.end_heading_error));
+    report["travel_m"] = r6(w.travel);
+    const auto rm = wc::measure_root_motion(w.motion, w.labels);
+    report["root_speed_min_mps"] = r6(rm.speed_min_mps);
+    report["root_speed_mean_mps"] = r6(rm.speed_mean_mps);
+    report["root_speed_max_mps"] = r6(rm.speed_max_mps);
+    report["root_accel_max_mps2"] = r6(rm.accel_max_mps2);
     report["max_path_deviation_m"] = r6(w.max_path_deviation);
     json steps = json::array();
     for (const auto& s : w.footsteps)
@@ -462,6 +472,7 @@ void run_extract(const ExtractArgs& a) {
   std::printf("%zu steps found (%d used), cycle %.3f s -> %d frames at %g fps; timing down %.2f pass %.2f up %.2f\n",
               ex.steps.size(), ex.steps_used, ex.cycle_seconds, keys.frames_per_cycle, keys.fps, keys.key_frames[1],
               keys.key_frames[2], keys.key_frames[3]);
+  std::printf("both feet off the floor in %.0f %% of the steady steps' frames\n", ex.flight_fraction * 100);
   std::printf("resynthesis vs the clip's mean cycle: joint positions %.1f mm mean, %.1f mm max\n", ex.resynthesis_mean_mm,
               ex.resynthesis_max_mm);
   announce("key poses", a.out);
@@ -514,7 +525,8 @@ void register_walkcycle(CLI::App& app) {
   cmd->add_option("--path", a->path, "walk along this path (JSON: polyline, bezier, catmull_rom or svg)")->check(CLI::ExistingFile);
   cmd->add_option("--svg-path", a->svg_path, "walk along this SVG path string, metres (x = left, y = forward)");
   cmd->add_option("--straight", a->straight, "walk this many metres straight ahead (+z)")->check(CLI::PositiveNumber);
-  cmd->add_option("--steps", a->steps, "walk exactly this many steps straight ahead, then stop")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--steps", a->steps, "walk exactly this many steps straight ahead, the stop step included (1 to 100000)")
+      ->check(CLI::Range(1, 100000));
   cmd->add_option("--out,-o", a->out, "the walk (or, with no path, the in-place cycle): .bvh or .glb");
   cmd->add_option("--cycle-out", a->cycle_out, "the in-place loop (frame N = frame 0 left out): .bvh or .glb");
   cmd->add_option("--sheet", a->sheet, "key-pose sheet: the five poses of a step side by side (.png or .svg)");
@@ -542,8 +554,9 @@ void register_walkcycle(CLI::App& app) {
   ext->add_option("--sheet", e->sheet, "also draw the extracted key poses (.png or .svg)");
   ext->add_option("--report", e->report, "JSON report: detected steps, cycle length, resynthesis error");
   ext->callback([e] { run_extract(*e); });
-  cmd->callback([a, ext] {
+  cmd->callback([a, ext, cmd] {
     if (ext->parsed()) return;
+    a->frames_given = cmd->count("--frames") > 0;
     run_walk(*a);
   });
 }

@@ -28,6 +28,7 @@ struct ExtractOptions {
   int frames_per_cycle = 0;  // 0: the clip's mean cycle at `fps`, rounded to even
   double fps = 24.0;
   double floor_window_s = 0.75;  // rolling floor (per ankle) half-width, seconds
+  double max_flight_fraction = 0.1;  // refuse clips with both feet off the floor longer (runs, hops)
 };
 
 struct Extraction {
@@ -37,9 +38,12 @@ struct Extraction {
   double cycle_seconds = 0;        // mean of two steady steps
   double resynthesis_mean_mm = 0;  // cycle from the keys vs the clip's mean cycle
   double resynthesis_max_mm = 0;
+  double flight_fraction = 0;      // share of the steady steps' frames with both feet off the floor
 };
 
-// Throws legwork::Error if fewer than two steady steps are found.
+// Throws legwork::Error if fewer than two steady steps are found, or if both
+// feet are off the floor in more than max_flight_fraction of their frames
+// (not a walk: running, hopping).
 Extraction extract_walk(const Motion& clip, const ExtractOptions& opt = {});
 
 // Key poses from four frames of a clip (contact, down, pass, up, in order);
