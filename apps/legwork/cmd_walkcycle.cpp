@@ -328,9 +328,20 @@ json cycle_report(const wc::CycleModel& model, const std::string& name) {
   report["floor_clamp"] = model.floor_clamp;
   report["floor_lift_mm_max"] = r6(floor.max_lift_m * 1e3);
   report["floor_lift_frame"] = floor.lift_frame;
-  if (floor.max_lift_m > 0.01)
-    std::printf("note: between the keys a foot would dip %.0f mm below the floor at frame %.2f%s\n", floor.max_lift_m * 1e3,
-                floor.lift_frame, model.floor_clamp ? "; the root is lifted there (floor_clamp)" : " (floor_clamp is off)");
+  if (floor.max_lift_m > 0.01) {
+    // The keys touch the floor; the spline between two of them does not know
+    // about it (a foot rolling from heel to flat between contact and down
+    // dips through it). Say between which keys, what was done, what to do.
+    const char* names[] = {"contact", "down", "pass", "up", "contact"};
+    const double in_step = std::fmod(floor.lift_frame, model.half_cycle());
+    int k = 0;
+    while (k < 3 && in_step >= model.key_frames[static_cast<std::size_t>(k + 1)]) ++k;
+    std::printf("floor: between the %s and %s keys the interpolated foot would dip %.0f mm below the floor (frame %.2f); %s\n",
+                names[k], names[k + 1], floor.max_lift_m * 1e3, floor.lift_frame,
+                model.floor_clamp ? "the root is lifted smoothly there (floor_clamp), so no foot goes through the floor; "
+                                    "an in-between key near that frame removes the lift"
+                                  : "floor_clamp is off: the foot goes through the floor");
+  }
 
   return report;
 }
@@ -355,9 +366,9 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkArgs& a, const std::
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const auto slip = wc::measure_stance_slip(model, w.motion, w.labels);
     std::printf("walk: %d steps, %d frames at %g fps (%.1f ms), path %.2f m, turning %.1f deg, end %.3f m from the path's end, "
-                "max deviation %.3f m\n",
+                "facing %.1f deg off its end tangent; travelled %.3f m, max deviation %.3f m\n",
                 w.steps, w.motion.frame_count(), w.motion.fps, ms, w.path_length, rad2deg(w.turning), w.end_distance,
-                w.max_path_deviation);
+                rad2deg(w.end_heading_error), w.travel, w.max_path_deviation);
     std::printf("stance slip: max %.2e mm, mean %.2e mm over %d pivot phases\n", slip.max_mm, slip.mean_mm, slip.phases);
     report["steps"] = w.steps;
     report["frames"] = w.motion.frame_count();
@@ -473,6 +484,7 @@ void run_extract(const ExtractArgs& a) {
               ex.steps.size(), ex.steps_used, ex.cycle_seconds, keys.frames_per_cycle, keys.fps, keys.key_frames[1],
               keys.key_frames[2], keys.key_frames[3]);
   std::printf("both feet off the floor in %.0f %% of the steady steps' frames\n", ex.flight_fraction * 100);
+  if (!ex.warning.empty()) std::fprintf(stderr, "warning: %s: %s; the keys are written, check them\n", a.input.c_str(), ex.warning.c_str());
   std::printf("resynthesis vs the clip's mean cycle: joint positions %.1f mm mean, %.1f mm max\n", ex.resynthesis_mean_mm,
               ex.resynthesis_max_mm);
   announce("key poses", a.out);
@@ -491,6 +503,8 @@ void run_extract(const ExtractArgs& a) {
     r["steps_used"] = ex.steps_used;
     r["resynthesis_mean_mm"] = r6(ex.resynthesis_mean_mm);
     r["resynthesis_max_mm"] = r6(ex.resynthesis_max_mm);
+    r["flight_fraction"] = r6(ex.flight_fraction);
+    r["warning"] = ex.warning;
     json steps = json::array();
     for (const auto& s : ex.steps)
       steps.push_back({{"foot", s.left ? "left" : "right"}, {"contact", s.contact}, {"down", s.down}, {"pass", s.pass},

@@ -106,7 +106,7 @@ namespace {
 // One walk along a path: walk_path's state and its stages.
 class PathWalk {
  public:
-  PathWalk(const CycleModel& m, const Path& path, const WalkOptions& opt);
+  PathWalk(const CycleModel& m, const Path& path, const WalkOptions& opt, const Vec3& aim_offset = Vec3::Zero());
   WalkResult run();
 
  private:
@@ -125,6 +125,7 @@ class PathWalk {
   const CycleModel& m;
   const Path& path;
   const WalkOptions& opt;
+  Vec3 aim;  // where the final steps aim: the path's end (plus a correction, see walk_path)
   WalkResult r;
   double out_fps = 0, dt = 0, half = 0, L = 0, lookahead = 0, hold = 0, stop_travel = 0;
   double final_travel = 0;  // straight root travel of the plain final two steps (cycle step + stop step)
@@ -143,8 +144,8 @@ class PathWalk {
   int last_step_recorded = -1;
 };
 
-PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o)
-    : m(model), path(p), opt(o), local(model.skeleton), stand_blend(model.skeleton), world(model.skeleton) {
+PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o, const Vec3& aim_offset)
+    : m(model), path(p), opt(o), aim(horizontal(p.points.back() + aim_offset)), local(model.skeleton), stand_blend(model.skeleton), world(model.skeleton) {
   out_fps = opt.fps > 0 ? opt.fps : m.fps;
   dt = m.fps / out_fps;  // cycle frames per output frame
   half = m.half_cycle();
@@ -197,7 +198,7 @@ bool PathWalk::plan_final_steps(int k, const Vec3& here, double t_here) {
   if (stop_step >= 0) return false;
   const double theta = k == 0 ? target.front() : heading_at(t_here);
   const Vec3 start = here + yaw(theta) * (k == 0 ? Vec3::Zero() : straight_advance(m, t_here, k * half));
-  const Vec3 to_end = horizontal(path.points.back() - start);
+  const Vec3 to_end = horizontal(aim - start);
   const double distance = to_end.norm();
   if (distance > final_travel) return false;
   stop_step = k + 1;
@@ -402,6 +403,21 @@ WalkResult PathWalk::run() {
 
 }  // namespace
 
-WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) { return PathWalk(m, path, opt).run(); }
+// The final steps are planned from a prediction (straight travel, turned by
+// the headings); on a path that still turns there the walk can stop a few
+// centimetres off. Closed loop: walk again aiming past the end by the miss,
+// up to three times, and keep the closest (deterministic: same input, same walk).
+WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) {
+  WalkResult best = PathWalk(m, path, opt).run();
+  if (opt.steps > 0 || !opt.stop) return best;
+  Vec3 offset = Vec3::Zero(), miss = best.end_position - horizontal(path.points.back());
+  for (int i = 0; i < 3 && miss.norm() > 0.01; ++i) {
+    offset -= miss;
+    WalkResult again = PathWalk(m, path, opt, offset).run();
+    miss = again.end_position - horizontal(path.points.back());
+    if (again.end_distance < best.end_distance) best = std::move(again);
+  }
+  return best;
+}
 
 }  // namespace legwork::walkcycle
