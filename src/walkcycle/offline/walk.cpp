@@ -3,6 +3,7 @@
 #include <legwork/core/interpolate.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace legwork::walkcycle {
@@ -99,6 +100,28 @@ Vec3 straight_advance(const CycleModel& m, double t0, double t1, double amp = -1
   return horizontal(pose.translations[0]) + c - root0;
 }
 
+// Travel of the final steps against the shortened stride, tabulated once per
+// walk (amp = 0, 1/16 .. 1), interpolated linearly: for a stop step 0 (a walk
+// of one stop step) and for later stop steps by parity (1: odd, right foot;
+// 2: even, left foot; the cycle repeats every two steps).
+struct FinalTravel {
+  static constexpr int kSamples = 17;
+  std::array<Vec3, kSamples> travel[3];
+  explicit FinalTravel(const CycleModel& m) {
+    const double half = m.half_cycle();
+    for (int stop = 0; stop < 3; ++stop)
+      for (int i = 0; i < kSamples; ++i)
+        travel[stop][static_cast<std::size_t>(i)] =
+            straight_advance(m, std::max(0, stop - 1) * half, (stop + 1.5) * half, static_cast<double>(i) / (kSamples - 1), stop);
+  }
+  Vec3 at(int stop, double amp) const {
+    const double x = std::clamp(amp, 0.0, 1.0) * (kSamples - 1);
+    const int i = std::min(kSamples - 2, static_cast<int>(x));
+    const auto& t = travel[stop == 0 ? 0 : 2 - stop % 2];
+    return t[static_cast<std::size_t>(i)] + (x - i) * (t[static_cast<std::size_t>(i + 1)] - t[static_cast<std::size_t>(i)]);
+  }
+};
+
 }  // namespace
 
 namespace {
@@ -106,7 +129,8 @@ namespace {
 // One walk along a path: walk_path's state and its stages.
 class PathWalk {
  public:
-  PathWalk(const CycleModel& m, const Path& path, const WalkOptions& opt, const Vec3& aim_offset = Vec3::Zero());
+  PathWalk(const CycleModel& m, const Path& path, const WalkOptions& opt, const FinalTravel& final_steps,
+           const Vec3& aim_offset = Vec3::Zero());
   WalkResult run();
 
  private:
@@ -125,6 +149,7 @@ class PathWalk {
   const CycleModel& m;
   const Path& path;
   const WalkOptions& opt;
+  const FinalTravel& finals;
   Vec3 aim;  // where the final steps aim: the path's end (plus a correction, see walk_path)
   WalkResult r;
   double out_fps = 0, dt = 0, half = 0, L = 0, lookahead = 0, hold = 0, stop_travel = 0;
@@ -144,8 +169,9 @@ class PathWalk {
   int last_step_recorded = -1;
 };
 
-PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o, const Vec3& aim_offset)
-    : m(model), path(p), opt(o), aim(horizontal(p.points.back() + aim_offset)), local(model.skeleton), stand_blend(model.skeleton), world(model.skeleton) {
+PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o, const FinalTravel& final_steps,
+                   const Vec3& aim_offset)
+    : m(model), path(p), opt(o), finals(final_steps), aim(horizontal(p.points.back() + aim_offset)), local(model.skeleton), stand_blend(model.skeleton), world(model.skeleton) {
   out_fps = opt.fps > 0 ? opt.fps : m.fps;
   dt = m.fps / out_fps;  // cycle frames per output frame
   half = m.half_cycle();
@@ -164,7 +190,7 @@ PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o,
   end_time = opt.steps >= 0 && !opt.stop ? opt.steps * half : -1;
   last_here = path.points.front();
   if (opt.steps < 0 && opt.stop) {
-    final_travel = straight_advance(m, 0, 2.5 * half, 1.0).z();
+    final_travel = finals.at(1, 1.0).z();
     plan_final_steps(0, path.points.front(), 0.0);  // a path shorter than two steps
   }
 }
@@ -174,8 +200,7 @@ PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o,
 // with it; inverted by bisection. Returns the stride; `travel` receives the
 // travel (x sideways as simulated, z forward).
 double PathWalk::solve_amplitude(double distance, int stop, Vec3* travel) const {
-  const double t0 = std::max(0, stop - 1) * half, t1 = (stop + 1.5) * half;
-  auto advance = [&](double a) { return straight_advance(m, t0, t1, a, stop); };
+  auto advance = [&](double a) { return finals.at(stop, a); };
   double lo = 0, hi = 1;
   *travel = advance(1.0);
   if (distance >= travel->z()) return 1.0;
@@ -202,7 +227,7 @@ bool PathWalk::plan_final_steps(int k, const Vec3& here, double t_here) {
   const double distance = to_end.norm();
   if (distance > final_travel) return false;
   stop_step = k + 1;
-  if (k == 0 && distance < straight_advance(m, 0, 2.5 * half, 0.0).z()) stop_step = 0;
+  if (k == 0 && distance < finals.at(1, 0.0).z()) stop_step = 0;
   Vec3 travel = Vec3::Zero();
   amp = solve_amplitude(distance, stop_step, &travel);
   for (int i = 0; i < 3; ++i) {  // the sideways settle: solve on the forward part of the distance
@@ -408,12 +433,13 @@ WalkResult PathWalk::run() {
 // centimetres off. Closed loop: walk again aiming past the end by the miss,
 // up to three times, and keep the closest (deterministic: same input, same walk).
 WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) {
-  WalkResult best = PathWalk(m, path, opt).run();
+  const FinalTravel finals(m);
+  WalkResult best = PathWalk(m, path, opt, finals).run();
   if (opt.steps > 0 || !opt.stop) return best;
   Vec3 offset = Vec3::Zero(), miss = best.end_position - horizontal(path.points.back());
   for (int i = 0; i < 3 && miss.norm() > 0.01; ++i) {
     offset -= miss;
-    WalkResult again = PathWalk(m, path, opt, offset).run();
+    WalkResult again = PathWalk(m, path, opt, finals, offset).run();
     miss = again.end_position - horizontal(path.points.back());
     if (again.end_distance < best.end_distance) best = std::move(again);
   }
