@@ -101,25 +101,31 @@ Vec3 straight_advance(const CycleModel& m, double t0, double t1, double amp = -1
 }
 
 // Travel of the final steps against the shortened stride, tabulated once per
-// walk (amp = 0, 1/16 .. 1), interpolated linearly: for a stop step 0 (a walk
+// walk (amp = 0, 1/8 .. 1), interpolated linearly: for a stop step 0 (a walk
 // of one stop step) and for later stop steps by parity (1: odd, right foot;
 // 2: even, left foot; the cycle repeats every two steps).
 struct FinalTravel {
-  static constexpr int kSamples = 17;
-  std::array<Vec3, kSamples> travel[3];
-  explicit FinalTravel(const CycleModel& m) {
-    const double half = m.half_cycle();
-    for (int stop = 0; stop < 3; ++stop)
-      for (int i = 0; i < kSamples; ++i)
-        travel[stop][static_cast<std::size_t>(i)] =
-            straight_advance(m, std::max(0, stop - 1) * half, (stop + 1.5) * half, static_cast<double>(i) / (kSamples - 1), stop);
-  }
+  static constexpr int kSamples = 9;
+  explicit FinalTravel(const CycleModel& model) : m(model) {}
   Vec3 at(int stop, double amp) const {
+    const int row = stop == 0 ? 0 : 2 - stop % 2;
+    auto& t = travel[static_cast<std::size_t>(row)];
+    if (!filled[static_cast<std::size_t>(row)]) {  // rows are simulated when first needed
+      const double half = m.half_cycle();
+      for (int i = 0; i < kSamples; ++i)
+        t[static_cast<std::size_t>(i)] =
+            straight_advance(m, std::max(0, row - 1) * half, (row + 1.5) * half, static_cast<double>(i) / (kSamples - 1), row);
+      filled[static_cast<std::size_t>(row)] = true;
+    }
     const double x = std::clamp(amp, 0.0, 1.0) * (kSamples - 1);
     const int i = std::min(kSamples - 2, static_cast<int>(x));
-    const auto& t = travel[stop == 0 ? 0 : 2 - stop % 2];
     return t[static_cast<std::size_t>(i)] + (x - i) * (t[static_cast<std::size_t>(i + 1)] - t[static_cast<std::size_t>(i)]);
   }
+
+ private:
+  const CycleModel& m;
+  mutable std::array<std::array<Vec3, kSamples>, 3> travel{};
+  mutable std::array<bool, 3> filled{};
 };
 
 }  // namespace
