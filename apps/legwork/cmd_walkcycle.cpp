@@ -39,6 +39,7 @@ struct WalkArgs {
   std::string from_bvh;
   std::string skeleton;
   int frames = 0;
+  bool frames_given = false;  // --frames on the command line (then 0 and negatives are errors)
   double fps = 0;
   std::string shift;
   std::string path;
@@ -156,9 +157,10 @@ wc::WalkKeys load_keys(const WalkArgs& a, Skeleton& skel) {
 
 // The walk's keys: read (or taken from a clip), retimed and shifted as asked.
 wc::WalkKeys prepared_keys(const WalkArgs& a, Skeleton& skel) {
+  if (a.frames_given && (a.frames % 2 || a.frames < 8 || a.frames > 10000))
+    throw Error("--frames " + std::to_string(a.frames) + ": expected an even number of frames per cycle from 8 to 10000");
   wc::WalkKeys keys = load_keys(a, skel);
-  if (a.frames > 0) {
-    if (a.frames % 2 || a.frames < 8) throw Error("--frames: expected an even number of frames per cycle, at least 8");
+  if (a.frames_given) {
     keys = wc::retime(keys, a.frames);
   }
   if (!a.shift.empty()) {
@@ -183,7 +185,7 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkArgs& a, const std::
   else if (!a.svg_path.empty()) path = std::make_unique<wc::Path>(wc::parse_svg_path(a.svg_path, "--svg-path"));
   else if (a.straight > 0) path = std::make_unique<wc::Path>(wc::straight_path(a.straight));
   else if (a.steps >= 0) {
-    path = std::make_unique<wc::Path>(wc::straight_path(1e6));
+    path = std::make_unique<wc::Path>(wc::straight_path(1e6));  // (the report gives the length walked)
     wo.steps = a.steps;
   }
   Motion result;
@@ -281,6 +283,7 @@ void run_extract(const ExtractArgs& a) {
   ensure_parent(a.out);
   wc::write_walk_keys(a.out, keys, clip.motion.skeleton);
   std::printf("%s", wc::extraction_summary(ex, keys).c_str());
+  if (!ex.warning.empty()) std::fprintf(stderr, "warning: %s: %s; the keys are written, check them\n", a.input.c_str(), ex.warning.c_str());
   announce("key poses", a.out);
   if (!a.sheet.empty()) {
     WalkArgs wa;
@@ -318,7 +321,8 @@ void register_walkcycle(CLI::App& app) {
   cmd->add_option("--path", a->path, "walk along this path (JSON: polyline, bezier, catmull_rom or svg)")->check(CLI::ExistingFile);
   cmd->add_option("--svg-path", a->svg_path, "walk along this SVG path string, metres (x = left, y = forward)");
   cmd->add_option("--straight", a->straight, "walk this many metres straight ahead (+z)")->check(CLI::PositiveNumber);
-  cmd->add_option("--steps", a->steps, "walk exactly this many steps straight ahead, then stop")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--steps", a->steps, "walk exactly this many steps straight ahead, the stop step included (1 to 100000)")
+      ->check(CLI::Range(1, 100000));
   cmd->add_option("--out,-o", a->out, "the walk (or, with no path, the in-place cycle): .bvh or .glb");
   cmd->add_option("--cycle-out", a->cycle_out, "the in-place loop (frame N = frame 0 left out): .bvh or .glb");
   cmd->add_option("--sheet", a->sheet, "key-pose sheet: the five poses of a step side by side (.png or .svg)");
@@ -346,8 +350,9 @@ void register_walkcycle(CLI::App& app) {
   ext->add_option("--sheet", e->sheet, "also draw the extracted key poses (.png or .svg)");
   ext->add_option("--report", e->report, "JSON report: detected steps, cycle length, resynthesis error");
   ext->callback([e] { run_extract(*e); });
-  cmd->callback([a, ext] {
+  cmd->callback([a, ext, cmd] {
     if (ext->parsed()) return;
+    a->frames_given = cmd->count("--frames") > 0;
     run_walk(*a);
   });
 }

@@ -31,3 +31,20 @@ endforeach()
 add_test(NAME cli.walkcycle_repro_same_bvh COMMAND ${CMAKE_COMMAND} -E compare_files ${O}/wc_repro_a.bvh ${O}/wc_repro_b.bvh)
 add_test(NAME cli.walkcycle_repro_same_report COMMAND ${CMAKE_COMMAND} -E compare_files ${O}/wc_repro_a.json ${O}/wc_repro_b.json)
 set_tests_properties(cli.walkcycle_repro_same_bvh cli.walkcycle_repro_same_report PROPERTIES FIXTURES_REQUIRED wc_repro)
+# Option ranges (issue 14): named option, range, no silent fallback.
+legwork_cli_error(walkcycle_steps_zero "--steps: Value 0 not in range 1 to 100000" walkcycle --keys ${W}/normal.json --steps 0 --out ${O}/x.bvh)
+legwork_cli_error(walkcycle_frames_negative "error: --frames -2: expected an even number of frames per cycle from 8 to 10000"
+                  walkcycle --keys ${W}/normal.json --frames -2 --out ${O}/x.bvh)
+legwork_cli_error(walkcycle_frames_zero "error: --frames 0: expected an even number of frames per cycle from 8 to 10000"
+                  walkcycle --keys ${W}/normal.json --frames 0 --out ${O}/x.bvh)
+# A run is not a walk: extract says so (the keys are still written).
+legwork_cli_error(walkcycle_extract_run "warning: [^ ]*09_01.bvh: this does not look like a walk: both feet are off the floor in [0-9]+ %"
+                  walkcycle extract ${PROJECT_SOURCE_DIR}/data/cmu/bvh/running/09_01.bvh --out ${O}/wc_run.json)
+# What the walk reports is true: --steps 5 gives 5 steps and the length walked (not a 1000 km placeholder);
+# --straight 0.3 walks 0.3 m; walks end on the path's end facing along it (printed as in the --report).
+legwork_cli_error(walkcycle_report_steps "walk: 5 steps, [0-9]+ frames at 24 fps \\([0-9.]+ ms\\), path [2-4]\\.[0-9][0-9] m"
+                  walkcycle --keys ${W}/normal.json --steps 5 --report ${O}/wc_steps5.json)
+legwork_cli_error(walkcycle_report_short "path 0\\.30 m, .*end 0\\.0[0-4][0-9] m from the path's end, facing -?[01]\\.[0-9] deg off its end tangent; travelled 0\\.[23][0-9][0-9] m"
+                  walkcycle --keys ${W}/normal.json --straight 0.3 --report ${O}/wc_short.json)
+legwork_cli_error(walkcycle_report_curve "end 0\\.0[0-4][0-9] m from the path's end, facing -?[01]\\.[0-9] deg off its end tangent"
+                  walkcycle --keys ${W}/sneak.json --path ${W}/paths/s-curve.json --report ${O}/wc_scurve.json)

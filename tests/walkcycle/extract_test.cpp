@@ -118,3 +118,27 @@ TEST(Extract, EverySharedCmuWalkingTrial) {
   EXPECT_EQ(trials, 57);
   EXPECT_GE(steady, 54);  // 16_27 (90-degree turn) and 16_33 (walk, stop) have too few steady steps
 }
+
+TEST(Extract, RunsAreFlaggedWalksAreNot) {
+  // A walk always has a foot on the floor; a run has a flight phase.
+  for (const char* run : {"09_01", "16_36", "35_17", "35_18"}) {
+    const Motion clip = testdata::load_sample(std::string("cmu/bvh/running/") + run + ".bvh");
+    const Extraction ex = extract_walk(clip);
+    std::printf("[walkcycle] run %s: both feet off the floor %.0f %% of the steady frames\n", run, ex.flight_fraction * 100);
+    EXPECT_GT(ex.flight_fraction, 0.1) << run;
+    EXPECT_NE(ex.warning.find("this does not look like a walk: both feet are off the floor in"), std::string::npos) << run;
+    ExtractOptions refuse;
+    refuse.refuse_non_walks = true;
+    try {
+      extract_walk(clip, refuse);
+      ADD_FAILURE() << run << ": expected a refusal";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("extract: this does not look like a walk"), std::string::npos) << e.what();
+    }
+  }
+  for (const char* walk : {"05_01", "07_01", "16_15"}) {
+    const Extraction ex = extract_walk(testdata::load_sample(std::string("cmu/bvh/walking/") + walk + ".bvh"));
+    EXPECT_LT(ex.flight_fraction, 0.1) << walk;
+    EXPECT_TRUE(ex.warning.empty()) << walk;
+  }
+}

@@ -10,6 +10,9 @@
 #include "walk_samples.hpp"
 
 #include <cstdio>
+#include <filesystem>
+
+#include <unistd.h>
 
 using namespace legwork;
 using namespace legwork::walkcycle;
@@ -53,4 +56,27 @@ TEST(WalkKeys, BadFilesGiveClearErrors) {
   // Role names are accepted in place of joint names.
   auto k = parse_walk_keys(R"({"keys": {"contact": {"rotations": {"left_knee": [10, 0, 0]}}, "down": {}, "pass": {}, "up": {}}})", s, "ok.json");
   ASSERT_NE(k.keys[0].find(s.find("LeftLeg")), nullptr);
+}
+
+TEST(WalkKeys, CopiedWalkFindsItsSkeletonBesideIt) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("legwork_portable_walk_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string walk = (dir / "normal.json").string();
+  fs::copy_file(walk_file("normal"), walk);
+  // Copied alone: its "../cmu/bvh/walking/07_01.bvh" is not there; the error says where it looked and what to do.
+  const std::string err = expect_error([&] { load_walk(walk); });
+  EXPECT_NE(err.find("its skeleton \"../cmu/bvh/walking/07_01.bvh\" was not found"), std::string::npos) << err;
+  EXPECT_NE(err.find((dir / "07_01.bvh").string()), std::string::npos) << err;
+  EXPECT_NE(err.find("pass --skeleton FILE.bvh"), std::string::npos) << err;
+  // --skeleton still works, and a copy of the BVH next to the walk is found.
+  const std::string bvh = (testdata::source_dir() / "data/cmu/bvh/walking/07_01.bvh").string();
+  EXPECT_EQ(load_walk(walk, bvh).skeleton.joint_count(), cmu_skeleton().joint_count());
+  fs::copy_file(bvh, dir / "07_01.bvh");
+  EXPECT_EQ(walk_skeleton_path(walk), (dir / "07_01.bvh").string());
+  const WalkFile w = load_walk(walk);
+  EXPECT_EQ(w.skeleton.names, cmu_skeleton().names);
+  EXPECT_EQ(format_walk_keys(w.keys, w.skeleton), format_walk_keys(read_walk_keys(walk_file("normal"), cmu_skeleton()), cmu_skeleton()));
+  fs::remove_all(dir);
 }

@@ -250,24 +250,51 @@ WalkKeys read_walk_keys(const std::string& path, const Skeleton& skel) {
   return parse_walk_keys(io::read_text_file(path), skel, path);
 }
 
-std::string walk_skeleton_path(const std::string& walk_path) {
+namespace {
+
+// The walk's "skeleton" as written ("" if none) and where it may be: the
+// path resolved against the walk file's folder, then the same file name in
+// that folder (a walk copied together with its BVH).
+std::vector<std::filesystem::path> skeleton_candidates(const std::string& walk_path, std::string* stated) {
   json doc;
   try {
     doc = json::parse(io::read_text_file(walk_path));
   } catch (const json::exception& e) {
     throw Error(walk_path + ": not valid JSON: " + e.what());
   }
-  if (!doc.is_object() || !doc.contains("skeleton") || !doc["skeleton"].is_string()) return "";
-  std::filesystem::path p(doc["skeleton"].get<std::string>());
-  if (p.is_relative()) p = std::filesystem::path(walk_path).parent_path() / p;
-  return p.lexically_normal().string();
+  if (!doc.is_object() || !doc.contains("skeleton") || !doc["skeleton"].is_string()) return {};
+  *stated = doc["skeleton"].get<std::string>();
+  const std::filesystem::path dir = std::filesystem::path(walk_path).parent_path();
+  std::filesystem::path p(*stated);
+  std::vector<std::filesystem::path> out{(p.is_relative() ? dir / p : p).lexically_normal()};
+  const std::filesystem::path beside = (dir / p.filename()).lexically_normal();
+  if (beside != out.front()) out.push_back(beside);
+  return out;
+}
+
+}  // namespace
+
+std::string walk_skeleton_path(const std::string& walk_path) {
+  std::string stated;
+  const auto candidates = skeleton_candidates(walk_path, &stated);
+  for (const auto& c : candidates)
+    if (std::filesystem::is_regular_file(c)) return c.string();
+  return candidates.empty() ? "" : candidates.front().string();
 }
 
 WalkFile load_walk(const std::string& walk_path, const std::string& skeleton_bvh) {
   WalkFile w;
   if (skeleton_bvh.empty()) {
+    std::string stated;
+    const auto candidates = skeleton_candidates(walk_path, &stated);
+    if (candidates.empty()) throw Error(walk_path + ": the walk names no \"skeleton\"; pass --skeleton FILE.bvh");
     const std::string sp = walk_skeleton_path(walk_path);
-    if (sp.empty()) throw Error(walk_path + ": the walk names no \"skeleton\"; pass --skeleton FILE.bvh");
+    if (!std::filesystem::is_regular_file(sp)) {
+      std::string looked;
+      for (const auto& c : candidates) looked += (looked.empty() ? "" : ", ") + c.string();
+      throw Error(walk_path + ": its skeleton \"" + stated + "\" was not found (looked at " + looked +
+                  "); copy that BVH next to the walk file or pass --skeleton FILE.bvh");
+    }
     io::BvhReadOptions o;
     o.drop_first_frame = true;
     w.skeleton = io::read_bvh(sp, o).motion.skeleton;

@@ -4,6 +4,7 @@
 #include <legwork/core/fk.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <map>
 
@@ -165,6 +166,35 @@ std::array<double, kKeyCount + 1> key_foot_heights(const CycleModel& m) {
     out[static_cast<std::size_t>(k)] = lo;
   }
   return out;
+}
+
+RootMotionReport measure_root_motion(const Motion& walk, std::span<const FrameLabel> labels) {
+  RootMotionReport r;
+  const int n = std::min(walk.frame_count(), static_cast<int>(labels.size()));
+  auto cruising = [&](int f) { return labels[static_cast<std::size_t>(f)].step >= 1 && !labels[static_cast<std::size_t>(f)].stopping; };
+  auto root = [&](int f) { const Vec3& p = walk.frame(f).translations[0]; return Vec3(p.x(), 0.0, p.z()); };
+  double sum = 0;
+  Vec3 v_prev = Vec3::Zero();
+  bool have_prev = false;
+  r.speed_min_mps = std::numeric_limits<double>::infinity();
+  for (int f = 1; f < n; ++f) {
+    if (!cruising(f) || !cruising(f - 1)) {
+      have_prev = false;
+      continue;
+    }
+    const Vec3 v = (root(f) - root(f - 1)) * walk.fps;
+    const double speed = v.norm();
+    r.speed_min_mps = std::min(r.speed_min_mps, speed);
+    r.speed_max_mps = std::max(r.speed_max_mps, speed);
+    sum += speed;
+    ++r.frames;
+    if (have_prev) r.accel_max_mps2 = std::max(r.accel_max_mps2, (v - v_prev).norm() * walk.fps);
+    v_prev = v;
+    have_prev = true;
+  }
+  if (r.frames == 0) return RootMotionReport{};
+  r.speed_mean_mps = sum / r.frames;
+  return r;
 }
 
 }  // namespace legwork::walkcycle

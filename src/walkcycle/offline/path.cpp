@@ -22,8 +22,16 @@ Vec3 bezier(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, doub
   return v * v * v * p0 + 3 * v * v * u * p1 + 3 * v * u * u * p2 + u * u * u * p3;
 }
 
+// Samples k / samples, plus 0.1 % in from either end, so the polyline's first
+// and last chords follow the curve's end tangents (where a walk starts facing
+// and ends facing) to a fraction of a degree, not half a sample's turn.
 void append_cubic(std::vector<Vec3>& out, const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, int samples) {
-  for (int k = 1; k <= samples; ++k) out.push_back(bezier(p0, p1, p2, p3, static_cast<double>(k) / samples));
+  const bool ends = samples >= 4;
+  if (ends) out.push_back(bezier(p0, p1, p2, p3, 0.001));
+  for (int k = 1; k <= samples; ++k) {
+    if (ends && k == samples) out.push_back(bezier(p0, p1, p2, p3, 0.999));
+    out.push_back(bezier(p0, p1, p2, p3, static_cast<double>(k) / samples));
+  }
 }
 
 // Uniform Catmull-Rom through every point, as cubic Beziers.

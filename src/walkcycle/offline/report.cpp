@@ -47,9 +47,20 @@ json cycle_report(const CycleModel& model, const std::string& name, std::string&
   report["floor_clamp"] = model.floor_clamp;
   report["floor_lift_mm_max"] = round6(floor.max_lift_m * 1e3);
   report["floor_lift_frame"] = floor.lift_frame;
-  if (floor.max_lift_m > 0.01)
-    appendf(text, "note: between the keys a foot would dip %.0f mm below the floor at frame %.2f%s\n", floor.max_lift_m * 1e3,
-            floor.lift_frame, model.floor_clamp ? "; the root is lifted there (floor_clamp)" : " (floor_clamp is off)");
+  if (floor.max_lift_m > 0.01) {
+    // The keys touch the floor; the spline between two of them does not know
+    // about it (a foot rolling from heel to flat between contact and down
+    // dips through it). Say between which keys, what was done, what to do.
+    const char* names[] = {"contact", "down", "pass", "up", "contact"};
+    const double in_step = std::fmod(floor.lift_frame, model.half_cycle());
+    int k = 0;
+    while (k < 3 && in_step >= model.key_frames[static_cast<std::size_t>(k + 1)]) ++k;
+    appendf(text, "floor: between the %s and %s keys the interpolated foot would dip %.0f mm below the floor (frame %.2f); %s\n",
+            names[k], names[k + 1], floor.max_lift_m * 1e3, floor.lift_frame,
+            model.floor_clamp ? "the root is lifted smoothly there (floor_clamp), so no foot goes through the floor; "
+                                "an in-between key near that frame removes the lift"
+                              : "floor_clamp is off: the foot goes through the floor");
+  }
   return report;
 }
 
@@ -57,9 +68,9 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   const auto slip = measure_stance_slip(model, w.motion, w.labels);
   appendf(text,
           "walk: %d steps, %d frames at %g fps (%.1f ms), path %.2f m, turning %.1f deg, end %.3f m from the path's end, "
-          "max deviation %.3f m\n",
+          "facing %.1f deg off its end tangent; travelled %.3f m, max deviation %.3f m\n",
           w.steps, w.motion.frame_count(), w.motion.fps, ms, w.path_length, rad2deg(w.turning), w.end_distance,
-          w.max_path_deviation);
+          rad2deg(w.end_heading_error), w.travel, w.max_path_deviation);
   appendf(text, "stance slip: max %.2e mm, mean %.2e mm over %d pivot phases\n", slip.max_mm, slip.mean_mm, slip.phases);
   report["steps"] = w.steps;
   report["frames"] = w.motion.frame_count();
@@ -71,6 +82,14 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   report["turning_deg"] = round6(rad2deg(w.turning));
   report["turning_abs_deg"] = round6(rad2deg(w.turning_abs));
   report["end_distance_m"] = round6(w.end_distance);
+  report["end_position_m"] = {round6(w.end_position.x()), round6(w.end_position.z())};
+  report["end_heading_error_deg"] = round6(rad2deg(w.end_heading_error));
+  report["travel_m"] = round6(w.travel);
+  const auto rm = measure_root_motion(w.motion, w.labels);
+  report["root_speed_min_mps"] = round6(rm.speed_min_mps);
+  report["root_speed_mean_mps"] = round6(rm.speed_mean_mps);
+  report["root_speed_max_mps"] = round6(rm.speed_max_mps);
+  report["root_accel_max_mps2"] = round6(rm.accel_max_mps2);
   report["max_path_deviation_m"] = round6(w.max_path_deviation);
   json steps = json::array();
   for (const auto& s : w.footsteps)
@@ -145,6 +164,8 @@ json extraction_report(const Extraction& ex, const Motion& clip, const std::stri
   r["steps_used"] = ex.steps_used;
   r["resynthesis_mean_mm"] = round6(ex.resynthesis_mean_mm);
   r["resynthesis_max_mm"] = round6(ex.resynthesis_max_mm);
+  r["flight_fraction"] = round6(ex.flight_fraction);
+  r["warning"] = ex.warning;
   json steps = json::array();
   for (const auto& s : ex.steps)
     steps.push_back({{"foot", s.left ? "left" : "right"}, {"contact", s.contact}, {"down", s.down}, {"pass", s.pass},
@@ -158,6 +179,7 @@ std::string extraction_summary(const Extraction& ex, const WalkKeys& keys) {
   appendf(t, "%zu steps found (%d used), cycle %.3f s -> %d frames at %g fps; timing down %.2f pass %.2f up %.2f\n",
           ex.steps.size(), ex.steps_used, ex.cycle_seconds, keys.frames_per_cycle, keys.fps, keys.key_frames[1],
           keys.key_frames[2], keys.key_frames[3]);
+  appendf(t, "both feet off the floor in %.0f %% of the steady steps' frames\n", ex.flight_fraction * 100);
   appendf(t, "resynthesis vs the clip's mean cycle: joint positions %.1f mm mean, %.1f mm max\n", ex.resynthesis_mean_mm,
           ex.resynthesis_max_mm);
   return t;

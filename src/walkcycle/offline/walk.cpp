@@ -4,6 +4,7 @@
 #include <legwork/core/interpolate.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace legwork::walkcycle {
@@ -50,33 +51,85 @@ double step_length(const CycleModel& m) {
   return c.norm() / 2.0;
 }
 
-// How far the body travels during a stop step (the cycle blending into the
-// standing pose over one step, from a contact), straight ahead.
-double stop_advance(const CycleModel& m) {
+namespace {
+
+// Weight of the standing pose in the final two steps of a walk that ends:
+// step k0 = stop_step - 1 shortens the stride to `amp` of the cycle's
+// (weight rising to 1 - amp), the stop step settles into the standing pose
+// (weight rising to 1). amp = 1 is the plain stop (cycle, then one blend step).
+double final_weight(double t, double half, int stop_step, double amp) {
+  const double u1 = (t - (stop_step - 1) * half) / half, u2 = (t - stop_step * half) / half;
+  if (u1 <= 0) return 0.0;
+  if (u2 <= 0) return (1 - amp) * smoothstep(u1);
+  return (1 - amp) + amp * smoothstep(u2);
+}
+
+// Root travel (x = sideways, z = forward), straight ahead, of the cycle
+// between times t0 and t1 (the pivot rule of the walk; fine steps so it does
+// not depend on the output rate). With amp >= 0 the walk ends: step
+// stop_step - 1 shortened to amp, step `stop_step` the stop step (0 or 1),
+// then the standing pose.
+Vec3 straight_advance(const CycleModel& m, double t0, double t1, double amp = -1, int stop_step = 1) {
   const double half = m.half_cycle();
   Pose cyc(m.skeleton), pose(m.skeleton);
-  sample_cycle(m, 0.0, pose.ref());
-  FootPoints prev = foot_points(m, pose);
-  Vec3 c = Vec3::Zero();
-  const int sub = 8;
-  for (int i = 1; i <= static_cast<int>(half) * sub; ++i) {
-    const double t = static_cast<double>(i) / sub;
+  auto local = [&](double t) {
     sample_cycle(m, t, cyc.ref());
-    blend_poses(cyc, m.stand, smoothstep(t / half), pose.ref());
+    blend_poses(cyc, m.stand, amp < 0 ? 0.0 : final_weight(t, half, stop_step, amp), pose.ref());
+  };
+  local(t0);
+  FootPoints prev = foot_points(m, pose);
+  const Vec3 root0 = horizontal(pose.translations[0]);
+  Vec3 c = Vec3::Zero();
+  const int sub = std::max(1, static_cast<int>(std::ceil((t1 - t0) * 8)));
+  for (int i = 1; i <= sub; ++i) {
+    const double t = t0 + (t1 - t0) * i / sub;
+    local(t);
     const FootPoints cur = foot_points(m, pose);
-    const StanceAt s = stance_at(m, t - 0.5 / sub);
-    c = planted_offset(prev.get(true, s.pivot) + c, cur.get(true, s.pivot), 0.0);
+    StanceAt st = stance_at(m, t - 0.5 * (t1 - t0) / sub);
+    if (amp >= 0 && st.step > stop_step) st = {stop_step, stop_step % 2 == 0, Pivot::Ball};
+    c = planted_offset(prev.get(st.left, st.pivot) + c, cur.get(st.left, st.pivot), 0.0);
     prev = cur;
   }
-  return c.norm();
+  return horizontal(pose.translations[0]) + c - root0;
 }
+
+// Travel of the final steps against the shortened stride, tabulated once per
+// walk (amp = 0, 1/8 .. 1), interpolated linearly: for a stop step 0 (a walk
+// of one stop step) and for later stop steps by parity (1: odd, right foot;
+// 2: even, left foot; the cycle repeats every two steps).
+struct FinalTravel {
+  static constexpr int kSamples = 9;
+  explicit FinalTravel(const CycleModel& model) : m(model) {}
+  Vec3 at(int stop, double amp) const {
+    const int row = stop == 0 ? 0 : 2 - stop % 2;
+    auto& t = travel[static_cast<std::size_t>(row)];
+    if (!filled[static_cast<std::size_t>(row)]) {  // rows are simulated when first needed
+      const double half = m.half_cycle();
+      for (int i = 0; i < kSamples; ++i)
+        t[static_cast<std::size_t>(i)] =
+            straight_advance(m, std::max(0, row - 1) * half, (row + 1.5) * half, static_cast<double>(i) / (kSamples - 1), row);
+      filled[static_cast<std::size_t>(row)] = true;
+    }
+    const double x = std::clamp(amp, 0.0, 1.0) * (kSamples - 1);
+    const int i = std::min(kSamples - 2, static_cast<int>(x));
+    return t[static_cast<std::size_t>(i)] + (x - i) * (t[static_cast<std::size_t>(i + 1)] - t[static_cast<std::size_t>(i)]);
+  }
+
+ private:
+  const CycleModel& m;
+  mutable std::array<std::array<Vec3, kSamples>, 3> travel{};
+  mutable std::array<bool, 3> filled{};
+};
+
+}  // namespace
 
 namespace {
 
 // One walk along a path: walk_path's state and its stages.
 class PathWalk {
  public:
-  PathWalk(const CycleModel& m, const Path& path, const WalkOptions& opt);
+  PathWalk(const CycleModel& m, const Path& path, const WalkOptions& opt, const FinalTravel& final_steps,
+           const Vec3& aim_offset = Vec3::Zero());
   WalkResult run();
 
  private:
@@ -88,12 +141,19 @@ class PathWalk {
   void place(int f, double theta, const FootPoints& cur, const FrameLabel& label);
   void record(int f, double theta, const FootPoints& cur, const FrameLabel& label);
   void finish();
+  void measure_end();
+  bool plan_final_steps(int k, const Vec3& start, double t_here);
+  double solve_amplitude(double distance, int stop, Vec3* travel) const;
 
   const CycleModel& m;
   const Path& path;
   const WalkOptions& opt;
+  const FinalTravel& finals;
+  Vec3 aim;  // where the final steps aim: the path's end (plus a correction, see walk_path)
   WalkResult r;
   double out_fps = 0, dt = 0, half = 0, L = 0, lookahead = 0, hold = 0, stop_travel = 0;
+  double final_travel = 0;  // straight root travel of the plain final two steps (cycle step + stop step)
+  double amp = 1.0;         // stride of the step before the stop step (1 = the cycle's)
   std::vector<double> target;
   int stop_step = -1;
   double end_time = -1;
@@ -108,24 +168,74 @@ class PathWalk {
   int last_step_recorded = -1;
 };
 
-PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o)
-    : m(model), path(p), opt(o), local(model.skeleton), stand_blend(model.skeleton), world(model.skeleton) {
+PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o, const FinalTravel& final_steps,
+                   const Vec3& aim_offset)
+    : m(model), path(p), opt(o), finals(final_steps), aim(horizontal(p.points.back() + aim_offset)), local(model.skeleton), stand_blend(model.skeleton), world(model.skeleton) {
   out_fps = opt.fps > 0 ? opt.fps : m.fps;
   dt = m.fps / out_fps;  // cycle frames per output frame
   half = m.half_cycle();
   r.step_length = step_length(m);
   r.path_length = path.length();
   L = r.step_length;
+  if (opt.steps == 0) throw Error("walk: steps must be at least 1 (a walk of 0 steps is the standing pose)");
   if (opt.steps < 0 && L < 0.01)
     throw Error("the walk advances only " + std::to_string(L * 1000) +
                 " mm per step; its key poses do not move the stance foot backwards, so it cannot follow a path");
   lookahead = std::max(opt.lookahead_steps * L, 0.05);  // lead of the heading decisions
   hold = half / 2;
-  stop_travel = opt.steps < 0 && opt.stop ? stop_advance(m) : 0.5 * L;
+  stop_travel = 0.5 * L;  // (without a stop, the walk just ends)
   target = {std::atan2(path.tangent(0).x(), path.tangent(0).z())};
-  stop_step = opt.steps >= 0 ? opt.steps : -1;
+  stop_step = opt.steps > 0 ? opt.steps - 1 : -1;  // the stop step is the last of the `steps`
   end_time = opt.steps >= 0 && !opt.stop ? opt.steps * half : -1;
   last_here = path.points.front();
+  if (opt.steps < 0 && opt.stop) {
+    final_travel = finals.at(1, 1.0).z();
+    plan_final_steps(0, path.points.front(), 0.0);  // a path shorter than two steps
+  }
+}
+
+// Root travel of the final steps (from where step stop - 1 starts, or the
+// walk's start) as a function of the shortened stride: forward travel grows
+// with it; inverted by bisection. Returns the stride; `travel` receives the
+// travel (x sideways as simulated, z forward).
+double PathWalk::solve_amplitude(double distance, int stop, Vec3* travel) const {
+  auto advance = [&](double a) { return finals.at(stop, a); };
+  double lo = 0, hi = 1;
+  *travel = advance(1.0);
+  if (distance >= travel->z()) return 1.0;
+  *travel = advance(0.0);
+  if (distance <= travel->z()) return 0.0;
+  for (int i = 0; i < 30; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (advance(mid).z() < distance ? lo : hi) = mid;
+  }
+  *travel = advance(0.5 * (lo + hi));
+  return 0.5 * (lo + hi);
+}
+
+// Ending at the path's end: once the end is within the final two steps'
+// travel from where step k will start, step k becomes a shortened step (its
+// stride solved so the walk stops on the end point) heading for the end, and
+// step k + 1 the stop step, turned to the end tangent. A path shorter than
+// that is walked in one stop step from a partly standing pose.
+bool PathWalk::plan_final_steps(int k, const Vec3& here, double t_here) {
+  if (stop_step >= 0) return false;
+  const double theta = k == 0 ? target.front() : heading_at(t_here);
+  const Vec3 start = here + yaw(theta) * (k == 0 ? Vec3::Zero() : straight_advance(m, t_here, k * half));
+  const Vec3 to_end = horizontal(aim - start);
+  const double distance = to_end.norm();
+  if (distance > final_travel) return false;
+  stop_step = k + 1;
+  if (k == 0 && distance < finals.at(1, 0.0).z()) stop_step = 0;
+  Vec3 travel = Vec3::Zero();
+  amp = solve_amplitude(distance, stop_step, &travel);
+  for (int i = 0; i < 3; ++i) {  // the sideways settle: solve on the forward part of the distance
+    const double forward = std::sqrt(std::max(0.0, distance * distance - travel.x() * travel.x()));
+    amp = solve_amplitude(forward, stop_step, &travel);
+  }
+  // (Simulated with the parity of the real stop step, so x is already the right side.)
+  if (k > 0 && distance > 0.05 * L) target.back() = std::atan2(to_end.x(), to_end.z()) - std::atan2(travel.x(), travel.z());
+  return true;
 }
 
 double PathWalk::heading_at(double t) const {
@@ -141,6 +251,13 @@ double PathWalk::heading_at(double t) const {
 double PathWalk::decide_heading(int k, const Vec3& here, const Vec3& prev_here, double remaining) const {
   double th = target.back();
   if (stop_step >= 0 && k > stop_step) return th;  // stopping: keep the last heading
+  if (opt.steps < 0 && opt.stop && stop_step >= 0 && k == stop_step) {  // the stop step faces along the end tangent
+    const Vec3 t_end = path.tangent(path.length());
+    th = std::atan2(t_end.x(), t_end.z());
+    while (th - target.back() > kPi) th -= 2 * kPi;
+    while (th - target.back() < -kPi) th += 2 * kPi;
+    return th;
+  }
   if (!(remaining > 0.25 * L)) return th;
   const Vec3 chord = path.at(s_track + lookahead + 0.5 * L) - path.at(s_track + lookahead - 0.5 * L);
   const Vec3 t0 = path.tangent(s_track);
@@ -170,11 +287,9 @@ void PathWalk::decide_headings(int f, double t) {
     // Stop when going on would overshoot the end by more than stopping now
     // falls short: from mid-step, half a step remains before the stop
     // step, which itself travels `stop_travel`.
-    if (opt.steps < 0 && stop_step < 0 && remaining - 0.5 * L - stop_travel < 0.5 * L) {
-      if (opt.stop) stop_step = k;
-      else end_time = k * half;
-    }
+    if (opt.steps < 0 && stop_step < 0 && !opt.stop && remaining - 0.5 * L - stop_travel < 0.5 * L) end_time = k * half;
     target.push_back(th);
+    if (opt.steps < 0 && opt.stop) plan_final_steps(k, here, std::max(0, f - 1) * dt);
   }
 }
 
@@ -182,11 +297,13 @@ void PathWalk::decide_headings(int f, double t) {
 // stopping (returns whether it is).
 bool PathWalk::local_pose(double t) {
   sample_cycle(m, t, local.ref());
-  if (!(stop_step >= 0 && opt.stop && t >= stop_step * half)) return false;
-  const double w = smoothstep((t - stop_step * half) / half);
-  blend_poses(local, m.stand, w, stand_blend.ref());
-  std::swap(local, stand_blend);
-  return true;
+  if (!(stop_step >= 0 && opt.stop)) return false;
+  const double w = final_weight(t, half, stop_step, amp);
+  if (w > 0) {
+    blend_poses(local, m.stand, w, stand_blend.ref());
+    std::swap(local, stand_blend);
+  }
+  return t >= stop_step * half;
 }
 
 FrameLabel PathWalk::label_at(double t, bool stopping) const {
@@ -256,7 +373,29 @@ void PathWalk::finish() {
   r.steps = r.labels.empty() ? 0 : r.labels.back().step + 1;
   r.turning = target.back() - target.front();
   for (std::size_t i = 1; i < target.size(); ++i) r.turning_abs += std::abs(target[i] - target[i - 1]);
-  r.end_distance = out.frame_count() ? (horizontal(out.frame(out.frame_count() - 1).translations[0]) - path.points.back()).norm() : 0;
+  measure_end();
+}
+
+// Where and how the walk ended against the path's end (with a step count,
+// the path ends where the walk did: its length is the distance walked along it).
+void PathWalk::measure_end() {
+  const Motion& out = r.motion;
+  if (out.frame_count() == 0) return;
+  r.end_position = horizontal(out.frame(out.frame_count() - 1).translations[0]);
+  r.travel = (r.end_position - horizontal(out.frame(0).translations[0])).norm();
+  double s_end = path.length();
+  if (opt.steps > 0) {
+    int seg = 0;
+    s_end = path.project(r.end_position, 0, path.length(), &seg, &r.end_distance);
+    r.path_length = s_end;
+  } else {
+    r.end_distance = (r.end_position - path.points.back()).norm();
+  }
+  const Vec3 tan = path.tangent(s_end);
+  double err = r.heading.back() - std::atan2(tan.x(), tan.z());
+  while (err > kPi) err -= 2 * kPi;
+  while (err < -kPi) err += 2 * kPi;
+  r.end_heading_error = err;
 }
 
 WalkResult PathWalk::run() {
@@ -288,6 +427,22 @@ WalkResult PathWalk::run() {
 
 }  // namespace
 
-WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) { return PathWalk(m, path, opt).run(); }
+// The final steps are planned from a prediction (straight travel, turned by
+// the headings); on a path that still turns there the walk can stop a few
+// centimetres off. Closed loop: walk again aiming past the end by the miss,
+// up to three times, and keep the closest (deterministic: same input, same walk).
+WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) {
+  const FinalTravel finals(m);
+  WalkResult best = PathWalk(m, path, opt, finals).run();
+  if (opt.steps > 0 || !opt.stop) return best;
+  Vec3 offset = Vec3::Zero(), miss = best.end_position - horizontal(path.points.back());
+  for (int i = 0; i < 3 && miss.norm() > 0.01; ++i) {
+    offset -= miss;
+    WalkResult again = PathWalk(m, path, opt, finals, offset).run();
+    miss = again.end_position - horizontal(path.points.back());
+    if (again.end_distance < best.end_distance) best = std::move(again);
+  }
+  return best;
+}
 
 }  // namespace legwork::walkcycle

@@ -14,6 +14,7 @@
 // heading removed), so the loss of going down to four keys is known.
 #include <legwork/walkcycle/keys.hpp>
 
+#include <string>
 #include <vector>
 
 namespace legwork::walkcycle {
@@ -28,6 +29,8 @@ struct ExtractOptions {
   int frames_per_cycle = 0;  // 0: the clip's mean cycle at `fps`, rounded to even
   double fps = 24.0;
   double floor_window_s = 0.75;  // rolling floor (per ankle) half-width, seconds
+  double max_flight_fraction = 0.1;  // both feet off the floor longer: not a walk (run, hop) -> warning
+  bool refuse_non_walks = false;     // throw instead of warning
 };
 
 struct Extraction {
@@ -37,9 +40,15 @@ struct Extraction {
   double cycle_seconds = 0;        // mean of two steady steps
   double resynthesis_mean_mm = 0;  // cycle from the keys vs the clip's mean cycle
   double resynthesis_max_mm = 0;
+  double flight_fraction = 0;      // share of the steady steps' frames with both feet off the floor
+  std::string warning;             // non-empty: the clip does not look like a walk (says why)
 };
 
-// Throws legwork::Error if fewer than two steady steps are found.
+// Throws legwork::Error if fewer than two steady steps are found. If both
+// feet are off the floor in more than max_flight_fraction of the steady
+// steps' frames (not a walk: running, hopping), sets `warning`, or throws
+// with refuse_non_walks. (On the shared CMU set: every run but one that stops
+// suddenly is caught; one brisk walk, 07_12, is flagged too: hence a warning.)
 Extraction extract_walk(const Motion& clip, const ExtractOptions& opt = {});
 
 // Key poses from four frames of a clip (contact, down, pass, up, in order);

@@ -15,8 +15,10 @@ namespace legwork::walkcycle {
 // as "left_knee" are accepted too). Throws legwork::Error with file and field.
 WalkKeys parse_walk_keys(std::string_view json_text, const Skeleton& skel, std::string_view source);
 WalkKeys read_walk_keys(const std::string& path, const Skeleton& skel);
-// The "skeleton" field of a walk file resolved against the file's folder, or ""
-// if the file has none. Throws on unreadable/invalid JSON.
+// The "skeleton" field of a walk file resolved against the file's folder; if
+// no file is there, the same file name next to the walk file (a walk copied
+// with its BVH) when that exists. "" if the walk names no skeleton. Throws on
+// unreadable/invalid JSON.
 std::string walk_skeleton_path(const std::string& walk_path);
 
 // A walk file with its skeleton: `skeleton_bvh` if given, else the file's

@@ -22,6 +22,19 @@ struct SlipReport {
 };
 SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels);
 
+// The root's horizontal speed while cruising (steps after the first, before
+// the stop step): frame-to-frame speed min / mean / max (m/s) and the largest
+// horizontal acceleration (m/s^2, difference of successive velocities).
+// A walk too short to cruise reports frames = 0 and zeros.
+struct RootMotionReport {
+  double speed_min_mps = 0;
+  double speed_mean_mps = 0;
+  double speed_max_mps = 0;
+  double accel_max_mps2 = 0;
+  int frames = 0;  // cruising frames measured
+};
+RootMotionReport measure_root_motion(const Motion& walk, std::span<const FrameLabel> labels);
+
 // Seam of the in-place loop: every joint's model-space position and velocity
 // just before frame N (left limit, quadratic extrapolation) against frame 0
 // (right limit). Largest difference over joints: metres and metres/second.

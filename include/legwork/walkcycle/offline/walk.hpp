@@ -35,7 +35,8 @@ struct WalkOptions {
   double lookahead_steps = 1.0;  // heading lead along the path, in step lengths
   bool stop = true;            // end in the standing pose at the path's end
   int max_steps = 100000;      // safety limit
-  int steps = -1;              // >= 0: walk exactly this many steps (then stop), ignoring the path's end
+  int steps = -1;              // > 0: walk exactly this many steps, the stop step included, ignoring
+                               // the path's end (0 is rejected: a walk takes at least one step)
 };
 
 // What each output frame's interval (frame-1, frame] pivots on.
@@ -63,8 +64,11 @@ struct WalkResult {
   std::vector<Footstep> footsteps;
   int steps = 0;                   // steps taken, the stop step included
   double step_length = 0;          // straight-walk advance per step, metres
-  double path_length = 0;
-  double end_distance = 0;         // final root (floor) distance to the path's end
+  double path_length = 0;          // metres; with WalkOptions::steps, the length walked along the path
+  double end_distance = 0;         // final root (floor) distance to the path's end (with steps: to the path)
+  Vec3 end_position = Vec3::Zero();  // final root on the floor (world)
+  double end_heading_error = 0;    // final heading minus the path's end tangent, radians (+ = left of it)
+  double travel = 0;               // floor distance from the first root position to the last, metres
   double max_path_deviation = 0;   // largest root distance from the path, metres
   double turning = 0;              // net heading change, radians (+ = to the left)
   double turning_abs = 0;          // sum of |heading changes| between steps, radians
