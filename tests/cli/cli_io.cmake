@@ -8,7 +8,7 @@ legwork_cli_fail(convert_glb_unwritable convert ${D}/walking/07_01.bvh ${O}/no-s
 # Bad input must fail with a message a user can act on: each test below checks
 # the message (never a raw "std::bad_alloc", "stod" or "filesystem error").
 # "legwork: error: " is printed only on the failing exit path.
-function(legwork_cli_error name regex)
+function(legwork_cli_io_error name regex)
   add_test(NAME cli.${name} COMMAND legwork ${ARGN})
   set_tests_properties(cli.${name} PROPERTIES PASS_REGULAR_EXPRESSION "legwork: error: ${regex}")
 endfunction()

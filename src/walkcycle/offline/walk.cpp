@@ -221,7 +221,7 @@ double PathWalk::solve_amplitude(double distance, int stop, Vec3* travel) const 
 bool PathWalk::plan_final_steps(int k, const Vec3& here, double t_here) {
   if (stop_step >= 0) return false;
   const double theta = k == 0 ? target.front() : heading_at(t_here);
-  const Vec3 start = here + yaw(theta) * (k == 0 ? Vec3::Zero() : straight_advance(m, t_here, k * half));
+  const Vec3 start = here + yaw_rotation(theta) * (k == 0 ? Vec3::Zero() : straight_advance(m, t_here, k * half));
   const Vec3 to_end = horizontal(aim - start);
   const double distance = to_end.norm();
   if (distance > final_travel) return false;
