@@ -18,6 +18,9 @@ PACKAGES=(
   libbenchmark-dev                      # benchmarks
   libassimp-dev                         # benchmark baseline: assimp's BVH importer
   clang libclang-rt-14-dev              # libFuzzer target for the BVH reader
+  libboost-dev                          # legwork serve: Boost.Beast/Asio (header-only) HTTP + WebSocket, well kept, in Debian
+  liblo-dev liblo-tools                 # legwork serve: VMC (OSC over UDP) with liblo; oscdump/oscsend check it in tests
+  haproxy                               # legwork serve scale-out: the load balancer in front of several servers (deploy/haproxy.cfg)
   ccache                                # compiler cache: rebuilds (CI on the same machine, sanitizer builds) reuse objects
 )
 

@@ -31,6 +31,7 @@ namespace legwork::cli {
 namespace {
 
 using namespace legwork::accent;
+using accent::TrackerFrame;  // until the contract lands: legwork::TrackerFrame vs the old accent one
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
@@ -329,7 +330,7 @@ void register_run(CLI::App& parent) {
     const auto in_ext = io::extension_of(a->input.path);
     if (in_ext == ".bvh") {
       truth = resample(a->input.load().motion, fps);
-      frames = tracker_frames_from_motion(truth);
+      frames = accent::tracker_frames_from_motion(truth);
       cfg.user_height = a->height > 0 ? a->height : measure_body(truth.skeleton).standing_height;
     } else if (in_ext == ".csv") {
       frames = frames_from_csv(a->input.path);
@@ -534,7 +535,7 @@ void register_bench(CLI::App& parent) {
 
     const double fps = db.feature_space().fps;
     Motion truth = resample(a->input.load().motion, fps);
-    const auto frames = tracker_frames_from_motion(truth);
+    const auto frames = accent::tracker_frames_from_motion(truth);
     j["input_frames"] = frames.size();
     json modes = json::object();
     for (SearchMode mode : {SearchMode::BruteForce, SearchMode::Exact, SearchMode::Fast}) {

@@ -1,0 +1,158 @@
+// Every call from `legwork serve` into the runtimes lives here (see methods.hpp).
+#include <legwork/serve/methods.hpp>
+
+#include <legwork/accent/accentuator.hpp>
+#include <legwork/accent/database.hpp>
+#include <legwork/core/measure.hpp>
+#include <legwork/ik/full_body.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace legwork::serve {
+namespace {
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s;
+}
+
+// The avatar skeleton for methods without a database of their own, scaled to
+// the user's height (0 = as is).
+Skeleton avatar_skeleton(const Resources& res, double user_height) {
+  const Skeleton* base = res.db ? &res.db->skeleton() : res.skeleton;
+  if (!base) throw Error("no avatar skeleton: start the server with --db FILE or --skeleton FILE.bvh");
+  Skeleton skel = *base;
+  if (user_height > 0) {
+    const double h = measure_body(skel).standing_height;
+    if (h <= 0) throw Error("the avatar skeleton has no measurable standing height");
+    skel.scale(user_height / h);
+  }
+  return skel;
+}
+
+// The VRIK-style full-body IK avatar (head + hands).
+class IkMethod final : public Method {
+ public:
+  IkMethod(const Resources& res, const MethodOptions& opt)
+      : skel_(avatar_skeleton(res, opt.user_height)), model_(skel_), state_(model_) {}
+
+  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
+    if (!usable(f.head())) {
+      info.add("reason", "head not tracked");
+      return clock_.started() ? UpdateStatus::Degraded : UpdateStatus::Rejected;
+    }
+    const FrameClock::Step step = clock_.advance(f.time);
+    if (step.verdict == FrameClock::Verdict::Reject) return UpdateStatus::Rejected;
+    if (step.verdict == FrameClock::Verdict::Restart) state_.reset();
+    ik::TrackerFrame in;
+    in.head_position = f.head().position;
+    in.head_rotation = f.head().rotation;
+    bool degraded = false;
+    for (int s = 0; s < 2; ++s) {
+      const auto i = static_cast<std::size_t>(s);
+      in.hand_valid[i] = usable(f.hand(s));
+      degraded = degraded || !in.hand_valid[i];
+      if (in.hand_valid[i]) {
+        in.hand_position[i] = f.hand(s).position;
+        in.hand_rotation[i] = f.hand(s).rotation;
+      }
+    }
+    ik::solve_full_body(model_, in, step.dt > 0 ? step.dt : 1.0 / 90.0, state_, out);
+    info.add("steps", state_.steps_taken);
+    if (step.verdict == FrameClock::Verdict::Restart) return UpdateStatus::Restarted;
+    return degraded ? UpdateStatus::Degraded : UpdateStatus::Ok;
+  }
+  const Skeleton& skeleton() const override { return skel_; }
+
+ private:
+  Skeleton skel_;  // owned: the model keeps a pointer to it (this object never moves)
+  ik::FullBodyModel model_;
+  ik::FullBodyState state_;
+  FrameClock clock_;
+};
+
+// CoolMoves accentuation over the shared database.
+class AccentMethod final : public Method {
+ public:
+  AccentMethod(const Resources& res, const MethodOptions& opt) : acc_(*res.db, config(opt)) {}
+
+  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
+    const FrameClock::Step step = clock_.advance(f.time);
+    if (step.verdict == FrameClock::Verdict::Reject) return UpdateStatus::Rejected;
+    if (step.verdict == FrameClock::Verdict::Restart) acc_.reset();
+    accent::TrackerFrame in;
+    in.time = f.time;
+    const auto sample = [](const DevicePose& d) {
+      accent::DeviceSample s;
+      s.valid = usable(d);
+      if (s.valid) {
+        s.position = d.position;
+        s.rotation = d.rotation;
+      }
+      return s;
+    };
+    in.head = sample(f.head());
+    in.left = sample(f.hand(kLeft));
+    in.right = sample(f.hand(kRight));
+    const accent::FrameInfo fi = acc_.update(in);
+    if (fi.status == accent::FrameStatus::Rejected) return UpdateStatus::Rejected;
+    const ConstPoseRef p = acc_.pose();
+    std::copy(p.rotations.begin(), p.rotations.end(), out.rotations.begin());
+    std::copy(p.translations.begin(), p.translations.end(), out.translations.begin());
+    info.add("match", accent::status_name(fi.status));
+    info.add("match_weight", fi.match_weight);
+    info.add("fallback", fi.fallback);
+    info.add("matches_left", fi.matches[0]);
+    info.add("matches_right", fi.matches[1]);
+    if (step.verdict == FrameClock::Verdict::Restart) return UpdateStatus::Restarted;
+    return fi.status == accent::FrameStatus::TrackingLost ? UpdateStatus::Degraded : UpdateStatus::Ok;
+  }
+  const Skeleton& skeleton() const override { return acc_.skeleton(); }
+
+ private:
+  static accent::AccentConfig config(const MethodOptions& opt) {
+    accent::AccentConfig c;
+    c.classes = opt.classes;
+    c.exaggeration = opt.exaggeration;
+    c.user_height = opt.user_height;
+    return c;
+  }
+  accent::Accentuator acc_;
+  FrameClock clock_;
+};
+
+}  // namespace
+
+const std::vector<std::string>& known_methods() {
+  static const std::vector<std::string> m{"accent", "ik", "wip", "combined"};
+  return m;
+}
+
+std::vector<std::string> available_methods(const Resources& res) {
+  std::vector<std::string> out;
+  if (res.db) out.push_back("accent");
+  if (res.db || res.skeleton) out.push_back("ik");
+  return out;
+}
+
+std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& opt) {
+  const auto avail = available_methods(res);
+  if (std::find(avail.begin(), avail.end(), opt.method) == avail.end()) {
+    const auto& known = known_methods();
+    if (std::find(known.begin(), known.end(), opt.method) == known.end())
+      throw Error("unknown method '" + opt.method + "' (known: " + join(known) + ")");
+    if ((opt.method == "accent" || opt.method == "combined") && !res.db)
+      throw Error("method '" + opt.method + "' needs a database: start the server with --db FILE");
+    throw Error("method '" + opt.method + "' is not available in this server (available: " + join(avail) + ")");
+  }
+  if (!(opt.exaggeration > 0 && opt.exaggeration <= 4))
+    throw Error("exaggeration " + std::to_string(opt.exaggeration) + " is outside (0, 4]");
+  if (!(opt.user_height == 0 || (opt.user_height >= 0.5 && opt.user_height <= 2.5)))
+    throw Error("user_height " + std::to_string(opt.user_height) + " m is outside [0.5, 2.5] (0 = the avatar's own)");
+  if (opt.method == "ik") return std::make_unique<IkMethod>(res, opt);
+  return std::make_unique<AccentMethod>(res, opt);
+}
+
+}  // namespace legwork::serve
