@@ -50,6 +50,7 @@ struct Server::Impl {
   explicit Impl(ServeOptions o);
   void accept();
   void shutdown();
+  void wait_closed(SteadyClock::time_point deadline);
   std::string new_session_id() { return "s" + std::to_string(next_id++); }
 };
 
@@ -359,9 +360,17 @@ void Server::Impl::shutdown() {
   }
   for (auto& s : live_sessions)
     net::post(ioc, [s] { s->close(websocket::close_code::going_away); });
-  // Give clients a moment to complete the close handshake, then stop.
-  auto timer = std::make_shared<net::steady_timer>(ioc, std::chrono::milliseconds(500));
-  timer->async_wait([this, timer](beast::error_code) { ioc.stop(); });
+  // Give clients up to half a second to complete the close handshake, then stop.
+  wait_closed(SteadyClock::now() + std::chrono::milliseconds(500));
+}
+
+void Server::Impl::wait_closed(SteadyClock::time_point deadline) {
+  if (live.load() == 0 || SteadyClock::now() >= deadline) {
+    ioc.stop();
+    return;
+  }
+  auto timer = std::make_shared<net::steady_timer>(ioc, std::chrono::milliseconds(5));
+  timer->async_wait([this, timer, deadline](beast::error_code) { wait_closed(deadline); });
 }
 
 Server::Server(ServeOptions opt) : impl_(std::make_unique<Impl>(std::move(opt))) {}
