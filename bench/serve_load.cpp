@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
   CLI::App app{"serve_load: N replay clients at 90 Hz against legwork serve on loopback"};
   int port = 0, clients = 10, max_clients = 1280;
   double seconds = 5, p99_limit = 5.0;
-  bool ramp = false;
+  bool ramp = false, still = false;
   std::string method = "ik", trial = std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/07_02.bvh", out, label = "one process";
   app.add_option("--port", port, "server (or haproxy) port on 127.0.0.1")->required();
   app.add_option("--clients", clients, "concurrent clients")->check(CLI::Range(1, 5000));
@@ -197,6 +197,7 @@ int main(int argc, char** argv) {
   app.add_option("--p99-ms", p99_limit, "latency limit for 'sustained'");
   app.add_option("--label", label, "name of this configuration in the JSON");
   app.add_option("--json", out, "write the figures here");
+  app.add_flag("--still", still, "replay only the trial's first frame (a user standing still; for output checks)");
   CLI11_PARSE(app, argc, argv);
 
   io::BvhReadOptions ro;
@@ -205,6 +206,7 @@ int main(int argc, char** argv) {
   for (auto f : tracker_frames_from_motion(io::load_bvh(trial, ro), 90.0)) {
     f.foot(kLeft).valid = f.foot(kRight).valid = false;
     frames.push_back(serve::binary_frame(f));
+    if (still) break;
   }
   const tcp::endpoint ep(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port));
   json steps = json::array();
