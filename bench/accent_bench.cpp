@@ -2,8 +2,8 @@
 // avatar driven by a real held-out trial, per search mode; database load by
 // mmap; database build. Uses the full shared CMU set (every class, one running
 // trial held out) when ../shared/data/cmu exists, else the repo's sample data.
-#include <legwork/accent/accentuator.hpp>
-#include <legwork/accent/builder.hpp>
+#include <legwork/accent/accent.hpp>
+#include <legwork/accent/offline/builder.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/core/measure.hpp>
 #include <legwork/io/bvh.hpp>
@@ -52,22 +52,24 @@ Setup& setup() {
   return s;
 }
 
-void update_loop(benchmark::State& state, SearchMode mode, AccentConfig cfg = {}) {
+void update_loop(benchmark::State& state, SearchMode mode, Settings cfg = {}) {
   Setup& s = setup();
   cfg.search = mode;
   cfg.user_height = s.height;
-  Accentuator acc(s.db, cfg);
+  const Model model = make_model(s.db, cfg);
+  State avatar(model);
+  Pose pose(model.skeleton());
   std::size_t f = 0;
   double t = 0;
   for (auto _ : state) {
     TrackerFrame in = s.frames[f];
     in.time = t;  // the trial loops; time keeps increasing
-    benchmark::DoNotOptimize(acc.update(in));
+    benchmark::DoNotOptimize(update(model, in, avatar, pose.ref()));
     t += 1.0 / 90.0;
     if (++f == s.frames.size()) {
       // Replay the trial as a new session (a wrap-around would feed a jump).
       state.PauseTiming();
-      acc.reset();
+      reset(model, avatar);
       f = 0;
       state.ResumeTiming();
     }
@@ -84,7 +86,7 @@ BENCHMARK(BM_UpdateExact)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime(
 BENCHMARK(BM_UpdateFast)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
 // The paper's settings: k = 5, no hand IK, EWMA smoothing only.
 void BM_UpdateFastPaper(benchmark::State& state) {
-  AccentConfig cfg;
+  Settings cfg;
   cfg.k_left = cfg.k_right = 5;
   cfg.hand_ik = 0;
   cfg.smooth_halflife = 0;
@@ -92,7 +94,7 @@ void BM_UpdateFastPaper(benchmark::State& state) {
 }
 // Default with another k (what k costs).
 void BM_UpdateFastK(benchmark::State& state) {
-  AccentConfig cfg;
+  Settings cfg;
   cfg.k_left = cfg.k_right = static_cast<int>(state.range(0));
   update_loop(state, SearchMode::Fast, cfg);
 }

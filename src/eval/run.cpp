@@ -165,7 +165,7 @@ void measure_speed(EvalResult& res, const std::vector<accent::PreparedTrial>& pr
 
 }  // namespace
 
-std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const accent::AccentConfig& config, bool quick) {
+std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const accent::Settings& config, bool quick) {
   std::vector<Variant> v;
   auto add = [&](std::string key, std::string label, auto tweak) {
     Variant x{std::move(key), std::move(label), build, config};

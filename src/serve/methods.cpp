@@ -1,7 +1,7 @@
 // Every call from `legwork serve` into the runtimes lives here (see methods.hpp).
 #include <legwork/serve/methods.hpp>
 
-#include <legwork/accent/accentuator.hpp>
+#include <legwork/accent/accent.hpp>
 #include <legwork/accent/database.hpp>
 #include <legwork/core/measure.hpp>
 #include <legwork/ik/full_body.hpp>
@@ -73,54 +73,34 @@ class IkMethod final : public Method {
   FrameClock clock_;
 };
 
-// CoolMoves accentuation over the shared database.
+// CoolMoves accentuation over the shared database (one Model per session's settings).
 class AccentMethod final : public Method {
  public:
-  AccentMethod(const Resources& res, const MethodOptions& opt) : acc_(*res.db, config(opt)) {}
+  AccentMethod(const Resources& res, const MethodOptions& opt) : model_(accent::make_model(*res.db, settings(opt))), state_(model_) {}
 
   UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
-    const FrameClock::Step step = clock_.advance(f.time);
-    if (step.verdict == FrameClock::Verdict::Reject) return UpdateStatus::Rejected;
-    if (step.verdict == FrameClock::Verdict::Restart) acc_.reset();
-    accent::TrackerFrame in;
-    in.time = f.time;
-    const auto sample = [](const DevicePose& d) {
-      accent::DeviceSample s;
-      s.valid = usable(d);
-      if (s.valid) {
-        s.position = d.position;
-        s.rotation = d.rotation;
-      }
-      return s;
-    };
-    in.head = sample(f.head());
-    in.left = sample(f.hand(kLeft));
-    in.right = sample(f.hand(kRight));
-    const accent::FrameInfo fi = acc_.update(in);
-    if (fi.status == accent::FrameStatus::Rejected) return UpdateStatus::Rejected;
-    const ConstPoseRef p = acc_.pose();
-    std::copy(p.rotations.begin(), p.rotations.end(), out.rotations.begin());
-    std::copy(p.translations.begin(), p.translations.end(), out.translations.begin());
-    info.add("match", accent::status_name(fi.status));
-    info.add("match_weight", fi.match_weight);
-    info.add("fallback", fi.fallback);
-    info.add("matches_left", fi.matches[0]);
-    info.add("matches_right", fi.matches[1]);
-    if (step.verdict == FrameClock::Verdict::Restart) return UpdateStatus::Restarted;
-    return fi.status == accent::FrameStatus::TrackingLost ? UpdateStatus::Degraded : UpdateStatus::Ok;
+    accent::Info ai;
+    const UpdateStatus st = accent::update(model_, f, state_, out, &ai);
+    if (st == UpdateStatus::Rejected) return st;
+    info.add("match", accent::status_name(ai.match));
+    info.add("match_weight", ai.match_weight);
+    info.add("fallback", ai.fallback);
+    info.add("matches_left", ai.matches[0]);
+    info.add("matches_right", ai.matches[1]);
+    return st;
   }
-  const Skeleton& skeleton() const override { return acc_.skeleton(); }
+  const Skeleton& skeleton() const override { return model_.skeleton(); }
 
  private:
-  static accent::AccentConfig config(const MethodOptions& opt) {
-    accent::AccentConfig c;
+  static accent::Settings settings(const MethodOptions& opt) {
+    accent::Settings c;
     c.classes = opt.classes;
     c.exaggeration = opt.exaggeration;
     c.user_height = opt.user_height;
     return c;
   }
-  accent::Accentuator acc_;
-  FrameClock clock_;
+  const accent::Model model_;
+  accent::State state_;
 };
 
 }  // namespace

@@ -1,6 +1,8 @@
 #pragma once
 // Shared helpers for the accent tests: sample trials from the repo's data/cmu.
-#include <legwork/accent/builder.hpp>
+#include <legwork/accent/accent.hpp>
+#include <legwork/accent/offline/builder.hpp>
+#include <legwork/accent/offline/run.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/io/bvh.hpp>
 
@@ -43,5 +45,23 @@ inline Database indexed_database(const std::vector<std::string>& names, const Bu
 inline Motion tracker_rate_trial(const std::string& cls_slash_name) {
   return resample(sample_trial(cls_slash_name).motion, 90.0);
 }
+
+// One avatar through the runtime contract (model + state + pose buffer), so
+// tests read like the old one-object use: avatar.update(frame), avatar.pose.
+struct Avatar {
+  Model model;
+  State state;
+  Pose pose;
+  Avatar(const Database& db, const Settings& s) : model(make_model(db, s)), state(model), pose(model.neutral()) {}
+  Info update(const TrackerFrame& f) {
+    Info info;
+    last_status = accent::update(model, f, state, pose.ref(), &info);
+    return info;
+  }
+  std::span<const Match> matches(int hand) const { return last_matches(state, hand); }
+  const Feature& live_feature(int hand) const { return state.live[static_cast<std::size_t>(hand)]; }
+  const Skeleton& skeleton() const { return model.skeleton(); }
+  UpdateStatus last_status = UpdateStatus::Ok;
+};
 
 }  // namespace legwork::accent::testing

@@ -1,6 +1,6 @@
-// Accentuator::update() allocates nothing: global operator new is counted
+// accent::update() allocates nothing: global operator new is counted
 // while a warmed-up avatar runs over a real trial in every search mode.
-#include <legwork/accent/accentuator.hpp>
+#include <legwork/accent/accent.hpp>
 #include <legwork/core/interpolate.hpp>
 
 #include "accent_testing.hpp"
@@ -16,12 +16,12 @@ TEST(AccentAlloc, UpdateIsAllocationFree) {
   const Database db = testing::indexed_database({"walking/07_01", "walking/05_01", "running/09_01"});
   const auto frames = tracker_frames_from_motion(testing::tracker_rate_trial("walking/07_02"));
   for (SearchMode mode : {SearchMode::BruteForce, SearchMode::Exact, SearchMode::Fast}) {
-    AccentConfig cfg;
+    Settings cfg;
     cfg.search = mode;
-    Accentuator acc(db, cfg);
+    testing::Avatar acc(db, cfg);
     for (std::size_t f = 0; f < 10; ++f) acc.update(frames[f]);
     std::vector<TrackerFrame> live(frames.begin() + 10, frames.end());
-    for (std::size_t f = 0; f < live.size(); f += 50) live[f].left.valid = false;  // the fallback path too
+    for (std::size_t f = 0; f < live.size(); f += 50) live[f].hand(kLeft).valid = false;  // the fallback path too
     const long allocations = legwork::alloc_count::count_allocations([&] {
       for (const TrackerFrame& t : live) acc.update(t);
     });

@@ -1,5 +1,5 @@
 // Database build, file format and search.
-#include <legwork/accent/builder.hpp>
+#include <legwork/accent/offline/builder.hpp>
 #include <legwork/accent/search.hpp>
 
 #include "accent_testing.hpp"

@@ -1,5 +1,5 @@
 // Feature extraction and rotation alignment against analytic answers.
-#include <legwork/accent/builder.hpp>
+#include <legwork/accent/offline/builder.hpp>
 #include <legwork/accent/features.hpp>
 
 #include "accent_testing.hpp"

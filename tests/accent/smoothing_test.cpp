@@ -1,8 +1,8 @@
 // Temporal smoothing measured on real held-out CMU trials (cross-subject:
 // the held-out subject is in no database): error, velocity error and jitter
 // (mean jerk of the role joints) of the output with and without smoothing.
-#include <legwork/accent/accentuator.hpp>
-#include <legwork/accent/builder.hpp>
+#include <legwork/accent/offline/run.hpp>
+#include <legwork/accent/offline/builder.hpp>
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/io/bvh.hpp>
@@ -103,7 +103,7 @@ class HeldOutSubject : public ::testing::Test {
     }
   }
   static void TearDownTestSuite() { delete cases_; cases_ = nullptr; }
-  static Figures run(const AccentConfig& cfg) {
+  static Figures run(const Settings& cfg) {
     Figures sum;
     for (const auto& c : *cases_) {
       const Figures f = measure(c.truth, accentuate_motion(c.db, cfg, c.truth).output);
@@ -127,33 +127,33 @@ class HeldOutSubject : public ::testing::Test {
 TEST_F(HeldOutSubject, SmoothingCutsJitterWithoutCostingAccuracy) {
   LEGWORK_REQUIRE_SHARED_CMU();
   ASSERT_FALSE(cases_->empty());
-  AccentConfig def;
-  AccentConfig off = def;
+  Settings def;
+  Settings off = def;
   off.smooth = false;
-  AccentConfig ewma = def;
+  Settings ewma = def;
   ewma.smooth_halflife = 0;
   const Figures f_def = run(def), f_off = run(off), f_ewma = run(ewma);
   print("default", f_def);
   print("smoothing off", f_off);
   print("EWMA only (paper)", f_ewma);
   if (std::getenv("LEGWORK_ACCENT_SWEEP")) {
-    AccentConfig paper;
+    Settings paper;
     paper.k_left = paper.k_right = 5;
     paper.hand_ik = 0;
     paper.smooth_halflife = 0;
     print("paper (k 5, no hand IK)", run(paper));
     for (int k : {5, 8, 10, 12}) {
-      AccentConfig c = def;
+      Settings c = def;
       c.k_left = c.k_right = k;
       char name[64];
       std::snprintf(name, sizeof name, "default with k %d", k);
       print(name, run(c));
     }
-    AccentConfig no_ik = def;
+    Settings no_ik = def;
     no_ik.hand_ik = 0;
     print("default with hand_ik 0", run(no_ik));
     for (double h : {0.03, 0.045, 0.08, 0.1, 0.15}) {
-      AccentConfig c = def;
+      Settings c = def;
       c.smooth_halflife = h;
       char name[64];
       std::snprintf(name, sizeof name, "half-life %.3f s", h);

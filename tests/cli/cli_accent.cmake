@@ -1,4 +1,4 @@
-# legwork accent: build a database from the sample data, accentuate a held-out trial, bench; bad input fails.
+# legwork accent: build a database from the sample data, accentuate a held-out trial, speed figures; bad input fails with its message.
 set(ACC_DB ${O}/accent_sample.lwdb)
 legwork_cli_test(accent_build accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --exclude bvh/walking/07_02.bvh
                  --out ${ACC_DB} --json ${O}/accent_build.json)
@@ -16,17 +16,17 @@ legwork_cli_test(accent_run_glb_exact accent run --db ${ACC_DB} --input ${D}/wal
                  --out ${O}/accent_07_02.glb --mode exact --k 3 --no-align --no-smooth --exaggerate 1.3)
 legwork_cli_test(accent_run_target accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
                  --out ${O}/accent_07_02_daz.bvh --target ${PROJECT_SOURCE_DIR}/data/cmu/bvh_daz/climbing_ladder/14_33.bvh)
-legwork_cli_test(accent_bench accent bench --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
-                 --json ${O}/accent_bench.json)
-set_tests_properties(cli.accent_run cli.accent_run_glb_exact cli.accent_run_target cli.accent_bench
+add_test(NAME cli.accent_speed COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
+         --json ${O}/accent_speed.json)
+set_tests_properties(cli.accent_run cli.accent_run_glb_exact cli.accent_run_target cli.accent_speed
                      PROPERTIES FIXTURES_REQUIRED accent_db)
-legwork_cli_fail(accent_build_unknown_class accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing
+legwork_cli_error(accent_build_unknown_class "error: .*no class 'dancing' \\(classes present: basketball, boxing" accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing
                  --out ${O}/x.lwdb)
-legwork_cli_fail(accent_build_bad_ext accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --out ${O}/x.db)
-legwork_cli_fail(accent_build_all_filtered accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes walking
+legwork_cli_error(accent_build_bad_ext "error: --out '.*x.db' must end in .lwdb" accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --out ${O}/x.db)
+legwork_cli_error(accent_build_all_filtered "error: accent build: no windows: every trial was dropped" accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes walking
                  --correlation 1.5 --out ${O}/x.lwdb)
-legwork_cli_fail(accent_run_not_a_db accent run --db ${PROJECT_SOURCE_DIR}/data/cmu/MANIFEST.tsv
+legwork_cli_error(accent_run_not_a_db "error: accent database '.*MANIFEST.tsv': not a legwork accent database \\(bad magic\\)" accent run --db ${PROJECT_SOURCE_DIR}/data/cmu/MANIFEST.tsv
                  --input ${D}/walking/07_02.bvh --out ${O}/x.bvh)
-legwork_cli_fail(accent_run_unknown_class accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --classes dancing
+legwork_cli_error(accent_run_unknown_class "error: accent: class 'dancing' is not in the database \\(it has: " accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --classes dancing
                  --out ${O}/x.bvh)
 set_tests_properties(cli.accent_run_unknown_class PROPERTIES FIXTURES_REQUIRED accent_db)

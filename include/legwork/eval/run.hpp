@@ -3,8 +3,8 @@
 // its ablation variants and the full-body IK baseline, fold by fold, in
 // parallel over the machine's cores. Offline code: allocates, throws
 // legwork::Error for unusable input (no trial loads, a fold leaks).
-#include <legwork/accent/accentuator.hpp>
-#include <legwork/accent/builder.hpp>
+#include <legwork/accent/offline/run.hpp>
+#include <legwork/accent/offline/builder.hpp>
 #include <legwork/eval/metrics.hpp>
 #include <legwork/eval/protocol.hpp>
 
@@ -21,18 +21,18 @@ struct Variant {
   std::string key;    // "accent", "nn", "nn_align", "hop_2", ...
   std::string label;  // for tables and charts
   accent::BuildConfig build;
-  accent::AccentConfig config;
+  accent::Settings config;
 };
 // The document's ablation (NN only -> + alignment -> + smoothing) and the
 // extra choices (window hop, speed augmentation, mirroring, k, distance
 // threshold, exact search) around a base configuration. `quick` keeps only
 // the document's three steps.
-std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const accent::AccentConfig& config, bool quick);
+std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const accent::Settings& config, bool quick);
 
 struct RunOptions {
   std::vector<Protocol> protocols{Protocol::CrossSubject, Protocol::CrossTrial};
   accent::BuildConfig build;    // the engine's configuration ("accent")
-  accent::AccentConfig config;
+  accent::Settings config;
   bool ablation = true;         // ablation variants, on the cross-subject protocol
   bool quick_ablation = false;  // only the document's three ablation steps
   bool ik = true;               // the IK baseline
@@ -99,5 +99,11 @@ EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const Ru
 // Output motion of the IK baseline driven by a motion's head and hands (on
 // the motion's own skeleton, at its rate); `seconds` gets the solver time.
 Motion run_ik_baseline(const Motion& truth, double* seconds = nullptr);
+
+// The IK baseline (the VRIK-style full-body IK of legwork::ik) over a clip:
+// one ik avatar on `skel` driven by the frames' head and hands, output at
+// `fps` (one frame per input frame; a rejected frame repeats the last pose).
+// Adds the solver's time to *seconds if given.
+Motion run_ik_baseline(const Skeleton& skel, std::span<const TrackerFrame> frames, double fps, double* seconds = nullptr);
 
 }  // namespace legwork::eval

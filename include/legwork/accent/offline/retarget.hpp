@@ -37,5 +37,8 @@ void apply_retarget(const RoleRetarget& r, ConstPoseRef src, PoseRef dst, std::s
 
 // Whole motion (allocates).
 Motion retarget_motion(const Motion& m, const Skeleton& dst);
+// Whole motion, then each frame shifted so the destination's head joint sits
+// where the source's does (as the runtime places its own rig at the headset).
+Motion retarget_motion_at_head(const Motion& m, const Skeleton& dst);
 
 }  // namespace legwork::accent

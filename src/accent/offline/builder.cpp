@@ -1,8 +1,8 @@
 // Offline database builder (CoolMoves 3.1.1-3.1.2).
-#include <legwork/accent/builder.hpp>
-#include <legwork/accent/retarget.hpp>
+#include <legwork/accent/offline/builder.hpp>
+#include <legwork/accent/offline/retarget.hpp>
 
-#include "database_impl.hpp"
+#include "../database_impl.hpp"
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>

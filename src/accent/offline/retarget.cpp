@@ -1,24 +1,12 @@
-#include <legwork/accent/retarget.hpp>
+#include <legwork/accent/offline/retarget.hpp>
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/measure.hpp>
+#include <legwork/core/rotation.hpp>
 
 #include <string>
 
 namespace legwork::accent {
-namespace {
-
-// Rest-pose direction of joint j's bone in model space (identity rotations):
-// toward the sum of its children's offsets, or its end site.
-Vec3 rest_bone_direction(const Skeleton& s, int j) {
-  Vec3 d = Vec3::Zero();
-  for (int c = j + 1; c < s.joint_count(); ++c)
-    if (s.parents[static_cast<std::size_t>(c)] == j) d += s.rest_offsets[static_cast<std::size_t>(c)];
-  if (d.norm() < 1e-9 && s.has_end_site[static_cast<std::size_t>(j)]) d = s.end_sites[static_cast<std::size_t>(j)];
-  return d.norm() < 1e-9 ? Vec3::Zero() : Vec3(d.normalized());
-}
-
-}  // namespace
 
 RoleRetarget make_role_retarget(const Skeleton& src, const Skeleton& dst) {
   RoleRetarget r;
@@ -44,8 +32,8 @@ RoleRetarget make_role_retarget(const Skeleton& src, const Skeleton& dst) {
     const int s = r.source_of[j];
     if (s < 0) continue;
     ++r.paired;
-    const Vec3 dd = rest_bone_direction(dst, static_cast<int>(j));
-    const Vec3 ds = rest_bone_direction(src, s);
+    const Vec3 dd = rest_direction(dst, static_cast<int>(j), Vec3::Zero());
+    const Vec3 ds = rest_direction(src, s, Vec3::Zero());
     if (dd.norm() > 0 && ds.norm() > 0) r.rest_fix[j] = Quat::FromTwoVectors(dd, ds);
   }
   const double hs = measure_body(src).hip_height, hd = measure_body(dst).hip_height;
@@ -81,6 +69,18 @@ Motion retarget_motion(const Motion& m, const Skeleton& dst) {
   Motion out(dst, m.fps, m.frame_count());
   std::vector<Quat> sm(static_cast<std::size_t>(m.joint_count())), dm(static_cast<std::size_t>(dst.joint_count()));
   for (int f = 0; f < m.frame_count(); ++f) apply_retarget(r, m.frame(f), out.frame(f), sm, dm);
+  return out;
+}
+
+Motion retarget_motion_at_head(const Motion& m, const Skeleton& dst) {
+  Motion out = retarget_motion(m, dst);
+  const int hs = m.skeleton.roles[Role::Head], ht = out.skeleton.roles[Role::Head];
+  std::vector<Vec3> ps(static_cast<std::size_t>(m.joint_count())), pt(static_cast<std::size_t>(out.joint_count()));
+  for (int f = 0; f < out.frame_count(); ++f) {
+    forward_positions(m.skeleton, m.frame(f), ps);
+    forward_positions(out.skeleton, out.frame(f), pt);
+    out.frame(f).translations[0] += ps[static_cast<std::size_t>(hs)] - pt[static_cast<std::size_t>(ht)];
+  }
   return out;
 }
 

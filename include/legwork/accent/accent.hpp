@@ -1,0 +1,181 @@
+#pragma once
+// Runtime: full-body pose synthesis from a headset and two hand controllers
+// (CoolMoves 3.1.3-3.1.4), on the per-frame contract of docs/architecture.md:
+// an immutable accent::Model (database + settings + everything derived from
+// them: the skeleton scaled to the user, class mask, joint groups and limits,
+// the neutral pose) shared by any number of avatars, one accent::State per
+// avatar, and accent::update().
+//
+// Per update: the live input is featurised exactly like the database (hands
+// relative to the head over the last kWindow samples at the database rate,
+// interpolated from whatever rate the trackers run at), each hand's k nearest
+// windows are found (distance threshold), every candidate pose is rotated
+// about the vertical axis by the weighted closed-form alignment, the
+// candidates are blended with weights inversely proportional to their match
+// distance (left-arm joints from left-hand matches, right-arm joints from
+// right-hand matches, every other joint from both), smoothed over time by the
+// EWMA p_t = w p_t + (1 - w) p_{t-1} with w the global match weight
+// (rotations on the sphere) and a critically damped spring, limited to human
+// joint ranges, scaled to the user's height and placed so its head sits at
+// the headset; hand IK then pulls the wrists onto the controllers.
+//
+// When no window matches within the threshold, or a device loses tracking
+// (its last good head-relative position is held), the output converges over
+// `fallback_seconds` to a direct mapping (neutral standing body facing the
+// headset's heading, arms by two-bone IK to the real hands) and back when
+// matches return: never a frozen or exploding pose.
+//
+// Threading: the Database and the Model are shared read-only; each State is
+// one avatar's (a few KB). update() allocates nothing and throws nothing.
+#include <legwork/accent/database.hpp>
+#include <legwork/accent/search.hpp>
+#include <legwork/core/tracker.hpp>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace legwork::accent {
+
+inline constexpr int kMaxK = 32;
+
+struct Settings {
+  SearchMode search = SearchMode::Fast;
+  float fast_eps = 5.0f;  // Fast mode: KD-tree pruning slack (squared-distance factor 1 + eps)
+  int fast_max_checks = 1500;  // Fast mode: candidates examined per class tree (bounds p99)
+  int k_left = 15, k_right = 15;  // matches per hand (at most kMaxK; the paper used 5, 15 measured better)
+  // Match distance limit in units of Database::typical_distance(); <= 0: none.
+  double threshold = 6.0;
+  bool align = true;   // rotation alignment of candidates about y
+  // Temporal smoothing: the paper's EWMA driven by the match weight, then a
+  // critically damped spring on every local rotation (frame-rate independent,
+  // continuous velocity, so candidate-set switches do not show as jerks).
+  // false: neither (the ablation's "no smoothing").
+  bool smooth = true;
+  double smooth_halflife = 0.06;  // seconds the spring takes to halve an error; 0 = EWMA only (the paper)
+  double min_smoothing_weight = 0.1;  // lower bound on w so the pose never freezes
+  double user_height = 0;    // metres; 0 = the database skeleton's height
+  double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
+  std::vector<std::string> classes;  // activity classes to match (empty = all)
+  bool joint_limits = true;
+  bool drive_head = true;    // head joint takes the headset's orientation
+  double fallback_seconds = 0.4;  // time to converge to / from the direct mapping
+  // 0..1: pull the synthesized arms onto the real hands by two-bone IK;
+  // 1 = wrists on the controllers (the default for VR), 0 = the paper's pure synthesis.
+  double hand_ik = 1.0;
+  bool direct_only = false;  // skip matching: always the direct mapping (ablation only; the IK baseline is ik::)
+  // Reject candidates whose head tilt (angle of the head's up axis from
+  // vertical) differs from the headset's by more than this (degrees; 0 = off):
+  // keeps e.g. a lying swimmer's body off an upright user.
+  double max_head_tilt_deg = 30.0;
+};
+
+// How the frame's pose was made (Info::match).
+enum class MatchStatus : std::uint8_t {
+  Matched,      // both hands matched
+  Partial,      // one hand had no match within the threshold
+  Unmatched,    // no match: converging to the direct mapping
+  TrackingLost, // a device is unusable: its last good data is held
+  Rejected,     // the frame was rejected (time): nothing changed
+};
+const char* status_name(MatchStatus s);
+
+struct Info {
+  MatchStatus match = MatchStatus::Matched;
+  double match_weight = 0;  // global match weight w_t (0..1)
+  double fallback = 0;      // share of the direct mapping in the output (0..1)
+  std::array<int, 2> matches{0, 0};
+  std::array<float, 2> best_distance{0, 0};  // in typical-distance units
+};
+
+// Everything derived from the database and the settings; immutable.
+class Model {
+ public:
+  enum Group : std::uint8_t { Body, LeftArm, RightArm };
+  struct Limit {
+    Vec3 axis = Vec3::UnitY();
+    double swing = 0, twist = 0;  // radians; 0 = unlimited
+  };
+
+  const Database& database() const { return *db_; }
+  const Settings& settings() const { return settings_; }
+  // The output skeleton: the database skeleton scaled to the user's height.
+  const Skeleton& skeleton() const { return skeleton_; }
+  double scale() const { return scale_; }  // user height / database height
+  std::span<const unsigned char> class_mask() const { return class_mask_; }
+  Group group(int joint) const { return group_[static_cast<std::size_t>(joint)]; }
+  const Limit& limit(int joint) const { return limit_[static_cast<std::size_t>(joint)]; }
+  const Pose& neutral() const { return neutral_; }
+  // Model bytes (shared by every avatar of this model).
+  std::size_t bytes() const;
+
+ private:
+  friend Model make_model(const Database&, const Settings&);
+  const Database* db_ = nullptr;
+  Settings settings_;
+  Skeleton skeleton_;
+  double scale_ = 1;
+  std::vector<unsigned char> class_mask_;
+  std::vector<Group> group_;
+  std::vector<Limit> limit_;
+  Pose neutral_;
+};
+
+// Throws legwork::Error for an unknown class (listing the database's), k out
+// of range, a non-positive exaggeration or height, or a database skeleton
+// without head/hands/pelvis. The database must outlive the model.
+Model make_model(const Database& db, const Settings& settings = {});
+
+// One avatar's memory between frames, and its scratch space.
+struct State {
+  explicit State(const Model& model);
+  // Bytes of per-avatar state (workspace included).
+  std::size_t bytes() const;
+
+  struct Sample {
+    double t = 0;
+    Vec3 head = Vec3::Zero();
+    std::array<Vec3, 2> hand{Vec3::Zero(), Vec3::Zero()};
+  };
+  FrameClock clock;
+  // Ring buffer of recent input samples.
+  static constexpr int kRing = 128;
+  std::array<Sample, kRing> ring{};
+  int ring_head = -1, ring_size = 0;
+  std::array<Vec3, 2> hand_offset{};  // last good head-relative hand positions
+  Vec3 last_head = Vec3::Zero();
+  Quat last_head_rot = Quat::Identity();
+  bool have_head = false;
+  double fallback = 0.0;  // share of the direct mapping
+  double match_weight = 0;
+  bool have_smoothed = false, have_spring = false;
+  // The last matches per hand (window indices into the database) and live features.
+  std::array<std::array<Match, kMaxK>, 2> matches{};
+  std::array<int, 2> match_count{0, 0};
+  std::array<Feature, 2> live{};
+  Pose smoothed;                // EWMA output
+  std::vector<Quat> spring_rot; // spring filter: filtered local rotations...
+  std::vector<Vec3> spring_vel; // ...and their angular velocities
+  // Scratch (no meaning between frames).
+  std::array<std::array<Quat, kMaxK>, 2> root_aligned{};
+  std::array<std::array<double, kMaxK>, 2> weight{}, confidence{};
+  std::array<std::array<const float*, kMaxK>, 2> pose_rot{};  // each candidate's pose rotations
+  std::vector<Quat> model_rot;
+  std::vector<Transform> model_space;
+  Pose synth, direct;
+};
+
+void reset(const Model& model, State& state);
+
+// One frame: head and hands of `frame` in, the pose on model.skeleton() out
+// (local rotations; root translation = world position, metres). `out` must
+// have the skeleton's joint count (else Rejected). Rejected frames leave
+// state and `out` untouched.
+UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
+
+// The last matches of one hand (0 left, 1 right).
+std::span<const Match> last_matches(const State& state, int hand);
+
+}  // namespace legwork::accent

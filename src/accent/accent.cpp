@@ -1,0 +1,559 @@
+// Per-frame accentuation (CoolMoves 3.1.3-3.1.4). No allocation, no exceptions in update().
+#include <legwork/accent/accent.hpp>
+
+#include <legwork/core/fk.hpp>
+#include <legwork/core/interpolate.hpp>
+#include <legwork/core/rotation.hpp>
+#include <legwork/ik/two_bone.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace legwork::accent {
+namespace {
+
+bool finite(const Vec3& v) { return all_finite(v); }
+bool finite(const Quat& q) { return all_finite(q) && q.norm() > 1e-6; }
+
+
+// Swing-twist clamp of a local rotation about the bone axis.
+Quat clamp_rotation(const Quat& q, const Vec3& axis, double max_swing, double max_twist) {
+  const Vec3 v(q.x(), q.y(), q.z());
+  const Vec3 p = axis * v.dot(axis);
+  Quat twist(q.w(), p.x(), p.y(), p.z());
+  if (twist.norm() < 1e-9) twist = Quat::Identity();
+  twist.normalize();
+  Quat swing = q * twist.conjugate();
+  auto limit = [](Quat r, double max_angle) {
+    if (r.w() < 0) r.coeffs() = -r.coeffs();
+    const double angle = 2.0 * std::acos(std::clamp(r.w(), -1.0, 1.0));
+    if (angle <= max_angle || angle < 1e-9) return r;
+    return Quat::Identity().slerp(max_angle / angle, r);
+  };
+  if (max_swing > 0) swing = limit(swing, max_swing);
+  if (max_twist > 0) twist = limit(twist, max_twist);
+  return (swing * twist).normalized();
+}
+
+}  // namespace
+
+const char* status_name(MatchStatus s) {
+  switch (s) {
+    case MatchStatus::Matched: return "matched";
+    case MatchStatus::Partial: return "partial";
+    case MatchStatus::Unmatched: return "unmatched";
+    case MatchStatus::TrackingLost: return "tracking-lost";
+    case MatchStatus::Rejected: return "rejected";
+  }
+  return "?";
+}
+
+// ---- Model ------------------------------------------------------------------
+
+namespace {
+
+void check_settings(const Database& db, const Settings& cfg) {
+  const auto& r = db.skeleton().roles;
+  for (Role need : {Role::Head, Role::LeftHand, Role::RightHand, Role::Pelvis})
+    if (!r.has(need)) throw Error("accent: the database skeleton has no " + std::string(role_name(need)) + " joint");
+  if (cfg.k_left < 0 || cfg.k_right < 0 || cfg.k_left > kMaxK || cfg.k_right > kMaxK)
+    throw Error("accent: k must be between 0 and " + std::to_string(kMaxK));
+  if (!(cfg.exaggeration > 0) || !std::isfinite(cfg.exaggeration)) throw Error("accent: exaggeration must be positive");
+  if (cfg.user_height < 0 || !std::isfinite(cfg.user_height)) throw Error("accent: user height must be positive");
+  if (!(cfg.smooth_halflife >= 0) || !std::isfinite(cfg.smooth_halflife))
+    throw Error("accent: smoothing half-life must be >= 0 seconds");
+  if (!std::isfinite(cfg.fallback_seconds) || cfg.fallback_seconds < 0)
+    throw Error("accent: fallback_seconds must be >= 0");
+  if (!std::isfinite(cfg.hand_ik) || cfg.hand_ik < 0 || cfg.hand_ik > 1) throw Error("accent: hand_ik must be in [0, 1]");
+}
+
+std::vector<unsigned char> make_class_mask(const Database& db, const std::vector<std::string>& classes) {
+  std::vector<unsigned char> mask(static_cast<std::size_t>(db.class_count()), classes.empty() ? 1 : 0);
+  for (const auto& c : classes) {
+    const int i = db.find_class(c);
+    if (i < 0) {
+      std::string list;
+      for (const auto& k : db.classes()) list += (list.empty() ? "" : ", ") + k;
+      throw Error("accent: class '" + c + "' is not in the database (it has: " + list + ")");
+    }
+    mask[static_cast<std::size_t>(i)] = 1;
+  }
+  return mask;
+}
+
+// Joint limits per joint type (swing from the rest pose, twist about the bone), degrees.
+std::vector<Model::Limit> make_limits(const Skeleton& skel) {
+  const auto& r = skel.roles;
+  std::vector<Model::Limit> limit(static_cast<std::size_t>(skel.joint_count()));
+  auto set = [&](Role role, double swing, double twist) {
+    if (!r.has(role)) return;
+    const int j = r[role];
+    limit[static_cast<std::size_t>(j)] = {rest_direction(skel, j), deg2rad(swing), deg2rad(twist)};
+  };
+  for (int j : r.spine_chain) limit[static_cast<std::size_t>(j)] = {rest_direction(skel, j), deg2rad(45), deg2rad(35)};
+  set(Role::Neck, 50, 60);
+  set(Role::Head, 60, 80);
+  for (Role c : {Role::LeftClavicle, Role::RightClavicle}) set(c, 35, 25);
+  for (Role s : {Role::LeftShoulder, Role::RightShoulder}) set(s, 170, 100);
+  for (Role e : {Role::LeftElbow, Role::RightElbow}) set(e, 160, 100);
+  for (Role h : {Role::LeftHand, Role::RightHand}) set(h, 85, 80);
+  for (Role h : {Role::LeftHip, Role::RightHip}) set(h, 125, 60);
+  for (Role k : {Role::LeftKnee, Role::RightKnee}) set(k, 160, 35);
+  for (Role a : {Role::LeftAnkle, Role::RightAnkle}) set(a, 65, 35);
+  for (Role t : {Role::LeftToe, Role::RightToe}) set(t, 60, 15);
+  return limit;
+}
+
+// Neutral standing pose: legs straight down, arms down at the sides.
+Pose make_neutral(const Skeleton& skel) {
+  const auto& r = skel.roles;
+  Pose neutral(skel);
+  auto point = [&](Role role, const Vec3& dir) {
+    if (!r.has(role)) return;
+    const int j = r[role];
+    neutral.rotations[static_cast<std::size_t>(j)] = Quat::FromTwoVectors(rest_direction(skel, j), dir.normalized());
+  };
+  point(Role::LeftHip, Vec3(0, -1, 0));
+  point(Role::RightHip, Vec3(0, -1, 0));
+  point(Role::LeftShoulder, Vec3(0.2, -1, 0));
+  point(Role::RightShoulder, Vec3(-0.2, -1, 0));
+  return neutral;
+}
+
+}  // namespace
+
+Model make_model(const Database& db, const Settings& settings) {
+  check_settings(db, settings);
+  Model m;
+  m.db_ = &db;
+  m.settings_ = settings;
+  m.skeleton_ = db.skeleton();
+  m.scale_ = settings.user_height > 0 && db.height() > 0 ? settings.user_height / db.height() : 1.0;
+  m.skeleton_.scale(m.scale_);
+  m.class_mask_ = make_class_mask(db, settings.classes);
+  const Skeleton& skel = m.skeleton_;
+  const auto& r = skel.roles;
+  const int n = skel.joint_count();
+  // Arm groups: clavicle (or shoulder) and everything below it.
+  m.group_.assign(static_cast<std::size_t>(n), Model::Body);
+  auto mark = [&](Role top, Role fallback_top, Model::Group g) {
+    const int t = r.has(top) ? r[top] : r[fallback_top];
+    for (int j = 0; j < n; ++j)
+      if (skel.is_ancestor(t, j)) m.group_[static_cast<std::size_t>(j)] = g;
+  };
+  mark(Role::LeftClavicle, Role::LeftShoulder, Model::LeftArm);
+  mark(Role::RightClavicle, Role::RightShoulder, Model::RightArm);
+  m.limit_ = make_limits(skel);
+  m.neutral_ = make_neutral(skel);
+  return m;
+}
+
+std::size_t Model::bytes() const {
+  const auto nj = static_cast<std::size_t>(skeleton_.joint_count());
+  return sizeof(*this) + class_mask_.size() + nj * (sizeof(Group) + sizeof(Limit) + sizeof(Quat) + sizeof(Vec3)) +
+         nj * (3 * sizeof(Vec3) + sizeof(int) + 40);
+}
+
+// ---- State ------------------------------------------------------------------
+
+State::State(const Model& model) {
+  const auto n = static_cast<std::size_t>(model.skeleton().joint_count());
+  smoothed = synth = direct = model.neutral();
+  spring_rot.assign(n, Quat::Identity());
+  spring_vel.assign(n, Vec3::Zero());
+  model_rot.resize(n);
+  model_space.resize(n);
+  reset(model, *this);
+}
+
+void reset(const Model& model, State& s) {
+  s.clock.reset();
+  s.ring_head = -1;
+  s.ring_size = 0;
+  s.hand_offset = {Vec3(0.2, -0.6, 0.1) * model.scale(), Vec3(-0.2, -0.6, 0.1) * model.scale()};
+  s.have_head = s.have_smoothed = s.have_spring = false;
+  s.fallback = 0;
+  s.match_count = {0, 0};
+  s.match_weight = 0;
+}
+
+std::size_t State::bytes() const {
+  const auto nj = spring_rot.size();
+  return sizeof(*this) + 3 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Quat) + sizeof(Vec3)) +
+         nj * (sizeof(Transform) + sizeof(Quat));
+}
+
+std::span<const Match> last_matches(const State& s, int hand) {
+  const auto h = static_cast<std::size_t>(hand);
+  return {s.matches[h].data(), static_cast<std::size_t>(s.match_count[h])};
+}
+
+// ---- update stages ------------------------------------------------------------
+
+namespace {
+
+using Sample = State::Sample;
+constexpr int kRing = State::kRing;
+
+// The live feature window of one hand at the database rate, interpolated from
+// the ring of timed samples (in database space: exaggerated, unscaled).
+void window_at(const Model& model, const State& st, int hand, HandWindow& out) {
+  const double fps = model.database().feature_space().fps;
+  const double now = st.ring[static_cast<std::size_t>(st.ring_head)].t;
+  const double s = model.settings().exaggeration / model.scale();  // user space -> database space
+  const auto h = static_cast<std::size_t>(hand);
+  auto at = [&](int k) -> const Sample& { return st.ring[static_cast<std::size_t>((st.ring_head - k + kRing) % kRing)]; };
+  for (int i = 0; i < kWindow; ++i) {
+    const double t = now - (kWindow - 1 - i) / fps;
+    Vec3 rel = at(st.ring_size - 1).hand[h] - at(st.ring_size - 1).head;  // before the buffer: oldest
+    for (int k = 0; k < st.ring_size; ++k) {
+      const Sample& a = at(k);
+      if (a.t <= t + 1e-9) {
+        if (k == 0 || a.t >= t - 1e-9) {
+          rel = a.hand[h] - a.head;
+        } else {
+          const Sample& b = at(k - 1);
+          const double u = (t - a.t) / (b.t - a.t);
+          rel = (1 - u) * (a.hand[h] - a.head) + u * (b.hand[h] - b.head);
+        }
+        break;
+      }
+    }
+    out[static_cast<std::size_t>(i)] = rel * s;
+  }
+}
+
+// Gather: each hand's k nearest windows within the threshold, seeded by the
+// last frame's matches. Gate: drop candidates whose head tilt differs from the
+// user's. Returns the number kept.
+int gather_matches(const Model& model, State& st, int h, double threshold) {
+  const Settings& cfg = model.settings();
+  const Database& db = model.database();
+  const auto hu = static_cast<std::size_t>(h);
+  const int k = h == 0 ? cfg.k_left : cfg.k_right;
+  auto& m = st.matches[hu];
+  std::array<int, kMaxK> seeds;
+  const int ns = st.match_count[hu];
+  for (int i = 0; i < ns; ++i) seeds[static_cast<std::size_t>(i)] = m[static_cast<std::size_t>(i)].window;
+  // With the head-tilt gate, look further so k candidates usually survive it.
+  const int k_search = cfg.max_head_tilt_deg > 0 ? std::min(kMaxK, k + std::max(3, k / 3)) : k;
+  int got = search_knn(db, h, st.live[hu], k_search, cfg.search, cfg.fast_eps, model.class_mask(), m,
+                       std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)), cfg.fast_max_checks);
+  if (threshold > 0)
+    while (got > 0 && m[static_cast<std::size_t>(got - 1)].distance > threshold) --got;
+  if (cfg.max_head_tilt_deg > 0) {
+    // Keep candidates whose head is about as upright as the user's (yaw-free test).
+    const double user_tilt = std::acos(std::clamp((st.last_head_rot * Vec3::UnitY()).y(), -1.0, 1.0));
+    const double limit = deg2rad(cfg.max_head_tilt_deg);
+    int kept = 0;
+    for (int i = 0; i < got; ++i) {
+      const Vec3 up = db.head_up(static_cast<int>(db.source(m[static_cast<std::size_t>(i)].window).pose));
+      if (std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) <= limit) m[static_cast<std::size_t>(kept++)] = m[static_cast<std::size_t>(i)];
+    }
+    got = std::min(kept, k);
+  }
+  return got;
+}
+
+// Align: each candidate's root rotated about y by the weighted closed-form
+// alignment; weights inversely proportional to the match distance.
+void align_matches(const Model& model, State& st, int h, double threshold, const AlignXZ& query_xz) {
+  const Database& db = model.database();
+  const double typical = db.typical_distance();
+  const auto hu = static_cast<std::size_t>(h);
+  const auto& m = st.matches[hu];
+  const int got = st.match_count[hu];
+  double wsum = 0;
+  for (int i = 0; i < got; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    const int win = m[iu].window;
+    const auto root = db.pose_rotations(static_cast<int>(db.source(win).pose));
+    st.pose_rot[hu][iu] = root.data();
+    Quat q0(root[0], root[1], root[2], root[3]);
+    if (model.settings().align) q0 = Quat(Eigen::AngleAxisd(align_yaw(query_xz, db.align(win)), Vec3::UnitY())) * q0;
+    st.root_aligned[hu][iu] = q0;
+    const double d = m[iu].distance;
+    st.weight[hu][iu] = 1.0 / (d + 1e-3 * typical);
+    wsum += st.weight[hu][iu];
+    st.confidence[hu][iu] = threshold > 0 ? std::max(0.0, 1.0 - d / threshold) : typical / (typical + d);
+  }
+  for (int i = 0; i < got; ++i) st.weight[hu][static_cast<std::size_t>(i)] /= wsum;
+}
+
+// Blend one joint's rotation over the candidates of the hands in `share`.
+Quat blend_joint(const State& st, int j, const double share[2]) {
+  const auto ju = static_cast<std::size_t>(j);
+  Eigen::Vector4d acc = Eigen::Vector4d::Zero();
+  Eigen::Vector4d ref = Eigen::Vector4d::Zero();
+  for (int h = 0; h < 2; ++h) {
+    if (share[h] == 0) continue;
+    const auto hu = static_cast<std::size_t>(h);
+    for (int i = 0; i < st.match_count[hu]; ++i) {
+      const auto iu = static_cast<std::size_t>(i);
+      Eigen::Vector4d q;
+      if (j == 0) {
+        const Quat& r0 = st.root_aligned[hu][iu];
+        q = {r0.w(), r0.x(), r0.y(), r0.z()};
+      } else {
+        const float* rot = st.pose_rot[hu][iu];
+        q = {rot[4 * ju], rot[4 * ju + 1], rot[4 * ju + 2], rot[4 * ju + 3]};
+      }
+      if (ref.isZero()) ref = q;
+      const double wq = share[h] * st.weight[hu][iu];
+      acc += (q.dot(ref) < 0 ? -wq : wq) * q;  // same hemisphere as the first candidate
+    }
+  }
+  const double len = acc.norm();
+  return len > 1e-12 ? Quat(acc[0] / len, acc[1] / len, acc[2] / len, acc[3] / len) : Quat::Identity();
+}
+
+// Blend: left-arm joints from left-hand matches, right-arm joints from
+// right-hand matches, the rest from both; sets the global match weight.
+void blend_matches(const Model& model, State& st) {
+  const int nl = st.match_count[0], nr = st.match_count[1];
+  auto mean_conf = [&](int h) {
+    const auto hu = static_cast<std::size_t>(h);
+    double s = 0;
+    for (int i = 0; i < st.match_count[hu]; ++i) s += st.confidence[hu][static_cast<std::size_t>(i)];
+    return st.match_count[hu] ? s / st.match_count[hu] : 0.0;
+  };
+  const double cl = mean_conf(0), cr = mean_conf(1);
+  const int n = model.skeleton().joint_count();
+  double weight_total = 0;
+  for (int j = 0; j < n; ++j) {
+    double share[2] = {0, 0};
+    double joint_weight = 0;
+    switch (model.group(j)) {
+      case Model::LeftArm:
+        share[nl ? 0 : 1] = 1;
+        joint_weight = nl ? cl : 0.5 * cr;
+        break;
+      case Model::RightArm:
+        share[nr ? 1 : 0] = 1;
+        joint_weight = nr ? cr : 0.5 * cl;
+        break;
+      case Model::Body:
+        if (nl && nr) share[0] = share[1] = 0.5;
+        else share[nl ? 0 : 1] = 1;
+        joint_weight = (nl && nr) ? 0.5 * (cl + cr) : 0.5 * (nl ? cl : cr);
+        break;
+    }
+    weight_total += joint_weight;
+    st.synth.rotations[static_cast<std::size_t>(j)] = blend_joint(st, j, share);
+  }
+  st.match_weight = std::clamp(weight_total / n, 0.0, 1.0);
+}
+
+// Gather, gate, align and blend the candidates of both hands into st.synth.
+bool blend_candidates(const Model& model, State& st, double threshold) {
+  HandWindow w[2];
+  window_at(model, st, 0, w[0]);
+  window_at(model, st, 1, w[1]);
+  AlignXZ query_xz;
+  fill_align(w[0], w[1], query_xz);
+  for (int h = 0; h < 2; ++h) {
+    model.database().feature_space().project(w[h], st.live[static_cast<std::size_t>(h)]);
+    st.match_count[static_cast<std::size_t>(h)] = gather_matches(model, st, h, threshold);
+    align_matches(model, st, h, threshold, query_xz);
+  }
+  if (st.match_count[0] == 0 && st.match_count[1] == 0) return false;
+  blend_matches(model, st);
+  return true;
+}
+
+void make_direct_pose(const Model& model, State& st) {
+  const Pose& neutral = model.neutral();
+  for (std::size_t j = 0; j < st.direct.rotations.size(); ++j) st.direct.rotations[j] = neutral.rotations[j];
+  st.direct.rotations[0] = yaw_rotation(yaw_of(st.last_head_rot)) * neutral.rotations[0];
+}
+
+// Exact critically damped spring per joint toward this frame's rotation
+// (closed form, so any dt gives the same curve): unlike the EWMA alone, the
+// output's angular velocity stays continuous when the candidate set switches.
+void spring_filter(const Model& model, State& st, double dt, PoseRef out) {
+  const std::size_t n = out.rotations.size();
+  if (!st.have_spring) {
+    for (std::size_t j = 0; j < n; ++j) {
+      st.spring_rot[j] = out.rotations[j];
+      st.spring_vel[j] = Vec3::Zero();
+    }
+    st.have_spring = true;
+    return;
+  }
+  const double y = 2.0 * std::log(2.0) / model.settings().smooth_halflife;  // half the damping
+  const double decay = std::exp(-y * dt);
+  for (std::size_t j = 0; j < n; ++j) {
+    const Quat& goal = out.rotations[j];
+    const Vec3 j0 = rotation_log(st.spring_rot[j] * goal.conjugate());
+    const Vec3 j1 = st.spring_vel[j] + j0 * y;
+    st.spring_rot[j] = (rotation_exp(decay * (j0 + j1 * dt)) * goal).normalized();
+    st.spring_vel[j] = decay * (st.spring_vel[j] - j1 * y * dt);
+    out.rotations[j] = st.spring_rot[j];
+  }
+}
+
+// Head model rotation = the headset's; its local rotation follows from its parents.
+void drive_head(const Model& model, State& st, const Quat& head_rotation, PoseRef out) {
+  const Skeleton& skel = model.skeleton();
+  const int head = skel.roles[Role::Head];
+  for (int j = 0; j < head; ++j) {
+    const auto ju = static_cast<std::size_t>(j);
+    const int p = skel.parents[ju];
+    st.model_rot[ju] = p < 0 ? out.rotations[ju] : st.model_rot[static_cast<std::size_t>(p)] * out.rotations[ju];
+  }
+  const int hp = skel.parents[static_cast<std::size_t>(head)];
+  const Quat parent = hp >= 0 ? st.model_rot[static_cast<std::size_t>(hp)] : Quat::Identity();
+  out.rotations[static_cast<std::size_t>(head)] = (parent.conjugate() * head_rotation).normalized();
+}
+
+// Hand IK: pull the wrists onto the (exaggerated) hands.
+void reach_hands(const Model& model, State& st, const Quat& head_rotation, const Vec3& head_position, double ik_weight,
+                 PoseRef out) {
+  const Skeleton& skel = model.skeleton();
+  const Quat yaw = yaw_rotation(yaw_of(head_rotation));
+  for (int h = 0; h < 2; ++h) {
+    const auto chain = h == 0 ? ik::left_arm(skel) : ik::right_arm(skel);
+    ik::TwoBoneTarget target;
+    // Exaggerated hands (as matched), so the style control survives hand IK.
+    target.position = head_position + model.settings().exaggeration * st.hand_offset[static_cast<std::size_t>(h)];
+    // Elbows bend down and back, slightly outward.
+    target.hint = st.model_space[static_cast<std::size_t>(chain.mid)].translation +
+                  yaw * Vec3(h == 0 ? 0.3 : -0.3, -0.5, -0.4) * model.scale();
+    target.position_weight = std::clamp(ik_weight, 0.0, 1.0);
+    target.hint_weight = 1.0;
+    ik::solve_two_bone(skel, chain, target, out, st.model_space);
+  }
+}
+
+// Joint limits, head drive, placement at the headset, hand IK.
+void finish_pose(const Model& model, State& st, const Quat& head_rotation, const Vec3& head_position, double ik_weight,
+                 PoseRef out) {
+  const Skeleton& skel = model.skeleton();
+  const int n = skel.joint_count();
+  if (model.settings().joint_limits)
+    for (int j = 1; j < n; ++j) {
+      const auto& l = model.limit(j);
+      if (l.swing > 0 || l.twist > 0)
+        out.rotations[static_cast<std::size_t>(j)] = clamp_rotation(out.rotations[static_cast<std::size_t>(j)], l.axis, l.swing, l.twist);
+    }
+  if (model.settings().drive_head) drive_head(model, st, head_rotation, out);
+  for (int j = 0; j < n; ++j) out.translations[static_cast<std::size_t>(j)] = skel.rest_offsets[static_cast<std::size_t>(j)];
+  out.translations[0] = Vec3::Zero();
+  forward_kinematics(skel, out, st.model_space);
+  // Place the body so its head joint sits at the headset.
+  const Vec3 shift = head_position - st.model_space[static_cast<std::size_t>(skel.roles[Role::Head])].translation;
+  out.translations[0] = shift;
+  for (auto& t : st.model_space) t.translation += shift;
+  if (ik_weight > 1e-6) reach_hands(model, st, head_rotation, head_position, ik_weight, out);
+}
+
+// Devices: hold the last good data of anything unusable. Returns true if any was lost.
+bool take_devices(const Model& model, const TrackerFrame& in, State& st) {
+  (void)model;
+  bool lost = false;
+  if (usable(in.head())) {
+    st.last_head = in.head().position;
+    st.last_head_rot = in.head().rotation.normalized();
+    st.have_head = true;
+  } else {
+    lost = true;
+  }
+  for (int h = 0; h < 2; ++h) {
+    const DevicePose& d = in.hand(h);
+    if (d.valid && all_finite(d.position) && d.position.cwiseAbs().maxCoeff() <= kMaxCoordinate && st.have_head)
+      st.hand_offset[static_cast<std::size_t>(h)] = d.position - st.last_head;
+    else
+      lost = true;
+  }
+  st.ring_head = (st.ring_head + 1) % kRing;
+  st.ring_size = std::min(st.ring_size + 1, kRing);
+  Sample& s = st.ring[static_cast<std::size_t>(st.ring_head)];
+  s.t = in.time;
+  s.head = st.last_head;
+  s.hand = {st.last_head + st.hand_offset[0], st.last_head + st.hand_offset[1]};
+  return lost;
+}
+
+bool pose_finite(ConstPoseRef p) {
+  bool ok = finite(p.translations[0]);
+  for (const auto& q : p.rotations) ok = ok && finite(q);
+  return ok;
+}
+
+}  // namespace
+
+UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseRef out, Info* info) {
+  const Settings& cfg = model.settings();
+  const std::size_t nj = static_cast<std::size_t>(model.skeleton().joint_count());
+  if (out.rotations.size() != nj || out.translations.size() != nj) {
+    if (info) info->match = MatchStatus::Rejected;
+    return UpdateStatus::Rejected;
+  }
+  const FrameClock::Step step = st.clock.advance(in.time);
+  if (step.verdict == FrameClock::Verdict::Reject) {
+    if (info) {
+      info->match = MatchStatus::Rejected;
+      info->match_weight = st.match_weight;
+      info->fallback = st.fallback;
+    }
+    return UpdateStatus::Rejected;
+  }
+  const bool restarted = step.verdict == FrameClock::Verdict::Restart;
+  if (restarted) {
+    const FrameClock clock = st.clock;  // keep the restarted clock
+    reset(model, st);
+    st.clock = clock;
+  }
+  const double dt = step.dt;
+  const bool lost = take_devices(model, in, st);
+
+  const double threshold = cfg.threshold > 0 ? cfg.threshold * model.database().typical_distance() : 0.0;
+  const bool matched = st.have_head && !cfg.direct_only && blend_candidates(model, st, threshold);
+  if (!matched) st.match_count = {0, 0};
+  if (matched) {
+    const double w = cfg.smooth && st.have_smoothed ? std::max(st.match_weight, cfg.min_smoothing_weight) : 1.0;
+    for (std::size_t j = 0; j < nj; ++j)
+      st.smoothed.rotations[j] = w >= 1.0 ? st.synth.rotations[j] : slerp(st.smoothed.rotations[j], st.synth.rotations[j], w);
+    st.have_smoothed = true;
+  } else {
+    st.match_weight = 0;
+  }
+  // Converge toward the direct mapping while unmatched or tracking is lost.
+  const double target = (!matched || lost) ? 1.0 : 0.0;
+  const double rate = cfg.fallback_seconds > 0 ? dt / cfg.fallback_seconds : 1.0;
+  st.fallback += std::clamp(target - st.fallback, -rate, rate);
+  if (!st.have_smoothed || cfg.direct_only) st.fallback = 1.0;
+  make_direct_pose(model, st);
+  for (std::size_t j = 0; j < nj; ++j)
+    out.rotations[j] = st.fallback <= 0 ? st.smoothed.rotations[j]
+                       : st.fallback >= 1 ? st.direct.rotations[j]
+                                          : slerp(st.smoothed.rotations[j], st.direct.rotations[j], st.fallback);
+  if (cfg.smooth && cfg.smooth_halflife > 0 && !cfg.direct_only) spring_filter(model, st, dt, out);
+  finish_pose(model, st, st.last_head_rot, st.last_head, std::max(cfg.hand_ik, st.fallback), out);
+  // Never hand out a broken pose: fall back to the neutral one.
+  if (!pose_finite(out)) {
+    const Pose& neutral = model.neutral();
+    std::copy(neutral.rotations.begin(), neutral.rotations.end(), out.rotations.begin());
+    std::copy(neutral.translations.begin(), neutral.translations.end(), out.translations.begin());
+    out.translations[0] = st.last_head;
+  }
+
+  const MatchStatus match = lost ? MatchStatus::TrackingLost
+                            : !matched ? MatchStatus::Unmatched
+                            : (st.match_count[0] == 0 || st.match_count[1] == 0) ? MatchStatus::Partial
+                                                                                  : MatchStatus::Matched;
+  if (info) {
+    info->match = match;
+    info->match_weight = st.match_weight;
+    info->fallback = st.fallback;
+    info->matches = st.match_count;
+    const double typical = model.database().typical_distance();
+    for (int h = 0; h < 2; ++h)
+      info->best_distance[static_cast<std::size_t>(h)] = st.match_count[static_cast<std::size_t>(h)]
+          ? static_cast<float>(st.matches[static_cast<std::size_t>(h)][0].distance / typical) : 0.0f;
+  }
+  if (restarted) return UpdateStatus::Restarted;
+  return lost ? UpdateStatus::Degraded : UpdateStatus::Ok;
+}
+
+}  // namespace legwork::accent
