@@ -1,38 +1,16 @@
 // legwork roles -> Unity HumanBodyBones (see humanoid.hpp).
 #include <legwork/serve/humanoid.hpp>
 
-#include <array>
-#include <utility>
+#include <legwork/core/engine.hpp>
 
 namespace legwork::serve {
 
 std::vector<HumanoidBone> humanoid_bones(const Skeleton& skel) {
-  static constexpr std::array<std::pair<std::string_view, Role>, 21> kMap{{
-      {"Hips", Role::Pelvis},
-      {"Spine", Role::Spine},
-      {"Chest", Role::Chest},
-      {"Neck", Role::Neck},
-      {"Head", Role::Head},
-      {"LeftShoulder", Role::LeftClavicle},
-      {"LeftUpperArm", Role::LeftShoulder},
-      {"LeftLowerArm", Role::LeftElbow},
-      {"LeftHand", Role::LeftHand},
-      {"RightShoulder", Role::RightClavicle},
-      {"RightUpperArm", Role::RightShoulder},
-      {"RightLowerArm", Role::RightElbow},
-      {"RightHand", Role::RightHand},
-      {"LeftUpperLeg", Role::LeftHip},
-      {"LeftLowerLeg", Role::LeftKnee},
-      {"LeftFoot", Role::LeftAnkle},
-      {"LeftToes", Role::LeftToe},
-      {"RightUpperLeg", Role::RightHip},
-      {"RightLowerLeg", Role::RightKnee},
-      {"RightFoot", Role::RightAnkle},
-      {"RightToes", Role::RightToe},
-  }};
   std::vector<HumanoidBone> bones;
   std::vector<int> bone_of(static_cast<std::size_t>(skel.joint_count()), -1);
-  for (const auto& [name, role] : kMap) {
+  for (int r = 0; r < kRoleCount; ++r) {  // role order is hierarchy order (Pelvis, Spine, Chest, ...)
+    const Role role = static_cast<Role>(r);
+    const std::string_view name = humanoid_bone(role, Humanoid::Unity);
     const int j = skel.roles[role];
     if (j < 0 || bone_of[static_cast<std::size_t>(j)] >= 0) continue;  // absent, or Chest == Spine
     if (role != Role::Pelvis && bones.empty()) continue;               // no Hips: nothing to hang bones on
@@ -55,12 +33,12 @@ void humanoid_pose(std::span<const HumanoidBone> bones, std::span<const Transfor
   for (std::size_t i = 0; i < bones.size(); ++i) {
     const Transform& t = model[static_cast<std::size_t>(bones[i].joint)];
     if (bones[i].parent < 0) {
-      out[i] = {unity_flip(t.translation), unity_flip(t.rotation)};
+      out[i] = {to_engine(Engine::Unity, t.translation), to_engine(Engine::Unity, t.rotation)};
       continue;
     }
     const Transform& p = model[static_cast<std::size_t>(bones[bones[i].parent].joint)];
     const Quat inv = p.rotation.conjugate();
-    out[i] = {unity_flip(Vec3(inv * (t.translation - p.translation))), unity_flip(Quat(inv * t.rotation))};
+    out[i] = {to_engine(Engine::Unity, Vec3(inv * (t.translation - p.translation))), to_engine(Engine::Unity, Quat(inv * t.rotation))};
   }
 }
 

@@ -1,6 +1,7 @@
 // VMC protocol in and out over liblo (see vmc.hpp).
 #include "vmc.hpp"
 
+#include <legwork/core/engine.hpp>
 #include <legwork/core/fk.hpp>
 
 #include <lo/lo.h>
@@ -57,7 +58,7 @@ struct Vmc::Input {
 
   void on(const char* path, const std::string& serial, const Vec3& p, const Quat& q) {
     const std::string_view pth(path);
-    Track t{DevicePose{unity_flip(p), unity_flip(q).normalized(), true}, now()};
+    Track t{DevicePose{from_engine(Engine::Unity, p), from_engine(Engine::Unity, q).normalized(), true}, now()};
     if (pth == "/VMC/Ext/Hmd/Pos") head = t;
     else if (pth == "/VMC/Ext/Con/Pos") controllers[serial] = t;
     else trackers[serial] = t;

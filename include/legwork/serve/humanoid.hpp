@@ -1,6 +1,7 @@
 #pragma once
-// legwork joint roles -> Unity HumanBodyBones, the one mapping used for VMC
-// output (and documented in docs/protocol.md):
+// A skeleton's humanoid bones for VMC output. The names come from the one
+// role -> Unity HumanBodyBones mapping in core (legwork/core/engine.hpp,
+// humanoid_bone(); documented in docs/protocol.md):
 //
 //   Hips <- Pelvis          Spine <- Spine          Chest <- Chest (when it is not the Spine joint)
 //   Neck <- Neck            Head <- Head
@@ -13,10 +14,8 @@
 // nearest mapped ancestor; its local rotation/position are relative to that
 // parent's joint (joints in between are folded in), so they match a humanoid
 // rig whose rest pose is legwork's rest pose (a T-pose with world-aligned
-// joint frames, like a normalised VRM). Unity's frame: x right, y up, z
-// forward, left-handed; legwork's: +x is the character's left, right-handed.
-// Both face +z, so the conversion is the reflection x -> -x (positions) and
-// (w, x, y, z) -> (w, x, -y, -z) (rotations), in both directions.
+// joint frames, like a normalised VRM). Output is in Unity's frame
+// (to_engine(Engine::Unity, ...): x -> -x, (w,x,y,z) -> (w,x,-y,-z)).
 #include <legwork/core/motion.hpp>
 
 #include <span>
@@ -39,9 +38,5 @@ struct BoneTransform {
 };
 // Bone transforms (Unity's frame) from model-space joint transforms.
 void humanoid_pose(std::span<const HumanoidBone> bones, std::span<const Transform> model, std::span<BoneTransform> out);
-
-// The handedness conversion between Unity and legwork (its own inverse).
-inline Vec3 unity_flip(const Vec3& p) { return {-p.x(), p.y(), p.z()}; }
-inline Quat unity_flip(const Quat& q) { return {q.w(), q.x(), -q.y(), -q.z()}; }
 
 }  // namespace legwork::serve
