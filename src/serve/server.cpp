@@ -342,7 +342,11 @@ Server::Impl::Impl(ServeOptions o) : opt(std::move(o)), workers(opt.workers) {
 void Server::Impl::accept() {
   acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket s) {
     if (!acceptor.is_open()) return;
-    if (!ec) std::make_shared<HttpSession>(std::move(s), *this)->run();
+    if (!ec) {
+      beast::error_code ignored;
+      s.set_option(tcp::no_delay(true), ignored);  // small pose messages go out at once (no Nagle wait)
+      std::make_shared<HttpSession>(std::move(s), *this)->run();
+    }
     accept();
   });
 }

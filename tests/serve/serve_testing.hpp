@@ -71,6 +71,7 @@ class Client {
   explicit Client(unsigned short port, const std::string& target = "/ws") : ws_(ioc_) {
     tcp::resolver r(ioc_);
     net::connect(beast::get_lowest_layer(ws_).socket(), r.resolve("127.0.0.1", std::to_string(port)));
+    beast::get_lowest_layer(ws_).socket().set_option(tcp::no_delay(true));
     ws_.handshake("127.0.0.1:" + std::to_string(port), target);
     ws_.read_message_max(8u << 20);
   }
