@@ -3,7 +3,8 @@
 #include <benchmark/benchmark.h>
 
 #include <legwork/io/bvh.hpp>
-#include <legwork/walkcycle/measure.hpp>
+#include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/offline/measure.hpp>
 #include <legwork/walkcycle/walker.hpp>
 
 #include "cmu_sample.hpp"
@@ -67,16 +68,20 @@ void BM_Walk100StepsCurved(benchmark::State& st) {
 }
 BENCHMARK(BM_Walk100StepsCurved)->Unit(benchmark::kMillisecond);
 
-// One character steered live: one walker_update per frame at 30 Hz.
+// One character steered live: one walkcycle::update per frame at 30 Hz,
+// the heading asked for as the head's yaw.
 void BM_WalkerUpdate(benchmark::State& st) {
-  const CycleModel m = build_cycle(skeleton(), keys());
-  WalkerState s;
-  Pose p(skeleton());
-  walker_reset(m, s, Vec3::Zero(), 0.0, p.ref());
+  const Model model = make_model(build_cycle(skeleton(), keys()));
+  State s(model);
+  Pose p(model.skeleton());
+  TrackerFrame frame;
+  frame.head().valid = true;
   double desired = 0;
   for (auto _ : st) {
     desired += 0.001;
-    walker_update(m, s, 1.0 / 30.0, desired, p.ref());
+    frame.time += 1.0 / 30.0;
+    frame.head().rotation = Quat(Eigen::AngleAxisd(desired, Vec3::UnitY()));
+    update(model, frame, s, p.ref());
     benchmark::DoNotOptimize(p.translations.data());
   }
 }

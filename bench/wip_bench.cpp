@@ -6,6 +6,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/io/bvh.hpp>
+#include <legwork/wip/offline/synthetic.hpp>
 #include <legwork/wip/wip.hpp>
 
 #include "cmu_sample.hpp"
@@ -22,15 +23,17 @@ Motion load_walk(const char* name) { return testdata::load_sample(std::string("c
 
 // Feeds the 30 Hz samples to update() once per iteration and reports how
 // many avatars one core keeps up with.
-void run_updates(benchmark::State& state, const WipModel& model, const std::vector<TrackerSample>& samples) {
-  WipWorkspace ws = make_workspace(model);
+void run_updates(benchmark::State& state, const Model& model, const std::vector<TrackerFrame>& samples) {
+  State st(model);
+  Pose pose(model.skeleton());
+  Info info;
   std::size_t i = 0;
   double offset = 0;
   const double period = samples.back().time + 1.0 / 30;
   for (auto _ : state) {
-    TrackerSample s = samples[i];
+    TrackerFrame s = samples[i];
     s.time += offset;  // loop the clip with time still increasing
-    benchmark::DoNotOptimize(update(model, s, ws));
+    benchmark::DoNotOptimize(update(model, s, st, pose.ref(), &info));
     if (++i == samples.size()) i = 0, offset += period;
   }
   state.counters["avatars_per_core_30Hz"] =
@@ -39,16 +42,16 @@ void run_updates(benchmark::State& state, const WipModel& model, const std::vect
 
 void BM_WipUpdatePerAvatarFrame(benchmark::State& state) {
   const Motion walk = load_walk("16_15.bvh");
-  const WipModel model = make_wip_model(walk.skeleton);
-  const auto samples = samples_from_motion(walk, 30.0);
+  const Model model = make_model(walk.skeleton);
+  const auto samples = tracker_frames_from_motion(walk, 30.0);
   run_updates(state, model, samples);
-  state.counters["joints"] = model.skeleton.joint_count();
+  state.counters["joints"] = model.skeleton().joint_count();
 }
 BENCHMARK(BM_WipUpdatePerAvatarFrame);
 
 void BM_WipUpdateSynthetic(benchmark::State& state) {
-  const WipModel model = make_wip_model(load_walk("07_01.bvh").skeleton);
-  const auto samples = synthetic_stepping({}).samples;
+  const Model model = make_model(load_walk("07_01.bvh").skeleton);
+  const auto samples = synthetic_stepping({}).frames;
   run_updates(state, model, samples);
 }
 BENCHMARK(BM_WipUpdateSynthetic);

@@ -10,8 +10,9 @@
 #include <legwork/io/gltf.hpp>
 #include <legwork/io/text.hpp>
 #include <legwork/render/render.hpp>
-#include <legwork/walkcycle/extract.hpp>
-#include <legwork/walkcycle/measure.hpp>
+#include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/offline/extract.hpp>
+#include <legwork/walkcycle/offline/measure.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -289,15 +290,8 @@ wc::WalkKeys load_keys(const WalkArgs& a, Skeleton& skel) {
   return wc::read_walk_keys(a.keys, skel);
 }
 
-void run_walk(const WalkArgs& a) {
-  if (a.keys.empty()) throw Error("walkcycle: --keys walk.json is required (or --from-bvh clip.bvh --keys 0,3,6,9)");
-  int sources = (!a.path.empty()) + (!a.svg_path.empty()) + (a.straight > 0) + (a.steps >= 0);
-  if (sources > 1 && !(sources == 2 && a.steps >= 0 && a.straight > 0))
-    throw Error("walkcycle: give one of --path, --svg-path, --straight, --steps");
-  if (a.out.empty() && a.cycle_out.empty() && a.sheet.empty() && a.arc.empty() && a.report.empty() && a.video.empty() &&
-      a.slide_video.empty() && a.top.empty())
-    throw Error("walkcycle: nothing to write; give --out (and/or --cycle-out, --sheet, --arc, --video, --report)");
-  Skeleton skel;
+// The walk's keys: read (or taken from a clip), retimed and shifted as asked.
+wc::WalkKeys prepared_keys(const WalkArgs& a, Skeleton& skel) {
   wc::WalkKeys keys = load_keys(a, skel);
   if (a.frames > 0) {
     if (a.frames % 2 || a.frames < 8) throw Error("--frames: expected an even number of frames per cycle, at least 8");
@@ -312,9 +306,11 @@ void run_walk(const WalkArgs& a) {
       if (!replaced) keys.shift.emplace_back(j, d);
     }
   }
-  const std::string name = keys.name.empty() ? fs::path(a.keys).stem().string() : keys.name;
-  std::fprintf(stderr, "walkcycle: building the cycle of '%s' (%d frames at %g fps)\n", name.c_str(), keys.frames_per_cycle, keys.fps);
-  const wc::CycleModel model = wc::build_cycle(skel, keys);
+  return keys;
+}
+
+// The cycle's figures: printed, and the report's cycle fields.
+json cycle_report(const wc::CycleModel& model, const std::string& name) {
   const auto seam = wc::measure_loop_seam(model);
   const auto feet = wc::key_foot_heights(model);
   std::printf("cycle: %d frames, step length %.3f m, loop seam %.2e m / %.2e m/s\n", model.frames_per_cycle,
@@ -341,16 +337,12 @@ void run_walk(const WalkArgs& a) {
     std::printf("note: between the keys a foot would dip %.0f mm below the floor at frame %.2f%s\n", floor.max_lift_m * 1e3,
                 floor.lift_frame, model.floor_clamp ? "; the root is lifted there (floor_clamp)" : " (floor_clamp is off)");
 
-  if (!a.cycle_out.empty()) write_motion(a.cycle_out, wc::bake_cycle(model), "in-place cycle");
-  if (!a.sheet.empty()) write_sheet(model, a, name);
-  if (!a.arc.empty()) {
-    const std::string prefix = !a.arc_out.empty() ? a.arc_out : stem_of(!a.out.empty() ? a.out : (!a.sheet.empty() ? a.sheet : a.report));
-    report["arcs"] = json::array();
-    for (const auto& j : split(a.arc, ',')) report["arcs"].push_back(arc_outputs(model, j, prefix));
-  }
-  if (!a.slide_video.empty()) write_slide_video(model, a.spacing, a.slide_video);
+  return report;
+}
 
-  // The walk: along a path, straight, a number of steps, or (none) in place.
+// The walk (along a path, straight, a number of steps) or the in-place
+// cycle; its figures printed and added to the report.
+Motion walk_or_cycle(const wc::CycleModel& model, const WalkArgs& a, const std::string& name, json& report, bool& walked) {
   std::unique_ptr<wc::Path> path;
   wc::WalkOptions wo;
   wo.fps = a.fps;
@@ -397,19 +389,52 @@ void run_walk(const WalkArgs& a) {
     report["stance_slip_mm_max"] = nullptr;  // in place: the feet slide by design
     if (!a.top.empty()) throw Error("--top needs a walk: give --path, --straight or --steps");
   }
-  if (!a.out.empty()) write_motion(a.out, result, path ? "walk" : "in-place cycle");
-  if (!a.video.empty()) {
-    render::VideoOptions vo;
-    vo.camera.view = render::parse_view(a.video_view);
-    vo.camera.width = 960;
-    vo.camera.height = 540;
-    vo.fps = 30;
-    vo.trace_joint = skel.roles[Role::LeftToe] >= 0 ? skel.roles[Role::LeftToe] : skel.roles[Role::LeftAnkle];
-    vo.title = "walk '" + name + "'";
-    ensure_parent(a.video);
-    render::render_video(result, vo, a.video);
-    announce("video", a.video);
+  walked = path != nullptr;
+  return result;
+}
+
+void write_walk_video(const Motion& result, const Skeleton& skel, const WalkArgs& a, const std::string& name) {
+  if (a.video.empty()) return;
+  render::VideoOptions vo;
+  vo.camera.view = render::parse_view(a.video_view);
+  vo.camera.width = 960;
+  vo.camera.height = 540;
+  vo.fps = 30;
+  vo.trace_joint = skel.roles[Role::LeftToe] >= 0 ? skel.roles[Role::LeftToe] : skel.roles[Role::LeftAnkle];
+  vo.title = "walk '" + name + "'";
+  ensure_parent(a.video);
+  render::render_video(result, vo, a.video);
+  announce("video", a.video);
+}
+
+void run_walk(const WalkArgs& a) {
+  if (a.keys.empty()) throw Error("walkcycle: --keys walk.json is required (or --from-bvh clip.bvh --keys 0,3,6,9)");
+  int sources = (!a.path.empty()) + (!a.svg_path.empty()) + (a.straight > 0) + (a.steps >= 0);
+  if (sources > 1 && !(sources == 2 && a.steps >= 0 && a.straight > 0))
+    throw Error("walkcycle: give one of --path, --svg-path, --straight, --steps");
+  if (a.out.empty() && a.cycle_out.empty() && a.sheet.empty() && a.arc.empty() && a.report.empty() && a.video.empty() &&
+      a.slide_video.empty() && a.top.empty())
+    throw Error("walkcycle: nothing to write; give --out (and/or --cycle-out, --sheet, --arc, --video, --report)");
+  Skeleton skel;
+  const wc::WalkKeys keys = prepared_keys(a, skel);
+  const std::string name = keys.name.empty() ? fs::path(a.keys).stem().string() : keys.name;
+  std::fprintf(stderr, "walkcycle: building the cycle of '%s' (%d frames at %g fps)\n", name.c_str(), keys.frames_per_cycle, keys.fps);
+  const wc::CycleModel model = wc::build_cycle(skel, keys);
+  json report = cycle_report(model, name);
+
+  if (!a.cycle_out.empty()) write_motion(a.cycle_out, wc::bake_cycle(model), "in-place cycle");
+  if (!a.sheet.empty()) write_sheet(model, a, name);
+  if (!a.arc.empty()) {
+    const std::string prefix = !a.arc_out.empty() ? a.arc_out : stem_of(!a.out.empty() ? a.out : (!a.sheet.empty() ? a.sheet : a.report));
+    report["arcs"] = json::array();
+    for (const auto& j : split(a.arc, ',')) report["arcs"].push_back(arc_outputs(model, j, prefix));
   }
+  if (!a.slide_video.empty()) write_slide_video(model, a.spacing, a.slide_video);
+
+  bool walked = false;
+  const Motion result = walk_or_cycle(model, a, name, report, walked);
+  if (!a.out.empty()) write_motion(a.out, result, walked ? "walk" : "in-place cycle");
+  write_walk_video(result, skel, a, name);
   if (!a.report.empty()) {
     ensure_parent(a.report);
     io::write_text_file(a.report, report.dump(2) + "\n");

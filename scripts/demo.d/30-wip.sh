@@ -15,7 +15,7 @@ avatar="$DATA/bvh/walking/07_01.bvh"
   --plot "$out/synthetic_phases.png" --tracker-out "$out/synthetic_tracker.csv"
 "$LEGWORK" wip --input "$out/synthetic_tracker.csv" --avatar "$avatar" --out "$out/synthetic_legs.bvh" >/dev/null
 
-# 2. A real CMU walk: its ankles act as the tracker (heights only are used).
+# 2. A real CMU walk: its ankles act as the tracker (their heights drive the legs, the head's yaw the heading).
 "$LEGWORK" wip --input "$walk" --avatar "$avatar" --out "$out/cmu_16_15_legs.glb" \
   --csv "$out/cmu_16_15_frames.csv" --plot "$out/cmu_16_15_phases.png"
 "$LEGWORK" wip --input "$walk" --avatar "$avatar" --out "$out/cmu_16_15_legs.bvh" >/dev/null

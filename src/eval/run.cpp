@@ -219,21 +219,22 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
 
 Motion run_ik_baseline(const Motion& truth, double* seconds) {
   const Skeleton& skel = truth.skeleton;
-  const ik::FullBodyModel model(skel);
-  ik::FullBodyState state(model);
+  const ik::Model model = ik::make_model(skel);
+  ik::State state(model);
   Motion out(skel, truth.fps, truth.frame_count());
   std::vector<Transform> g(static_cast<std::size_t>(skel.joint_count()));
   const auto at = [&](Role r) -> const Transform& { return g[static_cast<std::size_t>(skel.roles[r])]; };
+  const auto device = [&](Role r) { return DevicePose{at(r).translation, at(r).rotation, true}; };
   double solver = 0;
   for (int f = 0; f < truth.frame_count(); ++f) {
     forward_kinematics(skel, truth.frame(f), g);
-    ik::TrackerFrame in;
-    in.head_position = at(Role::Head).translation;
-    in.head_rotation = at(Role::Head).rotation;
-    in.hand_position = {at(Role::LeftHand).translation, at(Role::RightHand).translation};
-    in.hand_rotation = {at(Role::LeftHand).rotation, at(Role::RightHand).rotation};
+    legwork::TrackerFrame in;
+    in.time = f * truth.frame_time();
+    in.head() = device(Role::Head);
+    in.hand(kLeft) = device(Role::LeftHand);
+    in.hand(kRight) = device(Role::RightHand);
     const auto t0 = Clock::now();
-    ik::solve_full_body(model, in, truth.frame_time(), state, out.frame(f));
+    ik::update(model, in, state, out.frame(f));
     solver += since(t0);
   }
   if (seconds) *seconds += solver;

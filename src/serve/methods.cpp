@@ -36,41 +36,22 @@ Skeleton avatar_skeleton(const Resources& res, double user_height) {
 class IkMethod final : public Method {
  public:
   IkMethod(const Resources& res, const MethodOptions& opt)
-      : skel_(avatar_skeleton(res, opt.user_height)), model_(skel_), state_(model_) {}
+      : model_(ik::make_model(avatar_skeleton(res, opt.user_height))), state_(model_) {}
 
   UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
-    if (!usable(f.head())) {
-      info.add("reason", "head not tracked");
-      return clock_.started() ? UpdateStatus::Degraded : UpdateStatus::Rejected;
-    }
-    const FrameClock::Step step = clock_.advance(f.time);
-    if (step.verdict == FrameClock::Verdict::Reject) return UpdateStatus::Rejected;
-    if (step.verdict == FrameClock::Verdict::Restart) state_.reset();
-    ik::TrackerFrame in;
-    in.head_position = f.head().position;
-    in.head_rotation = f.head().rotation;
-    bool degraded = false;
-    for (int s = 0; s < 2; ++s) {
-      const auto i = static_cast<std::size_t>(s);
-      in.hand_valid[i] = usable(f.hand(s));
-      degraded = degraded || !in.hand_valid[i];
-      if (in.hand_valid[i]) {
-        in.hand_position[i] = f.hand(s).position;
-        in.hand_rotation[i] = f.hand(s).rotation;
-      }
-    }
-    ik::solve_full_body(model_, in, step.dt > 0 ? step.dt : 1.0 / 90.0, state_, out);
-    info.add("steps", state_.steps_taken);
-    if (step.verdict == FrameClock::Verdict::Restart) return UpdateStatus::Restarted;
-    return degraded ? UpdateStatus::Degraded : UpdateStatus::Ok;
+    ik::Info ii;
+    const UpdateStatus st = ik::update(model_, f, state_, out, &ii);
+    if (st == UpdateStatus::Rejected) return st;
+    info.add("steps", ii.steps_taken);
+    info.add("lean", ii.lean);
+    info.add("head_tracked", ii.head_tracked ? 1.0 : 0.0);
+    return st;
   }
-  const Skeleton& skeleton() const override { return skel_; }
+  const Skeleton& skeleton() const override { return model_.skeleton(); }
 
  private:
-  Skeleton skel_;  // owned: the model keeps a pointer to it (this object never moves)
-  ik::FullBodyModel model_;
-  ik::FullBodyState state_;
-  FrameClock clock_;
+  const ik::Model model_;
+  ik::State state_;
 };
 
 // CoolMoves accentuation over the shared database (one Model per session's settings).

@@ -226,6 +226,46 @@ void add_floor_lift(CycleModel& m) {
   m.floor_lift = add_channel(m, std::move(e), false);
 }
 
+// Standing pose: authored, or the symmetric mean of the cycle's eight keys.
+Pose standing_pose(const Skeleton& skel, const WalkKeys& keys, const std::array<Pose, kKeyCount>& step1) {
+  if (keys.stand) return full_pose(skel, *keys.stand);
+  Pose stand(skel);
+  for (int j = 0; j < skel.joint_count(); ++j) {
+    Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+    for (const auto& p : step1) {
+      sum += positive_w(p.rotations[static_cast<std::size_t>(j)]).coeffs();
+      sum += positive_w(mirror_rotation(p.rotations[static_cast<std::size_t>(skel.mirror[static_cast<std::size_t>(j)])])).coeffs();
+    }
+    stand.rotations[static_cast<std::size_t>(j)] = Quat(sum / sum.norm());
+  }
+  return stand;
+}
+
+// The root offset channel: the keys' offsets and the in-betweens' (step 2
+// mirrored), delayed by the root's shift.
+CycleModel::Channel root_channel(CycleModel& m, const WalkKeys& keys, const std::array<Vec3, kKeyCount>& offsets,
+                                 const std::vector<double>& shift) {
+  const double half = m.half_cycle();
+  const double d = shift[0];
+  std::vector<Entry> e;
+  for (int i = 0; i < kKeyCount; ++i) {
+    const Vec3 off = offsets[static_cast<std::size_t>(i)];
+    e.push_back({keys.key_frames[static_cast<std::size_t>(i)] + d, Quat::Identity(), off});
+    e.push_back({keys.key_frames[static_cast<std::size_t>(i)] + d + half, Quat::Identity(), mirror_vector(off)});
+  }
+  for (const auto& ib : keys.inbetweens)
+    if (ib.pose.root_offset) {
+      // An in-between's "floor" height is measured on its pose with the
+      // joints it leaves out taken from the spline.
+      Pose p(m.skeleton);
+      sample_cycle_rotations_only(m, ib, shift, p);
+      const Vec3 off = floor_offset(m, ib.pose, p);
+      e.push_back({ib.frame + d, Quat::Identity(), off});
+      e.push_back({ib.frame + d + half, Quat::Identity(), mirror_vector(off)});
+    }
+  return add_channel(m, std::move(e), false);
+}
+
 }  // namespace
 
 CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys) {
@@ -259,20 +299,7 @@ CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys) {
   std::array<Pose, kKeyCount> step1;
   for (int i = 0; i < kKeyCount; ++i) step1[static_cast<std::size_t>(i)] = full_pose(skel, keys.keys[static_cast<std::size_t>(i)]);
 
-  // Standing pose: authored, or the symmetric mean of the cycle's eight keys.
-  if (keys.stand) {
-    m.stand = full_pose(skel, *keys.stand);
-  } else {
-    m.stand = Pose(skel);
-    for (int j = 0; j < n; ++j) {
-      Eigen::Vector4d sum = Eigen::Vector4d::Zero();
-      for (const auto& p : step1) {
-        sum += positive_w(p.rotations[static_cast<std::size_t>(j)]).coeffs();
-        sum += positive_w(mirror_rotation(p.rotations[static_cast<std::size_t>(mir(j))])).coeffs();
-      }
-      m.stand.rotations[static_cast<std::size_t>(j)] = Quat(sum / sum.norm());
-    }
-  }
+  m.stand = standing_pose(skel, keys, step1);
   m.stand.translations[0] = Vec3::Zero();
   m.stand_height = -lowest_foot_point(skel, m.stand);
   m.stand.translations[0] = Vec3(0, m.stand_height, 0);
@@ -309,26 +336,7 @@ CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys) {
     }
     m.rotation[static_cast<std::size_t>(j)] = add_channel(m, std::move(e), true);
   }
-  {
-    const double d = shift[0];
-    std::vector<Entry> e;
-    for (int i = 0; i < kKeyCount; ++i) {
-      const Vec3 off = offsets[static_cast<std::size_t>(i)];
-      e.push_back({keys.key_frames[static_cast<std::size_t>(i)] + d, Quat::Identity(), off});
-      e.push_back({keys.key_frames[static_cast<std::size_t>(i)] + d + half, Quat::Identity(), mirror_vector(off)});
-    }
-    for (const auto& ib : keys.inbetweens)
-      if (ib.pose.root_offset) {
-        // An in-between's "floor" height is measured on its pose with the
-        // joints it leaves out taken from the spline.
-        Pose p(skel);
-        sample_cycle_rotations_only(m, ib, shift, p);
-        const Vec3 off = floor_offset(m, ib.pose, p);
-        e.push_back({ib.frame + d, Quat::Identity(), off});
-        e.push_back({ib.frame + d + half, Quat::Identity(), mirror_vector(off)});
-      }
-    m.root_offset = add_channel(m, std::move(e), false);
-  }
+  m.root_offset = root_channel(m, keys, offsets, shift);
   if (keys.floor_clamp) add_floor_lift(m);
   m.floor_clamp = keys.floor_clamp;
   return m;

@@ -3,49 +3,11 @@
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/core/measure.hpp>
-#include <legwork/wip/eval.hpp>
 
 #include <algorithm>
 #include <cmath>
 
 namespace legwork::wip {
-
-Motion extract_walk_cycle(const Motion& trial) {
-  const auto swings = true_swings(trial);
-  // Consecutive left foot-strikes: candidate cycles; take the one nearest the
-  // middle of the trial with a plausible duration.
-  std::vector<double> strikes;
-  for (const auto& s : swings)
-    if (s.foot == kLeft) strikes.push_back(s.strike);
-  const double mid = 0.5 * trial.duration();
-  int best = -1;
-  double best_dist = 1e300;
-  for (std::size_t i = 0; i + 1 < strikes.size(); ++i) {
-    const double len = strikes[i + 1] - strikes[i];
-    const double dist = std::abs(0.5 * (strikes[i] + strikes[i + 1]) - mid);
-    if (len > 0.7 && len < 1.8 && dist < best_dist) best_dist = dist, best = static_cast<int>(i);
-  }
-  if (best < 0) throw Error("no clean walk cycle (two left foot-strikes 0.7-1.8 s apart) found in the trial");
-  const int a = static_cast<int>(std::lround(strikes[static_cast<std::size_t>(best)] * trial.fps));
-  const int b = static_cast<int>(std::lround(strikes[static_cast<std::size_t>(best) + 1] * trial.fps));
-  // Frames [a, b): the frame at b is the loop's start again.
-  Motion cycle = trim(trial, a, std::max(a + 1, b - 1));
-  const Vec3 p0 = trial.frame(a).translations[0], p1 = trial.frame(b).translations[0];
-  Vec3 travel = p1 - p0;
-  travel.y() = 0;
-  const double yaw = travel.norm() > 1e-6 ? std::atan2(travel.x(), travel.z()) : 0.0;
-  const Quat unturn(Eigen::AngleAxisd(-yaw, Vec3::UnitY()));
-  const int n = cycle.frame_count();
-  for (int f = 0; f < n; ++f) {
-    auto fr = cycle.frame(f);
-    // Remove the straight-line progression, keep the sway; face +z.
-    Vec3 rel = fr.translations[0] - p0 - travel * (double(f) / (b - a));
-    rel = unturn * rel;
-    fr.translations[0] = Vec3(rel.x(), fr.translations[0].y(), rel.z());
-    fr.rotations[0] = unturn * fr.rotations[0];
-  }
-  return cycle;
-}
 
 std::vector<double> ankle_depths(const Motion& m, int foot) {
   const auto& r = m.skeleton.roles;

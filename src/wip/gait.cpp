@@ -5,7 +5,7 @@
 
 namespace legwork::wip {
 
-void FootSignal::init(const SignalParams& p) {
+void FootSignal::init(const SignalSettings& p) {
   filter = Butterworth(p.order, p.cutoff, p.rate);
   capacity = std::clamp(static_cast<int>(std::lround(p.buffer_seconds * p.rate)), 2, kCapacity);
   head = -1;
@@ -15,7 +15,7 @@ void FootSignal::init(const SignalParams& p) {
   held_time = 0;
 }
 
-void FootSignal::push(const SignalParams& p, double y, bool valid, double dt, bool in_support) {
+void FootSignal::push(const SignalSettings& p, double y, bool valid, double dt, bool in_support) {
   valid = valid && std::isfinite(y);
   if (valid) {
     raw = y;
@@ -68,24 +68,24 @@ std::string_view phase_name(GaitPhase p) {
   return "?";
 }
 
-void GaitMachine::init(const GaitParams& p) {
+void GaitMachine::init(const GaitSettings& p) {
   *this = GaitMachine{};
   apex_estimate = p.h1 / std::max(p.height_fraction, 1e-6);
   up_estimate = p.v1 / std::max(p.velocity_fraction, 1e-6);
   down_estimate = p.v2 / std::max(p.velocity_fraction, 1e-6);
 }
 
-double GaitMachine::h1(const GaitParams& p) const {
+double GaitMachine::h1(const GaitSettings& p) const {
   return p.adaptive ? std::clamp(p.height_fraction * apex_estimate, p.min_h1, p.h1) : p.h1;
 }
-double GaitMachine::v1(const GaitParams& p) const {
+double GaitMachine::v1(const GaitSettings& p) const {
   return p.adaptive ? std::clamp(p.velocity_fraction * up_estimate, p.min_v1, p.v1) : p.v1;
 }
-double GaitMachine::v2(const GaitParams& p) const {
+double GaitMachine::v2(const GaitSettings& p) const {
   return p.adaptive ? std::clamp(p.velocity_fraction * down_estimate, p.min_v1, p.v2) : p.v2;
 }
 
-unsigned GaitMachine::update(const GaitParams& p, double h, double v, double confidence, double dt) {
+unsigned GaitMachine::update(const GaitSettings& p, double h, double v, double confidence, double dt) {
   time_in_phase += dt;
   const double H1 = h1(p), V1 = v1(p), V2 = v2(p);
   const double land = p.land_fraction * H1;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace legwork::wip {
 
@@ -43,100 +44,127 @@ void hang_arms(const Skeleton& s, Pose& pose) {
   }
 }
 
+// Upper body from the given pose: everything above the pelvis (the root
+// keeps the heading, the legs are solved every frame).
+void copy_upper_body(const Skeleton& s, const ik::TwoBoneChain (&legs)[2], ConstPoseRef upper_body, Pose& pose) {
+  for (int j = 1; j < s.joint_count(); ++j) {
+    bool leg = false, hip_side = false;  // hip_side: joints between the pelvis and a hip (CMU's LHipJoint)
+    for (int f = 0; f < 2; ++f) {
+      leg |= s.is_ancestor(legs[f].root, j);
+      hip_side |= s.is_ancestor(j, legs[f].root);
+    }
+    if (!leg && !hip_side) pose.rotations[static_cast<std::size_t>(j)] = upper_body.rotations[static_cast<std::size_t>(j)];
+  }
+}
+
 double approach(double current, double target, double dt, double tau) {
   if (!(tau > 0)) return target;
   return current + (target - current) * (1 - std::exp(-dt / tau));
 }
 
+// Yaw about +y of a rotation (0 = looking along +z); `fallback` when it
+// looks (almost) straight up or down and has no usable yaw.
+double yaw_of(const Quat& q, double fallback) {
+  const Vec3 f = q * Vec3::UnitZ();
+  return std::hypot(f.x(), f.z()) > 1e-3 ? std::atan2(f.x(), f.z()) : fallback;
+}
+
 }  // namespace
 
-WipModel make_wip_model(const Skeleton& avatar, const WipParams& params, ConstPoseRef upper_body) {
-  WipModel m;
-  m.skeleton = avatar;
-  m.params = params;
+Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef upper_body) {
+  Model m;
+  m.skeleton_ = avatar;
+  m.settings_ = settings;
+  const Skeleton& s = m.skeleton_;
   std::string missing;
   for (const auto& leg : kLegRoles)
     for (Role r : leg)
-      if (!m.skeleton.roles.has(r)) missing += (missing.empty() ? "" : ", ") + std::string(role_name(r));
+      if (!s.roles.has(r)) missing += (missing.empty() ? "" : ", ") + std::string(role_name(r));
   if (!missing.empty())
     throw Error("avatar skeleton has no usable legs: joint roles " + missing +
                 " not found (walking-in-place needs hip, knee and ankle joints on both sides)");
-  for (int f = 0; f < 2; ++f) m.legs[f] = {m.skeleton.roles[kLegRoles[f][0]], m.skeleton.roles[kLegRoles[f][1]],
-                                           m.skeleton.roles[kLegRoles[f][2]]};
-  const BodyMeasures body = measure_body(m.skeleton);
+  ik::TwoBoneChain chains[2];
+  for (int f = 0; f < 2; ++f)
+    chains[f] = {s.roles[kLegRoles[f][0]], s.roles[kLegRoles[f][1]], s.roles[kLegRoles[f][2]]};
+  const BodyMeasures body = measure_body(s);
   if (!(body.leg_length > 0.05))
     throw Error("avatar skeleton: leg length " + std::to_string(body.leg_length) + " m is not usable");
-  m.leg_length = body.leg_length;
-  const auto& mp = params.mapping;
-  m.scale = m.leg_length / mp.reference_leg;
-  m.shape.S = mp.step_length * m.scale;
-  m.shape.H = mp.user_step_height;
-  if (!(m.shape.H > 0) || !(params.signal.rate > 0) || !(params.signal.cutoff > 0))
-    throw Error("walking-in-place parameters: step height, sample rate and cutoff must be positive");
+  m.leg_length_ = body.leg_length;
+  const auto& mp = settings.mapping;
+  m.scale_ = m.leg_length_ / mp.reference_leg;
+  m.shape_.S = mp.step_length * m.scale_;
+  m.shape_.H = mp.user_step_height;
+  if (!(m.shape_.H > 0) || !(settings.signal.rate > 0) || !(settings.signal.cutoff > 0) || !(mp.reference_leg > 0))
+    throw Error("walking-in-place settings: step height, reference leg, sample rate and cutoff must be positive");
 
-  m.base_pose = Pose(m.skeleton);
-  std::vector<Transform> g(static_cast<std::size_t>(m.skeleton.joint_count()));
-  forward_kinematics(m.skeleton, m.base_pose, g);
+  m.base_pose_ = Pose(s);
+  std::vector<Transform> g(static_cast<std::size_t>(s.joint_count()));
+  forward_kinematics(s, m.base_pose_, g);
   const Vec3 root = g[0].translation;
   for (int f = 0; f < 2; ++f) {
-    m.ankle_height[f] = ankle_above_sole(m.skeleton, g, m.legs[f].end);
-    const Vec3 hip = g[static_cast<std::size_t>(m.legs[f].root)].translation - root;
-    m.foot_offset[f] = Vec3(hip.x(), 0, hip.z());
-    m.foot_rotation[f] = g[static_cast<std::size_t>(m.legs[f].end)].rotation;
+    Model::Leg& leg = m.legs_[f];
+    leg.chain = chains[f];
+    leg.ankle_height = ankle_above_sole(s, g, chains[f].end);
+    const Vec3 hip = g[static_cast<std::size_t>(chains[f].root)].translation - root;
+    leg.foot_offset = Vec3(hip.x(), 0, hip.z());
+    leg.foot_rotation = g[static_cast<std::size_t>(chains[f].end)].rotation;
   }
-  m.root_height = body.hip_height - mp.knee_bend * m.leg_length;
-  if (upper_body.joint_count() == m.skeleton.joint_count()) {
-    // Upper body from the given pose: everything above the pelvis (the root
-    // keeps the heading, the legs are solved every frame).
-    for (int j = 1; j < m.skeleton.joint_count(); ++j) {
-      bool leg = false;
-      for (int f = 0; f < 2; ++f) leg |= m.skeleton.is_ancestor(m.legs[f].root, j);
-      bool hip_side = false;  // joints between the pelvis and a hip (CMU's LHipJoint)
-      for (int f = 0; f < 2; ++f) hip_side |= m.skeleton.is_ancestor(j, m.legs[f].root);
-      if (!leg && !hip_side) m.base_pose.rotations[static_cast<std::size_t>(j)] = upper_body.rotations[static_cast<std::size_t>(j)];
-    }
-  } else {
-    hang_arms(m.skeleton, m.base_pose);
-  }
-  m.base_pose.translations[0] = Vec3(0, m.root_height, 0);
+  m.root_height_ = body.hip_height - mp.knee_bend * m.leg_length_;
+  if (upper_body.joint_count() == s.joint_count()) copy_upper_body(s, chains, upper_body, m.base_pose_);
+  else hang_arms(s, m.base_pose_);
+  m.base_pose_.translations[0] = Vec3(0, m.root_height_, 0);
   return m;
 }
 
-WipWorkspace make_workspace(const WipModel& model) {
-  WipWorkspace ws;
-  ws.pose = model.base_pose;
-  ws.model.resize(static_cast<std::size_t>(model.skeleton.joint_count()));
-  reset(model, ws);
-  return ws;
+State::State(const Model& model) : model_space(static_cast<std::size_t>(model.skeleton().joint_count())) {
+  reset(model, *this);
 }
 
-void reset(const WipModel& model, WipWorkspace& ws) {
-  const auto& p = model.params;
+namespace {
+
+// Filters, gait machines, speed and step mapping back to a standing start.
+void reset_motion(const Model& model, State& st) {
+  const auto& p = model.settings();
   for (int f = 0; f < 2; ++f) {
-    ws.feet[f].init(p.signal);
-    ws.gait[f].init(p.gait);
+    st.feet[f].init(p.signal);
+    st.feet[f].has_floor = st.calibrated;
+    st.feet[f].floor = st.calibrated ? st.calibrated_floor[f] : 0.0;
+    st.gait[f].init(p.gait);
   }
-  ws.step_speed.reset();
-  ws.step_speed.gain = p.mapping.speed_gain;
-  ws.frequency_speed.reset();
-  ws.frequency_speed.stride_per_step = p.mapping.stride_per_step;
-  if (ws.custom_speed) ws.custom_speed->reset();
-  ws.started = ws.walking = false;
-  ws.driver = -1;
-  ws.kind = StepKind::None;
-  ws.last_time = ws.ds_time = ws.dh = ws.speed = ws.distance = 0;
-  ws.z_target[0] = ws.z_target[1] = ws.z[0] = ws.z[1] = 0;
-  ws.gap[0] = ws.gap[1] = ws.gap_up[0] = ws.gap_up[1] = 0;
-  ws.h_off = 0;
-  ws.h_switch = 1;
-  ws.root_xz = Vec3::Zero();
-  ws.frame = WipFrame{};
+  st.step_speed.reset();
+  st.step_speed.gain = p.mapping.speed_gain;
+  st.frequency_speed.reset();
+  st.frequency_speed.stride_per_step = p.mapping.stride_per_step;
+  st.walking = false;
+  st.driver = -1;
+  st.kind = StepKind::None;
+  st.ds_time = st.dh = st.speed = 0;
+  st.z_target[0] = st.z_target[1] = st.z[0] = st.z[1] = 0;
+  st.gap[0] = st.gap[1] = st.gap_up[0] = st.gap_up[1] = 0;
+  st.h_off = 0;
+  st.h_switch = 1;
 }
 
-void set_floor(WipWorkspace& ws, double left, double right) {
-  ws.feet[0].floor = left;
-  ws.feet[1].floor = right;
-  ws.feet[0].has_floor = ws.feet[1].has_floor = true;
+}  // namespace
+
+void reset(const Model& model, State& st) {
+  st.clock.reset();
+  st.calibrated = false;
+  st.calibrated_floor[0] = st.calibrated_floor[1] = 0;
+  st.heading = 0;
+  st.distance = 0;
+  st.root_xz = Vec3::Zero();
+  reset_motion(model, st);
+}
+
+void set_floor(State& st, double left, double right) {
+  st.calibrated = true;
+  st.calibrated_floor[0] = left;
+  st.calibrated_floor[1] = right;
+  for (int f = 0; f < 2; ++f) {
+    st.feet[f].floor = st.calibrated_floor[f];
+    st.feet[f].has_floor = true;
+  }
 }
 
 namespace {
@@ -146,255 +174,217 @@ namespace {
 // Ascending, the swing's apex is not known yet: use the running estimate.
 // Descending, use this swing's own apex, so the descending branch starts at
 // h = H exactly where the ascending one ended (no jump at mid-swing).
-double equation_height(const WipModel& m, const WipWorkspace& ws, int f) {
-  const double h = std::max(ws.feet[f].h, 0.0);
-  if (!m.params.mapping.normalise_height) return std::min(h, m.shape.H);
-  const GaitMachine& g = ws.gait[f];
+double equation_height(const Model& m, const State& st, int f) {
+  const double h = std::max(st.feet[f].h, 0.0);
+  const StepShape& k = m.shape();
+  if (!m.settings().mapping.normalise_height) return std::min(h, k.H);
+  const GaitMachine& g = st.gait[f];
   const double apex = g.phase == GaitPhase::InitialSwing ? g.apex_estimate : g.apex;
-  return std::min(h * m.shape.H / std::max(apex, m.params.gait.min_h1), m.shape.H);
+  return std::min(h * k.H / std::max(apex, m.settings().gait.min_h1), k.H);
+}
+
+// The driving foot landed: the step ends with it in front; if the other foot
+// is already up it takes over mid-swing.
+void finish_step(State& st, double S) {
+  st.z_target[st.driver] = 0.5 * S;
+  st.z_target[1 - st.driver] = -0.5 * S;
+  const int other = 1 - st.driver;
+  st.driver = -1;
+  if (in_swing(st.gait[other].phase)) {
+    st.driver = other;
+    st.kind = StepKind::Consecutive;
+    // Its foot-off and mid-swing passed unseen: no gaps to fade (the smoothing takes the jump).
+    st.gap[0] = st.gap[1] = st.gap_up[0] = st.gap_up[1] = 0;
+  }
+}
+
+// Drives the running step's depth targets from the swinging foot's height.
+void drive_step(const Model& m, State& st, const unsigned ev[2]) {
+  const int s = st.driver, o = 1 - s;
+  const bool up = st.gait[s].phase == GaitPhase::InitialSwing;
+  const double h = equation_height(m, st, s);
+  double zs, zo;
+  if (st.kind == StepKind::First) {
+    zs = first_step_swing(m.shape(), h, up);
+    zo = first_step_support(m.shape(), h, up);
+  } else {
+    zs = next_step_swing(m.shape(), h, up);
+    zo = next_step_support(m.shape(), h, up);
+  }
+  // The branches meet only at h = H; mid-swing is detected a little before
+  // the apex and the running apex estimate is not exact, so the descending
+  // branch starts with the gap left at the switch and closes it in
+  // proportion to the remaining height (the foot still lands exactly on
+  // the equations' final value).
+  // Likewise the foot-off is detected at H1, not at h = 0: the ascending
+  // branch starts from where the feet are and fades that gap out by the apex.
+  if (ev[s] & kEventFootOff) {
+    st.gap_up[s] = st.z_target[s] - zs;
+    st.gap_up[o] = st.z_target[o] - zo;
+    st.h_off = st.feet[s].h;
+    st.gap[0] = st.gap[1] = 0;
+  }
+  if (up) {
+    const double apex = std::max(st.gait[s].apex_estimate, st.h_off + 1e-3);
+    const double fade_up = 1 - std::clamp((st.feet[s].h - st.h_off) / (apex - st.h_off), 0.0, 1.0);
+    zs += fade_up * st.gap_up[s];
+    zo += fade_up * st.gap_up[o];
+  }
+  if (ev[s] & kEventMidSwing) {
+    st.gap[s] = st.z_target[s] - zs;
+    st.gap[o] = st.z_target[o] - zo;
+    st.h_switch = std::max(st.feet[s].h, m.settings().gait.min_h1);
+  }
+  const double fade = up ? 0.0 : std::clamp(st.feet[s].h / st.h_switch, 0.0, 1.0);
+  st.z_target[s] = zs + fade * st.gap[s];
+  st.z_target[o] = zo + fade * st.gap[o];
 }
 
 // Starts, drives, finishes and stops steps (equations 1-4 and the stop rule).
-void update_depth_targets(const WipModel& m, WipWorkspace& ws, const unsigned ev[2], double dt) {
-  const bool both_down = !in_swing(ws.gait[0].phase) && !in_swing(ws.gait[1].phase);
-  ws.ds_time = both_down ? ws.ds_time + dt : 0;
-  const double S = m.shape.S;
-  // The driving foot landed: the step ends with it in front.
-  if (ws.driver >= 0 && !in_swing(ws.gait[ws.driver].phase)) {
-    ws.z_target[ws.driver] = 0.5 * S;
-    ws.z_target[1 - ws.driver] = -0.5 * S;
-    const int other = 1 - ws.driver;
-    ws.driver = -1;
-    // Both feet were up: the other one takes over mid-swing.
-    if (in_swing(ws.gait[other].phase)) {
-      ws.driver = other;
-      ws.kind = StepKind::Consecutive;
-      // Its foot-off and mid-swing passed unseen: no gaps to fade (the smoothing takes the jump).
-      ws.gap[0] = ws.gap[1] = ws.gap_up[0] = ws.gap_up[1] = 0;
-    }
-  }
+void update_depth_targets(const Model& m, State& st, const unsigned ev[2], double dt) {
+  const bool both_down = !in_swing(st.gait[0].phase) && !in_swing(st.gait[1].phase);
+  st.ds_time = both_down ? st.ds_time + dt : 0;
+  if (st.driver >= 0 && !in_swing(st.gait[st.driver].phase)) finish_step(st, m.shape().S);
   // A foot lifted while no step runs: a new step (first one after a stop).
-  for (int f = 0; f < 2 && ws.driver < 0; ++f)
+  for (int f = 0; f < 2 && st.driver < 0; ++f)
     if (ev[f] & kEventFootOff) {
-      ws.driver = f;
-      ws.kind = ws.walking ? StepKind::Consecutive : StepKind::First;
-      ws.walking = true;
+      st.driver = f;
+      st.kind = st.walking ? StepKind::Consecutive : StepKind::First;
+      st.walking = true;
     }
-  if (ws.driver >= 0) {
-    const int s = ws.driver, o = 1 - s;
-    const bool up = ws.gait[s].phase == GaitPhase::InitialSwing;
-    const double h = equation_height(m, ws, s);
-    double zs, zo;
-    if (ws.kind == StepKind::First) {
-      zs = first_step_swing(m.shape, h, up);
-      zo = first_step_support(m.shape, h, up);
-    } else {
-      zs = next_step_swing(m.shape, h, up);
-      zo = next_step_support(m.shape, h, up);
-    }
-    // The branches meet only at h = H; mid-swing is detected a little before
-    // the apex and the running apex estimate is not exact, so the descending
-    // branch starts with the gap left at the switch and closes it in
-    // proportion to the remaining height (the foot still lands exactly on
-    // the equations' final value).
-    // Likewise the foot-off is detected at H1, not at h = 0: the ascending
-    // branch starts from where the feet are and fades that gap out by the apex.
-    if (ev[s] & kEventFootOff) {
-      ws.gap_up[s] = ws.z_target[s] - zs;
-      ws.gap_up[o] = ws.z_target[o] - zo;
-      ws.h_off = ws.feet[s].h;
-      ws.gap[0] = ws.gap[1] = 0;
-    }
-    if (up) {
-      const double apex = std::max(ws.gait[s].apex_estimate, ws.h_off + 1e-3);
-      const double fade_up = 1 - std::clamp((ws.feet[s].h - ws.h_off) / (apex - ws.h_off), 0.0, 1.0);
-      zs += fade_up * ws.gap_up[s];
-      zo += fade_up * ws.gap_up[o];
-    }
-    if (ev[s] & kEventMidSwing) {
-      ws.gap[s] = ws.z_target[s] - zs;
-      ws.gap[o] = ws.z_target[o] - zo;
-      ws.h_switch = std::max(ws.feet[s].h, m.params.gait.min_h1);
-    }
-    const double fade = up ? 0.0 : std::clamp(ws.feet[s].h / ws.h_switch, 0.0, 1.0);
-    ws.z_target[s] = zs + fade * ws.gap[s];
-    ws.z_target[o] = zo + fade * ws.gap[o];
-  }
-  if (ws.walking && ws.driver < 0 && ws.ds_time > m.params.mapping.stop_time) {
-    ws.walking = false;
-    ws.kind = StepKind::None;
-    ws.z_target[0] = ws.z_target[1] = 0;
+  if (st.driver >= 0) drive_step(m, st, ev);
+  if (st.walking && st.driver < 0 && st.ds_time > m.settings().mapping.stop_time) {
+    st.walking = false;
+    st.kind = StepKind::None;
+    st.z_target[0] = st.z_target[1] = 0;
   }
 }
 
-void solve_pose(const WipModel& m, WipWorkspace& ws, const double lift[2]) {
-  const auto& mp = m.params.mapping;
-  const Quat yaw(Eigen::AngleAxisd(ws.heading, Vec3::UnitY()));
-  std::copy(m.base_pose.rotations.begin(), m.base_pose.rotations.end(), ws.pose.rotations.begin());
-  std::copy(m.base_pose.translations.begin(), m.base_pose.translations.end(), ws.pose.translations.begin());
-  const Vec3 root(ws.root_xz.x(), m.root_height - ws.dh, ws.root_xz.z());
-  ws.pose.translations[0] = root;
-  ws.pose.rotations[0] = yaw * m.base_pose.rotations[0];
-  forward_kinematics(m.skeleton, ws.pose, ws.model);
+void solve_pose(const Model& m, State& st, const double lift[2], PoseRef out, Vec3 target_world[2]) {
+  const auto& mp = m.settings().mapping;
+  const Quat yaw(Eigen::AngleAxisd(st.heading, Vec3::UnitY()));
+  const Pose& base = m.base_pose();
+  std::copy(base.rotations.begin(), base.rotations.end(), out.rotations.begin());
+  std::copy(base.translations.begin(), base.translations.end(), out.translations.begin());
+  const Vec3 root(st.root_xz.x(), m.root_height() - st.dh, st.root_xz.z());
+  out.translations[0] = root;
+  out.rotations[0] = yaw * base.rotations[0];
+  forward_kinematics(m.skeleton(), out, st.model_space);
   const Vec3 forward = yaw * Vec3::UnitZ();
   for (int f = 0; f < 2; ++f) {
-    const Vec3 local(m.foot_offset[f].x(), 0, m.foot_offset[f].z() + ws.z[f]);
+    const Model::Leg& leg = m.leg(f);
+    const Vec3 local(leg.foot_offset.x(), 0, leg.foot_offset.z() + st.z[f]);
     Vec3 target = yaw * local;
     target.x() += root.x();
     target.z() += root.z();
-    target.y() = m.ankle_height[f] + lift[f];
+    target.y() = leg.ankle_height + lift[f];
     ik::TwoBoneTarget t;
     t.position = target;
-    const Vec3 hip = ws.model[static_cast<std::size_t>(m.legs[f].root)].translation;
-    t.hint = 0.5 * (hip + target) + mp.hint_forward * m.scale * forward;
-    t.rotation = yaw * m.foot_rotation[f];
+    const Vec3 hip = st.model_space[static_cast<std::size_t>(leg.chain.root)].translation;
+    t.hint = 0.5 * (hip + target) + mp.hint_forward * m.scale() * forward;
+    t.rotation = yaw * leg.foot_rotation;
     t.rotation_weight = mp.feet_flat ? 1.0 : 0.0;
-    ik::solve_two_bone(m.skeleton, m.legs[f], t, ws.pose.ref(), ws.model);
-    ws.frame.target_world[f] = target;
+    ik::solve_two_bone(m.skeleton(), leg.chain, t, out, st.model_space);
+    target_world[f] = target;
   }
+}
+
+// Signal processing and gait machines for both feet; returns true when both were usable.
+bool track_feet(const Model& m, const TrackerFrame& frame, State& st, double dt, unsigned ev[2]) {
+  const auto& p = m.settings();
+  bool all = true;
+  for (int f = 0; f < 2; ++f) {
+    const DevicePose& d = frame.foot(f);
+    const bool ok = usable(d);
+    all = all && ok;
+    const bool support = !in_swing(st.gait[f].phase);
+    st.feet[f].push(p.signal, ok ? d.position.y() : 0.0, ok, dt, support);
+    ev[f] = st.gait[f].update(p.gait, st.feet[f].h, st.feet[f].v, st.feet[f].confidence, dt);
+  }
+  return all;
+}
+
+// Forward speed (the chosen estimator, capped and smoothed) and progression.
+void advance_body(const Model& m, State& st, double time, double dt, const unsigned ev[2]) {
+  const auto& mp = m.settings().mapping;
+  SpeedEstimator& est = mp.speed_model == SpeedModel::StepSpeed ? static_cast<SpeedEstimator&>(st.step_speed)
+                                                                 : static_cast<SpeedEstimator&>(st.frequency_speed);
+  for (int f = 0; f < 2; ++f) est.observe({time, dt, f, ev[f], st.feet[f].v, st.walking});
+  const double target_speed = std::clamp(est.target_speed(time), 0.0, mp.max_speed);
+  st.speed = approach(st.speed, target_speed, dt, mp.speed_tau);
+  const Vec3 forward(std::sin(st.heading), 0, std::cos(st.heading));
+  st.root_xz += forward * st.speed * dt;
+  st.distance += st.speed * dt;
+}
+
+void fill_info(const Model& m, const State& st, double time, const unsigned ev[2], const double y_local[2],
+               ConstPoseRef out, const Vec3 target_world[2], Info& fr) {
+  fr.time = time;
+  for (int f = 0; f < 2; ++f) {
+    fr.phase[f] = st.gait[f].phase;
+    fr.events[f] = ev[f];
+    fr.h[f] = st.feet[f].h;
+    fr.v[f] = st.feet[f].v;
+    fr.confidence[f] = st.feet[f].confidence;
+    fr.h1[f] = st.gait[f].h1(m.settings().gait);
+    fr.z_target[f] = st.z_target[f];
+    fr.z[f] = st.z[f];
+    fr.y[f] = y_local[f];
+    fr.target_world[f] = target_world[f];
+  }
+  fr.root_offset = -st.dh;
+  fr.speed = st.speed;
+  fr.distance = st.distance;
+  fr.heading = st.heading;
+  fr.root_position = out.translations[0];
+  fr.walking = st.walking;
+  fr.driver = st.driver;
+  fr.kind = st.kind;
+  fr.double_support_time = st.ds_time;
 }
 
 }  // namespace
 
-const WipFrame& update(const WipModel& m, const TrackerSample& sample, WipWorkspace& ws) {
-  const auto& p = m.params;
-  double dt = 1.0 / p.signal.rate;
-  if (ws.started) {
-    if (!(sample.time > ws.last_time)) return ws.frame;  // out of order or repeated: ignore
-    dt = std::min(sample.time - ws.last_time, 0.5);
-  }
-  ws.started = true;
-  ws.last_time = sample.time;
+UpdateStatus update(const Model& m, const TrackerFrame& frame, State& st, PoseRef out, Info* info) {
+  if (out.joint_count() != m.skeleton().joint_count() || out.translations.size() != out.rotations.size() ||
+      st.model_space.size() != static_cast<std::size_t>(m.skeleton().joint_count()))
+    return UpdateStatus::Rejected;  // not this model's pose or state: nothing to do
+  const FrameClock::Step step = st.clock.advance(frame.time);
+  if (step.verdict == FrameClock::Verdict::Reject) return UpdateStatus::Rejected;
+  const bool restarted = step.verdict == FrameClock::Verdict::Restart;
+  if (restarted) reset_motion(m, st);
+  const auto& p = m.settings();
+  // The first frame (and the first after a restart) integrates one nominal sample period.
+  const double dt = step.dt > 0 ? std::min(step.dt, p.mapping.max_dt) : 1.0 / p.signal.rate;
+  if (usable(frame.head())) st.heading = yaw_of(frame.head().rotation, st.heading);
 
   unsigned ev[2];
-  for (int f = 0; f < 2; ++f) {
-    const bool support = !in_swing(ws.gait[f].phase);
-    ws.feet[f].push(p.signal, sample.ankle[f].y(), sample.valid[f], dt, support);
-    ev[f] = ws.gait[f].update(p.gait, ws.feet[f].h, ws.feet[f].v, ws.feet[f].confidence, dt);
-  }
-  update_depth_targets(m, ws, ev, dt);
+  const bool feet_ok = track_feet(m, frame, st, dt, ev);
+  update_depth_targets(m, st, ev, dt);
 
   // Smooth the targets (frame-rate independent form of the document's lerp).
   const auto& mp = p.mapping;
-  for (int f = 0; f < 2; ++f) ws.z[f] = approach(ws.z[f], ws.z_target[f], dt, mp.smoothing_tau);
+  for (int f = 0; f < 2; ++f) st.z[f] = approach(st.z[f], st.z_target[f], dt, mp.smoothing_tau);
   // Eq. 5-7: the body drops with the trailing foot's depth while walking. The
   // leading foot can reach further than the trailing one (the strike
   // overshoot of eq. 3), so the farther of the two sets the drop: otherwise
   // that leg would be out of reach and lock straight.
-  const double z_far = std::max({-ws.z[0], -ws.z[1], ws.z[0], ws.z[1]});
-  const double dh_target = ws.walking ? body_drop(m.leg_length, z_far) : 0.0;
-  ws.dh = approach(ws.dh, dh_target, dt, mp.body_tau);
+  const double z_far = std::max({-st.z[0], -st.z[1], st.z[0], st.z[1]});
+  const double dh_target = st.walking ? body_drop(m.leg_length(), z_far) : 0.0;
+  st.dh = approach(st.dh, dh_target, dt, mp.body_tau);
   // Eq. 8: swinging feet lift by lift_scale * h (scaled to the avatar).
   double y_local[2], lift[2];
   for (int f = 0; f < 2; ++f) {
-    const double h = std::clamp(ws.feet[f].h, 0.0, m.shape.H);
-    const double up = in_swing(ws.gait[f].phase) ? mp.lift_scale * h * m.scale : 0.0;
-    y_local[f] = up + ws.dh;
-    lift[f] = up;
+    const double h = std::clamp(st.feet[f].h, 0.0, m.shape().H);
+    lift[f] = in_swing(st.gait[f].phase) ? mp.lift_scale * h * m.scale() : 0.0;
+    y_local[f] = lift[f] + st.dh;
   }
-
-  // Forward speed.
-  SpeedEstimator* est = ws.custom_speed ? ws.custom_speed
-                        : mp.speed_model == SpeedModel::StepSpeed ? static_cast<SpeedEstimator*>(&ws.step_speed)
-                                                                  : static_cast<SpeedEstimator*>(&ws.frequency_speed);
-  for (int f = 0; f < 2; ++f) est->observe({sample.time, dt, f, ev[f], ws.feet[f].v, ws.walking});
-  const double target_speed = std::clamp(est->target_speed(sample.time), 0.0, mp.max_speed);
-  ws.speed = approach(ws.speed, target_speed, dt, mp.speed_tau);
-  const Vec3 forward(std::sin(ws.heading), 0, std::cos(ws.heading));
-  ws.root_xz += forward * ws.speed * dt;
-  ws.distance += ws.speed * dt;
-
-  solve_pose(m, ws, lift);
-
-  WipFrame& fr = ws.frame;
-  fr.time = sample.time;
-  for (int f = 0; f < 2; ++f) {
-    fr.phase[f] = ws.gait[f].phase;
-    fr.events[f] = ev[f];
-    fr.h[f] = ws.feet[f].h;
-    fr.v[f] = ws.feet[f].v;
-    fr.confidence[f] = ws.feet[f].confidence;
-    fr.h1[f] = ws.gait[f].h1(p.gait);
-    fr.z_target[f] = ws.z_target[f];
-    fr.z[f] = ws.z[f];
-    fr.y[f] = y_local[f];
-  }
-  fr.root_offset = -ws.dh;
-  fr.speed = ws.speed;
-  fr.distance = ws.distance;
-  fr.root_position = ws.pose.translations[0];
-  fr.walking = ws.walking;
-  fr.driver = ws.driver;
-  fr.kind = ws.kind;
-  fr.double_support_time = ws.ds_time;
-  return fr;
-}
-
-FloorCalibration calibrate_floor(std::span<const TrackerSample> samples, double seconds, double max_std) {
-  FloorCalibration c;
-  if (samples.empty()) {
-    c.message = "no tracker samples to calibrate the floor from";
-    return c;
-  }
-  const double t0 = samples.front().time;
-  int total = 0;
-  for (int f = 0; f < 2; ++f) {
-    double sum = 0, sum2 = 0;
-    int n = 0;
-    total = 0;
-    for (const auto& s : samples) {
-      if (s.time - t0 > seconds) break;
-      ++total;
-      if (!s.valid[f] || !std::isfinite(s.ankle[f].y())) continue;
-      sum += s.ankle[f].y();
-      sum2 += s.ankle[f].y() * s.ankle[f].y();
-      ++n;
-    }
-    const char* side = f == 0 ? "left" : "right";
-    if (n < std::max(3, total / 2)) {
-      c.message = std::string("cannot calibrate the floor: only ") + std::to_string(n) + " of " + std::to_string(total) +
-                  " " + side + " ankle samples in the first " + std::to_string(seconds).substr(0, 4) + " s are valid";
-      return c;
-    }
-    c.floor[f] = sum / n;
-    c.spread[f] = std::sqrt(std::max(0.0, sum2 / n - c.floor[f] * c.floor[f]));
-  }
-  for (int f = 0; f < 2; ++f)
-    if (c.spread[f] > max_std) {
-      char buf[320];
-      std::snprintf(buf, sizeof buf,
-                    "cannot calibrate the floor: the user is not standing still during the first %.1f s "
-                    "(%s ankle height varies by %.1f cm std, limit %.1f cm). Stand still for the calibration, "
-                    "or skip it (rolling floor).",
-                    seconds, f == 0 ? "left" : "right", 100 * c.spread[f], 100 * max_std);
-      c.message = buf;
-      return c;
-    }
-  c.ok = true;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "floor calibrated over %.1f s: ankle heights %.3f / %.3f m (std %.1f / %.1f cm)", seconds,
-                c.floor[0], c.floor[1], 100 * c.spread[0], 100 * c.spread[1]);
-  c.message = buf;
-  return c;
-}
-
-WipRun run_wip(const WipModel& model, std::span<const TrackerSample> samples, const RunOptions& opt) {
-  WipRun run;
-  WipWorkspace ws = make_workspace(model);
-  if (opt.calibrate) {
-    run.calibration = calibrate_floor(samples, opt.calibration_seconds);
-    if (!run.calibration.ok) throw Error(run.calibration.message);
-    set_floor(ws, run.calibration.floor[0], run.calibration.floor[1]);
-  }
-  run.frames.reserve(samples.size());
-  if (opt.keep_poses) run.motion = Motion(model.skeleton, model.params.signal.rate, 0);
-  for (const auto& s : samples) {
-    const double before = ws.started ? ws.last_time : -1e300;
-    if (!(s.time > before)) continue;
-    run.frames.push_back(update(model, s, ws));
-    if (opt.keep_poses) run.motion.push_back(ws.pose);
-  }
-  return run;
+  advance_body(m, st, frame.time, dt, ev);
+  Vec3 target_world[2];
+  solve_pose(m, st, lift, out, target_world);
+  if (info) fill_info(m, st, frame.time, ev, y_local, out, target_world, *info);
+  if (restarted) return UpdateStatus::Restarted;
+  return feet_ok ? UpdateStatus::Ok : UpdateStatus::Degraded;
 }
 
 }  // namespace legwork::wip

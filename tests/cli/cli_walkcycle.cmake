@@ -12,12 +12,16 @@ legwork_cli_test(walkcycle_steps walkcycle --keys ${W}/normal.json --steps 4 --o
 legwork_cli_test(walkcycle_from_bvh walkcycle --from-bvh ${D}/walking/07_01.bvh --keys 53,60,100,101 --frames 24 --out ${O}/wc_from_bvh.bvh
                  --straight 3)
 legwork_cli_test(walkcycle_extract walkcycle extract ${D}/walking/16_15.bvh --out ${O}/wc_16_15.json --report ${O}/wc_16_15_report.json)
-legwork_cli_fail(walkcycle_no_keys walkcycle --straight 3 --out ${O}/x.bvh)
-legwork_cli_fail(walkcycle_bad_joint walkcycle --keys ${W}/normal.json --shift NoSuchJoint=1 --out ${O}/x.bvh)
-legwork_cli_fail(walkcycle_bad_ext walkcycle --keys ${W}/normal.json --out ${O}/x.txt)
-legwork_cli_fail(walkcycle_bad_path walkcycle --keys ${W}/normal.json --svg-path "M 0 0 L 0 0" --out ${O}/x.bvh)
-legwork_cli_fail(walkcycle_not_json walkcycle --keys ${D}/walking/07_01.bvh --out ${O}/x.bvh)
-legwork_cli_fail(walkcycle_extract_not_walk walkcycle extract ${PROJECT_SOURCE_DIR}/data/cmu/bvh/swimming/79_02.bvh --out ${O}/x.json)
+# Bad input fails with its message.
+legwork_cli_error(walkcycle_no_keys "error: walkcycle: --keys walk.json is required" walkcycle --straight 3 --out ${O}/x.bvh)
+legwork_cli_error(walkcycle_bad_joint "error: --shift: unknown joint 'NoSuchJoint'"
+                   walkcycle --keys ${W}/normal.json --shift NoSuchJoint=1 --out ${O}/x.bvh)
+legwork_cli_error(walkcycle_bad_ext "error: output '[^']*x.txt' must end in .bvh or .glb" walkcycle --keys ${W}/normal.json --out ${O}/x.txt)
+legwork_cli_error(walkcycle_bad_path "error: --svg-path: svg path: flattened points: point 1 repeats point 0"
+                   walkcycle --keys ${W}/normal.json --svg-path "M 0 0 L 0 0" --out ${O}/x.bvh)
+legwork_cli_error(walkcycle_not_json "error: [^ ]*walking/07_01.bvh: not valid JSON" walkcycle --keys ${D}/walking/07_01.bvh --out ${O}/x.bvh)
+legwork_cli_error(walkcycle_extract_not_walk "error: extract: found 0 steady steps"
+                   walkcycle extract ${PROJECT_SOURCE_DIR}/data/cmu/bvh/swimming/79_02.bvh --out ${O}/x.json)
 # Same input, same bytes: two runs of a curved walk (BVH and report) compared.
 foreach(run a b)
   legwork_cli_test(walkcycle_repro_${run} walkcycle --keys ${W}/double-bounce.json --path ${W}/paths/s-curve.json

@@ -2,8 +2,9 @@
 // on the repo's sample walks (always) and on every shared CMU walking trial.
 #include <legwork/core/fk.hpp>
 #include <legwork/io/bvh.hpp>
-#include <legwork/walkcycle/extract.hpp>
-#include <legwork/walkcycle/measure.hpp>
+#include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/offline/extract.hpp>
+#include <legwork/walkcycle/offline/measure.hpp>
 
 #include "cmu_sample.hpp"
 #include "testdata.hpp"

@@ -1,48 +1,77 @@
-// Runtime walker: steered frame by frame, it keeps the stance foot planted,
-// turns towards the asked heading at most max_turn_per_step per step, and a
-// straight walk matches the offline generator's stride.
+// Runtime walker (walkcycle::update): steered frame by frame from the head's
+// yaw, it keeps the stance foot planted, turns towards the asked heading at
+// most max_turn_per_step per step, a straight walk matches the offline
+// generator's stride, and it follows the FrameClock time rules.
 #include <legwork/io/bvh.hpp>
-#include <legwork/walkcycle/measure.hpp>
+#include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/offline/measure.hpp>
 #include <legwork/walkcycle/walker.hpp>
 
+#include "alloc_counter.hpp"
 #include "cmu_sample.hpp"
 #include "testdata.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 using namespace legwork;
 using namespace legwork::walkcycle;
 
 namespace {
-CycleModel model(const std::string& name) {
+
+CycleModel cycle(const std::string& name) {
   const Skeleton& s = testdata::sample_skeleton();
   return build_cycle(s, read_walk_keys(testdata::walk_keys_file(name), s));
 }
+
+// A frame asking for `heading` (radians) at `time`: the head turned about +y.
+TrackerFrame steer(double time, double heading) {
+  TrackerFrame f;
+  f.time = time;
+  f.head() = {Vec3(0, 1.7, 0), Quat(Eigen::AngleAxisd(heading, Vec3::UnitY())), true};
+  return f;
+}
+
+bool same_pose(const Pose& a, const Pose& b) {
+  for (std::size_t j = 0; j < a.rotations.size(); ++j)
+    if (a.rotations[j].coeffs() != b.rotations[j].coeffs() || a.translations[j] != b.translations[j]) return false;
+  return true;
+}
+
+bool finite_pose(const Pose& p) {
+  for (std::size_t j = 0; j < p.rotations.size(); ++j)
+    if (!p.rotations[j].coeffs().allFinite() || !p.translations[j].allFinite()) return false;
+  return true;
+}
+
 }  // namespace
 
 TEST(Walker, SteeredLiveWithoutSlip) {
   for (const char* w : {"normal", "sneak", "double-bounce"}) {
-    const CycleModel m = model(w);
-    WalkerState s;
-    Pose pose(m.skeleton);
-    Motion rec(m.skeleton, 30.0, 0);
+    Settings settings;
+    settings.start_position = Vec3(1, 0, 2);
+    const Model model = make_model(cycle(w), settings);
+    const CycleModel& m = model.cycle();
+    State s(model);
+    Pose pose(model.skeleton());
+    Motion rec(model.skeleton(), 30.0, 0);
     std::vector<FrameLabel> labels;
-    walker_reset(m, s, Vec3(1, 0, 2), 0.0, pose.ref());
-    rec.push_back(pose);
-    labels.push_back({0, true, Pivot::Heel, false});
-    const double dt = 1.0 / 30.0;
     const int frames = 300;  // 10 s: straight, then asked to face +x (90 degrees left)
-    for (int f = 1; f < frames; ++f) {
-      const double t_prev = s.time;
-      walker_update(m, s, dt, f < 100 ? 0.0 : kPi / 2, pose.ref());
+    for (int f = 0; f < frames; ++f) {
+      Info info;
+      const UpdateStatus st = update(model, steer(100.0 + f / 30.0, f < 100 ? 0.0 : kPi / 2), s, pose.ref(), &info);
+      ASSERT_EQ(st, UpdateStatus::Ok) << w << " frame " << f;
       rec.push_back(pose);
-      const StanceAt st = stance_at(m, 0.5 * (t_prev + s.time));
-      labels.push_back({st.step, st.left, st.pivot, false});
+      labels.push_back({info.step, info.left_planted, info.pivot, false});
     }
     const SlipReport slip = measure_stance_slip(m, rec, labels);
+    const Vec3 start = rec.frame(0).translations[0];
     const Vec3 end = rec.frame(frames - 1).translations[0];
     std::printf("[walkcycle] walker %-13s 10 s steered: slip max %.2e mm, heading %.1f deg, end (%.2f, %.2f)\n", w, slip.max_mm,
                 rad2deg(s.heading), end.x(), end.z());
+    EXPECT_NEAR(start.x(), 1.0, 1e-9) << w;  // starts above the settings' start point
+    EXPECT_NEAR(start.z(), 2.0, 1e-9) << w;
     EXPECT_LE(slip.max_mm, 1e-6) << w;
     EXPECT_NEAR(s.heading, kPi / 2, 1e-9) << w;  // reached, in steps of at most 30 degrees
     EXPECT_GT(end.x(), 2.0) << w;                   // walked off to the left (+x)
@@ -54,21 +83,132 @@ TEST(Walker, SteeredLiveWithoutSlip) {
 }
 
 TEST(Walker, TurnIsLimitedPerStep) {
-  const CycleModel m = model("normal");
-  WalkerState s;
-  s.max_turn_per_step = deg2rad(20);
-  Pose pose(m.skeleton);
-  walker_reset(m, s, Vec3::Zero(), 0.0, pose.ref());
+  Settings settings;
+  settings.max_turn_per_step = deg2rad(20);
+  const Model model = make_model(cycle("normal"), settings);
+  const CycleModel& m = model.cycle();
+  State s(model);
+  Pose pose(model.skeleton());
   double last = 0, fastest = 0;
-  for (int f = 0; f < 48; ++f) {
-    walker_update(m, s, 1.0 / m.fps, kPi, pose.ref());  // asked to turn right round
+  for (int f = 0; f <= 48; ++f) {
+    update(model, steer(f / m.fps, kPi), s, pose.ref());  // asked to turn right round
     EXPECT_LE(std::abs(s.heading_to - s.heading_from), deg2rad(20) + 1e-12);
     fastest = std::max(fastest, std::abs(s.heading - last));
     last = s.heading;
   }
-  // 48 frames = 4 steps of 12: four headings latched at the mid-steps, 20 degrees each.
+  // The first frame starts the walk; 48 more frames = 4 steps of 12: four
+  // headings latched at the mid-steps, 20 degrees each.
   EXPECT_EQ(s.decided_step, 4);
   EXPECT_NEAR(std::abs(s.heading_to), deg2rad(80), 1e-9);
   // Blended over a step (smoothstep, peak slope 1.5): at most 20 * 1.5 / 12 degrees per frame.
   EXPECT_LE(fastest, deg2rad(20) * 1.5 / 12 + 1e-9);
+}
+
+TEST(Walker, ResetStartsAtAGivenPlaceAndHeading) {
+  const Model model = make_model(cycle("normal"));
+  State s(model);
+  Pose pose(model.skeleton());
+  reset(model, s, Vec3(-3, 5, 4), kPi / 2);
+  TrackerFrame lost;  // no head: keeps the start heading as the one asked for
+  lost.time = 7.0;
+  EXPECT_EQ(update(model, lost, s, pose.ref()), UpdateStatus::Degraded);
+  EXPECT_NEAR(pose.translations[0].x(), -3, 1e-9);
+  EXPECT_NEAR(pose.translations[0].z(), 4, 1e-9);
+  EXPECT_NEAR(s.heading, kPi / 2, 1e-12);
+  for (int f = 1; f <= 60; ++f) {
+    lost.time = 7.0 + f / 30.0;
+    update(model, lost, s, pose.ref());
+  }
+  EXPECT_GT(pose.translations[0].x(), -3 + 1.0);  // walked along +x, the start heading
+  EXPECT_NEAR(s.heading, kPi / 2, 1e-12);
+}
+
+TEST(Walker, AllocatesNothingPerFrame) {
+  const Model model = make_model(cycle("double-bounce"));
+  State s(model);
+  Pose pose(model.skeleton());
+  update(model, steer(0.0, 0.0), s, pose.ref());
+  Info info;
+  const long n = alloc_count::count_allocations([&] {
+    for (int f = 1; f < 600; ++f) update(model, steer(f / 60.0, 0.01 * f), s, pose.ref(), &info);
+  });
+  EXPECT_EQ(n, 0);
+  EXPECT_GT(info.step, 10);
+}
+
+TEST(Walker, TimeRules) {
+  const Model model = make_model(cycle("normal"));
+  State s(model);
+  Pose pose(model.skeleton());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // A NaN first time is rejected without freezing the stream.
+  EXPECT_EQ(update(model, steer(nan, 0), s, pose.ref()), UpdateStatus::Rejected);
+  EXPECT_EQ(update(model, steer(1.0, 0), s, pose.ref()), UpdateStatus::Ok);
+  EXPECT_EQ(update(model, steer(1.1, 0), s, pose.ref()), UpdateStatus::Ok);
+  EXPECT_NEAR(s.time, 0.1 * model.cycle().fps, 1e-9);  // dt = 0.1 s, at the walk's rate
+  // Backward, repeated and infinite times: rejected, pose and state untouched.
+  const Pose before = pose;
+  const double t_before = s.time;
+  for (double t : {1.05, 1.1, std::numeric_limits<double>::infinity(), nan, 1e30}) {
+    EXPECT_EQ(update(model, steer(t, 1.0), s, pose.ref()), UpdateStatus::Rejected) << t;
+    EXPECT_TRUE(same_pose(pose, before)) << t;
+    EXPECT_EQ(s.time, t_before) << t;
+  }
+  // A far-future spike is accepted as a gap (restart), then the real clock
+  // comes back: after FrameClock::kRestartFrames frames it walks again.
+  EXPECT_EQ(update(model, steer(5000.0, 0), s, pose.ref()), UpdateStatus::Restarted);
+  int rejected = 0;
+  UpdateStatus last = UpdateStatus::Rejected;
+  double t = 1.2;
+  while (last == UpdateStatus::Rejected && rejected < 20) {
+    last = update(model, steer(t, 0), s, pose.ref());
+    rejected += last == UpdateStatus::Rejected;
+    t += 1.0 / 30;
+  }
+  EXPECT_EQ(last, UpdateStatus::Restarted);
+  EXPECT_EQ(rejected, FrameClock::kRestartFrames - 1);
+  const double walked = s.time;
+  EXPECT_EQ(update(model, steer(t, 0), s, pose.ref()), UpdateStatus::Ok);
+  EXPECT_NEAR(s.time - walked, model.cycle().fps / 30, 1e-9);  // walking on from where it was
+  EXPECT_TRUE(finite_pose(pose));
+}
+
+TEST(Walker, BadHeadSamplesKeepTheLastHeading) {
+  const Model model = make_model(cycle("sneak"));
+  State s(model);
+  Pose pose(model.skeleton());
+  double t = 0;
+  for (int f = 0; f < 30; ++f, t += 1.0 / 30) update(model, steer(t, 0.5), s, pose.ref());
+  EXPECT_DOUBLE_EQ(s.desired_heading, 0.5);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (int f = 0; f < 200; ++f, t += 1.0 / 30) {
+    TrackerFrame x = steer(t, -1.0);
+    switch (f % 4) {
+      case 0: x.head().rotation.coeffs() = Eigen::Vector4d(nan, 0, 0, 1); break;
+      case 1: x.head().rotation.coeffs() = Eigen::Vector4d(0, 1e30, 0, 1e30); break;
+      case 2: x.head().position = Vec3(1e30, 0, 0); break;
+      default: x.head().valid = false; break;
+    }
+    EXPECT_EQ(update(model, x, s, pose.ref()), UpdateStatus::Degraded);
+    ASSERT_TRUE(finite_pose(pose)) << "frame " << f;
+  }
+  EXPECT_DOUBLE_EQ(s.desired_heading, 0.5);
+  EXPECT_NEAR(s.heading, 0.5, 1e-9);
+}
+
+TEST(Walker, MakeModelRejectsAnUnbuiltCycleOrBadSettings) {
+  try {
+    make_model(CycleModel{});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("walker: the cycle is not built"), std::string::npos) << e.what();
+  }
+  Settings bad;
+  bad.max_turn_per_step = -1;
+  try {
+    make_model(cycle("normal"), bad);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("max_turn_per_step must be a finite angle"), std::string::npos) << e.what();
+  }
 }

@@ -13,9 +13,18 @@
 namespace legwork::wip {
 namespace {
 
-const WipModel& cmu_model() {
-  static const WipModel m = make_wip_model(testdata::sample_skeleton());
+const Model& cmu_model() {
+  static const Model m = make_model(testdata::sample_skeleton());
   return m;
+}
+
+// A frame with both ankles tracked (valid) at the given positions.
+TrackerFrame feet(double t, const Vec3& left, const Vec3& right) {
+  TrackerFrame f;
+  f.time = t;
+  f.foot(kLeft) = {left, Quat::Identity(), true};
+  f.foot(kRight) = {right, Quat::Identity(), true};
+  return f;
 }
 
 // A smooth lift of `height` between t0 and t1 (0 outside).
@@ -26,30 +35,31 @@ double bump(double t, double t0, double t1, double height) {
 
 using Heights = std::function<std::pair<double, double>(double)>;
 
-std::vector<WipFrame> run(const Heights& h, double duration, double rate = 30.0, double floor_y = 0.1) {
-  WipWorkspace ws = make_workspace(cmu_model());
-  set_floor(ws, floor_y, floor_y);
-  std::vector<WipFrame> out;
+std::vector<Info> run(const Heights& h, double duration, double rate = 30.0, double floor_y = 0.1) {
+  State st(cmu_model());
+  set_floor(st, floor_y, floor_y);
+  Pose pose(cmu_model().skeleton());
+  std::vector<Info> out;
   for (int i = 0; i <= static_cast<int>(duration * rate); ++i) {
-    TrackerSample s;
-    s.time = i / rate;
-    const auto [l, r] = h(s.time);
-    s.ankle[0] = Vec3(0.1, floor_y + l, 0);
-    s.ankle[1] = Vec3(-0.1, floor_y + r, 0);
-    out.push_back(update(cmu_model(), s, ws));
+    const double t = i / rate;
+    const auto [l, r] = h(t);
+    Info info;
+    EXPECT_NE(update(cmu_model(), feet(t, Vec3(0.1, floor_y + l, 0), Vec3(-0.1, floor_y + r, 0)), st, pose.ref(), &info),
+              UpdateStatus::Rejected);
+    out.push_back(info);
   }
   return out;
 }
 
 // Distinct consecutive phases of one foot.
-std::vector<GaitPhase> phases(const std::vector<WipFrame>& frames, int foot) {
+std::vector<GaitPhase> phases(const std::vector<Info>& frames, int foot) {
   std::vector<GaitPhase> seq;
   for (const auto& f : frames)
     if (seq.empty() || seq.back() != f.phase[foot]) seq.push_back(f.phase[foot]);
   return seq;
 }
 
-int count_events(const std::vector<WipFrame>& frames, int foot, unsigned ev) {
+int count_events(const std::vector<Info>& frames, int foot, unsigned ev) {
   int n = 0;
   for (const auto& f : frames) n += (f.events[foot] & ev) ? 1 : 0;
   return n;
@@ -65,7 +75,7 @@ TEST(Gait, FirstStepRunsThroughAllPhasesAndEndsWithTheFeetApart) {
   bool first = false;
   for (const auto& f : frames) first |= f.kind == StepKind::First && f.driver == kLeft;
   EXPECT_TRUE(first);
-  const double S = cmu_model().shape.S;
+  const double S = cmu_model().shape().S;
   EXPECT_NEAR(frames.back().z_target[kLeft], 0.5 * S, 1e-12);
   EXPECT_NEAR(frames.back().z_target[kRight], -0.5 * S, 1e-12);
   EXPECT_TRUE(frames.back().walking);
@@ -144,54 +154,42 @@ TEST(Gait, JitterAroundTheHeightThresholdGivesOneSwingNotMany) {
 }
 
 TEST(Gait, LostTrackingPutsTheFootDownWithoutNan) {
-  WipWorkspace ws = make_workspace(cmu_model());
-  set_floor(ws, 0.0, 0.0);
+  State st(cmu_model());
+  set_floor(st, 0.0, 0.0);
+  Pose pose(cmu_model().skeleton());
+  Info f;
   bool was_swing = false, lost = false;
   for (int i = 0; i < 120; ++i) {
-    TrackerSample s;
-    s.time = i / 30.0;
-    s.ankle[0] = Vec3(0, bump(s.time, 0.5, 2.0, 0.25), 0);
-    s.ankle[1] = Vec3::Zero();
-    if (s.time > 0.9 && s.time < 2.5) {  // tracking drops out mid-swing
-      s.valid[0] = false;
-      s.ankle[0] = Vec3::Constant(std::nan(""));
-    }
-    const auto& f = update(cmu_model(), s, ws);
+    const double t = i / 30.0;
+    TrackerFrame s = feet(t, Vec3(0, bump(t, 0.5, 2.0, 0.25), 0), Vec3::Zero());
+    const bool dropped = t > 0.9 && t < 2.5;  // tracking drops out mid-swing
+    if (dropped) s.foot(kLeft) = {Vec3::Constant(std::nan("")), Quat::Identity(), false};
+    EXPECT_EQ(update(cmu_model(), s, st, pose.ref(), &f), dropped ? UpdateStatus::Degraded : UpdateStatus::Ok) << t;
     was_swing |= in_swing(f.phase[0]);
     lost |= (f.events[0] & kEventLost) != 0;
     ASSERT_TRUE(std::isfinite(f.h[0]) && std::isfinite(f.z[0]) && std::isfinite(f.speed));
-    for (const auto& q : ws.pose.rotations) ASSERT_TRUE(std::isfinite(q.w()));
+    for (const auto& q : pose.rotations) ASSERT_TRUE(std::isfinite(q.w()));
   }
   EXPECT_TRUE(was_swing);
   EXPECT_TRUE(lost);
-  EXPECT_EQ(ws.frame.phase[0], P::DoubleSupport);
+  EXPECT_EQ(f.phase[0], P::DoubleSupport);
 }
 
-TEST(Gait, OutOfOrderSamplesAreIgnored) {
-  WipWorkspace ws = make_workspace(cmu_model());
-  TrackerSample s;
-  s.time = 1.0;
-  update(cmu_model(), s, ws);
-  s.time = 0.5;
-  s.ankle[0] = Vec3(0, 5, 0);
-  const auto& f = update(cmu_model(), s, ws);
-  EXPECT_DOUBLE_EQ(f.time, 1.0);
-  EXPECT_NEAR(f.h[0], 0.0, 1e-12);
-}
-
-TEST(Calibration, RefusesWhenTheUserIsNotStill) {
-  SyntheticOptions o;
-  o.stand_time = 0.2;  // stepping starts almost at once
-  const auto moving = synthetic_stepping(o);
-  const auto bad = calibrate_floor(moving.samples);
-  EXPECT_FALSE(bad.ok);
-  EXPECT_NE(bad.message.find("not standing still"), std::string::npos) << bad.message;
-  o.stand_time = 3.0;
-  const auto still = synthetic_stepping(o);
-  const auto good = calibrate_floor(still.samples);
-  ASSERT_TRUE(good.ok) << good.message;
-  EXPECT_NEAR(good.floor[0], o.floor_y + o.ankle_height, 0.005);
-  EXPECT_THROW(run_wip(cmu_model(), moving.samples), Error);
+TEST(Gait, OutOfOrderSamplesAreRejectedLeavingStateAndPoseUntouched) {
+  State st(cmu_model());
+  Pose pose(cmu_model().skeleton());
+  Info info;
+  ASSERT_EQ(update(cmu_model(), feet(1.0, Vec3::Zero(), Vec3::Zero()), st, pose.ref(), &info), UpdateStatus::Ok);
+  const Pose before = pose;
+  const Info info_before = info;
+  EXPECT_EQ(update(cmu_model(), feet(0.5, Vec3(0, 5, 0), Vec3::Zero()), st, pose.ref(), &info), UpdateStatus::Rejected);
+  EXPECT_EQ(update(cmu_model(), feet(1.0, Vec3(0, 5, 0), Vec3::Zero()), st, pose.ref(), &info), UpdateStatus::Rejected);
+  EXPECT_DOUBLE_EQ(info.time, info_before.time);
+  EXPECT_NEAR(st.feet[0].h, 0.0, 1e-12);
+  for (std::size_t j = 0; j < pose.rotations.size(); ++j) {
+    EXPECT_EQ(pose.rotations[j].coeffs(), before.rotations[j].coeffs());
+    EXPECT_EQ(pose.translations[j], before.translations[j]);
+  }
 }
 
 }  // namespace

@@ -14,10 +14,13 @@
 //     drifts too far from its place under the hip, or when the body turns;
 //     steps are predicted from the body's velocity, with a step height and
 //     speed.
-// Runtime split: FullBodyModel is const (built once per skeleton, may throw);
-// FullBodyState is the per-avatar workspace; solve_full_body allocates
-// nothing and never throws. Model space = world, metres, y up, faces +z.
+// The per-frame contract (docs/architecture.md): Settings -> make_model()
+// builds an immutable Model (copies the skeleton; may throw) shared by any
+// number of avatars; State is one avatar; update() reads the head and both
+// hands of a TrackerFrame, allocates nothing and never throws.
+// Model space = world, metres, y up, faces +z.
 #include <legwork/core/motion.hpp>
+#include <legwork/core/tracker.hpp>
 #include <legwork/ik/two_bone.hpp>
 
 #include <array>
@@ -26,18 +29,8 @@
 
 namespace legwork::ik {
 
-// One sample of the tracked devices, model space. Rotations are the head and
-// wrist joints' model-space rotations (device orientation already calibrated
-// onto the joint frames).
-struct TrackerFrame {
-  Vec3 head_position = Vec3::Zero();
-  Quat head_rotation = Quat::Identity();
-  std::array<Vec3, 2> hand_position{Vec3::Zero(), Vec3::Zero()};  // [0] left, [1] right
-  std::array<Quat, 2> hand_rotation{Quat::Identity(), Quat::Identity()};
-  std::array<bool, 2> hand_valid{true, true};  // false: that arm relaxes
-};
-
-struct FullBodySettings {
+// Options of the full-body IK avatar (metres, seconds, radians).
+struct Settings {
   double floor_height = 0.0;        // metres; the VR play-area floor
   // Crouch: fraction of a head drop taken by the legs (the rest by a forward
   // lean), and the lowest pelvis height as a fraction of its standing height.
@@ -65,14 +58,11 @@ struct FullBodySettings {
   double max_step_length = 1.2;                       // metres
 };
 
-class FullBodyModel {
+class Model {
  public:
-  // Throws legwork::Error if the skeleton lacks head, neck, pelvis, arm or leg
-  // roles, or its rest pose is not an upright body. Keeps a pointer to skel.
-  explicit FullBodyModel(const Skeleton& skel, const FullBodySettings& settings = {});
-
-  const Skeleton& skeleton() const { return *skel_; }
-  const FullBodySettings& settings() const { return settings_; }
+  // The skeleton of the output pose (a copy of make_model's).
+  const Skeleton& skeleton() const { return skel_; }
+  const Settings& settings() const { return settings_; }
 
   // Rest measurements (identity rotations), metres.
   double standing_head_height() const { return head_height_; }
@@ -80,10 +70,11 @@ class FullBodyModel {
   double torso_length() const { return torso_length_; }  // pelvis to head, vertical
 
  private:
-  friend void solve_full_body(const FullBodyModel&, const struct TrackerFrame&, double, struct FullBodyState&,
-                              PoseRef);
-  const Skeleton* skel_;
-  FullBodySettings settings_;
+  friend Model make_model(const Skeleton&, const Settings&);
+  friend struct Solver;  // the update stages (full_body.cpp)
+  Model() = default;
+  Skeleton skel_;
+  Settings settings_;
   TwoBoneChain arm_[2], leg_[2];
   int pelvis_ = -1, head_ = -1, clavicle_[2] = {-1, -1};
   std::vector<int> spine_;  // spine chain, bottom up
@@ -94,10 +85,15 @@ class FullBodyModel {
   double leg_length_ = 0, arm_length_ = 0;
 };
 
-// Per-avatar mutable state and scratch buffers (sized for one model).
-struct FullBodyState {
-  explicit FullBodyState(const FullBodyModel& model);
-  void reset() { initialized = false; }
+// Builds the model for `skel` (copied). Throws legwork::Error if the skeleton
+// lacks head, neck, pelvis, arm or leg roles, or its rest pose is not an
+// upright body.
+Model make_model(const Skeleton& skel, const Settings& settings = {});
+
+// One avatar: what it remembers between frames, plus a scratch FK buffer
+// sized for the model (allocated here, never in update()).
+struct State {
+  explicit State(const Model& model);
 
   struct Foot {
     Vec3 position = Vec3::Zero();  // ankle, model space
@@ -107,20 +103,37 @@ struct FullBodyState {
     Vec3 from = Vec3::Zero();
     double from_yaw = 0;
   };
-  bool initialized = false;
+  FrameClock clock;
+  bool initialized = false;  // feet placed from a usable head
   std::array<Foot, 2> feet;
   double chest_yaw = 0, pelvis_yaw = 0;
   Vec3 previous_head = Vec3::Zero();
   Vec3 velocity = Vec3::Zero();  // smoothed horizontal head velocity, m/s
+  DevicePose held_head;          // last usable head (used while the head is lost)
   int steps_taken = 0;
-  std::vector<Transform> model;  // scratch FK buffer
+  std::vector<Transform> scratch;  // model-space FK buffer
 };
 
-// Solves one frame. dt = seconds since the previous frame (ignored on the
-// first). `out` must have the skeleton's joint count; every joint is written.
-// A non-finite head sample (or dt) leaves `out` and the state untouched; a
-// non-finite hand sample counts as that hand's tracking being lost.
-void solve_full_body(const FullBodyModel& model, const TrackerFrame& input, double dt, FullBodyState& state,
-                     PoseRef out);
+// Back to a new avatar (clock included); the next frame starts it.
+void reset(const Model& model, State& state);
+
+// Per-frame diagnostics.
+struct Info {
+  int steps_taken = 0;                       // steps completed since the avatar started
+  std::array<bool, 2> stepping{false, false};  // [kLeft], [kRight]: foot in the air
+  double chest_yaw = 0, pelvis_yaw = 0;      // radians about y, 0 = facing +z
+  double lean = 0;                           // torso lean from upright, radians
+  bool head_tracked = false;                 // false: the last usable head was held
+  std::array<bool, 2> hand_tracked{false, false};  // false: that arm relaxes
+};
+
+// Solves one frame: the head is placed exactly on frame.head(), the wrists on
+// frame.hand(kLeft/kRight) when within reach, legs step under the body.
+// `out` must have the model skeleton's joint count; every joint is written
+// (unless Rejected). Time from state.clock: Rejected leaves state and `out`
+// untouched; Restarted re-places the feet (a new start) and solves the frame.
+// A lost or unusable head holds the last usable one (a standing rest body at
+// the origin before any), a lost hand relaxes its arm: both are Degraded.
+UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
 
 }  // namespace legwork::ik

@@ -112,4 +112,8 @@ struct BarChart {
 };
 void plot_bars(const BarChart& chart, const std::string& path);
 
+// Stacks PNG images vertically into one PNG (centred, white background);
+// throws legwork::Error naming an unreadable part or an unwritable output.
+void stack_pngs(const std::vector<std::string>& parts, const std::string& out);
+
 }  // namespace legwork::render

@@ -1,5 +1,6 @@
 #pragma once
-// Walk key poses as data (offline authoring type).
+// Walk key poses as data, in memory (reading and writing walk files:
+// legwork/walkcycle/offline/keys.hpp).
 // One step of a walk is four key poses - contact, down, pass, up - plus the
 // next contact, which is the mirror of the first (document 001). A walk file
 // holds those four poses as joint-local rotations (degrees, Euler angles in a
@@ -9,7 +10,6 @@
 // key pose keep their rest rotation; joints left out of an in-between are
 // interpolated. Convention: at the contact key the LEFT foot is in front and
 // takes the weight for the first step; the second step is the mirror.
-// Reading throws legwork::Error naming the file and the field at fault.
 #include <legwork/core/motion.hpp>
 
 #include <array>
@@ -81,27 +81,7 @@ struct WalkKeys {
 // keep their place in the step); shift offsets stay in frames.
 WalkKeys retime(const WalkKeys& keys, int frames);
 
-// Reads a walk file for `skel` (joint names must exist in it; role names such
-// as "left_knee" are accepted too). Throws legwork::Error with file and field.
-WalkKeys parse_walk_keys(std::string_view json_text, const Skeleton& skel, std::string_view source);
-WalkKeys read_walk_keys(const std::string& path, const Skeleton& skel);
-// The "skeleton" field of a walk file resolved against the file's folder, or ""
-// if the file has none. Throws on unreadable/invalid JSON.
-std::string walk_skeleton_path(const std::string& walk_path);
-
-// Writes a walk file (angles rounded to 0.001 degree, offsets to 0.1 mm, so
-// the output is stable and readable). Every joint with a non-identity rotation
-// in a key is written.
-std::string format_walk_keys(const WalkKeys& keys, const Skeleton& skel);
-void write_walk_keys(const std::string& path, const WalkKeys& keys, const Skeleton& skel);
-
-// Parses "Name=1.5,Other=2" into (joint, frames) pairs; role names accepted.
-std::vector<std::pair<int, double>> parse_shift_spec(std::string_view spec, const Skeleton& skel);
 // Joint index by name or role name, -1 if unknown.
 int find_joint_or_role(const Skeleton& skel, std::string_view name);
-
-// Local rotation from [x, y, z] degrees in `order`, and back.
-Quat euler_xyz_to_quat(const Vec3& xyz_degrees, const EulerOrder& order);
-Vec3 quat_to_euler_xyz(const Quat& q, const EulerOrder& order);
 
 }  // namespace legwork::walkcycle

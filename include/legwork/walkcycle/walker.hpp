@@ -2,36 +2,89 @@
 // Runtime walking, frame by frame: the same no-slip pivoting as walk_path,
 // but steered live (e.g. by a game's stick) instead of along a known path.
 //
-// Const model (CycleModel) + mutable state (WalkerState): walker_update()
-// allocates nothing, throws nothing and touches only the state and the output
-// pose, so many characters can share one model across threads.
+// The per-frame contract (docs/architecture.md): Settings -> make_model()
+// copies the cycle into an immutable Model shared by any number of
+// characters; State is one character; update() allocates nothing, throws
+// nothing and touches only the state and the output pose.
+//
+// Input: the TrackerFrame's absolute time (FrameClock rules; the first
+// accepted frame starts the walk at time 0 of the cycle, each later one
+// advances it by the seconds since the last, at the walk's rate) and the
+// heading to steer to = the yaw of frame.head().rotation when it is usable (a
+// game passes its stick direction as a head rotation about +y); otherwise the
+// previous heading asked for is kept (Degraded).
 // The heading asked for is taken once per step, at the middle of the previous
-// step, limited to `max_turn_per_step`, and blended in over the next step
-// (document 001: no heading keys in the first half of step n and the second
-// half of step n-1); every turn is applied about the planted pivot.
+// step, limited to Settings::max_turn_per_step, and blended in over the next
+// step (document 001: no heading keys in the first half of step n and the
+// second half of step n-1); every turn is applied about the planted pivot.
+#include <legwork/core/tracker.hpp>
 #include <legwork/walkcycle/cycle.hpp>
 
 #include <array>
 
 namespace legwork::walkcycle {
 
-struct WalkerState {
-  double time = 0;            // cycle frames since the start (contact of the left foot)
-  double heading_from = 0;    // radians about y, 0 = facing +z
-  double heading_to = 0;
-  int decided_step = 0;       // last step whose heading has been latched
-  double heading = 0;         // current heading, radians
-  Vec3 offset = Vec3::Zero();  // world = yaw(heading) * in-place + offset (floor, y = 0)
-  std::array<Vec3, 4> feet{};  // in-place heel/ball of right/left foot at `time`
-  double max_turn_per_step = deg2rad(30.0);
+struct Settings {
+  double max_turn_per_step = deg2rad(30.0);  // radians of heading change per step, at most
+  Vec3 start_position = Vec3::Zero();        // floor point under the root at the start (y ignored), metres
+  double start_heading = 0;                  // radians about y at the start, 0 = facing +z
 };
 
-// Starts a walk at a contact with the root above `position` (floor point,
-// y ignored), facing `heading`. Writes the first pose to `out` if non-empty.
-void walker_reset(const CycleModel& m, WalkerState& s, const Vec3& position, double heading, PoseRef out);
+class Model {
+ public:
+  const Skeleton& skeleton() const { return cycle_.skeleton; }  // the output pose's skeleton
+  const Settings& settings() const { return settings_; }
+  const CycleModel& cycle() const { return cycle_; }
 
-// Advances by `seconds` (at the walk's rate, m.fps cycle frames per second),
-// steering towards `desired_heading` (radians), and writes the world pose.
-void walker_update(const CycleModel& m, WalkerState& s, double seconds, double desired_heading, PoseRef out);
+ private:
+  friend Model make_model(const CycleModel&, const Settings&);
+  Model() = default;
+  CycleModel cycle_;
+  Settings settings_;
+};
+
+// Copies `cycle`. Throws legwork::Error on an unusable cycle (no frames, a
+// non-positive rate) or non-finite settings.
+Model make_model(const CycleModel& cycle, const Settings& settings = {});
+
+// One walking character.
+struct State {
+  explicit State(const Model& model);
+
+  FrameClock clock;
+  bool started = false;         // the first frame has been consumed
+  Vec3 start_position = Vec3::Zero();  // where the next start begins (floor)
+  double start_heading = 0;
+  double desired_heading = 0;   // last heading asked for, radians
+  double time = 0;              // cycle frames since the start (contact of the left foot)
+  double heading_from = 0;      // radians about y, 0 = facing +z
+  double heading_to = 0;
+  int decided_step = 0;         // last step whose heading has been latched
+  double heading = 0;           // current heading, radians
+  Vec3 offset = Vec3::Zero();   // world = yaw(heading) * in-place + offset (floor, y = 0)
+  std::array<Vec3, 4> feet{};   // in-place heel/ball of right/left foot at `time`
+};
+
+// A new character at the settings' start (clock included).
+void reset(const Model& model, State& state);
+// A new character whose walk will start above `position` (floor point, y
+// ignored) facing `heading` (radians); the next accepted frame starts it.
+void reset(const Model& model, State& state, const Vec3& position, double heading);
+
+struct Info {
+  int step = 0;                 // step index since the start (0 = the left foot's first stance)
+  double cycle_time = 0;        // cycle frames since the start
+  double heading = 0;           // current heading, radians
+  double desired_heading = 0;   // heading asked for, radians
+  bool left_planted = true;     // the stance foot this frame
+  Pivot pivot = Pivot::Heel;    // which point of it the body pivots on
+};
+
+// One frame: Rejected (time not usable) leaves state and `out` untouched;
+// Restarted (the stream's clock restarted) keeps walking from where the
+// character is, without advancing; otherwise the walk advances by the frame's
+// dt. `out` must have the model skeleton's joint count; the world pose is
+// written.
+UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
 
 }  // namespace legwork::walkcycle

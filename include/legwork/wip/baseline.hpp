@@ -1,21 +1,17 @@
 #pragma once
 // The document's comparison condition: the same gait state machines trigger a
 // canned walk-cycle clip while the user steps and an idle pose when stopped.
-// Offline: extract_walk_cycle builds the clip from a mocap walking trial.
-// Runtime: KeyframeBaseline::update is allocation-free.
+// The clip comes from wip/offline/walk_cycle.hpp (extract_walk_cycle);
+// make_keyframe_baseline allocates, update_baseline is allocation-free.
 #include <legwork/core/motion.hpp>
+#include <legwork/core/tracker.hpp>
 
 #include <vector>
 
 namespace legwork::wip {
 
-// One gait cycle (left foot-strike to the next) from a walking trial, made
-// in place (the root's horizontal progression removed, turned to face +z),
-// ready to loop. Throws legwork::Error if no clean cycle is found.
-Motion extract_walk_cycle(const Motion& walking_trial);
-
 // Per-frame ankle depth (m, forward +) relative to the pelvis for a motion
-// facing +z, e.g. a cycle from extract_walk_cycle.
+// facing +z, e.g. a cycle from extract_walk_cycle. foot: kLeft or kRight.
 std::vector<double> ankle_depths(const Motion& m, int foot);
 
 struct KeyframeBaselineModel {

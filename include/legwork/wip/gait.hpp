@@ -11,7 +11,7 @@
 
 namespace legwork::wip {
 
-struct SignalParams {
+struct SignalSettings {
   double rate = 30.0;           // nominal sample rate, Hz (30/60/90/120 all work)
   double cutoff = 4.0;          // low-pass cutoff, Hz
   int order = 2;                // Butterworth order
@@ -38,10 +38,10 @@ struct FootSignal {
   double confidence = 0;   // 1 = fresh samples, decays toward 0 over dropped ones
   double held_time = 0;    // seconds since the last valid sample
 
-  void init(const SignalParams& p);
+  void init(const SignalSettings& p);
   // Feeds one sample (valid=false: hold the last value). dt: seconds since the
   // previous sample. `in_support` lets the rolling floor relax.
-  void push(const SignalParams& p, double y, bool valid, double dt, bool in_support);
+  void push(const SignalSettings& p, double y, bool valid, double dt, bool in_support);
   // Filtered height `back` samples ago (0 = newest), clamped to the buffer.
   double recent(int back) const;
   // Highest filtered height over the buffer (about the last second).
@@ -63,7 +63,7 @@ inline bool in_swing(GaitPhase p) { return p != GaitPhase::DoubleSupport; }
 // (running estimates of apex height and peak speeds), never above the
 // document's values and never below the noise floors, so real walking's low
 // start/stop steps are seen.
-struct GaitParams {
+struct GaitSettings {
   double h1 = 0.10;  // m
   double v1 = 0.20;  // m/s
   double v2 = 0.60;  // m/s
@@ -98,12 +98,12 @@ struct GaitMachine {
   double apex_estimate = 0, up_estimate = 0, down_estimate = 0;
   int swings = 0;
 
-  void init(const GaitParams& p);
-  double h1(const GaitParams& p) const;
-  double v1(const GaitParams& p) const;
-  double v2(const GaitParams& p) const;
+  void init(const GaitSettings& p);
+  double h1(const GaitSettings& p) const;
+  double v1(const GaitSettings& p) const;
+  double v2(const GaitSettings& p) const;
   // One step of the machine; returns the events that fired.
-  unsigned update(const GaitParams& p, double h, double v, double confidence, double dt);
+  unsigned update(const GaitSettings& p, double h, double v, double confidence, double dt);
 };
 
 }  // namespace legwork::wip

@@ -1,27 +1,29 @@
 #pragma once
 // Walking-in-place legs: tracked ankle heights -> gait phases -> IK-target
 // depths and heights (the document's equations 1-8) -> a solved avatar pose
-// that walks forward along its heading.
+// that walks forward along the user's heading.
 //
-// Runtime: a const WipModel (avatar + parameters, built offline by
-// make_wip_model) plus a mutable WipWorkspace (made once by make_workspace);
-// update() is allocation-free, exception-free and does no I/O. One workspace
-// per avatar; workspaces are independent, so avatars can run on any threads.
+// The per-frame contract (docs/architecture.md):
+//   const Model model = make_model(avatar_skeleton, settings);  // offline, may throw
+//   State state(model);                                         // one per avatar
+//   update(model, frame, state, pose.ref(), &info);             // every tracker frame
+// update() reads the ankles (frame.foot(kLeft/kRight).position) and, when
+// usable, the head's yaw as the walking heading; it never allocates, throws
+// or does I/O. Offline helpers (tracker sources, floor calibration, whole-clip
+// runs) are in legwork/wip/offline/.
+#include <legwork/core/tracker.hpp>
 #include <legwork/ik/two_bone.hpp>
 #include <legwork/wip/gait.hpp>
 #include <legwork/wip/mapping.hpp>
 #include <legwork/wip/speed.hpp>
-#include <legwork/wip/tracker.hpp>
 
-#include <span>
-#include <string>
 #include <vector>
 
 namespace legwork::wip {
 
 enum class SpeedModel { StepSpeed, StepFrequency };
 
-struct MappingParams {
+struct MappingSettings {
   // Avatar scaling: the document's S = 0.6 m and hint 0.29 m are for a 0.8 m
   // leg; both scale with the avatar's measured leg length.
   double reference_leg = 0.8;
@@ -43,39 +45,57 @@ struct MappingParams {
   double stride_per_step = 0.65;  // step-frequency model, m per step
   double max_speed = 3.5;       // m/s cap
   double speed_tau = 0.3;       // s: smoothing of the forward speed
+  double max_dt = 0.5;          // s: longer frame gaps are integrated as this (gaps over 5 s restart, FrameClock)
 };
 
-struct WipParams {
-  SignalParams signal;
-  GaitParams gait;
-  MappingParams mapping;
+struct Settings {
+  SignalSettings signal;    // rate = the tracker's nominal rate (used for the first frame's dt and the filter design)
+  GaitSettings gait;
+  MappingSettings mapping;
 };
 
-// The avatar and everything derived from it. Built offline; immutable while running.
-struct WipModel {
-  Skeleton skeleton;
-  WipParams params;
-  ik::TwoBoneChain legs[2];
-  Pose base_pose;            // standing pose the legs are solved from (root at the origin)
-  double leg_length = 0;     // measured hip-knee-ankle length, m
-  double scale = 1;          // leg_length / reference_leg
-  StepShape shape;           // S (avatar, scaled) and H (user)
-  double root_height = 0;    // standing root height above the floor, m
-  double ankle_height[2] = {0, 0};  // ankle above the sole when standing, m
-  Vec3 foot_offset[2];       // standing ankle target relative to the root (x, z), y unused
-  Quat foot_rotation[2];     // standing model rotation of each ankle (heading 0)
+// The avatar and everything derived from it. Built offline by make_model;
+// immutable and shareable by any number of avatars on any threads.
+class Model {
+ public:
+  struct Leg {
+    ik::TwoBoneChain chain;
+    double ankle_height = 0;              // ankle above the sole when standing, m
+    Vec3 foot_offset = Vec3::Zero();      // standing ankle target relative to the root (x, z), y unused
+    Quat foot_rotation = Quat::Identity();  // standing model rotation of the ankle (heading 0)
+  };
+
+  const Skeleton& skeleton() const { return skeleton_; }  // the output pose's skeleton
+  const Settings& settings() const { return settings_; }
+  double leg_length() const { return leg_length_; }  // measured hip-knee-ankle length, m
+  double scale() const { return scale_; }            // leg_length / reference_leg
+  const StepShape& shape() const { return shape_; }  // S (avatar, scaled) and H (user)
+  double root_height() const { return root_height_; }  // standing root height above the floor, m
+  const Pose& base_pose() const { return base_pose_; }  // standing pose the legs are solved from
+  const Leg& leg(int side) const { return legs_[side & 1]; }
+
+ private:
+  friend Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef upper_body);
+  Model() = default;
+  Skeleton skeleton_;
+  Settings settings_;
+  Leg legs_[2];
+  Pose base_pose_;
+  double leg_length_ = 0, scale_ = 1, root_height_ = 0;
+  StepShape shape_;
 };
 
-// Throws legwork::Error if the skeleton lacks the leg roles (naming them).
-// `upper_body` (optional, e.g. a frame of the avatar's own motion) gives the
-// local rotations of the joints the legs do not drive (spine, arms, head);
-// default: the rest pose with the upper arms hanging down.
-WipModel make_wip_model(const Skeleton& avatar, const WipParams& params = {}, ConstPoseRef upper_body = {});
+// Throws legwork::Error if the skeleton lacks the leg roles (naming them) or
+// the settings are unusable. `upper_body` (optional, e.g. a frame of the
+// avatar's own motion) gives the local rotations of the joints the legs do
+// not drive (spine, arms, head); default: the rest pose with the upper arms
+// hanging down.
+Model make_model(const Skeleton& avatar, const Settings& settings = {}, ConstPoseRef upper_body = {});
 
 enum class StepKind : unsigned char { None, First, Consecutive };
 
-// Everything one update produces (avatar-local unless said otherwise).
-struct WipFrame {
+// Per-frame diagnostics (avatar-local unless said otherwise).
+struct Info {
   double time = 0;
   GaitPhase phase[2] = {GaitPhase::DoubleSupport, GaitPhase::DoubleSupport};
   unsigned events[2] = {0, 0};
@@ -87,6 +107,7 @@ struct WipFrame {
   double y[2] = {0, 0};                  // IK-target height, eq. 8 (avatar local)
   double root_offset = 0;                // vertical root offset, -dh while walking (eq. 6, 7)
   double speed = 0, distance = 0;        // forward speed m/s, distance walked m
+  double heading = 0;                    // walking heading used, radians (0 = +z)
   Vec3 root_position = Vec3::Zero();     // world
   Vec3 target_world[2] = {Vec3::Zero(), Vec3::Zero()};  // IK targets, world
   bool walking = false;
@@ -95,58 +116,42 @@ struct WipFrame {
   double double_support_time = 0;        // both feet down, s
 };
 
-struct WipWorkspace {
-  Pose pose;                       // the solved avatar pose after update()
-  std::vector<Transform> model;    // its model-space transforms (legs up to the ankles)
+// What one avatar remembers between frames.
+struct State {
+  explicit State(const Model& model);
+
+  FrameClock clock;
+  std::vector<Transform> model_space;  // scratch: model-space transforms (sized once)
   FootSignal feet[2];
   GaitMachine gait[2];
   StepSpeedEstimator step_speed;
   StepFrequencyEstimator frequency_speed;
-  SpeedEstimator* custom_speed = nullptr;  // not owned; overrides the model's choice if set
-  double heading = 0;              // yaw about +y, radians (0 = +z); the app may set it each frame
-  // Mapping state.
-  bool started = false, walking = false;
+  double heading = 0;   // yaw about +y, radians (0 = +z): the head's last usable yaw
+  bool calibrated = false;            // set_floor was called: kept across restarts
+  double calibrated_floor[2] = {0, 0};
+  // Mapping.
+  bool walking = false;
   int driver = -1;
   StepKind kind = StepKind::None;
-  double last_time = 0, ds_time = 0, dh = 0, speed = 0, distance = 0;
+  double ds_time = 0, dh = 0, speed = 0, distance = 0;
   double z_target[2] = {0, 0}, z[2] = {0, 0};
   double gap[2] = {0, 0}, h_switch = 1;     // gap at mid-swing, faded out while descending
   double gap_up[2] = {0, 0}, h_off = 0;     // gap at foot-off, faded out while ascending
   Vec3 root_xz = Vec3::Zero();
-  WipFrame frame;
 };
 
-WipWorkspace make_workspace(const WipModel& model);
-void reset(const WipModel& model, WipWorkspace& ws);
-// Fixes each foot's floor (the tracker-space ankle height when standing).
-void set_floor(WipWorkspace& ws, double left, double right);
-// One tracker sample -> one frame. Samples whose time does not increase are
-// ignored (the previous frame is returned).
-const WipFrame& update(const WipModel& model, const TrackerSample& sample, WipWorkspace& ws);
+// Back to a fresh avatar (also forgets the floor calibration and the clock).
+void reset(const Model& model, State& state);
+// Fixes each foot's floor (the tracker-space ankle height when standing); a
+// restart of the stream keeps it.
+void set_floor(State& state, double left, double right);
 
-// ---- offline helpers -------------------------------------------------------
-
-// Floor calibration from standing still: averages each ankle's height over
-// the first `seconds`. Refuses (ok = false, message says why) if either
-// ankle's height varies by more than `max_std` metres or too few samples are valid.
-struct FloorCalibration {
-  bool ok = false;
-  double floor[2] = {0, 0};
-  double spread[2] = {0, 0};  // std of the height, m
-  std::string message;
-};
-FloorCalibration calibrate_floor(std::span<const TrackerSample> samples, double seconds = 3.0, double max_std = 0.03);
-
-struct RunOptions {
-  bool calibrate = true;            // calibrate the floor first (throws if not still)
-  double calibration_seconds = 3.0;
-  bool keep_poses = true;           // fill WipRun::motion
-};
-struct WipRun {
-  std::vector<WipFrame> frames;
-  Motion motion;  // the avatar at the samples' times (rate = params.signal.rate)
-  FloorCalibration calibration;
-};
-WipRun run_wip(const WipModel& model, std::span<const TrackerSample> samples, const RunOptions& opt = {});
+// One tracker frame -> one pose on model.skeleton() (local rotations + root
+// position). Time via state.clock: Rejected leaves state and `out` untouched;
+// Restarted resets filters, gait and speed (keeping the floor calibration,
+// the heading and the avatar's place) and consumes the frame. A foot that is
+// not usable() is held (its confidence decays; a swinging foot is put down)
+// and the frame is Degraded. Never allocates, throws or does I/O.
+UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
 
 }  // namespace legwork::wip

@@ -1,5 +1,5 @@
 #include <legwork/core/series.hpp>
-#include <legwork/walkcycle/extract.hpp>
+#include <legwork/walkcycle/offline/extract.hpp>
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/mirror.hpp>
@@ -101,23 +101,24 @@ std::vector<int> foot_strikes(const Motion& clip, bool left, double floor_window
   return strikes;
 }
 
-Extraction extract_walk(const Motion& clip, const ExtractOptions& opt) {
-  const Skeleton& s = clip.skeleton;
-  for (Role r : {Role::Pelvis, Role::LeftAnkle, Role::RightAnkle})
-    if (!s.roles.has(r)) throw Error("extract: the clip's skeleton has no joint for role '" + std::string(role_name(r)) + "'");
-  if (clip.frame_count() < 10) throw Error("extract: the clip is too short");
-  const int J = clip.joint_count();
-  const auto pos = joint_positions(clip);
-  auto P = [&](int f, int j) -> const Vec3& { return pos[static_cast<std::size_t>(f * J + j)]; };
-  const int la = s.roles[Role::LeftAnkle], ra = s.roles[Role::RightAnkle];
+namespace {
 
-  // Strikes of both feet, merged in time order.
+// Joint positions of every frame of a clip (model space), by frame and joint.
+struct ClipPositions {
+  std::vector<Vec3> pos;
+  int J = 0;
+  const Vec3& operator()(int f, int j) const { return pos[static_cast<std::size_t>(f * J + j)]; }
+};
+
+// Every complete step: strikes of both feet merged in time order, pass, down and up.
+void find_steps(const Motion& clip, const ClipPositions& P, const ExtractOptions& opt, Extraction& ex) {
+  const Skeleton& s = clip.skeleton;
+  const int la = s.roles[Role::LeftAnkle], ra = s.roles[Role::RightAnkle];
   std::vector<std::pair<int, bool>> strikes;
   for (int f : foot_strikes(clip, true, opt.floor_window_s)) strikes.emplace_back(f, true);
   for (int f : foot_strikes(clip, false, opt.floor_window_s)) strikes.emplace_back(f, false);
   std::sort(strikes.begin(), strikes.end());
 
-  Extraction ex;
   for (std::size_t i = 0; i + 1 < strikes.size(); ++i) {
     const auto [c, left] = strikes[i];
     const auto [nc, next_left] = strikes[i + 1];
@@ -146,7 +147,10 @@ Extraction extract_walk(const Motion& clip, const ExtractOptions& opt) {
       if (P(f, 0).y() > P(e.up, 0).y()) e.up = f;
     ex.steps.push_back(e);
   }
-  // Steady steps: typical duration and little turning.
+}
+
+// Steady steps: typical duration and little turning.
+void mark_steady(const Motion& clip, Extraction& ex) {
   std::vector<double> durations;
   for (const auto& e : ex.steps) durations.push_back(e.next_contact - e.contact);
   const double median = percentile(durations, 0.5);
@@ -160,7 +164,11 @@ Extraction extract_walk(const Motion& clip, const ExtractOptions& opt) {
     throw Error("extract: found " + std::to_string(ex.steps_used) + " steady steps (of " + std::to_string(ex.steps.size()) +
                 "); a walking clip with at least two steady steps is needed");
 
-  // Average each key over the steady steps, right-foot steps mirrored.
+}
+
+// Average each key over the steady steps, right-foot steps mirrored.
+void average_keys(const Motion& clip, const ClipPositions& P, const ExtractOptions& opt, Extraction& ex) {
+  const int J = P.J;
   const std::array<int StepEvents::*, kKeyCount> key_of{&StepEvents::contact, &StepEvents::down, &StepEvents::pass, &StepEvents::up};
   std::array<std::vector<std::vector<Quat>>, kKeyCount> rots;
   for (auto& r : rots) r.assign(static_cast<std::size_t>(J), {});
@@ -200,9 +208,15 @@ Extraction extract_walk(const Motion& clip, const ExtractOptions& opt) {
         std::max(keys.key_frames[static_cast<std::size_t>(k)], keys.key_frames[static_cast<std::size_t>(k - 1)] + 0.25);
   keys.key_frames[3] = std::min(keys.key_frames[3], half - 0.25);
 
-  // Re-synthesis: the cycle from these keys against the clip's mean step,
-  // pelvis-relative joint positions, heading removed, S phases per step.
-  const CycleModel model = build_cycle(s, keys);
+}
+
+// Re-synthesis: the cycle from the keys against the clip's mean step,
+// pelvis-relative joint positions, heading removed, S phases per step.
+void resynthesis(const Motion& clip, const ClipPositions& P, Extraction& ex) {
+  const Skeleton& s = clip.skeleton;
+  const int J = P.J;
+  const double half = ex.keys.frames_per_cycle / 2.0;
+  const CycleModel model = build_cycle(s, ex.keys);
   constexpr int S = 16;
   std::vector<Vec3> real(static_cast<std::size_t>(S * J), Vec3::Zero());
   for (const auto& e : ex.steps) {
@@ -230,6 +244,21 @@ Extraction extract_walk(const Motion& clip, const ExtractOptions& opt) {
     }
   }
   ex.resynthesis_mean_mm = sum / (S * J);
+}
+
+}  // namespace
+
+Extraction extract_walk(const Motion& clip, const ExtractOptions& opt) {
+  const Skeleton& s = clip.skeleton;
+  for (Role r : {Role::Pelvis, Role::LeftAnkle, Role::RightAnkle})
+    if (!s.roles.has(r)) throw Error("extract: the clip's skeleton has no joint for role '" + std::string(role_name(r)) + "'");
+  if (clip.frame_count() < 10) throw Error("extract: the clip is too short");
+  const ClipPositions P{joint_positions(clip), clip.joint_count()};
+  Extraction ex;
+  find_steps(clip, P, opt, ex);
+  mark_steady(clip, ex);
+  average_keys(clip, P, opt, ex);
+  resynthesis(clip, P, ex);
   return ex;
 }
 

@@ -2,7 +2,7 @@
 // Figures that check a walk: stance-foot slip, loop seam continuity, joint
 // arcs and their smoothness, foot heights at the key poses. Offline (they
 // allocate); all positions in metres, model or world space as stated.
-#include <legwork/walkcycle/walk.hpp>
+#include <legwork/walkcycle/offline/walk.hpp>
 
 #include <array>
 #include <span>

@@ -24,7 +24,7 @@
 // (a walk that does not advance, an unreachable path). It only reads the
 // model, so several walks can be generated from one model in parallel.
 #include <legwork/walkcycle/cycle.hpp>
-#include <legwork/walkcycle/path.hpp>
+#include <legwork/walkcycle/offline/path.hpp>
 
 #include <vector>
 

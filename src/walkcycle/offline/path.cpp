@@ -1,4 +1,4 @@
-#include <legwork/walkcycle/path.hpp>
+#include <legwork/walkcycle/offline/path.hpp>
 
 #include <legwork/io/text.hpp>
 

@@ -1,4 +1,4 @@
-#include <legwork/walkcycle/measure.hpp>
+#include <legwork/walkcycle/offline/measure.hpp>
 
 #include <legwork/core/fk.hpp>
 

@@ -1,0 +1,117 @@
+#pragma once
+// Evaluation of walking in place on real walking (offline): swings detected
+// by the gait machines against true gait events from mocap, step-detection
+// scores, true foot-forward offsets and curve agreement, the key-frame
+// baseline beside it, and the whole `legwork wip eval` report (report.json,
+// report.md, summary.png, one PNG per trial). Allocates, throws legwork::Error.
+#include <legwork/core/motion.hpp>
+#include <legwork/wip/offline/synthetic.hpp>
+#include <legwork/wip/offline/truth.hpp>
+#include <legwork/wip/wip.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace legwork::eval {
+
+using wip::SwingEvent;
+
+// Swings seen by the gait machines (foot-off to foot-strike events).
+std::vector<SwingEvent> detected_swings(std::span<const wip::Info> frames);
+
+struct StepScore {
+  int true_steps = 0, detected = 0, matched = 0;
+  double precision = 0, recall = 0, f1 = 0;
+  double off_latency_ms = 0;     // mean detected - true foot-off over matched steps
+  double strike_latency_ms = 0;  // mean detected - true foot-strike
+  std::vector<double> off_latencies_ms;
+};
+// One-to-one matching of swings of the same foot whose intervals overlap,
+// ignoring swings outside [t_begin, t_end] (e.g. the filter's settling time).
+StepScore score_steps(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth, double t_begin,
+                      double t_end);
+// Sums counts; latencies averaged over all matched steps.
+StepScore combine(std::span<const StepScore> scores);
+
+// True forward offset of each ankle from the pelvis along the walking heading
+// (from the hip line, smoothed over +-0.5 s), at `rate` Hz from t = 0.
+struct DepthTrack {
+  std::vector<double> time;
+  std::vector<double> z[2];
+};
+DepthTrack true_depths(const Motion& m, double rate);
+
+struct Agreement {
+  double correlation = 0, rms = 0;  // Pearson r; RMS in metres
+  int samples = 0;
+  // Accumulated sums so several trials can be pooled.
+  double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, se2 = 0;
+  void add(double generated, double truth);
+  void merge(const Agreement& other);  // pools another set's sums
+  void finish();
+};
+
+struct WipEvalOptions {
+  wip::Settings settings;      // the method's settings (signal.rate = tracker rate)
+  wip::TruthOptions truth;
+  double noise = 0.015;        // Kinect-like jitter for the noisy run, m
+  double drop_rate = 0.02;     // dropped samples in the noisy run
+  std::uint64_t seed = 1;      // noise seed (mixed with the trial index)
+  double settle = 0.5;         // s at the start ignored (filter and floor settle)
+};
+
+// One trial driven through the method with its own ankles as the tracker and
+// its own skeleton as the avatar.
+struct WipTrialEval {
+  std::string name;
+  double duration = 0, leg_length = 0;
+  std::vector<SwingEvent> truth, detected, detected_noisy;
+  StepScore steps, steps_noisy;
+  Agreement depth, baseline_depth;
+  std::vector<wip::Info> frames;       // clean run
+  DepthTrack true_depth;               // at the tracker rate
+  std::vector<double> baseline_z[2];   // baseline ankle depths per frame
+};
+// `cycle`: the baseline's in-place walk cycle (wip::extract_walk_cycle).
+WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, const Motion& cycle,
+                                const WipEvalOptions& opt, int trial_index = 0);
+
+// The whole evaluation over a folder's trials.
+struct WipEvalRun {
+  std::vector<std::string> files;  // BVH trials (T-pose frame 0 dropped)
+  std::string data;                // the folder, as reported
+  std::string note;                // e.g. why a fallback folder was used ("" = none)
+  std::string clip;                // the baseline's walking clip (a BVH path)
+  std::string out;                 // output folder (created)
+  WipEvalOptions options;
+  std::function<void(const std::string&)> log;  // progress and skipped trials (may be empty)
+};
+struct WipEvalSummary {
+  int trials = 0, skipped = 0;
+  StepScore steps, steps_noisy, steps_fixed;
+  Agreement depth, baseline_depth;
+  std::vector<std::string> written;  // report.md, report.json
+};
+// Evaluates every trial (with the adaptive and the document's fixed
+// thresholds), writes report.json, report.md, summary.png and <trial>.png
+// into `out`. Throws if no trial could be evaluated.
+WipEvalSummary run_wip_evaluation(const WipEvalRun& run);
+
+// What a run of `legwork wip` did, as printed lines: frames, steps, distance,
+// mean speed; with `truth` (true swings of the input) the step scores.
+std::string describe_wip_run(std::span<const wip::Info> frames, double rate, std::span<const SwingEvent> truth);
+
+// Plots of one run of `legwork wip`: the document's Figure 2-like curves
+// (heights, velocities, phases, depths, speed) and, when `strip` lists
+// frames of `avatar`, a side-view strip of the avatar under them.
+void plot_wip_phases(const std::string& path, const std::string& title, std::span<const wip::Info> frames,
+                     const Motion& avatar, const std::vector<int>& strip, const std::vector<double>* baseline_z,
+                     const wip::GaitSettings& gait);
+// Frames for the side strip: "a,b,c" (checked against the frame count) or
+// six spread over the first well-established steps.
+std::vector<int> strip_frames(const std::string& spec, std::span<const wip::Info> frames);
+
+}  // namespace legwork::eval

@@ -1,0 +1,197 @@
+/* legwork C API: the per-frame contract of docs/architecture.md for engines
+ * (Unity, Unreal, Godot) and any language with a C FFI.
+ *
+ * Shape: opaque handles, plain structs, lw_status codes. No C++ exception
+ * crosses this boundary; on an error the function returns a negative status
+ * and lw_last_error() (thread-local) says why in words.
+ *
+ *   lw_database  an accentuation database, memory-mapped read-only
+ *   lw_skeleton  a skeleton (from a BVH file or a database)
+ *   lw_model     an immutable, shareable avatar model of one method
+ *                (accentuation, full-body IK, walking-in-place legs, walker)
+ *   lw_avatar    one avatar's state + its output pose; lw_avatar_update()
+ *                per frame allocates nothing.
+ *
+ * Units and frames: metres, seconds, legwork's world frame (right-handed,
+ * y up, the character faces +z, +x is its left). lw_convert_* give Unity,
+ * Unreal and Godot frames (formulas in legwork/core/engine.hpp and the README).
+ * Quaternions are (w, x, y, z).
+ *
+ * Thread safety: lw_database, lw_skeleton and lw_model are immutable after
+ * creation and may be used from any number of threads at once. An lw_avatar
+ * must be used by one thread at a time. lw_set_allocator must be called before
+ * any other function, from one thread.
+ */
+#ifndef LEGWORK_LEGWORK_H
+#define LEGWORK_LEGWORK_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32)
+#if defined(LEGWORK_C_BUILD)
+#define LW_API __declspec(dllexport)
+#else
+#define LW_API __declspec(dllimport)
+#endif
+#else
+#define LW_API __attribute__((visibility("default")))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ABI version: bumped whenever a struct layout or a signature changes. */
+#define LW_ABI_VERSION 1u
+LW_API uint32_t lw_abi_version(void);
+LW_API const char* lw_version_string(void);
+
+typedef enum lw_status {
+  LW_OK = 0,                       /* frame consumed, every needed device usable */
+  LW_DEGRADED = 1,                 /* consumed; a needed device was missing (held / faded) */
+  LW_REJECTED = 2,                 /* not consumed: time not finite, absurd or not increasing */
+  LW_RESTARTED = 3,                /* the stream's clock restarted; the avatar was reset */
+  LW_ERROR_INVALID_ARGUMENT = -1,  /* a NULL pointer, a bad value or size */
+  LW_ERROR_IO = -2,                /* a file could not be read or written */
+  LW_ERROR_FORMAT = -3,            /* a file's content is malformed or of another version */
+  LW_ERROR_OUT_OF_MEMORY = -4,
+  LW_ERROR_UNSUPPORTED = -5,       /* the operation does not apply to this method */
+  LW_ERROR_INTERNAL = -6
+} lw_status;
+
+/* The reason for the last error on this thread ("" if none). Valid until the
+ * next failing call on this thread. */
+LW_API const char* lw_last_error(void);
+LW_API const char* lw_status_name(lw_status s);
+
+/* Optional caller-supplied allocator for the handle objects legwork creates
+ * (NULL restores malloc/free); as in ACL, the engine's allocator sees and
+ * accounts for every handle. The containers inside a handle (joint arrays, a
+ * database's search index) are sized once at creation by the C++ runtime's
+ * allocator; nothing is allocated per frame. */
+typedef struct lw_allocator {
+  void* (*allocate)(size_t size, size_t alignment, void* user);
+  void (*deallocate)(void* pointer, void* user);
+  void* user;
+} lw_allocator;
+LW_API lw_status lw_set_allocator(const lw_allocator* allocator);
+
+/* ---- tracker input ------------------------------------------------------ */
+
+enum { LW_HEAD = 0, LW_LEFT_HAND = 1, LW_RIGHT_HAND = 2, LW_LEFT_FOOT = 3, LW_RIGHT_FOOT = 4, LW_DEVICE_COUNT = 5 };
+
+typedef struct lw_device {
+  double position[3]; /* metres, world */
+  double rotation[4]; /* w, x, y, z, world; head: identity looks along +z */
+  int32_t valid;      /* 0: not tracked this frame */
+} lw_device;
+
+typedef struct lw_frame {
+  double time; /* absolute seconds, increasing */
+  lw_device devices[LW_DEVICE_COUNT];
+} lw_frame;
+
+/* ---- databases and skeletons -------------------------------------------- */
+
+typedef struct lw_database lw_database;
+typedef struct lw_skeleton lw_skeleton;
+
+/* Memory-maps a database built by `legwork accent build` and checks it
+ * (magic, version, checksum, contents). */
+LW_API lw_status lw_database_load(const char* path, lw_database** out);
+LW_API void lw_database_destroy(lw_database* db);
+LW_API int32_t lw_database_class_count(const lw_database* db);
+/* Name of class i (owned by the database), NULL if out of range. */
+LW_API const char* lw_database_class_name(const lw_database* db, int32_t i);
+LW_API int32_t lw_database_window_count(const lw_database* db);
+/* The database's skeleton (owned by the database; do not destroy). */
+LW_API const lw_skeleton* lw_database_skeleton(const lw_database* db);
+
+/* Skeleton of a BVH file (units detected, metres). */
+LW_API lw_status lw_skeleton_load_bvh(const char* path, lw_skeleton** out);
+LW_API void lw_skeleton_destroy(lw_skeleton* s);
+LW_API int32_t lw_skeleton_joint_count(const lw_skeleton* s);
+LW_API const char* lw_skeleton_joint_name(const lw_skeleton* s, int32_t joint);
+/* Parent of each joint (-1 for the root), depth-first order: `parents` holds
+ * `capacity` entries. */
+LW_API lw_status lw_skeleton_parents(const lw_skeleton* s, int32_t* parents, int32_t capacity);
+
+/* Tracker frames from a BVH trial's head, wrists and ankles (the CMU T-pose
+ * frame 0 dropped if drop_first), at `rate` Hz (0 = the file's rate). The
+ * array is allocated by legwork: release it with lw_frames_free. */
+LW_API lw_status lw_frames_from_bvh(const char* path, double rate, int32_t drop_first, lw_frame** frames, int32_t* count);
+LW_API void lw_frames_free(lw_frame* frames);
+
+/* ---- models --------------------------------------------------------------- */
+
+typedef struct lw_model lw_model;
+
+typedef enum lw_method { LW_METHOD_ACCENT = 0, LW_METHOD_IK = 1, LW_METHOD_WIP = 2, LW_METHOD_WALKER = 3 } lw_method;
+
+typedef struct lw_accent_settings {
+  const char* classes;   /* comma-separated activity classes; NULL or "" = all */
+  int32_t k;             /* matches per hand (1..32) */
+  double exaggeration;   /* hands scaled about the head before matching (> 0) */
+  double user_height;    /* metres; 0 = the database skeleton's height */
+  double hand_ik;        /* 0..1: wrists pulled onto the controllers */
+  double smooth_halflife; /* seconds; 0 = the paper's EWMA only */
+} lw_accent_settings;
+LW_API void lw_accent_settings_default(lw_accent_settings* s);
+/* The database must outlive the model. */
+LW_API lw_status lw_model_create_accent(const lw_database* db, const lw_accent_settings* s, lw_model** out);
+
+/* Full-body IK (the VRIK-style IK baseline) on a skeleton (copied). */
+LW_API lw_status lw_model_create_ik(const lw_skeleton* skeleton, lw_model** out);
+
+/* Walking-in-place legs on a skeleton (copied), driven by the feet devices'
+ * heights; the head's yaw steers. Call lw_avatar_set_floor after create. */
+LW_API lw_status lw_model_create_wip(const lw_skeleton* skeleton, lw_model** out);
+
+/* A walk-cycle walker from a key-pose JSON file (skeleton found next to it);
+ * steered frame by frame by the head device's yaw. */
+LW_API lw_status lw_model_create_walker(const char* keys_json_path, lw_model** out);
+
+LW_API void lw_model_destroy(lw_model* m);
+LW_API lw_method lw_model_method(const lw_model* m);
+/* The output pose's skeleton (owned by the model). */
+LW_API const lw_skeleton* lw_model_skeleton(const lw_model* m);
+/* Unity HumanBodyBones (vrm = 0) or VRM humanoid (vrm = 1) name of a joint of
+ * the model's skeleton, or NULL if it has no humanoid role. */
+LW_API const char* lw_model_humanoid_name(const lw_model* m, int32_t joint, int32_t vrm);
+
+/* ---- avatars --------------------------------------------------------------- */
+
+typedef struct lw_avatar lw_avatar;
+
+/* The model must outlive the avatar. */
+LW_API lw_status lw_avatar_create(const lw_model* m, lw_avatar** out);
+LW_API void lw_avatar_destroy(lw_avatar* a);
+LW_API lw_status lw_avatar_reset(lw_avatar* a);
+/* Walking-in-place only: the tracker-space heights of the floor under each ankle. */
+LW_API lw_status lw_avatar_set_floor(lw_avatar* a, double left, double right);
+
+/* One frame. Returns LW_OK / LW_DEGRADED / LW_REJECTED / LW_RESTARTED, or a
+ * negative error for a NULL argument. Allocates nothing. */
+LW_API lw_status lw_avatar_update(lw_avatar* a, const lw_frame* frame);
+
+/* The current output pose into caller buffers sized for `capacity` joints
+ * (any pointer may be NULL to skip it): local rotations (4 per joint, w x y z),
+ * the root's world position (3), and model-space = world joint positions
+ * (3 per joint). */
+LW_API lw_status lw_avatar_pose(const lw_avatar* a, double* local_rotations, double* root_position, double* world_positions,
+                                int32_t capacity);
+
+/* ---- engine frames ------------------------------------------------------- */
+
+typedef enum lw_engine { LW_ENGINE_LEGWORK = 0, LW_ENGINE_UNITY = 1, LW_ENGINE_UNREAL = 2, LW_ENGINE_GODOT = 3 } lw_engine;
+/* In place: `count` positions (xyz) / rotations (wxyz) from legwork's frame
+ * into the engine's (to_engine = 1) or back (0). */
+LW_API lw_status lw_convert_positions(lw_engine engine, int32_t to_engine, double* xyz, int32_t count);
+LW_API lw_status lw_convert_rotations(lw_engine engine, int32_t to_engine, double* wxyz, int32_t count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LEGWORK_LEGWORK_H */

@@ -1,0 +1,584 @@
+// Walking-in-place evaluation: detected vs true swings, depth agreement,
+// the key-frame baseline, and the `legwork wip eval` report.
+#include <legwork/eval/wip.hpp>
+
+#include <legwork/core/fk.hpp>
+#include <legwork/core/interpolate.hpp>
+#include <legwork/core/series.hpp>
+#include <legwork/io/bvh.hpp>
+#include <legwork/io/text.hpp>
+#include <legwork/render/plot.hpp>
+#include <legwork/render/render.hpp>
+#include <legwork/wip/baseline.hpp>
+#include <legwork/wip/offline/run.hpp>
+#include <legwork/wip/offline/walk_cycle.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+namespace legwork::eval {
+
+std::vector<SwingEvent> detected_swings(std::span<const wip::Info> frames) {
+  std::vector<SwingEvent> out;
+  double off[2] = {-1, -1}, apex[2] = {0, 0};
+  for (const auto& fr : frames)
+    for (int f = 0; f < 2; ++f) {
+      if (fr.events[f] & wip::kEventFootOff) off[f] = fr.time, apex[f] = 0;
+      if (off[f] >= 0) apex[f] = std::max(apex[f], fr.h[f]);
+      if ((fr.events[f] & wip::kEventFootStrike) && off[f] >= 0) {
+        out.push_back({f, off[f], fr.time, apex[f]});
+        off[f] = -1;
+      }
+    }
+  std::sort(out.begin(), out.end(), [](const SwingEvent& a, const SwingEvent& b) { return a.off < b.off; });
+  return out;
+}
+
+StepScore score_steps(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth, double t_begin,
+                      double t_end) {
+  StepScore s;
+  auto inside = [&](const SwingEvent& e) { return e.off >= t_begin && e.strike <= t_end; };
+  std::vector<char> used(detected.size(), 0);
+  double off_sum = 0, strike_sum = 0;
+  for (const auto& t : truth) {
+    if (!inside(t)) continue;
+    ++s.true_steps;
+    int best = -1;
+    double best_overlap = 0;
+    for (std::size_t i = 0; i < detected.size(); ++i) {
+      const auto& d = detected[i];
+      if (used[i] || d.foot != t.foot) continue;
+      const double overlap = std::min(d.strike, t.strike) - std::max(d.off, t.off);
+      if (overlap > best_overlap) best_overlap = overlap, best = static_cast<int>(i);
+    }
+    if (best < 0) continue;
+    used[static_cast<std::size_t>(best)] = 1;
+    ++s.matched;
+    const auto& d = detected[static_cast<std::size_t>(best)];
+    s.off_latencies_ms.push_back(1000 * (d.off - t.off));
+    off_sum += 1000 * (d.off - t.off);
+    strike_sum += 1000 * (d.strike - t.strike);
+  }
+  // Detections overlapping a true swing that was left out (clip ends) are not
+  // false positives.
+  for (std::size_t i = 0; i < detected.size(); ++i) {
+    if (used[i]) continue;
+    const auto& d = detected[i];
+    bool excluded = !inside(d);
+    for (const auto& t : truth)
+      if (!inside(t) && t.foot == d.foot && std::min(d.strike, t.strike) > std::max(d.off, t.off)) excluded = true;
+    if (!excluded) ++s.detected;
+  }
+  s.detected += s.matched;
+  s.precision = s.detected ? double(s.matched) / s.detected : 0;
+  s.recall = s.true_steps ? double(s.matched) / s.true_steps : 0;
+  s.f1 = s.precision + s.recall > 0 ? 2 * s.precision * s.recall / (s.precision + s.recall) : 0;
+  if (s.matched) {
+    s.off_latency_ms = off_sum / s.matched;
+    s.strike_latency_ms = strike_sum / s.matched;
+  }
+  return s;
+}
+
+StepScore combine(std::span<const StepScore> scores) {
+  StepScore c;
+  double off = 0, strike = 0;
+  for (const auto& s : scores) {
+    c.true_steps += s.true_steps;
+    c.detected += s.detected;
+    c.matched += s.matched;
+    off += s.off_latency_ms * s.matched;
+    strike += s.strike_latency_ms * s.matched;
+    c.off_latencies_ms.insert(c.off_latencies_ms.end(), s.off_latencies_ms.begin(), s.off_latencies_ms.end());
+  }
+  c.precision = c.detected ? double(c.matched) / c.detected : 0;
+  c.recall = c.true_steps ? double(c.matched) / c.true_steps : 0;
+  c.f1 = c.precision + c.recall > 0 ? 2 * c.precision * c.recall / (c.precision + c.recall) : 0;
+  if (c.matched) c.off_latency_ms = off / c.matched, c.strike_latency_ms = strike / c.matched;
+  return c;
+}
+
+DepthTrack true_depths(const Motion& m, double rate) {
+  const auto& r = m.skeleton.roles;
+  for (Role need : {Role::Pelvis, Role::LeftHip, Role::RightHip, Role::LeftAnkle, Role::RightAnkle})
+    if (!r.has(need)) throw Error("true foot depths need the role " + std::string(role_name(need)));
+  DepthTrack d;
+  const int n = static_cast<int>(std::floor(m.duration() * rate + 1e-9)) + 1;
+  Pose pose(m.skeleton);
+  std::vector<Vec3> pos(static_cast<std::size_t>(m.joint_count()));
+  std::vector<Vec3> pelvis(static_cast<std::size_t>(n)), ankle[2], hipline(static_cast<std::size_t>(n));
+  ankle[0].resize(static_cast<std::size_t>(n));
+  ankle[1].resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    sample_motion(m, i / rate, pose.ref());
+    forward_positions(m.skeleton, pose, pos);
+    const auto iu = static_cast<std::size_t>(i);
+    pelvis[iu] = pos[static_cast<std::size_t>(r[Role::Pelvis])];
+    ankle[0][iu] = pos[static_cast<std::size_t>(r[Role::LeftAnkle])];
+    ankle[1][iu] = pos[static_cast<std::size_t>(r[Role::RightAnkle])];
+    Vec3 h = pos[static_cast<std::size_t>(r[Role::LeftHip])] - pos[static_cast<std::size_t>(r[Role::RightHip])];
+    h.y() = 0;
+    hipline[iu] = h.normalized();
+  }
+  // Heading: the hip line averaged over +-0.5 s (the pelvis yaws with each step).
+  const int w = std::max(1, static_cast<int>(std::lround(0.5 * rate)));
+  d.z[0].resize(static_cast<std::size_t>(n));
+  d.z[1].resize(static_cast<std::size_t>(n));
+  d.time.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    Vec3 left = Vec3::Zero();
+    for (int k = std::max(0, i - w); k <= std::min(n - 1, i + w); ++k) left += hipline[static_cast<std::size_t>(k)];
+    left.y() = 0;
+    const Vec3 forward = left.normalized().cross(Vec3::UnitY());  // +x (left) x +y (up) = +z (forward)
+    const auto iu = static_cast<std::size_t>(i);
+    d.time[iu] = i / rate;
+    for (int f = 0; f < 2; ++f) d.z[f][iu] = (ankle[f][iu] - pelvis[iu]).dot(forward);
+  }
+  return d;
+}
+
+void Agreement::add(double x, double y) {
+  if (!std::isfinite(x) || !std::isfinite(y)) return;
+  ++samples;
+  sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+  se2 += (x - y) * (x - y);
+}
+
+void Agreement::merge(const Agreement& o) {
+  samples += o.samples;
+  sx += o.sx, sy += o.sy, sxx += o.sxx, syy += o.syy, sxy += o.sxy, se2 += o.se2;
+}
+
+void Agreement::finish() {
+  if (samples < 2) return;
+  const double n = samples;
+  const double cov = sxy / n - (sx / n) * (sy / n);
+  const double vx = sxx / n - (sx / n) * (sx / n), vy = syy / n - (sy / n) * (sy / n);
+  correlation = vx > 1e-12 && vy > 1e-12 ? cov / std::sqrt(vx * vy) : 0;
+  rms = std::sqrt(se2 / n);
+}
+
+WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, const Motion& cycle,
+                                const WipEvalOptions& opt, int trial_index) {
+  WipTrialEval e;
+  e.name = name;
+  e.duration = trial.duration();
+  const double rate = opt.settings.signal.rate;
+  const wip::Model model = wip::make_model(trial.skeleton, opt.settings);
+  e.leg_length = model.leg_length();
+  e.truth = wip::true_swings(trial, opt.truth);
+  wip::RunOptions ro;
+  ro.calibrate = false;  // real walking has no still period: rolling floor
+  ro.keep_poses = false;
+  auto samples = tracker_frames_from_motion(trial, rate);
+  e.frames = wip::run_wip(model, samples, ro).frames;
+  e.detected = detected_swings(e.frames);
+  const double t_end = e.duration - 0.1;
+  e.steps = score_steps(e.detected, e.truth, opt.settle, t_end);
+
+  wip::add_tracker_noise(samples, opt.noise, opt.drop_rate, opt.seed * 1000003ULL + static_cast<std::uint64_t>(trial_index));
+  const auto noisy = wip::run_wip(model, samples, ro).frames;
+  e.detected_noisy = detected_swings(noisy);
+  e.steps_noisy = score_steps(e.detected_noisy, e.truth, opt.settle, t_end);
+
+  e.true_depth = true_depths(trial, rate);
+  const auto base_model = wip::make_keyframe_baseline(cycle, model.leg_length());
+  auto base = wip::make_baseline_state(base_model);
+  const std::size_t n = std::min(e.frames.size(), e.true_depth.time.size());
+  e.baseline_z[0].resize(n);
+  e.baseline_z[1].resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    wip::update_baseline(base_model, e.frames[i].walking, 1.0 / rate, base);
+    for (int f = 0; f < 2; ++f) {
+      e.baseline_z[f][i] = base.z[f];
+      if (e.frames[i].time < opt.settle) continue;
+      e.depth.add(e.frames[i].z[f], e.true_depth.z[f][i]);
+      e.baseline_depth.add(base.z[f], e.true_depth.z[f][i]);
+    }
+  }
+  e.depth.finish();
+  e.baseline_depth.finish();
+  return e;
+}
+
+
+namespace {
+
+// Swing intervals of one foot as plot bands.
+std::vector<render::Band> swing_bands(std::span<const SwingEvent> swings, int foot, render::Rgb color,
+                                      const std::string& label, double alpha = 0.18) {
+  std::vector<render::Band> out;
+  for (const auto& s : swings)
+    if (s.foot == foot) out.emplace_back(s.off, s.strike, color, label, alpha);
+  return out;
+}
+
+std::vector<double> column(std::span<const wip::Info> frames, double (*get)(const wip::Info&)) {
+  std::vector<double> v;
+  v.reserve(frames.size());
+  for (const auto& f : frames) v.push_back(get(f));
+  return v;
+}
+
+}  // namespace
+
+void plot_wip_phases(const std::string& path, const std::string& title, std::span<const wip::Info> frames,
+                      const Motion& avatar, const std::vector<int>& strip, const std::vector<double>* baseline_z,
+                      const wip::GaitSettings& gait) {
+  if (io::extension_of(path) != ".png") throw Error("phase plot '" + path + "' must end in .png");
+  if (frames.empty()) throw Error("nothing to plot: no frames");
+  const auto t = column(frames, [](const wip::Info& f) { return f.time; });
+  const auto det = detected_swings(frames);
+  render::LinePlot p;
+  p.title = title;
+  p.x_label = "time (s)";
+  p.panel_height = 170;
+  auto& ph = p.panels.emplace_back();
+  ph.title = "ankle height above floor (filtered) with detected swings";
+  ph.y_label = "h (m)";
+  ph.series.emplace_back("left", t, column(frames, [](const wip::Info& f) { return f.h[0]; }), render::kLeftColor);
+  ph.series.emplace_back("right", t, column(frames, [](const wip::Info& f) { return f.h[1]; }), render::kRightColor);
+  ph.series.emplace_back("H1 in use (left)", t, column(frames, [](const wip::Info& f) { return f.h1[0]; }),
+                         render::Rgb{0.4, 0.4, 0.45});
+  ph.series.back().dashed = true;
+  for (auto& b : swing_bands(det, 0, render::kLeftColor, "left swing")) ph.bands.push_back(b);
+  for (auto& b : swing_bands(det, 1, render::kRightColor, "right swing")) ph.bands.push_back(b);
+  auto& pv = p.panels.emplace_back();
+  pv.title = "vertical velocity";
+  pv.y_label = "v (m/s)";
+  pv.series.emplace_back("left", t, column(frames, [](const wip::Info& f) { return f.v[0]; }), render::kLeftColor);
+  pv.series.emplace_back("right", t, column(frames, [](const wip::Info& f) { return f.v[1]; }), render::kRightColor);
+  pv.ref_lines.emplace_back(gait.v1, "V1");
+  pv.ref_lines.emplace_back(-gait.v2, "-V2");
+  auto& pp = p.panels.emplace_back();
+  pp.title = "gait phase (0 double support, 1 initial, 2 mid, 3 terminal swing)";
+  pp.y_label = "phase";
+  pp.series.emplace_back("left", t, column(frames, [](const wip::Info& f) { return double(int(f.phase[0])); }),
+                         render::kLeftColor);
+  pp.series.emplace_back("right", t, column(frames, [](const wip::Info& f) { return int(f.phase[1]) + 0.08; }),
+                         render::kRightColor);
+  pp.y_min = -0.2;
+  pp.y_max = 3.3;
+  auto& pz = p.panels.emplace_back();
+  pz.title = "IK-target depth (forward +, relative to the pelvis)";
+  pz.y_label = "z (m)";
+  pz.series.emplace_back("left", t, column(frames, [](const wip::Info& f) { return f.z[0]; }), render::kLeftColor);
+  pz.series.emplace_back("right", t, column(frames, [](const wip::Info& f) { return f.z[1]; }), render::kRightColor);
+  if (baseline_z) {
+    pz.series.emplace_back("left, key-frame baseline", t, baseline_z[0], render::kLeftColor);
+    pz.series.back().dashed = true;
+  }
+  auto& ps = p.panels.emplace_back();
+  ps.title = "forward speed and body drop";
+  ps.y_label = "m/s, m";
+  ps.series.emplace_back("speed (m/s)", t, column(frames, [](const wip::Info& f) { return f.speed; }));
+  ps.series.emplace_back("root offset (m)", t, column(frames, [](const wip::Info& f) { return f.root_offset; }));
+  if (strip.empty() || avatar.frame_count() == 0) {
+    render::plot_lines(p, path);
+    return;
+  }
+  const std::string tmp_plot = path + ".curves.tmp.png", tmp_strip = path + ".strip.tmp.png";
+  render::plot_lines(p, tmp_plot);
+  std::vector<Pose> poses;
+  std::vector<std::string> labels;
+  for (int f : strip) {
+    if (f < 0 || f >= avatar.frame_count()) continue;
+    Pose pose(avatar.skeleton);
+    auto fr = avatar.frame(f);
+    std::copy(fr.rotations.begin(), fr.rotations.end(), pose.rotations.begin());
+    std::copy(fr.translations.begin(), fr.translations.end(), pose.translations.begin());
+    poses.push_back(pose);
+    char lab[64];
+    static const char* kShort[] = {"DS", "IS", "MS", "TS"};
+    std::snprintf(lab, sizeof lab, "%.2fs L:%s R:%s", frames[static_cast<std::size_t>(f)].time,
+                  kShort[int(frames[static_cast<std::size_t>(f)].phase[0])],
+                  kShort[int(frames[static_cast<std::size_t>(f)].phase[1])]);
+    labels.push_back(lab);
+  }
+  render::SheetOptions so;
+  so.views = {render::View::Side};
+  so.labels = labels;
+  so.panel_height = 300;
+  so.face_forward = false;
+  so.title = "avatar, side view (DS double support, IS/MS/TS swing)";
+  render::render_contact_sheet(avatar.skeleton, poses, so, tmp_strip);
+  render::stack_pngs({tmp_plot, tmp_strip}, path);
+  std::filesystem::remove(tmp_plot);
+  std::filesystem::remove(tmp_strip);
+}
+
+std::string describe_wip_run(std::span<const wip::Info> frames, double rate, std::span<const SwingEvent> truth) {
+  if (frames.empty()) return "no frames\n";
+  int steps = 0;
+  for (const auto& f : frames) steps += ((f.events[0] | f.events[1]) & wip::kEventFootOff) ? 1 : 0;
+  const auto& last = frames.back();
+  const double span = last.time - frames.front().time;
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "%zu frames at %.4g Hz: %d steps detected, walked %.2f m (mean %.2f m/s over %.1f s)\n",
+                frames.size(), rate, steps, last.distance, last.distance / std::max(1e-9, span), span);
+  std::string out = buf;
+  if (truth.empty()) return out;
+  const auto sc = score_steps(detected_swings(frames), truth, 0.5, last.time - 0.1);
+  std::snprintf(buf, sizeof buf,
+                "against the input's true steps: precision %.3f, recall %.3f, F1 %.3f, foot-off latency %.0f ms\n",
+                sc.precision, sc.recall, sc.f1, sc.off_latency_ms);
+  return out + buf;
+}
+
+std::vector<int> strip_frames(const std::string& spec, std::span<const wip::Info> frames) {
+  std::vector<int> out;
+  if (!spec.empty()) {
+    std::stringstream ss(spec);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      try {
+        out.push_back(std::stoi(item));
+      } catch (...) {
+        throw Error("--strip '" + spec + "': expected frame numbers separated by commas");
+      }
+    }
+    for (int f : out)
+      if (f < 0 || f >= static_cast<int>(frames.size()))
+        throw Error("--strip frame " + std::to_string(f) + " is outside 0:" + std::to_string(frames.size() - 1));
+    return out;
+  }
+  // Six consecutive phase-change frames of the first well-established steps.
+  int first_walk = -1;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    if (frames[i].walking) {
+      first_walk = static_cast<int>(i);
+      break;
+    }
+  if (first_walk < 0) first_walk = 0;
+  const int span = std::max(1, static_cast<int>(std::lround(1.2 * frames.size() / std::max(1.0, frames.back().time))));
+  for (int k = 0; k < 6; ++k)
+    out.push_back(std::min(static_cast<int>(frames.size()) - 1, first_walk + span + k * span / 5));
+  return out;
+}
+
+
+namespace {
+
+nlohmann::json score_json(const StepScore& s) {
+  return {{"true_steps", s.true_steps},          {"detected", s.detected},   {"matched", s.matched},
+          {"precision", s.precision},            {"recall", s.recall},       {"f1", s.f1},
+          {"foot_off_latency_ms", s.off_latency_ms}, {"foot_strike_latency_ms", s.strike_latency_ms}};
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+void write_trial_plot(const WipTrialEval& e, const std::string& path) {
+  render::LinePlot p;
+  p.title = e.name + ": detected (coloured) vs true (grey) swings; generated vs true vs baseline depth";
+  p.x_label = "time (s)";
+  p.panel_height = 150;
+  const auto t = column(e.frames, [](const wip::Info& f) { return f.time; });
+  const char* side[2] = {"left", "right"};
+  const render::Rgb col[2] = {render::kLeftColor, render::kRightColor};
+  for (int f = 0; f < 2; ++f) {
+    auto& ph = p.panels.emplace_back();
+    ph.title = std::string(side[f]) + " ankle height";
+    ph.y_label = "h (m)";
+    std::vector<double> h;
+    for (const auto& fr : e.frames) h.push_back(fr.h[f]);
+    ph.series.emplace_back(side[f], t, h, col[f]);
+    for (auto& b : swing_bands(e.truth, f, {0.35, 0.35, 0.35}, "true swing", 0.12)) ph.bands.push_back(b);
+    for (auto& b : swing_bands(e.detected, f, col[f], "detected swing", 0.22)) ph.bands.push_back(b);
+  }
+  for (int f = 0; f < 2; ++f) {
+    auto& pz = p.panels.emplace_back();
+    pz.title = std::string(side[f]) + " foot depth relative to the pelvis";
+    pz.y_label = "z (m)";
+    const std::size_t n = std::min(e.frames.size(), e.true_depth.time.size());
+    std::vector<double> tt(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(n)), gen, tru, base;
+    for (std::size_t i = 0; i < n; ++i) {
+      gen.push_back(e.frames[i].z[f]);
+      tru.push_back(e.true_depth.z[f][i]);
+      base.push_back(e.baseline_z[f][i]);
+    }
+    pz.series.emplace_back("generated IK target", tt, gen, col[f]);
+    pz.series.emplace_back("real foot", tt, tru, render::Rgb{0.1, 0.1, 0.1});
+    pz.series.emplace_back("key-frame baseline", tt, base, render::Rgb{0.55, 0.55, 0.55});
+    pz.series.back().dashed = true;
+  }
+  render::plot_lines(p, path);
+}
+
+// Running totals over the evaluated trials.
+struct Totals {
+  std::vector<StepScore> clean, noisy, fixed;
+  Agreement depth, base;
+  nlohmann::json trials = nlohmann::json::array();
+  std::ostringstream rows;
+  int failed = 0;
+};
+
+void add_trial(const WipTrialEval& e, const WipTrialEval& ef, Totals& t) {
+  t.clean.push_back(e.steps);
+  t.noisy.push_back(e.steps_noisy);
+  t.fixed.push_back(ef.steps);
+  t.depth.merge(e.depth);
+  t.base.merge(e.baseline_depth);
+  t.trials.push_back({{"trial", e.name},
+                      {"duration_s", e.duration},
+                      {"leg_length_m", e.leg_length},
+                      {"steps", score_json(e.steps)},
+                      {"steps_noisy", score_json(e.steps_noisy)},
+                      {"steps_fixed_thresholds", score_json(ef.steps)},
+                      {"depth_correlation", e.depth.correlation},
+                      {"depth_rms_cm", 100 * e.depth.rms},
+                      {"baseline_depth_correlation", e.baseline_depth.correlation},
+                      {"baseline_depth_rms_cm", 100 * e.baseline_depth.rms},
+                      {"plot", e.name + ".png"}});
+  char row[400];
+  std::snprintf(row, sizeof row, "| %s | %.1f | %d | %d | %.2f | %.2f | %.0f | %.2f | %.1f | %.2f | %.1f |\n",
+                e.name.c_str(), e.duration, e.steps.true_steps, e.steps.matched, e.steps.f1, e.steps_noisy.f1,
+                e.steps.off_latency_ms, e.depth.correlation, 100 * e.depth.rms, e.baseline_depth.correlation,
+                100 * e.baseline_depth.rms);
+  t.rows << row;
+}
+
+Motion load_trial(const std::string& path, const WipEvalRun& run) {
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  auto f = io::read_bvh(path, opt);
+  if (run.log)
+    for (const auto& w : f.report.warnings) run.log("legwork: " + path + ": " + w + "\n");
+  return std::move(f.motion);
+}
+
+nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, const Totals& t) {
+  const auto& a = run.options.settings;
+  nlohmann::json j;
+  j["step_f1"] = s.steps.f1;
+  j["step_f1_noisy"] = s.steps_noisy.f1;
+  j["step_precision"] = s.steps.precision;
+  j["step_recall"] = s.steps.recall;
+  j["detection_latency_ms"] = s.steps.off_latency_ms;
+  j["detection_latency_median_ms"] = median(s.steps.off_latencies_ms);
+  j["foot_strike_latency_ms"] = s.steps.strike_latency_ms;
+  j["depth_correlation"] = s.depth.correlation;
+  j["depth_rms_cm"] = 100 * s.depth.rms;
+  j["baseline_depth_correlation"] = s.baseline_depth.correlation;
+  j["baseline_depth_rms_cm"] = 100 * s.baseline_depth.rms;
+  j["step_f1_fixed_thresholds"] = s.steps_fixed.f1;
+  j["trials"] = s.trials;
+  j["trials_skipped"] = s.skipped;
+  j["steps"] = score_json(s.steps);
+  j["steps_noisy"] = score_json(s.steps_noisy);
+  j["steps_fixed_thresholds"] = score_json(s.steps_fixed);
+  j["data"] = run.data;
+  if (!run.note.empty()) j["note"] = run.note;
+  j["baseline_clip"] = run.clip;
+  j["settings"] = {{"tracker_rate_hz", a.signal.rate}, {"cutoff_hz", a.signal.cutoff},
+                   {"h1_m", a.gait.h1},                {"v1_mps", a.gait.v1},
+                   {"v2_mps", a.gait.v2},              {"adaptive", a.gait.adaptive},
+                   {"noise_m", run.options.noise},     {"drop_rate", run.options.drop_rate},
+                   {"seed", run.options.seed}};
+  j["per_trial"] = t.trials;
+  return j;
+}
+
+std::string summary_markdown(const WipEvalRun& run, const WipEvalSummary& s, const Totals& t) {
+  const auto& all = s.steps;
+  std::ostringstream md;
+  char buf[2000];
+  md << "# Walking-in-place evaluation on real walking\n\n";
+  md << "Data: `" << run.data << "` (" << s.trials << " trials";
+  if (s.skipped) md << ", " << s.skipped << " skipped";
+  md << "). Each trial's own ankles drive the method at " << run.options.settings.signal.rate
+     << " Hz (rolling floor, no calibration) with its own skeleton as the avatar.\n";
+  if (!run.note.empty()) md << "\n**Note:** " << run.note << ".\n";
+  std::snprintf(buf, sizeof buf,
+                "\n| measure | value |\n|---|---|\n"
+                "| step precision / recall / F1 | %.3f / %.3f / **%.3f** (%d of %d true steps, %d detected) |\n"
+                "| step F1 with %.1f cm noise + %.0f%% drops | **%.3f** |\n"
+                "| step F1 with the document's fixed H1/V1/V2 | %.3f |\n"
+                "| foot-off detection latency | mean **%.0f ms**, median %.0f ms |\n"
+                "| foot-strike detection latency | mean %.0f ms (negative: before the true strike) |\n"
+                "| IK-target depth vs real foot depth | r = **%.3f**, RMS **%.1f cm** |\n"
+                "| key-frame baseline depth vs real foot depth | r = %.3f, RMS %.1f cm |\n",
+                all.precision, all.recall, all.f1, all.matched, all.true_steps, all.detected, 100 * run.options.noise,
+                100 * run.options.drop_rate, s.steps_noisy.f1, s.steps_fixed.f1, all.off_latency_ms,
+                median(all.off_latencies_ms), all.strike_latency_ms, s.depth.correlation, 100 * s.depth.rms,
+                s.baseline_depth.correlation, 100 * s.baseline_depth.rms);
+  md << buf;
+  md << "\n## Per trial\n\n| trial | s | true steps | matched | F1 | F1 noisy | latency ms | depth r | depth RMS cm | "
+        "baseline r | baseline RMS cm |\n|---|---|---|---|---|---|---|---|---|---|---|\n"
+     << t.rows.str();
+  return md.str();
+}
+
+void summary_chart(const WipEvalSummary& s, const std::string& path) {
+  render::BarChart bc;
+  bc.title = "walking in place on " + std::to_string(s.trials) + " CMU walking trials";
+  bc.groups = {"step F1", "step F1 (noisy)", "depth r"};
+  bc.series.emplace_back("method", std::vector<double>{s.steps.f1, s.steps_noisy.f1, s.depth.correlation});
+  bc.series.emplace_back("document's fixed thresholds", std::vector<double>{s.steps_fixed.f1, NAN, NAN});
+  bc.series.emplace_back("key-frame baseline", std::vector<double>{NAN, NAN, s.baseline_depth.correlation});
+  render::plot_bars(bc, path);
+}
+
+}  // namespace
+
+WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
+  namespace fs = std::filesystem;
+  if (run.files.empty()) throw Error("'" + run.data + "' holds no .bvh files");
+  std::error_code ec;
+  fs::create_directories(run.out, ec);
+  if (ec || !fs::is_directory(run.out)) throw Error("cannot create the output folder '" + run.out + "'");
+  const fs::path out(run.out);
+  const Motion cycle = wip::extract_walk_cycle(load_trial(run.clip, run));
+  WipEvalOptions fixed = run.options;  // the document's fixed thresholds, for comparison
+  fixed.settings.gait.adaptive = false;
+  Totals t;
+  int index = 0;
+  for (const auto& file : run.files) {
+    const std::string name = fs::path(file).stem().string();
+    char progress[128];
+    std::snprintf(progress, sizeof progress, "\r[%d/%zu] %-12s", index + 1, run.files.size(), name.c_str());
+    if (run.log) run.log(progress);
+    WipTrialEval e, ef;
+    try {
+      const Motion m = load_trial(file, run);
+      e = evaluate_wip_trial(m, name, cycle, run.options, index);
+      ef = evaluate_wip_trial(m, name, cycle, fixed, index);
+    } catch (const Error& err) {
+      if (run.log) run.log("\nlegwork wip eval: skipping " + file + ": " + err.what() + "\n");
+      ++t.failed;
+      ++index;
+      continue;
+    }
+    ++index;
+    add_trial(e, ef, t);
+    write_trial_plot(e, (out / (name + ".png")).string());
+  }
+  if (run.log) run.log("\n");
+  if (t.clean.empty()) throw Error("no trial in '" + run.data + "' could be evaluated");
+  WipEvalSummary s;
+  s.trials = static_cast<int>(t.clean.size());
+  s.skipped = t.failed;
+  t.depth.finish();
+  t.base.finish();
+  s.depth = t.depth;
+  s.baseline_depth = t.base;
+  s.steps = combine(t.clean);
+  s.steps_noisy = combine(t.noisy);
+  s.steps_fixed = combine(t.fixed);
+  io::write_text_file((out / "report.json").string(), summary_json(run, s, t).dump(2) + "\n");
+  io::write_text_file((out / "report.md").string(), summary_markdown(run, s, t));
+  summary_chart(s, (out / "summary.png").string());
+  s.written = {(out / "report.md").string(), (out / "report.json").string()};
+  return s;
+}
+
+}  // namespace legwork::eval

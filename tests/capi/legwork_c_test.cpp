@@ -1,0 +1,224 @@
+// The C API (legwork.h) against the C++ API on real data, its errors, and
+// its allocation-free per-frame path.
+#include <legwork/legwork.h>
+
+#include <legwork/accent/accent.hpp>
+#include <legwork/accent/offline/builder.hpp>
+#include <legwork/ik/full_body.hpp>
+#include <legwork/io/bvh.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmu_sample.hpp>
+
+#include "alloc_counter.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+namespace legwork {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string sample(const std::string& rel) { return std::string(LEGWORK_SOURCE_DIR) + "/data/" + rel; }
+
+// A database over the repo's sample trials without 07_02, built once.
+const std::string& database_file() {
+  static const std::string path = [] {
+    std::vector<accent::TrialInput> trials;
+    for (const char* name : {"walking/07_01", "walking/05_01", "running/09_01", "boxing/13_17"}) {
+      accent::TrialInput t;
+      t.file = std::string(name) + ".bvh";
+      t.cls = std::string(name).substr(0, std::string(name).find('/'));
+      t.motion = testdata::load_sample(std::string("cmu/bvh/") + name + ".bvh");
+      trials.push_back(std::move(t));
+    }
+    const std::string p = (fs::temp_directory_path() / ("legwork_capi_test_" + std::to_string(::getpid()) + ".lwdb")).string();
+    accent::save_database(p, accent::build_database(trials, accent::BuildConfig{}));
+    return p;
+  }();
+  return path;
+}
+
+struct Frames {
+  lw_frame* data = nullptr;
+  int32_t count = 0;
+  ~Frames() { lw_frames_free(data); }
+};
+
+TEST(CApi, AccentAvatarEqualsTheCppApiBitForBit) {
+  lw_database* db = nullptr;
+  ASSERT_EQ(lw_database_load(database_file().c_str(), &db), LW_OK) << lw_last_error();
+  EXPECT_GE(lw_database_class_count(db), 3);
+  Frames f;
+  ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/07_02.bvh").c_str(), 90.0, 1, &f.data, &f.count), LW_OK) << lw_last_error();
+  ASSERT_GT(f.count, 200);
+  lw_accent_settings s;
+  lw_accent_settings_default(&s);
+  s.user_height = 1.7;
+  s.classes = "walking,running";
+  lw_model* model = nullptr;
+  ASSERT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
+  lw_avatar* avatar = nullptr;
+  ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
+
+  const accent::Database cdb = accent::load_database(database_file());
+  accent::Settings cs;
+  cs.user_height = 1.7;
+  cs.classes = {"walking", "running"};
+  const accent::Model cm = accent::make_model(cdb, cs);
+  accent::State st(cm);
+  Pose pose(cm.skeleton());
+  const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(model));
+  ASSERT_EQ(n, cm.skeleton().joint_count());
+  std::vector<double> rot(4 * static_cast<std::size_t>(n)), root(3);
+  const io::BvhReadOptions o{.drop_first_frame = true};
+  const auto frames = tracker_frames_from_motion(io::load_bvh(sample("cmu/bvh/walking/07_02.bvh"), o), 90.0);
+  ASSERT_EQ(static_cast<std::size_t>(f.count), frames.size());
+  for (int32_t i = 0; i < f.count; ++i) {
+    const lw_status a = lw_avatar_update(avatar, &f.data[i]);
+    const UpdateStatus b = accent::update(cm, frames[static_cast<std::size_t>(i)], st, pose.ref());
+    ASSERT_EQ(std::string(lw_status_name(a)), status_name(b));
+    ASSERT_EQ(lw_avatar_pose(avatar, rot.data(), root.data(), nullptr, n), LW_OK);
+    for (int j = 0; j < n; ++j) {
+      const Quat& q = pose.rotations[static_cast<std::size_t>(j)];
+      ASSERT_EQ(rot[4 * static_cast<std::size_t>(j)], q.w()) << "frame " << i << " joint " << j;
+      ASSERT_EQ(rot[4 * static_cast<std::size_t>(j) + 3], q.z());
+    }
+    ASSERT_EQ(root[1], pose.translations[0].y());
+  }
+  lw_avatar_destroy(avatar);
+  lw_model_destroy(model);
+  lw_database_destroy(db);
+}
+
+TEST(CApi, IkAvatarPutsTheWristsOnTheControllersAndUpdatesWithoutAllocating) {
+  lw_skeleton* skel = nullptr;
+  ASSERT_EQ(lw_skeleton_load_bvh(sample("cmu/bvh/walking/07_02.bvh").c_str(), &skel), LW_OK) << lw_last_error();
+  lw_model* model = nullptr;
+  ASSERT_EQ(lw_model_create_ik(skel, &model), LW_OK) << lw_last_error();
+  lw_skeleton_destroy(skel);  // the model copied it
+  lw_avatar* avatar = nullptr;
+  ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
+  Frames f;
+  ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/07_02.bvh").c_str(), 0, 1, &f.data, &f.count), LW_OK);
+  const lw_skeleton* out = lw_model_skeleton(model);
+  const int32_t n = lw_skeleton_joint_count(out);
+  int wrist[2] = {-1, -1};
+  for (int j = 0; j < n; ++j) {
+    const char* h = lw_model_humanoid_name(model, j, 0);
+    if (h && std::string(h) == "LeftHand") wrist[0] = j;
+    if (h && std::string(h) == "RightHand") wrist[1] = j;
+  }
+  ASSERT_GE(wrist[0], 0);
+  ASSERT_GE(wrist[1], 0);
+  std::vector<double> world(3 * static_cast<std::size_t>(n));
+  double worst = 0;
+  for (int32_t i = 0; i < 10; ++i) lw_avatar_update(avatar, &f.data[i]);
+  const long allocations = alloc_count::count_allocations([&] {
+    for (int32_t i = 10; i < f.count; ++i) lw_avatar_update(avatar, &f.data[i]);
+  });
+  EXPECT_EQ(allocations, 0);
+  ASSERT_EQ(lw_avatar_reset(avatar), LW_OK);
+  for (int32_t i = 0; i < f.count; ++i) {
+    ASSERT_GE(lw_avatar_update(avatar, &f.data[i]), 0);
+    ASSERT_EQ(lw_avatar_pose(avatar, nullptr, nullptr, world.data(), n), LW_OK);
+    for (int h = 0; h < 2; ++h) {
+      const double* p = &world[3 * static_cast<std::size_t>(wrist[h])];
+      const double* d = f.data[i].devices[1 + h].position;
+      worst = std::max(worst, std::hypot(p[0] - d[0], p[1] - d[1], p[2] - d[2]));
+    }
+  }
+  EXPECT_LT(worst, 0.01) << "a wrist missed its controller by " << worst << " m";
+  lw_avatar_destroy(avatar);
+  lw_model_destroy(model);
+}
+
+TEST(CApi, BadInputGivesAStatusAndAMessage) {
+  lw_database* db = nullptr;
+  EXPECT_EQ(lw_database_load(nullptr, &db), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("must not be NULL"), std::string::npos);
+  EXPECT_EQ(lw_database_load(sample("cmu/MANIFEST.tsv").c_str(), &db), LW_ERROR_FORMAT);
+  EXPECT_NE(std::string(lw_last_error()).find("not a legwork accent database"), std::string::npos) << lw_last_error();
+  EXPECT_EQ(db, nullptr);
+  EXPECT_EQ(lw_database_load("/nonexistent/x.lwdb", &db), LW_ERROR_IO) << lw_last_error();
+  ASSERT_EQ(lw_database_load(database_file().c_str(), &db), LW_OK);
+  lw_accent_settings s;
+  lw_accent_settings_default(&s);
+  s.classes = "dancing";
+  lw_model* model = nullptr;
+  EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_ERROR_FORMAT);
+  EXPECT_NE(std::string(lw_last_error()).find("class 'dancing' is not in the database"), std::string::npos) << lw_last_error();
+  s.classes = nullptr;
+  s.k = 99;
+  EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("k must be 1..32, got 99"), std::string::npos) << lw_last_error();
+  lw_accent_settings_default(&s);
+  ASSERT_EQ(lw_model_create_accent(db, &s, &model), LW_OK);
+  lw_avatar* avatar = nullptr;
+  ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
+  EXPECT_EQ(lw_avatar_update(avatar, nullptr), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(lw_avatar_update(nullptr, nullptr), LW_ERROR_INVALID_ARGUMENT);
+  lw_frame nan_frame{};
+  nan_frame.time = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(lw_avatar_update(avatar, &nan_frame), LW_REJECTED);
+  double rot[8];
+  EXPECT_EQ(lw_avatar_pose(avatar, rot, nullptr, nullptr, 2), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("capacity 2 <"), std::string::npos);
+  EXPECT_EQ(lw_avatar_set_floor(avatar, 0, 0), LW_ERROR_UNSUPPORTED);
+  EXPECT_EQ(lw_convert_positions(static_cast<lw_engine>(9), 1, rot, 1), LW_ERROR_INVALID_ARGUMENT);
+  lw_avatar_destroy(avatar);
+  lw_model_destroy(model);
+  lw_database_destroy(db);
+  lw_avatar_destroy(nullptr);  // destroying NULL is a no-op
+}
+
+TEST(CApi, EngineConversionsMatchTheDocumentedFormulas) {
+  double p[3] = {0.1, 1.6, 0.3};
+  ASSERT_EQ(lw_convert_positions(LW_ENGINE_UNREAL, 1, p, 1), LW_OK);
+  EXPECT_DOUBLE_EQ(p[0], 30.0);
+  EXPECT_DOUBLE_EQ(p[1], -10.0);
+  EXPECT_DOUBLE_EQ(p[2], 160.0);
+  ASSERT_EQ(lw_convert_positions(LW_ENGINE_UNREAL, 0, p, 1), LW_OK);
+  EXPECT_NEAR(p[0], 0.1, 1e-12);
+  double q[4] = {0.9, 0.1, 0.2, 0.3};
+  ASSERT_EQ(lw_convert_rotations(LW_ENGINE_UNITY, 1, q, 1), LW_OK);
+  EXPECT_DOUBLE_EQ(q[2], -0.2);
+  EXPECT_DOUBLE_EQ(q[3], -0.3);
+}
+
+TEST(CApi, CallerAllocatorSeesEveryHandle) {
+  static long live = 0, total = 0;
+  lw_allocator a{[](std::size_t size, std::size_t align, void*) -> void* {
+                   ++live, ++total;
+                   return std::aligned_alloc(align, (size + align - 1) / align * align);
+                 },
+                 [](void* p, void*) {
+                   --live;
+                   std::free(p);
+                 },
+                 nullptr};
+  ASSERT_EQ(lw_set_allocator(&a), LW_OK);
+  lw_skeleton* skel = nullptr;
+  ASSERT_EQ(lw_skeleton_load_bvh(sample("cmu/bvh/walking/07_01.bvh").c_str(), &skel), LW_OK);
+  lw_model* model = nullptr;
+  ASSERT_EQ(lw_model_create_ik(skel, &model), LW_OK);
+  lw_avatar* avatar = nullptr;
+  ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
+  EXPECT_EQ(live, 3);
+  lw_avatar_destroy(avatar);
+  lw_model_destroy(model);
+  lw_skeleton_destroy(skel);
+  EXPECT_EQ(live, 0);
+  EXPECT_EQ(total, 3);
+  lw_allocator bad{nullptr, nullptr, nullptr};
+  EXPECT_EQ(lw_set_allocator(&bad), LW_ERROR_INVALID_ARGUMENT);
+  ASSERT_EQ(lw_set_allocator(nullptr), LW_OK);
+}
+
+}  // namespace
+}  // namespace legwork

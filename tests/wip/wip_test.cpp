@@ -1,0 +1,235 @@
+// The per-frame contract of wip::update on real CMU walking: no allocation,
+// the time rules (non-finite, absurd, backward and far-future times), lost
+// and absurd ankle samples, the heading from the head, and restarts that keep
+// the floor calibration.
+#include <legwork/wip/offline/run.hpp>
+#include <legwork/wip/offline/synthetic.hpp>
+#include <legwork/wip/wip.hpp>
+
+#include "alloc_counter.hpp"
+#include "cmu_sample.hpp"
+#include "testdata.hpp"
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace legwork::wip {
+namespace {
+
+const Motion& walk() {
+  static const Motion m = testdata::load_sample("cmu/bvh/walking/05_01.bvh");  // the longest sample walk (5 s)
+  return m;
+}
+const Model& walk_model() {
+  static const Model m = make_model(walk().skeleton);
+  return m;
+}
+// The walk's own ankles (and head) as trackers at 30 Hz.
+const std::vector<TrackerFrame>& walk_frames() {
+  static const auto f = tracker_frames_from_motion(walk(), 30.0);
+  return f;
+}
+
+struct Stream {
+  std::vector<Info> info;
+  std::vector<UpdateStatus> status;
+  bool finite = true;  // every output number and pose value finite
+};
+
+bool finite_info(const Info& i) {
+  bool ok = std::isfinite(i.speed) && std::isfinite(i.distance) && std::isfinite(i.root_offset) && i.root_position.allFinite();
+  for (int f = 0; f < 2; ++f)
+    ok = ok && std::isfinite(i.h[f]) && std::isfinite(i.v[f]) && std::isfinite(i.z[f]) && std::isfinite(i.y[f]) &&
+         std::isfinite(i.z_target[f]) && i.target_world[f].allFinite();
+  return ok;
+}
+
+Stream run_stream(const Model& m, const std::vector<TrackerFrame>& frames) {
+  Stream s;
+  State st(m);
+  Pose pose(m.skeleton());
+  Info info;
+  for (const auto& f : frames) {
+    s.status.push_back(update(m, f, st, pose.ref(), &info));
+    s.info.push_back(info);
+    s.finite = s.finite && finite_info(info);
+    for (std::size_t j = 0; j < pose.rotations.size(); ++j)
+      s.finite = s.finite && pose.rotations[j].coeffs().allFinite() && pose.translations[j].allFinite();
+  }
+  return s;
+}
+
+int walking_frames(const Stream& s) {
+  int n = 0;
+  for (std::size_t i = 0; i < s.info.size(); ++i) n += s.status[i] != UpdateStatus::Rejected && s.info[i].walking;
+  return n;
+}
+
+TEST(Update, AllocatesNothingPerFrameOnRealWalking) {
+  const Model& m = walk_model();
+  State st(m);
+  Pose pose(m.skeleton());
+  Info info;
+  const auto& frames = walk_frames();
+  update(m, frames[0], st, pose.ref(), &info);
+  const long allocations = alloc_count::count_allocations([&] {
+    for (std::size_t i = 1; i < frames.size(); ++i) update(m, frames[i], st, pose.ref(), &info);
+  });
+  EXPECT_EQ(allocations, 0);
+  EXPECT_GT(info.distance, 1.0);  // it did walk
+}
+
+TEST(Update, ANonFiniteOrAbsurdFirstTimestampIsRejectedAndDoesNotFreezeTheStream) {
+  const auto& frames = walk_frames();
+  const std::vector<TrackerFrame> rest(frames.begin() + 1, frames.end());
+  const int expected = walking_frames(run_stream(walk_model(), rest));
+  ASSERT_GT(expected, 0);
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e30}) {
+    auto corrupt = frames;
+    corrupt[0].time = bad;
+    const Stream s = run_stream(walk_model(), corrupt);
+    EXPECT_EQ(s.status[0], UpdateStatus::Rejected) << bad;
+    // Rejected leaves the state untouched: the rest runs exactly as if the frame were absent.
+    EXPECT_EQ(walking_frames(s), expected) << bad;
+    EXPECT_TRUE(s.finite);
+  }
+}
+
+TEST(Update, BackwardAndRepeatedTimesAreRejectedWithoutChangingTheOutcome) {
+  auto frames = walk_frames();
+  std::vector<TrackerFrame> with_bad;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    with_bad.push_back(frames[i]);
+    if (i % 50 == 25) {
+      TrackerFrame back = frames[i - 10];  // an old frame again
+      with_bad.push_back(back);
+      with_bad.push_back(frames[i]);  // a duplicate
+    }
+  }
+  const Stream clean = run_stream(walk_model(), frames), bad = run_stream(walk_model(), with_bad);
+  std::vector<Info> consumed;
+  for (std::size_t i = 0; i < bad.info.size(); ++i)
+    if (bad.status[i] != UpdateStatus::Rejected) consumed.push_back(bad.info[i]);
+  ASSERT_EQ(consumed.size(), clean.info.size());
+  for (std::size_t i = 0; i < consumed.size(); ++i) {
+    ASSERT_EQ(consumed[i].z[0], clean.info[i].z[0]) << i;
+    ASSERT_EQ(consumed[i].events[1], clean.info[i].events[1]) << i;
+  }
+}
+
+TEST(Update, AFarFutureTimeSpikeRestartsTheAvatarWhichWalksAgain) {
+  auto frames = walk_frames();
+  const std::size_t k = frames.size() / 3;
+  frames[k].time = 1.0e6;  // accepted (a forward gap: restart), then every later time is "in the past"
+  const Stream s = run_stream(walk_model(), frames);
+  int rejected = 0, restarts = 0;
+  for (auto st : s.status) rejected += st == UpdateStatus::Rejected, restarts += st == UpdateStatus::Restarted;
+  EXPECT_EQ(restarts, 2);  // into the spike and back out of it
+  EXPECT_EQ(rejected, FrameClock::kRestartFrames - 1);
+  int walking_after = 0;
+  for (std::size_t i = k + FrameClock::kRestartFrames + 1; i < s.info.size(); ++i) walking_after += s.info[i].walking;
+  EXPECT_GT(walking_after, static_cast<int>(s.info.size() - k) / 2);
+  EXPECT_TRUE(s.finite);
+}
+
+TEST(Update, ARestartKeepsTheFloorCalibrationButResetsTheGait) {
+  Settings settings;
+  settings.signal.floor_tau = 0;  // fixed floor: the calibration is all there is
+  const Model m = make_model(walk().skeleton, settings);
+  State st(m);
+  set_floor(st, 0.11, 0.13);
+  Pose pose(m.skeleton());
+  const auto& frames = walk_frames();
+  for (std::size_t i = 0; i < 60; ++i) update(m, frames[i], st, pose.ref());
+  // The source's clock restarts at 0: after kRestartFrames increasing frames the avatar restarts.
+  UpdateStatus last = UpdateStatus::Ok;
+  for (int i = 0; i < FrameClock::kRestartFrames; ++i) last = update(m, frames[static_cast<std::size_t>(i)], st, pose.ref());
+  EXPECT_EQ(last, UpdateStatus::Restarted);
+  EXPECT_DOUBLE_EQ(st.feet[0].floor, 0.11);
+  EXPECT_DOUBLE_EQ(st.feet[1].floor, 0.13);
+  EXPECT_EQ(st.gait[0].swings, 0);
+  reset(m, st);
+  EXPECT_FALSE(st.feet[0].has_floor);
+}
+
+// 0.5 s of absurd but finite ankle coordinates (a tracker glitch) on real walking.
+TEST(Update, HugeAnkleCoordinatesAreLostTrackingAndStepDetectionRecoversWithinOneSecond) {
+  const double kRecovery = 1.0;  // s after good data returns (stated in docs/wip.md)
+  const Stream clean = run_stream(walk_model(), walk_frames());
+  for (double sign : {1.0, -1.0}) {
+    auto frames = walk_frames();
+    const double t0 = 1.0, t1 = 1.5;
+    for (auto& f : frames)
+      if (f.time >= t0 && f.time < t1)
+        for (int s = 0; s < 2; ++s) f.foot(s).position = Vec3(0.1, sign * 1e30, sign * 1e30);
+    const Stream bad = run_stream(walk_model(), frames);
+    EXPECT_TRUE(bad.finite) << sign;
+    std::vector<double> offs_clean, offs_bad;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      const bool glitch = frames[i].time >= t0 && frames[i].time < t1;
+      if (glitch) {
+        EXPECT_EQ(bad.status[i], UpdateStatus::Degraded);
+      }
+      if (frames[i].time < t1 + kRecovery) continue;
+      for (int f = 0; f < 2; ++f) {
+        if (clean.info[i].events[f] & kEventFootOff) offs_clean.push_back(frames[i].time + 10 * f);
+        if (bad.info[i].events[f] & kEventFootOff) offs_bad.push_back(frames[i].time + 10 * f);
+      }
+    }
+    ASSERT_GE(offs_clean.size(), 2u);
+    ASSERT_EQ(offs_bad.size(), offs_clean.size()) << sign;
+    for (std::size_t i = 0; i < offs_bad.size(); ++i) EXPECT_NEAR(offs_bad[i], offs_clean[i], 1.0 / 30 + 1e-9);
+  }
+}
+
+TEST(Update, NoNanFromALongCorruptedStream) {
+  // Ten minutes of synthetic stepping with NaN, Inf and 1e30 samples, dropouts
+  // of seconds, NaN, repeated and backward timestamps.
+  SyntheticOptions o;
+  o.duration = 600;
+  auto frames = synthetic_stepping(o).frames;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double bad_values[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e30, -1e30};
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    const double r = u(rng);
+    if (r < 0.01) frames[i].foot(static_cast<int>(i % 2)).position.y() = bad_values[i % 4];
+    else if (r < 0.015) frames[i].time = bad_values[i % 2];
+    else if (r < 0.02) frames[i].time = frames[i - 1].time;
+    else if (r < 0.022) frames[i].time -= 3.0;
+    if (static_cast<int>(frames[i].time) % 97 == 0) frames[i].foot(0).valid = frames[i].foot(1).valid = false;
+  }
+  const Stream s = run_stream(walk_model(), frames);
+  EXPECT_TRUE(s.finite);
+  EXPECT_GT(walking_frames(s), static_cast<int>(frames.size()) / 2);
+}
+
+TEST(Update, WalksAlongTheHeadsYawAndHoldsItWhenTheHeadIsLost) {
+  const Model& m = walk_model();
+  State st(m);
+  Pose pose(m.skeleton());
+  Info info;
+  SyntheticOptions o;
+  o.noise = 0;
+  o.drop_rate = o.nan_rate = 0;
+  o.pause_length = 0;
+  auto frames = synthetic_stepping(o).frames;
+  const double yaw = 0.5 * kPi;  // facing +x
+  for (auto& f : frames) {
+    f.head() = {Vec3(0, 1.7, 0), Quat(Eigen::AngleAxisd(yaw, Vec3::UnitY())), f.time < 10};
+  }
+  Vec3 at10 = Vec3::Zero();
+  for (const auto& f : frames) {
+    const UpdateStatus s = update(m, f, st, pose.ref(), &info);
+    EXPECT_EQ(s, UpdateStatus::Ok);  // the head is not needed: its loss does not degrade the legs
+    EXPECT_NEAR(info.heading, yaw, 1e-12);
+    if (f.time < 10) at10 = info.root_position;
+  }
+  EXPECT_GT(at10.x(), 3.0);  // walked along +x
+  EXPECT_NEAR(at10.z(), 0.0, 1e-9);
+  EXPECT_GT(info.root_position.x(), at10.x() + 3.0);  // and kept going that way with the head lost
+}
+
+}  // namespace
+}  // namespace legwork::wip
