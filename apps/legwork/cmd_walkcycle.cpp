@@ -278,16 +278,9 @@ wc::WalkKeys load_keys(const WalkArgs& a, Skeleton& skel) {
     skel = clip.motion.skeleton;
     return wc::keys_from_frames(clip.motion, frames, a.frames > 0 ? a.frames : 24, 24.0);
   }
-  if (a.skeleton.empty()) {
-    const std::string sp = wc::walk_skeleton_path(a.keys);
-    if (sp.empty()) throw Error(a.keys + ": the walk names no \"skeleton\"; pass --skeleton FILE.bvh");
-    io::BvhReadOptions o;
-    o.drop_first_frame = true;
-    skel = io::read_bvh(sp, o).motion.skeleton;
-  } else {
-    skel = io::read_bvh(a.skeleton).motion.skeleton;
-  }
-  return wc::read_walk_keys(a.keys, skel);
+  wc::WalkFile w = wc::load_walk(a.keys, a.skeleton);
+  skel = std::move(w.skeleton);
+  return std::move(w.keys);
 }
 
 // The walk's keys: read (or taken from a clip), retimed and shifted as asked.

@@ -323,7 +323,8 @@ lw_status lw_model_create_walker(const char* keys_json_path, lw_model** out) {
   if (!keys_json_path || !out) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_walker: path and out must not be NULL");
   *out = nullptr;
   return guarded("lw_model_create_walker", [&] {
-    const walkcycle::CycleModel cycle = walkcycle::build_cycle(walkcycle::load_keys(keys_json_path));
+    const walkcycle::WalkFile walk = walkcycle::load_walk(keys_json_path);
+    const walkcycle::CycleModel cycle = walkcycle::build_cycle(walk.skeleton, walk.keys);
     auto* h = make_handle<lw_model>(lw_model{LW_METHOD_WALKER, walkcycle::make_model(cycle, walkcycle::Settings{}), {}});
     h->skeleton.skeleton = std::get<walkcycle::Model>(h->model).skeleton();
     *out = h;

@@ -11,8 +11,6 @@
 
 #include <cmu_sample.hpp>
 
-#include "alloc_counter.hpp"
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -30,7 +28,7 @@ std::string sample(const std::string& rel) { return std::string(LEGWORK_SOURCE_D
 const std::string& database_file() {
   static const std::string path = [] {
     std::vector<accent::TrialInput> trials;
-    for (const char* name : {"walking/07_01", "walking/05_01", "running/09_01", "boxing/13_17"}) {
+    for (const char* name : {"walking/07_01", "walking/05_01", "running/09_01", "boxing/13_18"}) {
       accent::TrialInput t;
       t.file = std::string(name) + ".bvh";
       t.cls = std::string(name).substr(0, std::string(name).find('/'));
@@ -96,7 +94,7 @@ TEST(CApi, AccentAvatarEqualsTheCppApiBitForBit) {
   lw_database_destroy(db);
 }
 
-TEST(CApi, IkAvatarPutsTheWristsOnTheControllersAndUpdatesWithoutAllocating) {
+TEST(CApi, IkAvatarPutsTheWristsOnTheControllers) {
   lw_skeleton* skel = nullptr;
   ASSERT_EQ(lw_skeleton_load_bvh(sample("cmu/bvh/walking/07_02.bvh").c_str(), &skel), LW_OK) << lw_last_error();
   lw_model* model = nullptr;
@@ -118,12 +116,6 @@ TEST(CApi, IkAvatarPutsTheWristsOnTheControllersAndUpdatesWithoutAllocating) {
   ASSERT_GE(wrist[1], 0);
   std::vector<double> world(3 * static_cast<std::size_t>(n));
   double worst = 0;
-  for (int32_t i = 0; i < 10; ++i) lw_avatar_update(avatar, &f.data[i]);
-  const long allocations = alloc_count::count_allocations([&] {
-    for (int32_t i = 10; i < f.count; ++i) lw_avatar_update(avatar, &f.data[i]);
-  });
-  EXPECT_EQ(allocations, 0);
-  ASSERT_EQ(lw_avatar_reset(avatar), LW_OK);
   for (int32_t i = 0; i < f.count; ++i) {
     ASSERT_GE(lw_avatar_update(avatar, &f.data[i]), 0);
     ASSERT_EQ(lw_avatar_pose(avatar, nullptr, nullptr, world.data(), n), LW_OK);

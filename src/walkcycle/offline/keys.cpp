@@ -263,6 +263,21 @@ std::string walk_skeleton_path(const std::string& walk_path) {
   return p.lexically_normal().string();
 }
 
+WalkFile load_walk(const std::string& walk_path, const std::string& skeleton_bvh) {
+  WalkFile w;
+  if (skeleton_bvh.empty()) {
+    const std::string sp = walk_skeleton_path(walk_path);
+    if (sp.empty()) throw Error(walk_path + ": the walk names no \"skeleton\"; pass --skeleton FILE.bvh");
+    io::BvhReadOptions o;
+    o.drop_first_frame = true;
+    w.skeleton = io::read_bvh(sp, o).motion.skeleton;
+  } else {
+    w.skeleton = io::read_bvh(skeleton_bvh).motion.skeleton;
+  }
+  w.keys = read_walk_keys(walk_path, w.skeleton);
+  return w;
+}
+
 std::string format_walk_keys(const WalkKeys& k, const Skeleton& skel) {
   json doc = json::object();
   doc["format"] = "legwork-walk/1";

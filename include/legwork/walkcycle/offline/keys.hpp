@@ -19,6 +19,15 @@ WalkKeys read_walk_keys(const std::string& path, const Skeleton& skel);
 // if the file has none. Throws on unreadable/invalid JSON.
 std::string walk_skeleton_path(const std::string& walk_path);
 
+// A walk file with its skeleton: `skeleton_bvh` if given, else the file's
+// "skeleton" field (relative to the walk file; the T-pose frame dropped).
+// Throws legwork::Error with a hint when neither names a skeleton.
+struct WalkFile {
+  Skeleton skeleton;
+  WalkKeys keys;
+};
+WalkFile load_walk(const std::string& walk_path, const std::string& skeleton_bvh = "");
+
 // Writes a walk file (angles rounded to 0.001 degree, offsets to 0.1 mm, so
 // the output is stable and readable). Every joint with a non-identity rotation
 // in a key is written.
