@@ -5,6 +5,7 @@
 #include <legwork/accent/database.hpp>
 #include <legwork/core/measure.hpp>
 #include <legwork/ik/full_body.hpp>
+#include <legwork/wip/wip.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -54,6 +55,31 @@ class IkMethod final : public Method {
   ik::State state_;
 };
 
+// Walking-in-place legs from the ankles (the head's yaw is the walking heading).
+class WipMethod final : public Method {
+ public:
+  WipMethod(const Resources& res, const MethodOptions& opt)
+      : model_(wip::make_model(avatar_skeleton(res, opt.user_height))), state_(model_) {}
+
+  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
+    wip::Info wi;
+    const UpdateStatus st = wip::update(model_, f, state_, out, &wi);
+    if (st == UpdateStatus::Rejected) return st;
+    info.add("walking", wi.walking ? 1.0 : 0.0);
+    info.add("speed", wi.speed);
+    info.add("distance", wi.distance);
+    info.add("heading", wi.heading);
+    info.add("phase_left", wip::phase_name(wi.phase[0]).data());  // static, NUL-terminated literals
+    info.add("phase_right", wip::phase_name(wi.phase[1]).data());
+    return st;
+  }
+  const Skeleton& skeleton() const override { return model_.skeleton(); }
+
+ private:
+  const wip::Model model_;
+  wip::State state_;
+};
+
 // CoolMoves accentuation over the shared database (one Model per session's settings).
 class AccentMethod final : public Method {
  public:
@@ -94,7 +120,10 @@ const std::vector<std::string>& known_methods() {
 std::vector<std::string> available_methods(const Resources& res) {
   std::vector<std::string> out;
   if (res.db) out.push_back("accent");
-  if (res.db || res.skeleton) out.push_back("ik");
+  if (res.db || res.skeleton) {
+    out.push_back("ik");
+    out.push_back("wip");
+  }
   return out;
 }
 
@@ -113,6 +142,7 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
   if (!(opt.user_height == 0 || (opt.user_height >= 0.5 && opt.user_height <= 2.5)))
     throw Error("user_height " + std::to_string(opt.user_height) + " m is outside [0.5, 2.5] (0 = the avatar's own)");
   if (opt.method == "ik") return std::make_unique<IkMethod>(res, opt);
+  if (opt.method == "wip") return std::make_unique<WipMethod>(res, opt);
   return std::make_unique<AccentMethod>(res, opt);
 }
 

@@ -406,7 +406,7 @@ TEST(Serve, HttpApiAndNoTraversal) {
   EXPECT_EQ(get("/js/../../x").first, 404u);
   const json info = json::parse(get("/api/info").second);
   EXPECT_EQ(info["version"], 1);
-  EXPECT_EQ(info["methods"], json({"ik"}));
+  EXPECT_EQ(info["methods"], json({"ik", "wip"}));
   const json trials = json::parse(get("/api/trials").second);
   EXPECT_NE(std::find(trials["trials"].begin(), trials["trials"].end(), "walking/07_02"), trials["trials"].end());
   const auto [code, body] = get("/api/trial?name=walking/07_02&rate=90");
@@ -423,6 +423,39 @@ TEST(Serve, HttpApiAndNoTraversal) {
   EXPECT_NE(json::parse(get("/api/trial?name=walking/99_99").second)["message"].get<std::string>().find("no trial 'walking/99_99'"),
             std::string::npos);
   std::filesystem::remove_all(web);
+}
+
+}  // namespace
+}  // namespace legwork::serve
+
+namespace legwork::serve {
+namespace {
+
+using namespace testing;
+
+TEST(ServeWip, WalkingInPlaceLegsFromTheAnklesOfARealWalk) {
+  RunningServer srv;
+  Client c(srv.port());
+  const json w = c.hello({{"method", "wip"}});
+  EXPECT_EQ(w["method"], "wip");
+  // A real walk's ankles (and head for the heading) as in-place trackers: the
+  // feet rise and fall, so the legs must start stepping.
+  const auto frames = trial_frames("walking/07_02.bvh", true);
+  int walking = 0, poses = 0;
+  for (const TrackerFrame& f : frames) {
+    c.send_text(json_frame(f));
+    const json p = c.expect("pose");
+    poses += p["type"] == "pose";
+    walking += p["info"]["walking"].get<double>() > 0;
+  }
+  EXPECT_EQ(poses, static_cast<int>(frames.size()));
+  EXPECT_GT(walking, 0) << "the wip legs never started walking on a real walk's ankles";
+  // Without feet the legs cannot be driven: degraded.
+  TrackerFrame f = frames.back();
+  f.time += 0.011;
+  f.foot(kLeft).valid = f.foot(kRight).valid = false;
+  c.send_text(json_frame(f));
+  EXPECT_EQ(c.expect("pose")["status"], "degraded");
 }
 
 }  // namespace
