@@ -110,6 +110,45 @@ class AccentMethod final : public Method {
   accent::State state_;
 };
 
+// The combined avatar: upper body from accent (ik without a database), legs
+// from walking-in-place when the ankles are tracked. Both run on the same
+// avatar skeleton; the leg joints' local rotations (hips down) come from wip.
+class CombinedMethod final : public Method {
+ public:
+  CombinedMethod(std::unique_ptr<Method> upper, std::unique_ptr<Method> legs)
+      : upper_(std::move(upper)), legs_(std::move(legs)), legs_pose_(legs_->skeleton()) {
+    const Skeleton& skel = upper_->skeleton();
+    if (skel.joint_count() != legs_->skeleton().joint_count())
+      throw Error("combined: upper-body and leg skeletons differ");
+    for (int j = 0; j < skel.joint_count(); ++j)
+      for (Role hip : {Role::LeftHip, Role::RightHip})
+        if (skel.roles.has(hip) && skel.is_ancestor(skel.roles[hip], j)) leg_joints_.push_back(j);
+  }
+
+  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
+    const UpdateStatus up = upper_->update(f, out, info);
+    if (up == UpdateStatus::Rejected) return up;
+    MethodInfo legs_info;
+    const UpdateStatus lg = legs_->update(f, legs_pose_.ref(), legs_info);
+    const bool feet = usable(f.foot(kLeft)) && usable(f.foot(kRight));
+    if (lg != UpdateStatus::Rejected && feet)
+      for (int j : leg_joints_) out.rotations[static_cast<std::size_t>(j)] = legs_pose_.rotations[static_cast<std::size_t>(j)];
+    for (int i = 0; i < legs_info.count && i < 2; ++i) {  // walking, speed
+      const auto& it = legs_info.items[static_cast<std::size_t>(i)];
+      info.add(it.key, it.number);
+    }
+    info.add("legs", feet ? "wip" : "upper");
+    if (up == UpdateStatus::Restarted) return up;
+    return up == UpdateStatus::Degraded || !feet ? UpdateStatus::Degraded : UpdateStatus::Ok;
+  }
+  const Skeleton& skeleton() const override { return upper_->skeleton(); }
+
+ private:
+  std::unique_ptr<Method> upper_, legs_;
+  Pose legs_pose_;
+  std::vector<int> leg_joints_;
+};
+
 }  // namespace
 
 const std::vector<std::string>& known_methods() {
@@ -123,6 +162,7 @@ std::vector<std::string> available_methods(const Resources& res) {
   if (res.db || res.skeleton) {
     out.push_back("ik");
     out.push_back("wip");
+    out.push_back("combined");
   }
   return out;
 }
@@ -133,7 +173,7 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     const auto& known = known_methods();
     if (std::find(known.begin(), known.end(), opt.method) == known.end())
       throw Error("unknown method '" + opt.method + "' (known: " + join(known) + ")");
-    if ((opt.method == "accent" || opt.method == "combined") && !res.db)
+    if (opt.method == "accent" && !res.db)
       throw Error("method '" + opt.method + "' needs a database: start the server with --db FILE");
     throw Error("method '" + opt.method + "' is not available in this server (available: " + join(avail) + ")");
   }
@@ -143,6 +183,12 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("user_height " + std::to_string(opt.user_height) + " m is outside [0.5, 2.5] (0 = the avatar's own)");
   if (opt.method == "ik") return std::make_unique<IkMethod>(res, opt);
   if (opt.method == "wip") return std::make_unique<WipMethod>(res, opt);
+  if (opt.method == "combined") {
+    std::unique_ptr<Method> upper;
+    if (res.db) upper = std::make_unique<AccentMethod>(res, opt);
+    else upper = std::make_unique<IkMethod>(res, opt);
+    return std::make_unique<CombinedMethod>(std::move(upper), std::make_unique<WipMethod>(res, opt));
+  }
   return std::make_unique<AccentMethod>(res, opt);
 }
 

@@ -406,7 +406,7 @@ TEST(Serve, HttpApiAndNoTraversal) {
   EXPECT_EQ(get("/js/../../x").first, 404u);
   const json info = json::parse(get("/api/info").second);
   EXPECT_EQ(info["version"], 1);
-  EXPECT_EQ(info["methods"], json({"ik", "wip"}));
+  EXPECT_EQ(info["methods"], json({"ik", "wip", "combined"}));
   const json trials = json::parse(get("/api/trials").second);
   EXPECT_NE(std::find(trials["trials"].begin(), trials["trials"].end(), "walking/07_02"), trials["trials"].end());
   const auto [code, body] = get("/api/trial?name=walking/07_02&rate=90");
@@ -456,6 +456,40 @@ TEST(ServeWip, WalkingInPlaceLegsFromTheAnklesOfARealWalk) {
   f.foot(kLeft).valid = f.foot(kRight).valid = false;
   c.send_text(json_frame(f));
   EXPECT_EQ(c.expect("pose")["status"], "degraded");
+}
+
+}  // namespace
+}  // namespace legwork::serve
+
+namespace legwork::serve {
+namespace {
+
+using namespace testing;
+
+TEST(ServeCombined, UpperBodyFollowsTheHandsAndTheLegsComeFromWip) {
+  RunningServer srv;
+  Client c(srv.port());
+  const json w = c.hello({{"method", "combined"}});
+  const auto& names = w["skeleton"]["names"];
+  const auto lh = static_cast<std::size_t>(std::find(names.begin(), names.end(), "LeftHand") - names.begin());
+  const auto frames = trial_frames("walking/07_02.bvh", true);
+  double worst = 0;
+  for (const TrackerFrame& f : frames) {
+    c.send_text(json_frame(f));
+    const json p = c.expect("pose");
+    ASSERT_EQ(p["status"], "ok") << p.dump();
+    EXPECT_EQ(p["info"]["legs"], "wip");
+    const auto& q = p["positions"][lh];
+    worst = std::max(worst, (Vec3(q[0], q[1], q[2]) - f.hand(kLeft).position).norm());
+  }
+  EXPECT_LT(worst, 0.01) << "the legs must not move the upper body's wrists off the controllers";
+  TrackerFrame f = frames.back();
+  f.time += 0.011;
+  f.foot(kRight).valid = false;
+  c.send_text(json_frame(f));
+  const json p = c.expect("pose");
+  EXPECT_EQ(p["status"], "degraded");
+  EXPECT_EQ(p["info"]["legs"], "upper");
 }
 
 }  // namespace
