@@ -33,82 +33,85 @@ Skeleton avatar_skeleton(const Resources& res, double user_height) {
   return skel;
 }
 
-// The VRIK-style full-body IK avatar (head + hands).
-class IkMethod final : public Method {
+// One runtime on the per-frame contract (Model / State / Info / update) as a
+// Method: Runtime names the types, forwards update and describes its Info.
+template <typename Runtime>
+class RuntimeMethod final : public Method {
  public:
-  IkMethod(const Resources& res, const MethodOptions& opt)
-      : model_(ik::make_model(avatar_skeleton(res, opt.user_height))), state_(model_) {}
+  explicit RuntimeMethod(typename Runtime::Model model) : model_(std::move(model)), state_(model_) {}
 
   UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
-    ik::Info ii;
-    const UpdateStatus st = ik::update(model_, f, state_, out, &ii);
-    if (st == UpdateStatus::Rejected) return st;
-    info.add("steps", ii.steps_taken);
-    info.add("lean", ii.lean);
-    info.add("head_tracked", ii.head_tracked ? 1.0 : 0.0);
+    typename Runtime::Info i;
+    const UpdateStatus st = Runtime::update(model_, f, state_, out, &i);
+    if (st != UpdateStatus::Rejected) Runtime::describe(i, info);
     return st;
   }
   const Skeleton& skeleton() const override { return model_.skeleton(); }
 
  private:
-  const ik::Model model_;
-  ik::State state_;
+  const typename Runtime::Model model_;
+  typename Runtime::State state_;
+};
+
+// The VRIK-style full-body IK avatar (head + hands).
+struct IkRuntime {
+  using Model = ik::Model;
+  using State = ik::State;
+  using Info = ik::Info;
+  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) { return ik::update(m, f, s, o, i); }
+  static void describe(const Info& i, MethodInfo& out) {
+    out.add("steps", i.steps_taken);
+    out.add("lean", i.lean);
+    out.add("head_tracked", i.head_tracked ? 1.0 : 0.0);
+  }
+  static Model model(const Resources& res, const MethodOptions& opt) { return ik::make_model(avatar_skeleton(res, opt.user_height)); }
 };
 
 // Walking-in-place legs from the ankles (the head's yaw is the walking heading).
-class WipMethod final : public Method {
- public:
-  WipMethod(const Resources& res, const MethodOptions& opt)
-      : model_(wip::make_model(avatar_skeleton(res, opt.user_height))), state_(model_) {}
-
-  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
-    wip::Info wi;
-    const UpdateStatus st = wip::update(model_, f, state_, out, &wi);
-    if (st == UpdateStatus::Rejected) return st;
-    info.add("walking", wi.walking ? 1.0 : 0.0);
-    info.add("speed", wi.speed);
-    info.add("distance", wi.distance);
-    info.add("heading", wi.heading);
-    info.add("phase_left", wip::phase_name(wi.phase[0]).data());  // static, NUL-terminated literals
-    info.add("phase_right", wip::phase_name(wi.phase[1]).data());
-    return st;
+struct WipRuntime {
+  using Model = wip::Model;
+  using State = wip::State;
+  using Info = wip::Info;
+  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) { return wip::update(m, f, s, o, i); }
+  static void describe(const Info& i, MethodInfo& out) {
+    out.add("walking", i.walking ? 1.0 : 0.0);
+    out.add("speed", i.speed);
+    out.add("distance", i.distance);
+    out.add("heading", i.heading);
+    out.add("phase_left", wip::phase_name(i.phase[0]).data());  // static, NUL-terminated literals
+    out.add("phase_right", wip::phase_name(i.phase[1]).data());
   }
-  const Skeleton& skeleton() const override { return model_.skeleton(); }
-
- private:
-  const wip::Model model_;
-  wip::State state_;
+  static Model model(const Resources& res, const MethodOptions& opt) { return wip::make_model(avatar_skeleton(res, opt.user_height)); }
 };
 
 // CoolMoves accentuation over the shared database (one Model per session's settings).
-class AccentMethod final : public Method {
- public:
-  AccentMethod(const Resources& res, const MethodOptions& opt) : model_(accent::make_model(*res.db, settings(opt))), state_(model_) {}
-
-  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
-    accent::Info ai;
-    const UpdateStatus st = accent::update(model_, f, state_, out, &ai);
-    if (st == UpdateStatus::Rejected) return st;
-    info.add("match", accent::status_name(ai.match));
-    info.add("match_weight", ai.match_weight);
-    info.add("fallback", ai.fallback);
-    info.add("matches_left", ai.matches[0]);
-    info.add("matches_right", ai.matches[1]);
-    return st;
+struct AccentRuntime {
+  using Model = accent::Model;
+  using State = accent::State;
+  using Info = accent::Info;
+  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) {
+    return accent::update(m, f, s, o, i);
   }
-  const Skeleton& skeleton() const override { return model_.skeleton(); }
-
- private:
-  static accent::Settings settings(const MethodOptions& opt) {
+  static void describe(const Info& i, MethodInfo& out) {
+    out.add("match", accent::status_name(i.match));
+    out.add("match_weight", i.match_weight);
+    out.add("fallback", i.fallback);
+    out.add("matches_left", i.matches[0]);
+    out.add("matches_right", i.matches[1]);
+  }
+  static Model model(const Resources& res, const MethodOptions& opt) {
     accent::Settings c;
     c.classes = opt.classes;
     c.exaggeration = opt.exaggeration;
     c.user_height = opt.user_height;
-    return c;
+    return accent::make_model(*res.db, c);
   }
-  const accent::Model model_;
-  accent::State state_;
 };
+
+template <typename Runtime>
+std::unique_ptr<Method> runtime_method(const Resources& res, const MethodOptions& opt) {
+  return std::make_unique<RuntimeMethod<Runtime>>(Runtime::model(res, opt));
+}
 
 // The combined avatar: upper body from accent (ik without a database), legs
 // from walking-in-place when the ankles are tracked. Both run on the same
@@ -181,15 +184,12 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("exaggeration " + std::to_string(opt.exaggeration) + " is outside (0, 4]");
   if (!(opt.user_height == 0 || (opt.user_height >= 0.5 && opt.user_height <= 2.5)))
     throw Error("user_height " + std::to_string(opt.user_height) + " m is outside [0.5, 2.5] (0 = the avatar's own)");
-  if (opt.method == "ik") return std::make_unique<IkMethod>(res, opt);
-  if (opt.method == "wip") return std::make_unique<WipMethod>(res, opt);
-  if (opt.method == "combined") {
-    std::unique_ptr<Method> upper;
-    if (res.db) upper = std::make_unique<AccentMethod>(res, opt);
-    else upper = std::make_unique<IkMethod>(res, opt);
-    return std::make_unique<CombinedMethod>(std::move(upper), std::make_unique<WipMethod>(res, opt));
-  }
-  return std::make_unique<AccentMethod>(res, opt);
+  if (opt.method == "ik") return runtime_method<IkRuntime>(res, opt);
+  if (opt.method == "wip") return runtime_method<WipRuntime>(res, opt);
+  if (opt.method == "combined")
+    return std::make_unique<CombinedMethod>(res.db ? runtime_method<AccentRuntime>(res, opt) : runtime_method<IkRuntime>(res, opt),
+                                            runtime_method<WipRuntime>(res, opt));
+  return runtime_method<AccentRuntime>(res, opt);
 }
 
 }  // namespace legwork::serve

@@ -29,6 +29,14 @@ std::vector<TrackerFrame> trial_frames(const std::string& rel = "walking/07_02.b
 
 Vec3 vec(const json& a) { return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; }
 
+// Sends `text` and expects an error with `code` whose message contains `part`.
+void expect_error(Client& c, const std::string& text, const std::string& code, const std::string& part) {
+  c.send_text(text);
+  const json e = c.expect("error");
+  EXPECT_EQ(e["code"], code) << e.dump();
+  EXPECT_NE(e["message"].get<std::string>().find(part), std::string::npos) << e.dump();
+}
+
 TEST(Serve, HandshakeSendsWelcomeWithTheSkeleton) {
   RunningServer srv;
   Client c(srv.port());
@@ -137,29 +145,16 @@ TEST(Serve, MalformedJsonGetsAnErrorAndTheSessionSurvives) {
   json e = c.expect("error");
   EXPECT_EQ(e["code"], "bad_json");
   EXPECT_NE(e["message"].get<std::string>().find("not valid JSON"), std::string::npos) << e.dump();
-  c.send_text(R"({"type":"dance"})");
-  e = c.expect("error");
-  EXPECT_EQ(e["code"], "bad_message");
-  EXPECT_NE(e["message"].get<std::string>().find("unknown message type 'dance'"), std::string::npos) << e.dump();
-  c.send_text(R"({"type":"frame","t":0.2,"head":{"p":[0,1.6]}})");
-  e = c.expect("error");
-  EXPECT_EQ(e["code"], "bad_message");
-  EXPECT_NE(e["message"].get<std::string>().find("frame.head.p must be an array of 3 numbers"), std::string::npos);
+  expect_error(c, R"({"type":"dance"})", "bad_message", "unknown message type 'dance'");
+  expect_error(c, R"({"type":"frame","t":0.2,"head":{"p":[0,1.6]}})", "bad_message", "frame.head.p must be an array of 3 numbers");
   expect_alive(c, 0.3);
 }
 
 TEST(Serve, WrongVersionIsRefusedWithAnError) {
   RunningServer srv;
   Client c(srv.port());
-  c.send_text(R"({"type":"hello","version":2,"method":"ik"})");
-  json e = c.expect("error");
-  EXPECT_EQ(e["code"], "bad_version");
-  EXPECT_NE(e["message"].get<std::string>().find("unsupported protocol version 2: this server speaks version 1"), std::string::npos)
-      << e.dump();
-  c.send_text(R"({"type":"frame","t":0.1})");
-  e = c.expect("error");
-  EXPECT_EQ(e["code"], "bad_message");
-  EXPECT_NE(e["message"].get<std::string>().find("send hello before frames"), std::string::npos);
+  expect_error(c, R"({"type":"hello","version":2,"method":"ik"})", "bad_version", "unsupported protocol version 2: this server speaks version 1");
+  expect_error(c, R"({"type":"frame","t":0.1})", "bad_message", "send hello before frames");
   c.hello();  // the session survives: a correct hello still works
   expect_alive(c, 0.5);
 }
@@ -167,16 +162,10 @@ TEST(Serve, WrongVersionIsRefusedWithAnError) {
 TEST(Serve, UnknownMethodAndMissingDatabaseAreExplained) {
   RunningServer srv;
   Client c(srv.port());
-  c.send_text(R"({"type":"hello","version":1,"method":"teleport"})");
-  json e = c.expect("error");
-  EXPECT_EQ(e["code"], "bad_value");
-  EXPECT_NE(e["message"].get<std::string>().find("unknown method 'teleport' (known: accent, ik, wip, combined)"), std::string::npos)
-      << e.dump();
-  c.send_text(R"({"type":"hello","version":1,"method":"accent"})");
-  e = c.expect("error");
-  EXPECT_NE(e["message"].get<std::string>().find("method 'accent' needs a database: start the server with --db FILE"),
-            std::string::npos)
-      << e.dump();
+  expect_error(c, R"({"type":"hello","version":1,"method":"teleport"})", "bad_value",
+               "unknown method 'teleport' (known: accent, ik, wip, combined)");
+  expect_error(c, R"({"type":"hello","version":1,"method":"accent"})", "bad_value",
+               "method 'accent' needs a database: start the server with --db FILE");
 }
 
 TEST(Serve, OversizedMessageClosesWith1009AndOthersKeepGoing) {
