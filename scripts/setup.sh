@@ -22,6 +22,7 @@ PACKAGES=(
   liblo-dev liblo-tools                 # legwork serve: VMC (OSC over UDP) with liblo; oscdump/oscsend check it in tests
   haproxy                               # legwork serve scale-out: the load balancer in front of several servers (deploy/haproxy.cfg)
   ccache                                # compiler cache: rebuilds (CI on the same machine, sanitizer builds) reuse objects
+  chromium                              # headless browser for the viewer's end-to-end test (driven by playwright-core)
 )
 
 missing=()
@@ -48,3 +49,23 @@ cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release "${LAUNCHER[@]}" "$@"
 # shellcheck disable=SC2086
 ninja -C "$BUILD" -j"$(nproc)" ${LEGWORK_BUILD_TARGETS:-}
 echo "setup: built legwork in $BUILD/ (CLI: $BUILD/apps/legwork/legwork)" >&2
+
+# The browser viewer (web/, served by `legwork serve`): npm packages from the
+# npm registry, pinned by web/package-lock.json:
+#   three           - the 3D scene (WebGL renderer, GLTFLoader for walk-cycle GLBs, WebXR)
+#   esbuild         - bundles web/src/*.js into web/dist/ (not committed)
+#   playwright-core - drives Debian's chromium in the end-to-end test (no browser download)
+#   ws              - WebSocket server of the test's mock of `legwork serve`
+# LEGWORK_SKIP_WEB=1 skips it (C++-only machines).
+if [ "${LEGWORK_SKIP_WEB:-0}" != 1 ]; then
+  # node + npm run the bundler and the tests; Debian's only when none is installed
+  # (a NodeSource nodejs already ships npm and conflicts with Debian's npm package).
+  if ! command -v npm >/dev/null 2>&1; then
+    echo "setup: installing nodejs npm" >&2
+    SUDO=""
+    if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+  fi
+  ( cd web && npm ci --no-audit --no-fund --loglevel=error && npm run build --silent )
+  echo "setup: built the viewer in web/dist/ (test: cd web && npm test)" >&2
+fi
