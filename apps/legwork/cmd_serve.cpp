@@ -26,15 +26,15 @@ void register_serve(CLI::App& app) {
   auto* cmd = app.add_subcommand("serve",
                                  "Live avatars: HTTP + WebSocket (viewer, docs/protocol.md) and VMC (OSC/UDP) in and out.\n"
                                  "Example: legwork serve --db all.lwdb --port 8080   then open http://127.0.0.1:8080/");
-  cmd->add_option("--db", o->db_path, "accent database (.lwdb, from 'legwork accent build'); without it only the ik method");
-  cmd->add_option("--skeleton", o->skeleton_path, "BVH whose skeleton the ik avatar uses when there is no --db (default: data/cmu/bvh/walking/07_01.bvh)");
+  cmd->add_option("--db", o->db_path, "accent database (.lwdb, from 'legwork accent build'); without it the ik and wip methods on --skeleton");
+  cmd->add_option("--skeleton", o->skeleton_path, "BVH whose skeleton the ik/wip/combined avatars use when there is no --db (default: data/cmu/bvh/walking/07_01.bvh)");
   cmd->add_option("--host", o->host, "address to bind (127.0.0.1 = this machine only; 0.0.0.0 = every interface)")->capture_default_str();
   cmd->add_option("--port", o->port, "HTTP + WebSocket port (0 = any free port, printed)")->capture_default_str()->check(CLI::Range(0, 65535));
   cmd->add_option("--web", o->web_dir, "viewer folder served at / (default: web/dist if present)");
   cmd->add_option("--trials", o->trials_dir, "BVH trials for /api/trials and replay (default: data/cmu/bvh)");
   cmd->add_option("--vmc-in", o->vmc_in_port, "receive VMC trackers (/VMC/Ext/Hmd|Con|Tra/Pos) on this UDP port")->check(CLI::Range(1, 65535));
   cmd->add_option("--vmc-out", o->vmc_out, "send the body as a VMC Performer to HOST:PORT (Marionette default port 39539)");
-  cmd->add_option("--vmc-method", o->vmc_method, "method of the VMC-driven avatar (accent, ik)")->capture_default_str();
+  cmd->add_option("--vmc-method", o->vmc_method, "method of the VMC-driven avatar (accent, ik, wip, combined)")->capture_default_str();
   cmd->add_option("--vmc-left", o->vmc_left_serial, "serial of the left controller (default: by side of the headset when tracking starts)");
   cmd->add_option("--vmc-right", o->vmc_right_serial, "serial of the right controller");
   cmd->add_option("--vmc-rate", o->vmc_rate_hz, "VMC input sampling rate, Hz")->capture_default_str()->check(CLI::Range(1.0, 240.0));
