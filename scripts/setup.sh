@@ -24,6 +24,9 @@ PACKAGES=(
   python3-matplotlib                    # python/examples/plot_accent.py (run in CI)
   python3-setuptools python3-wheel python3-venv python3-pip  # offline `pip install --no-build-isolation .` (python/README.md)
   mono-mcs mono-runtime                 # C# binding (bindings/csharp): compiled and run against liblegwork.so in CI
+  libboost-dev                          # legwork serve: Boost.Beast/Asio (header-only) HTTP + WebSocket, well kept, in Debian
+  liblo-dev liblo-tools                 # legwork serve: VMC (OSC over UDP) with liblo; oscdump/oscsend check it in tests
+  haproxy                               # legwork serve scale-out: the load balancer in front of several servers (deploy/haproxy.cfg)
   ccache                                # compiler cache: rebuilds (CI on the same machine, sanitizer builds) reuse objects
   chromium                              # headless browser for the viewer's end-to-end test (driven by playwright-core)
 )

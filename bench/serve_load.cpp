@@ -1,0 +1,270 @@
+// serve_load: a load benchmark for `legwork serve` on loopback (not a timed
+// test). N concurrent replay clients each stream a real CMU trial's head +
+// hands at 90 Hz (binary frames) and time every pose's round trip. Bounded in
+// clients and time; stops by itself.
+//
+//   serve_load --port P [--clients N] [--seconds S] [--method ik] [--ramp] [--json out.json]
+//
+// --ramp: N = 10, 20, 40, ... (up to --max-clients) until answers < 99 %;
+// "sustained" is the largest N such that it and every smaller step kept
+// p99 <= --p99-ms with every frame answered. --server-pids adds the servers'
+// CPU time per frame (from /proc) and the avatars per core it implies.
+#include <legwork/core/tracker.hpp>
+#include <legwork/io/bvh.hpp>
+#include <legwork/serve/protocol.hpp>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <utility>  // before Asio (Boost 1.74 awaitable.hpp needs std::exchange)
+
+#include <boost/asio.hpp>
+#include <boost/beast.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+namespace beast = boost::beast;
+namespace websocket = beast::websocket;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+using Clock = std::chrono::steady_clock;
+using json = nlohmann::json;
+using namespace legwork;
+
+// CPU seconds (user + system) used so far by the given processes (Linux /proc).
+double cpu_seconds(const std::vector<int>& pids) {
+  double total = 0;
+  for (int pid : pids) {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+    std::string line;
+    std::getline(in, line);
+    const auto close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 2));
+    std::string field;
+    unsigned long long utime = 0, stime = 0;
+    for (int i = 3; i <= 15 && rest >> field; ++i) {
+      if (i == 14) utime = std::stoull(field);
+      if (i == 15) stime = std::stoull(field);
+    }
+    total += static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
+  }
+  return total;
+}
+
+struct Run {
+  int clients = 0;
+  double server_cpu_us_per_frame = 0;  // with --server-pids
+  std::uint64_t sent = 0, answered = 0, errors = 0, failed_clients = 0;
+  std::vector<double> latency_ms;
+  double p50 = 0, p99 = 0, max = 0, answered_share = 0;
+};
+
+constexpr std::uint32_t kWarmupFrames = 45;  // the first half second of each client is not timed
+
+class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
+ public:
+  ReplayClient(net::io_context& ioc, const std::vector<std::string>& frames, Run& run, std::string method, double seconds,
+               int offset)
+      : ws_(net::make_strand(ioc)), timer_(ioc), frames_(frames), run_(run), method_(std::move(method)), seconds_(seconds),
+        index_(static_cast<std::size_t>(offset) % frames.size()) {}
+
+  void start(const tcp::endpoint& ep) {
+    beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(10));
+    beast::get_lowest_layer(ws_).async_connect(ep, [self = shared_from_this(), ep](beast::error_code ec) {
+      if (ec) return self->fail();
+      beast::get_lowest_layer(self->ws_).expires_never();
+      beast::get_lowest_layer(self->ws_).socket().set_option(tcp::no_delay(true), ec);
+      self->ws_.async_handshake("127.0.0.1:" + std::to_string(ep.port()), "/ws", [self](beast::error_code e) {
+        if (e) return self->fail();
+        self->hello();
+      });
+    });
+  }
+
+ private:
+  void fail() {
+    if (!failed_) ++run_.failed_clients;
+    failed_ = true;
+  }
+
+  void hello() {
+    hello_ = json{{"type", "hello"}, {"version", 1}, {"method", method_}, {"format", "binary"}, {"record", false}}.dump();
+    ws_.text(true);
+    ws_.async_write(net::buffer(hello_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
+      if (ec) return self->fail();
+      self->read();
+    });
+  }
+
+  void read() {
+    ws_.async_read(buf_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+      if (ec) return self->done_ ? void() : self->fail();
+      self->on_message();
+      self->buf_.consume(self->buf_.size());
+      self->read();
+    });
+  }
+
+  void on_message() {
+    const auto now = Clock::now();
+    if (ws_.got_text()) {
+      const json j = json::parse(beast::buffers_to_string(buf_.data()), nullptr, false);
+      if (j.value("type", "") == "welcome") {
+        start_ = now;
+        next_ = now;
+        tick();
+      } else {
+        ++run_.errors;
+      }
+      return;
+    }
+    const auto d = buf_.cdata();
+    const auto pose = serve::parse_binary_pose(std::span(static_cast<const std::byte*>(d.data()), d.size()));
+    if (pose.seq >= 1 && pose.seq <= sent_at_.size()) {
+      ++run_.answered;
+      if (pose.seq <= kWarmupFrames) return;  // connection set-up and first allocations
+      run_.latency_ms.push_back(std::chrono::duration<double, std::milli>(now - sent_at_[pose.seq - 1]).count());
+    }
+  }
+
+  void tick() {
+    if (std::chrono::duration<double>(Clock::now() - start_).count() >= seconds_) {
+      timer_.expires_after(std::chrono::milliseconds(200));  // last answers
+      timer_.async_wait([self = shared_from_this()](beast::error_code) {
+        self->done_ = true;
+        beast::get_lowest_layer(self->ws_).close();
+      });
+      return;
+    }
+    if (!writing_) {
+      out_ = frames_[index_++ % frames_.size()];
+      // Rewrite the time so it keeps increasing across trial loops.
+      const double t = static_cast<double>(sent_at_.size()) / 90.0;
+      std::memcpy(out_.data() + 4, &t, sizeof t);
+      sent_at_.push_back(Clock::now());
+      ++run_.sent;
+      writing_ = true;
+      ws_.binary(true);
+      ws_.async_write(net::buffer(out_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
+        self->writing_ = false;
+        if (ec) self->fail();
+      });
+    }
+    next_ += std::chrono::microseconds(11111);
+    timer_.expires_at(next_);
+    timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
+      if (!ec && !self->failed_) self->tick();
+    });
+  }
+
+  websocket::stream<beast::tcp_stream> ws_;
+  net::steady_timer timer_;
+  const std::vector<std::string>& frames_;
+  Run& run_;
+  std::string method_, hello_, out_;
+  double seconds_;
+  std::size_t index_;
+  beast::flat_buffer buf_;
+  std::vector<Clock::time_point> sent_at_;
+  Clock::time_point start_, next_;
+  bool writing_ = false, failed_ = false, done_ = false;
+};
+
+Run run_clients(const tcp::endpoint& ep, const std::vector<std::string>& frames, int clients, double seconds,
+                const std::string& method) {
+  Run run;
+  run.clients = clients;
+  net::io_context ioc;
+  for (int i = 0; i < clients; ++i)
+    std::make_shared<ReplayClient>(ioc, frames, run, method, seconds, i * 7)->start(ep);
+  ioc.run_for(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds + 15)));
+  auto& l = run.latency_ms;
+  std::sort(l.begin(), l.end());
+  if (!l.empty()) {
+    run.p50 = l[l.size() / 2];
+    run.p99 = l[std::min(l.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(l.size())))];
+    run.max = l.back();
+  }
+  run.answered_share = run.sent ? static_cast<double>(run.answered) / static_cast<double>(run.sent) : 0;
+  return run;
+}
+
+json to_json(const Run& r) {
+  return {{"clients", r.clients},   {"frames_sent", r.sent},   {"poses", r.answered}, {"answered", r.answered_share},
+          {"p50_ms", r.p50},        {"p99_ms", r.p99},         {"max_ms", r.max},     {"errors", r.errors},
+          {"failed_clients", r.failed_clients}, {"server_cpu_us_per_frame", r.server_cpu_us_per_frame},
+          {"avatars_per_core_by_cpu", r.server_cpu_us_per_frame > 0 ? 1e6 / (90.0 * r.server_cpu_us_per_frame) : 0.0}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"serve_load: N replay clients at 90 Hz against legwork serve on loopback"};
+  int port = 0, clients = 10, max_clients = 1280;
+  double seconds = 5, p99_limit = 5.0;
+  bool ramp = false, still = false;
+  std::string method = "ik", trial = std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/07_02.bvh", out, label = "one process";
+  app.add_option("--port", port, "server (or haproxy) port on 127.0.0.1")->required();
+  app.add_option("--clients", clients, "concurrent clients")->check(CLI::Range(1, 5000));
+  app.add_option("--seconds", seconds, "streaming time per step")->check(CLI::Range(0.5, 60.0));
+  app.add_option("--method", method, "session method");
+  app.add_option("--trial", trial, "BVH trial replayed (head + hands)");
+  app.add_flag("--ramp", ramp, "double the clients until p99 or answers fail");
+  app.add_option("--max-clients", max_clients, "ramp ceiling")->check(CLI::Range(1, 5000));
+  app.add_option("--p99-ms", p99_limit, "latency limit for 'sustained'");
+  app.add_option("--label", label, "name of this configuration in the JSON");
+  app.add_option("--json", out, "write the figures here");
+  std::vector<int> server_pids;
+  app.add_option("--server-pids", server_pids, "server process ids: report their CPU time per frame")->delimiter(',');
+  app.add_flag("--still", still, "replay only the trial's first frame (a user standing still; for output checks)");
+  CLI11_PARSE(app, argc, argv);
+
+  io::BvhReadOptions ro;
+  ro.drop_first_frame = true;
+  std::vector<std::string> frames;
+  for (auto f : tracker_frames_from_motion(io::load_bvh(trial, ro), 90.0)) {
+    f.foot(kLeft).valid = f.foot(kRight).valid = false;
+    frames.push_back(serve::binary_frame(f));
+    if (still) break;
+  }
+  const tcp::endpoint ep(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port));
+  json steps = json::array();
+  int sustained = 0;
+  bool contiguous = true;  // sustained = the largest N with every smaller step ok too
+  for (int n = ramp ? 10 : clients; n <= (ramp ? max_clients : clients); n *= 2) {
+    const double cpu0 = cpu_seconds(server_pids);
+    Run r = run_clients(ep, frames, n, seconds, method);
+    if (r.answered > 0 && !server_pids.empty())
+      r.server_cpu_us_per_frame = 1e6 * (cpu_seconds(server_pids) - cpu0) / static_cast<double>(r.answered);
+    const bool answered = r.answered_share >= 0.99 && r.failed_clients == 0;
+    const bool ok = answered && r.p99 <= p99_limit;
+    std::printf("%-13s clients %5d  sent %8llu  answered %6.2f %%  p50 %6.2f ms  p99 %7.2f ms  max %7.2f ms  server CPU %6.1f us/frame  %s\n",
+                label.c_str(), n, static_cast<unsigned long long>(r.sent), 100 * r.answered_share, r.p50, r.p99, r.max,
+                r.server_cpu_us_per_frame, ok ? "ok" : "over");
+    std::fflush(stdout);
+    steps.push_back(to_json(r));
+    steps.back()["ok"] = ok;
+    contiguous = contiguous && ok;
+    if (contiguous) sustained = n;
+    if (!answered) break;  // p99 over the limit alone: keep going for the CPU figures
+  }
+  std::printf("%s: %d avatars sustained at 90 Hz with p99 <= %.1f ms (method %s)\n", label.c_str(), sustained, p99_limit, method.c_str());
+  if (!out.empty()) {
+    std::ofstream(out) << json{{"label", label}, {"method", method}, {"rate_hz", 90}, {"p99_limit_ms", p99_limit},
+                               {"sustained_avatars", sustained}, {"steps", steps}}
+                              .dump(2)
+                       << "\n";
+  }
+  return 0;
+}

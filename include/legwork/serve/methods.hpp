@@ -1,0 +1,72 @@
+#pragma once
+// The one place where `legwork serve` calls the runtimes (accent, ik, wip,
+// combined). Each live avatar owns one Method: built from the session's
+// options, fed one TrackerFrame per update, writing a pose on skeleton().
+// Adapting the server to a runtime API change touches only methods.cpp.
+#include <legwork/core/motion.hpp>
+#include <legwork/core/tracker.hpp>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace legwork::accent {
+class Database;
+}
+
+namespace legwork::serve {
+
+// What the server shares read-only between every session.
+struct Resources {
+  const accent::Database* db = nullptr;  // null: methods needing a database are unavailable
+  const Skeleton* skeleton = nullptr;    // avatar skeleton for ik/wip when there is no database
+  std::string database_name;             // for /api/info
+};
+
+// Session options (the hello message, later "options" messages).
+struct MethodOptions {
+  std::string method = "accent";     // accent | ik | wip | combined
+  std::vector<std::string> classes;  // accent classes to match (empty = all)
+  double exaggeration = 1.0;         // accent: hand-motion exaggeration about the head
+  double user_height = 0;            // metres; 0 = the avatar skeleton's own height
+};
+
+// Per-frame diagnostics as a flat list of name -> number or name -> text
+// (serialised as the pose message's "info" object). Fixed capacity: no allocation.
+struct MethodInfo {
+  struct Item {
+    const char* key = "";
+    double number = 0;
+    const char* text = nullptr;  // non-null: a text value (static storage)
+  };
+  std::array<Item, 12> items{};
+  int count = 0;
+  void add(const char* key, double v) {
+    if (count < static_cast<int>(items.size())) items[static_cast<std::size_t>(count++)] = {key, v, nullptr};
+  }
+  void add(const char* key, const char* text) {
+    if (count < static_cast<int>(items.size())) items[static_cast<std::size_t>(count++)] = {key, 0, text};
+  }
+};
+
+class Method {
+ public:
+  virtual ~Method() = default;
+  // One frame in, one pose out (local rotations, root translation = world
+  // position). Rejected leaves `out` untouched. Never throws.
+  virtual UpdateStatus update(const TrackerFrame& frame, PoseRef out, MethodInfo& info) = 0;
+  // The output pose's skeleton (fixed for the method's lifetime).
+  virtual const Skeleton& skeleton() const = 0;
+};
+
+// Builds a method; throws legwork::Error with a message fit for the client
+// ("unknown method 'x' (available: ...)", "unknown class ...", "method
+// 'accent' needs a database: start the server with --db FILE").
+std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& opt);
+// Methods this server can run with these resources, in the protocol's order.
+std::vector<std::string> available_methods(const Resources& res);
+// Every method name the protocol knows.
+const std::vector<std::string>& known_methods();
+
+}  // namespace legwork::serve

@@ -1,0 +1,195 @@
+// Every call from `legwork serve` into the runtimes lives here (see methods.hpp).
+#include <legwork/serve/methods.hpp>
+
+#include <legwork/accent/accent.hpp>
+#include <legwork/accent/database.hpp>
+#include <legwork/core/measure.hpp>
+#include <legwork/ik/full_body.hpp>
+#include <legwork/wip/wip.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace legwork::serve {
+namespace {
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s;
+}
+
+// The avatar skeleton for methods without a database of their own, scaled to
+// the user's height (0 = as is).
+Skeleton avatar_skeleton(const Resources& res, double user_height) {
+  const Skeleton* base = res.db ? &res.db->skeleton() : res.skeleton;
+  if (!base) throw Error("no avatar skeleton: start the server with --db FILE or --skeleton FILE.bvh");
+  Skeleton skel = *base;
+  if (user_height > 0) {
+    const double h = measure_body(skel).standing_height;
+    if (h <= 0) throw Error("the avatar skeleton has no measurable standing height");
+    skel.scale(user_height / h);
+  }
+  return skel;
+}
+
+// One runtime on the per-frame contract (Model / State / Info / update) as a
+// Method: Runtime names the types, forwards update and describes its Info.
+template <typename Runtime>
+class RuntimeMethod final : public Method {
+ public:
+  explicit RuntimeMethod(typename Runtime::Model model) : model_(std::move(model)), state_(model_) {}
+
+  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
+    typename Runtime::Info i;
+    const UpdateStatus st = Runtime::update(model_, f, state_, out, &i);
+    if (st != UpdateStatus::Rejected) Runtime::describe(i, info);
+    return st;
+  }
+  const Skeleton& skeleton() const override { return model_.skeleton(); }
+
+ private:
+  const typename Runtime::Model model_;
+  typename Runtime::State state_;
+};
+
+// The VRIK-style full-body IK avatar (head + hands).
+struct IkRuntime {
+  using Model = ik::Model;
+  using State = ik::State;
+  using Info = ik::Info;
+  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) { return ik::update(m, f, s, o, i); }
+  static void describe(const Info& i, MethodInfo& out) {
+    out.add("steps", i.steps_taken);
+    out.add("lean", i.lean);
+    out.add("head_tracked", i.head_tracked ? 1.0 : 0.0);
+  }
+  static Model model(const Resources& res, const MethodOptions& opt) { return ik::make_model(avatar_skeleton(res, opt.user_height)); }
+};
+
+// Walking-in-place legs from the ankles (the head's yaw is the walking heading).
+struct WipRuntime {
+  using Model = wip::Model;
+  using State = wip::State;
+  using Info = wip::Info;
+  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) { return wip::update(m, f, s, o, i); }
+  static void describe(const Info& i, MethodInfo& out) {
+    out.add("walking", i.walking ? 1.0 : 0.0);
+    out.add("speed", i.speed);
+    out.add("distance", i.distance);
+    out.add("heading", i.heading);
+    out.add("phase_left", wip::phase_name(i.phase[0]).data());  // static, NUL-terminated literals
+    out.add("phase_right", wip::phase_name(i.phase[1]).data());
+  }
+  static Model model(const Resources& res, const MethodOptions& opt) { return wip::make_model(avatar_skeleton(res, opt.user_height)); }
+};
+
+// CoolMoves accentuation over the shared database (one Model per session's settings).
+struct AccentRuntime {
+  using Model = accent::Model;
+  using State = accent::State;
+  using Info = accent::Info;
+  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) {
+    return accent::update(m, f, s, o, i);
+  }
+  static void describe(const Info& i, MethodInfo& out) {
+    out.add("match", accent::status_name(i.match));
+    out.add("match_weight", i.match_weight);
+    out.add("fallback", i.fallback);
+    out.add("matches_left", i.matches[0]);
+    out.add("matches_right", i.matches[1]);
+  }
+  static Model model(const Resources& res, const MethodOptions& opt) {
+    accent::Settings c;
+    c.classes = opt.classes;
+    c.exaggeration = opt.exaggeration;
+    c.user_height = opt.user_height;
+    return accent::make_model(*res.db, c);
+  }
+};
+
+template <typename Runtime>
+std::unique_ptr<Method> runtime_method(const Resources& res, const MethodOptions& opt) {
+  return std::make_unique<RuntimeMethod<Runtime>>(Runtime::model(res, opt));
+}
+
+// The combined avatar: upper body from accent (ik without a database), legs
+// from walking-in-place when the ankles are tracked. Both run on the same
+// avatar skeleton; the leg joints' local rotations (hips down) come from wip.
+class CombinedMethod final : public Method {
+ public:
+  CombinedMethod(std::unique_ptr<Method> upper, std::unique_ptr<Method> legs)
+      : upper_(std::move(upper)), legs_(std::move(legs)), legs_pose_(legs_->skeleton()) {
+    const Skeleton& skel = upper_->skeleton();
+    if (skel.joint_count() != legs_->skeleton().joint_count())
+      throw Error("combined: upper-body and leg skeletons differ");
+    for (int j = 0; j < skel.joint_count(); ++j)
+      for (Role hip : {Role::LeftHip, Role::RightHip})
+        if (skel.roles.has(hip) && skel.is_ancestor(skel.roles[hip], j)) leg_joints_.push_back(j);
+  }
+
+  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
+    const UpdateStatus up = upper_->update(f, out, info);
+    if (up == UpdateStatus::Rejected) return up;
+    MethodInfo legs_info;
+    const UpdateStatus lg = legs_->update(f, legs_pose_.ref(), legs_info);
+    const bool feet = usable(f.foot(kLeft)) && usable(f.foot(kRight));
+    if (lg != UpdateStatus::Rejected && feet)
+      for (int j : leg_joints_) out.rotations[static_cast<std::size_t>(j)] = legs_pose_.rotations[static_cast<std::size_t>(j)];
+    for (int i = 0; i < legs_info.count && i < 2; ++i) {  // walking, speed
+      const auto& it = legs_info.items[static_cast<std::size_t>(i)];
+      info.add(it.key, it.number);
+    }
+    info.add("legs", feet ? "wip" : "upper");
+    if (up == UpdateStatus::Restarted) return up;
+    return up == UpdateStatus::Degraded || !feet ? UpdateStatus::Degraded : UpdateStatus::Ok;
+  }
+  const Skeleton& skeleton() const override { return upper_->skeleton(); }
+
+ private:
+  std::unique_ptr<Method> upper_, legs_;
+  Pose legs_pose_;
+  std::vector<int> leg_joints_;
+};
+
+}  // namespace
+
+const std::vector<std::string>& known_methods() {
+  static const std::vector<std::string> m{"accent", "ik", "wip", "combined"};
+  return m;
+}
+
+std::vector<std::string> available_methods(const Resources& res) {
+  std::vector<std::string> out;
+  if (res.db) out.push_back("accent");
+  if (res.db || res.skeleton) {
+    out.push_back("ik");
+    out.push_back("wip");
+    out.push_back("combined");
+  }
+  return out;
+}
+
+std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& opt) {
+  const auto avail = available_methods(res);
+  if (std::find(avail.begin(), avail.end(), opt.method) == avail.end()) {
+    const auto& known = known_methods();
+    if (std::find(known.begin(), known.end(), opt.method) == known.end())
+      throw Error("unknown method '" + opt.method + "' (known: " + join(known) + ")");
+    if (opt.method == "accent" && !res.db)
+      throw Error("method '" + opt.method + "' needs a database: start the server with --db FILE");
+    throw Error("method '" + opt.method + "' is not available in this server (available: " + join(avail) + ")");
+  }
+  if (!(opt.exaggeration > 0 && opt.exaggeration <= 4))
+    throw Error("exaggeration " + std::to_string(opt.exaggeration) + " is outside (0, 4]");
+  if (!(opt.user_height == 0 || (opt.user_height >= 0.5 && opt.user_height <= 2.5)))
+    throw Error("user_height " + std::to_string(opt.user_height) + " m is outside [0.5, 2.5] (0 = the avatar's own)");
+  if (opt.method == "ik") return runtime_method<IkRuntime>(res, opt);
+  if (opt.method == "wip") return runtime_method<WipRuntime>(res, opt);
+  if (opt.method == "combined")
+    return std::make_unique<CombinedMethod>(res.db ? runtime_method<AccentRuntime>(res, opt) : runtime_method<IkRuntime>(res, opt),
+                                            runtime_method<WipRuntime>(res, opt));
+  return runtime_method<AccentRuntime>(res, opt);
+}
+
+}  // namespace legwork::serve

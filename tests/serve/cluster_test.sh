@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# WebSocket sessions through HAProxy: scripts/serve-cluster.sh starts 2 servers
+# behind deploy/haproxy.cfg on free loopback ports; 6 replay clients stream for
+# a second through HAProxy; every frame must be answered, both servers must
+# have taken sessions, and stop must leave no process behind.
+#   cluster_test.sh LEGWORK SERVE_LOAD
+set -euo pipefail
+legwork=$1 load=$2
+root=$(cd "$(dirname "$0")/../.." && pwd)
+for t in haproxy python3 curl; do
+  command -v $t >/dev/null || { echo "cluster_test: SKIP: $t missing (scripts/setup.sh installs haproxy)"; exit 77; }
+done
+dir=$(mktemp -d)
+trap '"$root/scripts/serve-cluster.sh" stop --dir "$dir" >/dev/null 2>&1 || true; rm -rf "$dir"' EXIT
+port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+"$root/scripts/serve-cluster.sh" start 2 --port "$port" --dir "$dir" --legwork "$legwork" -- --verbose
+pids=$(cat "$dir"/serve-*.pid "$dir/haproxy.pid")
+"$load" --port "$port" --clients 6 --seconds 1 --label haproxy | tee "$dir/load.txt"
+grep -q "answered 100.00 %" "$dir/load.txt" || { echo "cluster_test: FAIL: not every frame answered through haproxy"; exit 1; }
+for i in 1 2; do
+  n=$(grep -c "hello method" "$dir/serve-$i.log" || true)
+  [ "$n" -ge 1 ] || { echo "cluster_test: FAIL: server $i took no session (leastconn should spread 6)"; exit 1; }
+  echo "cluster_test: server $i took $n sessions"
+done
+"$root/scripts/serve-cluster.sh" stop --dir "$dir"
+sleep 0.2
+for p in $pids; do
+  if kill -0 "$p" 2>/dev/null && ! grep -q zombie "/proc/$p/status" 2>/dev/null; then
+    echo "cluster_test: FAIL: process $p still running after stop"; exit 1
+  fi
+done
+echo "cluster_test: ok"

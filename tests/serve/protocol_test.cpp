@@ -1,0 +1,87 @@
+// Protocol v1 messages without sockets: binary forms, JSON frames, bad input.
+#include <legwork/serve/protocol.hpp>
+
+#include "cmu_sample.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace legwork::serve {
+namespace {
+
+std::span<const std::byte> bytes(const std::string& s) { return std::as_bytes(std::span(s.data(), s.size())); }
+
+TEST(Protocol, BinaryAndJsonFramesRoundTripARealFrame) {
+  const auto frames = tracker_frames_from_motion(testdata::load_sample("cmu/bvh/walking/07_02.bvh"), 90.0);
+  TrackerFrame f = frames[40];
+  f.foot(kRight).valid = false;
+  const std::string bin = binary_frame(f);
+  ASSERT_EQ(bin.size(), kBinaryFrameBytes);
+  const TrackerFrame b = parse_binary_frame(bytes(bin));
+  const TrackerFrame j = parse_text(json_frame(f)).frame;
+  EXPECT_EQ(b.time, f.time);
+  for (int d = 0; d < kDeviceCount; ++d) {
+    const auto i = static_cast<std::size_t>(d);
+    EXPECT_EQ(b.devices[i].valid, f.devices[i].valid);
+    EXPECT_EQ(j.devices[i].valid, f.devices[i].valid);
+    if (!f.devices[i].valid) continue;
+    EXPECT_LT((b.devices[i].position - f.devices[i].position).norm(), 1e-6);  // float32
+    EXPECT_LT((j.devices[i].position - f.devices[i].position).norm(), 1e-5);  // 5 decimals
+    EXPECT_LT(b.devices[i].rotation.angularDistance(f.devices[i].rotation), 1e-5);
+  }
+}
+
+TEST(Protocol, BinaryPoseLayout) {
+  const Skeleton& skel = testdata::sample_skeleton();
+  Pose p(skel);
+  p.rotations[3] = Quat(Eigen::AngleAxisd(0.5, Vec3::UnitX()));
+  std::vector<Vec3> world(static_cast<std::size_t>(skel.joint_count()), Vec3(1, 2, 3));
+  std::vector<int> joints{0, 3};
+  PoseMessage m;
+  m.seq = 17;
+  m.t = 1.25;
+  m.status = UpdateStatus::Degraded;
+  m.pose = p.ref();
+  m.world = world;
+  m.joints = joints;
+  std::string out;
+  format_pose_binary(out, m);
+  ASSERT_EQ(out.size(), kBinaryPoseHeaderBytes + 2 * 28);
+  EXPECT_EQ(out.substr(0, 4), "LWP1");
+  const BinaryPose b = parse_binary_pose(bytes(out));
+  EXPECT_EQ(b.seq, 17u);
+  EXPECT_EQ(b.t, 1.25);
+  EXPECT_EQ(b.status, 1);
+  EXPECT_NEAR(b.rotations[1].w(), std::cos(0.25), 1e-6);
+  EXPECT_EQ(b.positions[1], Vec3(1, 2, 3));
+}
+
+TEST(Protocol, BadMessagesNameTheProblem) {
+  const auto message = [](const std::string& text) {
+    try {
+      parse_text(text);
+    } catch (const ProtocolError& e) {
+      return e.code() + ": " + e.what();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message("[1,2]"), "bad_json: message must be a JSON object with a \"type\"");
+  EXPECT_EQ(message(R"({"type":"hello"})"), "bad_version: unsupported protocol version (missing): this server speaks version 1");
+  EXPECT_EQ(message(R"({"type":"hello","version":1,"format":"xml"})"), "bad_value: hello.format must be \"json\" or \"binary\"");
+  EXPECT_EQ(message(R"({"type":"frame"})"), "bad_message: frame without \"t\" (seconds)");
+  EXPECT_EQ(message(R"({"type":"frame","t":1,"left":{"p":[0,1,0],"q":[0,0,0,0]}})"),
+            "bad_value: frame.left.q is not a rotation (zero length)");
+  EXPECT_EQ(message(R"({"type":"frame","t":1,"left":null})"), "accepted");
+  std::string bin(kBinaryFrameBytes, '\0');
+  std::memcpy(bin.data(), "LWF2", 4);
+  try {
+    parse_binary_frame(bytes(bin));
+    ADD_FAILURE();
+  } catch (const ProtocolError& e) {
+    EXPECT_STREQ(e.what(), "binary frame does not start with \"LWF1\"");
+  }
+}
+
+}  // namespace
+}  // namespace legwork::serve

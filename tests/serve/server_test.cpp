@@ -1,0 +1,485 @@
+// legwork serve end to end: a server on a free loopback port, Beast clients.
+#include "serve_testing.hpp"
+
+#include <legwork/core/fk.hpp>
+#include <legwork/core/tracker.hpp>
+#include <legwork/io/bvh.hpp>
+#include <legwork/io/tracker_csv.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace legwork::serve {
+namespace {
+
+using namespace testing;
+
+// Head + hands (+ ankles) of a real CMU trial at 90 Hz, T-pose dropped.
+std::vector<TrackerFrame> trial_frames(const std::string& rel = "walking/07_02.bvh", bool feet = false) {
+  io::BvhReadOptions o;
+  o.drop_first_frame = true;
+  const Motion m = io::load_bvh(source_dir() + "/data/cmu/bvh/" + rel, o);
+  auto frames = tracker_frames_from_motion(m, 90.0);
+  if (!feet)
+    for (auto& f : frames) f.foot(kLeft).valid = f.foot(kRight).valid = false;
+  return frames;
+}
+
+Vec3 vec(const json& a) { return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; }
+
+// Sends `text` and expects an error with `code` whose message contains `part`.
+void expect_error(Client& c, const std::string& text, const std::string& code, const std::string& part) {
+  c.send_text(text);
+  const json e = c.expect("error");
+  EXPECT_EQ(e["code"], code) << e.dump();
+  EXPECT_NE(e["message"].get<std::string>().find(part), std::string::npos) << e.dump();
+}
+
+TEST(Serve, HandshakeSendsWelcomeWithTheSkeleton) {
+  RunningServer srv;
+  Client c(srv.port());
+  const json w = c.hello();
+  EXPECT_EQ(w["version"], 1);
+  EXPECT_EQ(w["method"], "ik");
+  EXPECT_EQ(w["session"].get<std::string>().substr(0, 1), "s");
+  const auto& names = w["skeleton"]["names"];
+  ASSERT_EQ(names.size(), w["skeleton"]["parents"].size());
+  ASSERT_EQ(names.size(), w["skeleton"]["offsets"].size());
+  EXPECT_EQ(names[0], "Hips");
+  EXPECT_NE(std::find(names.begin(), names.end(), "LeftHand"), names.end());
+  EXPECT_EQ(w["joints"].size(), names.size());
+  EXPECT_EQ(w["max_rate_hz"], 1e6);
+}
+
+// Streams a trial lock-step; returns the largest wrist error (metres) and pose count.
+std::pair<double, int> stream_trial(Client& c, const json& welcome, bool binary) {
+  const auto& names = welcome["skeleton"]["names"];
+  const auto index = [&](const char* n) { return static_cast<std::size_t>(std::find(names.begin(), names.end(), n) - names.begin()); };
+  const std::size_t hand[2] = {index("LeftHand"), index("RightHand")};
+  double worst = 0;
+  int poses = 0;
+  const auto frames = trial_frames();
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const TrackerFrame& f = frames[i];
+    if (binary) c.send_binary(binary_frame(f));
+    else c.send_text(json_frame(f));
+    auto m = c.read();
+    if (!m) {
+      ADD_FAILURE() << "no answer to frame " << i;
+      break;
+    }
+    std::vector<Vec3> pos;
+    std::string status;
+    std::uint64_t seq = 0;
+    if (binary) {
+      EXPECT_TRUE(m->binary);
+      const BinaryPose p = parse_binary_pose(std::as_bytes(std::span(m->data.data(), m->data.size())));
+      pos = p.positions;
+      status = p.status == 0 ? "ok" : "other";
+      seq = p.seq;
+    } else {
+      const json j = m->j();
+      EXPECT_EQ(j["type"], "pose") << j.dump();
+      for (const auto& p : j["positions"]) pos.push_back(vec(p));
+      status = j["status"];
+      seq = j["seq"];
+      EXPECT_NEAR(j["t"].get<double>(), f.time, 1e-6);
+    }
+    EXPECT_EQ(seq, i + 1);
+    EXPECT_EQ(status, "ok");
+    for (int s = 0; s < 2; ++s) worst = std::max(worst, (pos[hand[s]] - f.hand(s).position).norm());
+    ++poses;
+  }
+  return {worst, poses};
+}
+
+TEST(Serve, IkPosesFollowTheHandsOfARealTrialJson) {
+  RunningServer srv;
+  Client c(srv.port());
+  const auto [worst, poses] = stream_trial(c, c.hello(), false);
+  EXPECT_EQ(poses, static_cast<int>(trial_frames().size()));
+  EXPECT_LT(worst, 0.01) << "wrists must be within 1 cm of the input hands";
+}
+
+TEST(Serve, IkPosesFollowTheHandsOfARealTrialBinary) {
+  RunningServer srv;
+  Client c(srv.port());
+  const auto [worst, poses] = stream_trial(c, c.hello({{"format", "binary"}}), true);
+  EXPECT_EQ(poses, static_cast<int>(trial_frames().size()));
+  EXPECT_LT(worst, 0.01);
+}
+
+TEST(Serve, OutputJointSubset) {
+  RunningServer srv;
+  Client c(srv.port());
+  const json w = c.hello({{"joints", {"Head", "LeftHand"}}});
+  EXPECT_EQ(w["joints"], json({"Head", "LeftHand"}));
+  const auto f = trial_frames()[0];
+  c.send_text(json_frame(f));
+  const json p = c.expect("pose");
+  ASSERT_EQ(p["positions"].size(), 2u);
+  EXPECT_LT((vec(p["positions"][1]) - f.hand(kLeft).position).norm(), 0.01);
+  Client bad(srv.port());
+  bad.send_text(R"({"type":"hello","version":1,"method":"ik","joints":["Tail"]})");
+  const json e = bad.expect("error");
+  EXPECT_EQ(e["code"], "bad_value");
+  EXPECT_NE(e["message"].get<std::string>().find("no joint 'Tail'"), std::string::npos) << e.dump();
+}
+
+// One valid frame after a failure must still be answered with a pose.
+void expect_alive(Client& c, double t) {
+  TrackerFrame f = trial_frames()[0];
+  f.time = t;
+  c.send_text(json_frame(f));
+  const json p = c.expect("pose");
+  EXPECT_NEAR(p["t"].get<double>(), t, 1e-9);
+}
+
+TEST(Serve, MalformedJsonGetsAnErrorAndTheSessionSurvives) {
+  RunningServer srv;
+  Client c(srv.port());
+  c.hello();
+  c.send_text("{\"type\":\"frame\",\"t\":0.1,");
+  json e = c.expect("error");
+  EXPECT_EQ(e["code"], "bad_json");
+  EXPECT_NE(e["message"].get<std::string>().find("not valid JSON"), std::string::npos) << e.dump();
+  expect_error(c, R"({"type":"dance"})", "bad_message", "unknown message type 'dance'");
+  expect_error(c, R"({"type":"frame","t":0.2,"head":{"p":[0,1.6]}})", "bad_message", "frame.head.p must be an array of 3 numbers");
+  expect_alive(c, 0.3);
+}
+
+TEST(Serve, WrongVersionIsRefusedWithAnError) {
+  RunningServer srv;
+  Client c(srv.port());
+  expect_error(c, R"({"type":"hello","version":2,"method":"ik"})", "bad_version", "unsupported protocol version 2: this server speaks version 1");
+  expect_error(c, R"({"type":"frame","t":0.1})", "bad_message", "send hello before frames");
+  c.hello();  // the session survives: a correct hello still works
+  expect_alive(c, 0.5);
+}
+
+TEST(Serve, UnknownMethodAndMissingDatabaseAreExplained) {
+  RunningServer srv;
+  Client c(srv.port());
+  expect_error(c, R"({"type":"hello","version":1,"method":"teleport"})", "bad_value",
+               "unknown method 'teleport' (known: accent, ik, wip, combined)");
+  expect_error(c, R"({"type":"hello","version":1,"method":"accent"})", "bad_value",
+               "method 'accent' needs a database: start the server with --db FILE");
+}
+
+TEST(Serve, OversizedMessageClosesWith1009AndOthersKeepGoing) {
+  RunningServer srv;
+  Client other(srv.port());
+  other.hello();
+  Client c(srv.port());
+  c.hello();
+  c.send_text(std::string(64 * 1024 + 1, ' '));
+  EXPECT_FALSE(c.read());
+  EXPECT_EQ(c.close_code(), 1009) << c.error().message();
+  expect_alive(other, 1.0);
+  // Exactly 64 KiB is still a message (here: malformed JSON, answered with an error).
+  Client edge(srv.port());
+  edge.hello();
+  edge.send_text(std::string(64 * 1024, ' '));
+  EXPECT_EQ(edge.expect("error")["code"], "bad_json");
+}
+
+TEST(Serve, NanValuesGetAnErrorNamingTheField) {
+  RunningServer srv;
+  Client c(srv.port());
+  c.hello();
+  c.send_text(R"({"type":"frame","t":0.1,"head":{"p":[null,1.6,0],"q":[1,0,0,0]}})");  // JSON.stringify(NaN) is null
+  json e = c.expect("error");
+  EXPECT_EQ(e["code"], "bad_value");
+  EXPECT_NE(e["message"].get<std::string>().find("frame.head.p[0] is not a number"), std::string::npos) << e.dump();
+  c.send_text(R"({"type":"frame","t":NaN})");
+  EXPECT_EQ(c.expect("error")["code"], "bad_json");
+  TrackerFrame f = trial_frames()[0];
+  f.hand(kRight).position.y() = std::numeric_limits<double>::quiet_NaN();
+  c.send_binary(binary_frame(f));
+  e = c.expect("error");
+  EXPECT_EQ(e["code"], "bad_value");
+  EXPECT_NE(e["message"].get<std::string>().find("frame.right has a non-finite value"), std::string::npos) << e.dump();
+  f.time = std::numeric_limits<double>::infinity();
+  f.hand(kRight).position.y() = 1;
+  c.send_binary(binary_frame(f));
+  EXPECT_NE(c.expect("error")["message"].get<std::string>().find("frame.t is not finite"), std::string::npos);
+  expect_alive(c, 0.2);
+}
+
+TEST(Serve, TimeGoingBackwardsIsRejectedWithAnError) {
+  RunningServer srv;
+  Client c(srv.port());
+  c.hello();
+  expect_alive(c, 2.0);
+  TrackerFrame f = trial_frames()[1];
+  f.time = 1.5;
+  c.send_text(json_frame(f));
+  const json e = c.expect("error");
+  EXPECT_EQ(e["code"], "bad_value");
+  EXPECT_EQ(e["seq"], 2);
+  EXPECT_NE(e["message"].get<std::string>().find("t = 1.500000 s is not after the last accepted frame's t = 2.000000 s"),
+            std::string::npos)
+      << e.dump();
+  expect_alive(c, 2.1);
+}
+
+TEST(Serve, LostDevicesGiveDegradedPoses) {
+  RunningServer srv;
+  Client c(srv.port());
+  c.hello();
+  expect_alive(c, 0.1);
+  TrackerFrame f = trial_frames()[1];
+  f.time = 0.2;
+  f.hand(kLeft).valid = false;
+  c.send_text(json_frame(f));
+  EXPECT_EQ(c.expect("pose")["status"], "degraded");
+}
+
+TEST(Serve, ClientVanishingMidStreamDoesNotDisturbOthers) {
+  RunningServer srv;
+  Client keeper(srv.port());
+  keeper.hello();
+  {
+    Client gone(srv.port());
+    gone.hello();
+    const auto frames = trial_frames();
+    for (std::size_t i = 0; i < 50; ++i) gone.send_text(json_frame(frames[i]));  // never reads its poses
+    gone.vanish();
+  }
+  expect_alive(keeper, 0.1);
+  for (int i = 0; i < 200 && srv.server().stats().live_sessions > 1; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(srv.server().stats().live_sessions, 1);
+  EXPECT_EQ(srv.server().stats().sessions_closed, 1u);
+  expect_alive(keeper, 0.2);
+}
+
+TEST(Serve, ThousandConnectDisconnectCyclesWhileAnotherClientStreams) {
+  RunningServer srv;
+  Client keeper(srv.port());
+  keeper.hello();
+  const auto frames = trial_frames();
+  int answered = 0;
+  for (int i = 0; i < 1000; ++i) {
+    {
+      Client c(srv.port());
+      if (i % 2 == 0) {
+        c.hello();
+        c.send_text(json_frame(frames[0]));
+      }
+      if (i % 3 == 0) c.vanish();
+      else c.close();
+    }
+    if (i % 10 == 0) {
+      TrackerFrame f = frames[static_cast<std::size_t>(i / 10) % frames.size()];
+      f.time = 1.0 + i * 0.001;
+      keeper.send_text(json_frame(f));
+      const json p = keeper.expect("pose");
+      answered += p.value("type", "") == "pose";
+    }
+  }
+  EXPECT_EQ(answered, 100);
+  // The last cycles' accepts and closes may still be in flight.
+  for (int i = 0; i < 300 && (srv.server().stats().live_sessions > 1 || srv.server().stats().sessions_opened < 1001); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(srv.server().stats().live_sessions, 1);
+  EXPECT_EQ(srv.server().stats().sessions_opened, 1001u);
+}
+
+TEST(Serve, RateLimitDropsFramesAboveMaxRateWithAnError) {
+  ServeOptions o = test_options();
+  o.max_rate_hz = 120;
+  RunningServer srv(o);
+  Client c(srv.port());
+  c.hello();
+  const auto frames = trial_frames();
+  for (std::size_t i = 0; i < 100; ++i) c.send_text(json_frame(frames[i]));  // as fast as the socket takes them
+  int poses = 0;
+  json rate;
+  while (auto m = c.read(std::chrono::milliseconds(500))) {
+    const json j = m->j();
+    if (j["type"] == "pose") ++poses;
+    if (j["type"] == "error") rate = j;
+  }
+  EXPECT_EQ(rate["code"], "rate") << rate.dump();
+  EXPECT_NE(rate["message"].get<std::string>().find("frames above 120 Hz are dropped"), std::string::npos);
+  EXPECT_GE(poses, 1);
+  EXPECT_LT(poses, 50);
+}
+
+TEST(Serve, SessionLimitRefusesWithBusy) {
+  ServeOptions o = test_options();
+  o.max_sessions = 2;
+  RunningServer srv(o);
+  Client a(srv.port()), b(srv.port());
+  a.hello();
+  b.hello();
+  Client c(srv.port());
+  const json e = c.expect("error");
+  EXPECT_EQ(e["code"], "busy");
+  EXPECT_NE(e["message"].get<std::string>().find("server full (2 sessions)"), std::string::npos);
+  EXPECT_FALSE(c.read());
+  EXPECT_EQ(c.close_code(), 1013);
+  expect_alive(a, 0.1);
+}
+
+TEST(Serve, OptionsBeforeHelloAndBadOptionsAreErrors) {
+  RunningServer srv;
+  Client c(srv.port());
+  c.send_text(R"({"type":"options","exaggeration":1.5})");
+  EXPECT_NE(c.expect("error")["message"].get<std::string>().find("send hello before options"), std::string::npos);
+  c.hello();
+  c.send_text(R"({"type":"options","exaggeration":-1})");
+  const json e = c.expect("error");
+  EXPECT_NE(e["message"].get<std::string>().find("options not applied: exaggeration -1"), std::string::npos) << e.dump();
+  expect_alive(c, 0.1);
+}
+
+TEST(Serve, RecordsInputAsTrackerCsvAndOutputAsBvh) {
+  const auto dir = std::filesystem::temp_directory_path() / ("legwork-serve-rec-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  ServeOptions o = test_options();
+  o.record_dir = dir.string();
+  const auto frames = trial_frames();
+  {
+    RunningServer srv(o);
+    Client c(srv.port());
+    EXPECT_TRUE(c.hello()["recording"].get<bool>());
+    for (std::size_t i = 0; i < 90; ++i) {
+      c.send_text(json_frame(frames[i]));
+      c.expect("pose");
+    }
+    c.close();
+  }
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files.push_back(e.path());
+  std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return a.extension() > b.extension(); });
+  ASSERT_EQ(files.size(), 2u);
+  EXPECT_EQ(files[0].extension(), ".csv");
+  EXPECT_EQ(files[1].extension(), ".bvh");
+  const io::TrackerTable t = io::read_tracker_csv(files[0].string());
+  ASSERT_EQ(t.sample_count(), 90);
+  EXPECT_NEAR(t.point("left_hand").position[45].x(), frames[45].hand(kLeft).position.x(), 1e-5);
+  const Motion m = io::load_bvh(files[1].string());
+  EXPECT_EQ(m.frame_count(), 90);
+  EXPECT_NEAR(m.fps, 90.0, 0.01);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Serve, HttpApiAndNoTraversal) {
+  const auto web = std::filesystem::temp_directory_path() / ("legwork-serve-web-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(web / "js");
+  std::ofstream(web / "index.html") << "<html>legwork</html>";
+  std::ofstream(web / "js" / "app.js") << "console.log(1)";
+  ServeOptions o = test_options();
+  o.web_dir = web.string();
+  RunningServer srv(o);
+  net::io_context ioc;
+  const auto get = [&](const std::string& target) {
+    beast::tcp_stream s(ioc);
+    tcp::resolver r(ioc);
+    s.connect(r.resolve("127.0.0.1", std::to_string(srv.port())));
+    beast::http::request<beast::http::empty_body> req{beast::http::verb::get, target, 11};
+    req.set(beast::http::field::host, "127.0.0.1");
+    beast::http::write(s, req);
+    beast::flat_buffer b;
+    beast::http::response<beast::http::string_body> res;
+    beast::http::read(s, b, res);
+    return std::make_pair(res.result_int(), res.body());
+  };
+  EXPECT_EQ(get("/").second, "<html>legwork</html>");
+  EXPECT_EQ(get("/js/app.js").first, 200u);
+  EXPECT_EQ(get("/../../../etc/passwd").first, 404u);
+  EXPECT_EQ(get("/%2e%2e/%2e%2e/etc/passwd").first, 404u);
+  EXPECT_EQ(get("/js/../../x").first, 404u);
+  const json info = json::parse(get("/api/info").second);
+  EXPECT_EQ(info["version"], 1);
+  EXPECT_EQ(info["methods"], json({"ik", "wip", "combined"}));
+  const json trials = json::parse(get("/api/trials").second);
+  EXPECT_NE(std::find(trials["trials"].begin(), trials["trials"].end(), "walking/07_02"), trials["trials"].end());
+  const auto [code, body] = get("/api/trial?name=walking/07_02&rate=90");
+  ASSERT_EQ(code, 200u);
+  const json trial = json::parse(body);
+  const auto frames = trial_frames("walking/07_02.bvh", true);
+  ASSERT_EQ(trial["frames"].size(), frames.size());
+  EXPECT_LT((vec(trial["frames"][10]["left"]["p"]) - frames[10].hand(kLeft).position).norm(), 1e-9);
+  EXPECT_EQ(trial["truth"]["positions"].size(), frames.size());
+  EXPECT_EQ(trial["truth"]["positions"][0].size(), 3 * trial["truth"]["names"].size());
+  const auto bad = get("/api/trial?name=../../etc/passwd");
+  EXPECT_EQ(bad.first, 400u);
+  EXPECT_EQ(get("/api/trial?name=walking/07_02&rate=1000").first, 400u);
+  EXPECT_NE(json::parse(get("/api/trial?name=walking/99_99").second)["message"].get<std::string>().find("no trial 'walking/99_99'"),
+            std::string::npos);
+  std::filesystem::remove_all(web);
+}
+
+}  // namespace
+}  // namespace legwork::serve
+
+namespace legwork::serve {
+namespace {
+
+using namespace testing;
+
+TEST(ServeWip, WalkingInPlaceLegsFromTheAnklesOfARealWalk) {
+  RunningServer srv;
+  Client c(srv.port());
+  const json w = c.hello({{"method", "wip"}});
+  EXPECT_EQ(w["method"], "wip");
+  // A real walk's ankles (and head for the heading) as in-place trackers: the
+  // feet rise and fall, so the legs must start stepping.
+  const auto frames = trial_frames("walking/07_02.bvh", true);
+  int walking = 0, poses = 0;
+  for (const TrackerFrame& f : frames) {
+    c.send_text(json_frame(f));
+    const json p = c.expect("pose");
+    poses += p["type"] == "pose";
+    walking += p["info"]["walking"].get<double>() > 0;
+  }
+  EXPECT_EQ(poses, static_cast<int>(frames.size()));
+  EXPECT_GT(walking, 0) << "the wip legs never started walking on a real walk's ankles";
+  // Without feet the legs cannot be driven: degraded.
+  TrackerFrame f = frames.back();
+  f.time += 0.011;
+  f.foot(kLeft).valid = f.foot(kRight).valid = false;
+  c.send_text(json_frame(f));
+  EXPECT_EQ(c.expect("pose")["status"], "degraded");
+}
+
+}  // namespace
+}  // namespace legwork::serve
+
+namespace legwork::serve {
+namespace {
+
+using namespace testing;
+
+TEST(ServeCombined, UpperBodyFollowsTheHandsAndTheLegsComeFromWip) {
+  RunningServer srv;
+  Client c(srv.port());
+  const json w = c.hello({{"method", "combined"}});
+  const auto& names = w["skeleton"]["names"];
+  const auto lh = static_cast<std::size_t>(std::find(names.begin(), names.end(), "LeftHand") - names.begin());
+  const auto frames = trial_frames("walking/07_02.bvh", true);
+  double worst = 0;
+  for (const TrackerFrame& f : frames) {
+    c.send_text(json_frame(f));
+    const json p = c.expect("pose");
+    ASSERT_EQ(p["status"], "ok") << p.dump();
+    EXPECT_EQ(p["info"]["legs"], "wip");
+    const auto& q = p["positions"][lh];
+    worst = std::max(worst, (Vec3(q[0], q[1], q[2]) - f.hand(kLeft).position).norm());
+  }
+  EXPECT_LT(worst, 0.01) << "the legs must not move the upper body's wrists off the controllers";
+  TrackerFrame f = frames.back();
+  f.time += 0.011;
+  f.foot(kRight).valid = false;
+  c.send_text(json_frame(f));
+  const json p = c.expect("pose");
+  EXPECT_EQ(p["status"], "degraded");
+  EXPECT_EQ(p["info"]["legs"], "upper");
+}
+
+}  // namespace
+}  // namespace legwork::serve
