@@ -634,7 +634,8 @@ nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, cons
                    {"h1_m", a.gait.h1},                {"v1_mps", a.gait.v1},
                    {"v2_mps", a.gait.v2},              {"adaptive", a.gait.adaptive},
                    {"noise_m", run.options.noise},     {"drop_rate", run.options.drop_rate},
-                   {"seed", run.options.seed},         {"min_still_s", run.options.min_still}};
+                   {"seed", run.options.seed},         {"min_still_s", run.options.min_still},
+                   {"truth", run.options.truth.learned ? "learned" : "fixed"}};
   j["per_trial"] = t.trials;
   return j;
 }
@@ -651,9 +652,11 @@ std::string summary_markdown(const WipEvalRun& run, const WipEvalSummary& s, con
   md << "Data: `" << run.data << "` (" << s.trials << " trials";
   if (s.skipped) md << ", " << s.skipped << " skipped";
   md << "). Each trial's own ankles drive the method at " << run.options.settings.signal.rate
-     << " Hz (rolling floor, no calibration) with its own skeleton as the avatar. Ground truth: per-foot contact "
-        "from the ankle and toe heights against each joint's stance height learned from the trial (hysteresis, "
-        "swings >= 0.15 s).\n";
+     << " Hz (rolling floor, no calibration) with its own skeleton as the avatar. Ground truth: "
+     << (run.options.truth.learned ? "per-foot contact from the ankle and toe heights against each joint's stance "
+                                     "height and lift range learned from the trial (hysteresis)"
+                                   : "the former fixed margin (3 cm over a rolling floor)")
+     << ", swings >= " << run.options.truth.min_swing << " s.\n";
   if (!run.note.empty()) md << "\n**Note:** " << run.note << ".\n";
   md << "\n## Goals (computed from this run)\n\n| goal | value | verdict |\n|---|---|---|\n";
   for (const auto& g : goals(s)) md << "| " << g.name << " | " << g.value << " | **" << verdict(g) << "** |\n";
