@@ -273,6 +273,8 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
   e.detected_noisy = detected_swings(noisy);
   e.steps_noisy = score_steps(e.detected_noisy, e.truth, opt.settle, t_end);
   e.strict_noisy = match_foot_offs(e.detected_noisy, e.truth, 0.2, opt.settle, t_end);
+  for (auto& g : e.still)
+    for (const auto& d : e.detected_noisy) g.false_steps_noisy += d.off >= g.begin && d.off <= g.end ? 1 : 0;
 
   e.true_depth = true_depths(trial, rate);
   const auto base_model = wip::make_keyframe_baseline(cycle, model.leg_length());
@@ -613,9 +615,11 @@ nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, cons
   j["strict_200ms_fixed_thresholds"] = strict_json(s.strict_fixed);
   j["still_minutes"] = s.still_minutes;
   j["false_steps_per_minute"] = num(s.false_steps_per_minute);
+  j["false_steps_per_minute_noisy"] = num(s.false_steps_per_minute_noisy);
   j["still_segments"] = nlohmann::json::array();
   for (const auto& g : s.still)
-    j["still_segments"].push_back({{"trial", g.trial}, {"begin_s", g.begin}, {"end_s", g.end}, {"false_steps", g.false_steps}});
+    j["still_segments"].push_back({{"trial", g.trial}, {"begin_s", g.begin}, {"end_s", g.end}, {"false_steps", g.false_steps},
+                                  {"false_steps_noisy", g.false_steps_noisy}});
   j["goals"] = nlohmann::json::array();
   for (const auto& g : goals(s)) j["goals"].push_back({{"goal", g.name}, {"value", g.value}, {"verdict", verdict(g)}});
   j["lenient_overlap"] = score_json(s.steps);  // secondary: any overlap of swings counts
@@ -671,7 +675,8 @@ std::string summary_markdown(const WipEvalRun& run, const WipEvalSummary& s, con
      << strict_row("+-200 ms, the document's fixed H1/V1/V2", s.strict_fixed);
   md << "\nFalse steps on still segments (both feet in true contact for >= " << run.options.min_still
      << " s): " << na(s.false_steps_per_minute, "%.2f") << " per minute over " << na(s.still_minutes, "%.2f")
-     << " min (" << s.still.size() << " segments, listed below).\n";
+     << " min (" << s.still.size() << " segments, listed below); with noise "
+     << na(s.false_steps_per_minute_noisy, "%.2f") << " per minute.\n";
   md << "\n## Secondary figures\n\n| measure | value |\n|---|---|\n"
      << "| lenient overlap F1 (a detected swing overlapping the true one at all counts) | "
      << na(s.steps.f1, "%.3f") << " (precision " << na(s.steps.precision, "%.3f") << ", recall "
@@ -683,10 +688,10 @@ std::string summary_markdown(const WipEvalRun& run, const WipEvalSummary& s, con
   md << "\n## Per trial\n\n| trial | s | true | detected | matched | F1 +-200 | F1 +-100 | F1 noisy | latency "
         "median ms | lenient overlap F1 | depth r | depth RMS cm |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n"
      << t.rows.str();
-  md << "\n## Still segments\n\n| trial | from s | to s | false steps |\n|---|---|---|---|\n";
+  md << "\n## Still segments\n\n| trial | from s | to s | false steps | false steps, noisy |\n|---|---|---|---|---|\n";
   for (const auto& g : s.still)
     md << "| " << g.trial << " | " << na(g.begin, "%.2f") << " | " << na(g.end, "%.2f") << " | " << g.false_steps
-       << " |\n";
+       << " | " << g.false_steps_noisy << " |\n";
   return md.str();
 }
 
@@ -715,9 +720,11 @@ void finish_summary(const Totals& t, WipEvalSummary& s) {
   s.strict_noisy = combine(t.strict_noisy);
   s.strict_fixed = combine(t.strict_fixed);
   s.still = t.still;
-  int false_steps = 0;
-  for (const auto& g : s.still) s.still_minutes += (g.end - g.begin) / 60, false_steps += g.false_steps;
+  int false_steps = 0, false_noisy = 0;
+  for (const auto& g : s.still)
+    s.still_minutes += (g.end - g.begin) / 60, false_steps += g.false_steps, false_noisy += g.false_steps_noisy;
   s.false_steps_per_minute = s.still_minutes > 0 ? false_steps / s.still_minutes : NAN;
+  s.false_steps_per_minute_noisy = s.still_minutes > 0 ? false_noisy / s.still_minutes : NAN;
 }
 
 }  // namespace

@@ -64,6 +64,7 @@ struct StillSegment {
   std::string trial;
   double begin = 0, end = 0;  // s
   int false_steps = 0;        // detected foot-offs inside
+  int false_steps_noisy = 0;  // the same in the noisy run
 };
 // Still stretches of at least `min_duration` s within [t_begin, t_end], from
 // the true contacts of both feet; false steps counted from `detected`.
@@ -132,7 +133,7 @@ struct WipEvalSummary {
   StepScore steps, steps_noisy, steps_fixed;  // lenient overlap scores (secondary)
   StrictScore strict, strict_100, strict_noisy, strict_fixed;
   std::vector<StillSegment> still;
-  double still_minutes = 0, false_steps_per_minute = NAN;
+  double still_minutes = 0, false_steps_per_minute = NAN, false_steps_per_minute_noisy = NAN;
   Agreement depth, baseline_depth;
   std::vector<std::string> written;  // report.md, report.json
 };
