@@ -37,7 +37,7 @@ struct WipArgs {
   std::string input, avatar, out, csv, plot, baseline, clip, tracker_out, strip;
   bool synthetic = false, keep_first = false, no_adaptive = false, raw_height = false;
   std::string calibrate = "auto", speed_model = "step";
-  double rate = 30, cutoff = 6, h1 = 0.1, v1 = 0.2, v2 = 0.6, stop_time = 1.5, max_speed = 3.5, step_length = 0.6;
+  double rate = 30, cutoff = 4, h1 = 0.1, v1 = 0.2, v2 = 0.6, stop_time = 1.5, max_speed = 3.5, step_length = 0.6;
   SyntheticOptions syn;
   std::string data, eval_out, truth = "learned";  // eval
   double noise = 0.015, drop_rate = 0.02;
@@ -175,7 +175,7 @@ void run_eval_command(const WipArgs& a) {
   for (const auto& f : s.written) announce("report", f);
 }
 void add_method_options(CLI::App* cmd, WipArgs& a) {
-  cmd->add_option("--cutoff", a.cutoff, "low-pass cutoff, Hz (default 6)")->check(CLI::PositiveNumber);
+  cmd->add_option("--cutoff", a.cutoff, "low-pass cutoff, Hz (default 4)")->check(CLI::PositiveNumber);
   cmd->add_option("--h1", a.h1, "lift height threshold H1, m (default 0.1)")->check(CLI::PositiveNumber);
   cmd->add_option("--v1", a.v1, "rise velocity threshold V1, m/s (default 0.2)")->check(CLI::PositiveNumber);
   cmd->add_option("--v2", a.v2, "descent velocity threshold V2, m/s (default 0.6)")->check(CLI::PositiveNumber);

@@ -13,7 +13,7 @@ namespace legwork::wip {
 
 struct SignalSettings {
   double rate = 30.0;           // nominal sample rate, Hz (30/60/90/120 all work)
-  double cutoff = 6.0;          // low-pass cutoff, Hz (6: strict-score ablation in docs/wip.md)
+  double cutoff = 4.0;          // low-pass cutoff, Hz
   int order = 2;                // Butterworth order
   double buffer_seconds = 1.0;  // ring buffer length (the document: 30 samples at 30 Hz)
   double confidence_tau = 0.25; // s: confidence decays as exp(-t/tau) over dropped samples
