@@ -4,6 +4,7 @@
 // optionally a timed database build. Google Benchmark's view of the same loop
 // is accent_bench; this program reports the figures the README quotes.
 #include <legwork/accent/accent.hpp>
+#include <legwork/core/stats.hpp>
 #include <legwork/accent/offline/builder.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/core/measure.hpp>
@@ -57,12 +58,6 @@ struct BenchArgs {
   int repeat = 3, k = Settings{}.k_left, max_checks = Settings{}.fast_max_checks;
   float eps = 5.0f;
 };
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())))];
-}
 
 // CPU time of this thread (excludes time the machine gave to other processes).
 double thread_cpu_seconds() {

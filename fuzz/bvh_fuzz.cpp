@@ -1,4 +1,5 @@
-// libFuzzer target for the BVH reader (and, on success, the writer).
+// libFuzzer target for the BVH reader and what consumes a parsed file:
+// forward kinematics of every frame and the writer.
 // Any input must end in a parsed motion or a legwork::Error: never a crash,
 // a sanitizer report, a hang or an unbounded allocation.
 #include <legwork/core/fk.hpp>
@@ -19,9 +20,15 @@ void parse_and_write(std::string_view text, const legwork::io::BvhReadOptions& o
     // A parsed file must satisfy the model's invariants.
     f.motion.skeleton.validate();
     if (f.motion.frame_count() < 1 || !(f.motion.fps > 0)) std::abort();
-    // Exercise FK and the writer on what was read (the writer may refuse
-    // layouts it cannot express, e.g. 1 or 2 rotation channels).
-    (void)joint_positions(f.motion.skeleton, f.motion.frame(0));
+    // Past parsing: FK of every frame must stay finite (values are finite at
+    // read; a parsed-but-absurd file is exercised here, not just read), and
+    // the writer (which may refuse layouts it cannot express, e.g. 1 or 2
+    // rotation channels).
+    const Motion& m = f.motion;
+    if (static_cast<double>(m.frame_count()) * m.joint_count() > static_cast<double>(1 << 26)) std::abort();
+    for (int fr = 0; fr < m.frame_count(); ++fr)
+      for (const Vec3& p : joint_positions(m.skeleton, m.frame(fr)))
+        if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) std::abort();
     io::BvhWriteOptions w;
     w.channels = f.channels;
     (void)io::format_bvh(f.motion, w);

@@ -1,31 +1,47 @@
 #!/usr/bin/env bash
-# Runs the libFuzzer targets for a bounded time: scripts/fuzz.sh [seconds]
-# (default 60 in total: 3/4 for the BVH reader, 1/4 for the tracker CSV
-# reader). Builds in build-fuzz/ with clang + ASan/UBSan; the BVH seed corpus
-# is made from the repo's sample BVH files (headers + a few motion lines, plus
-# truncated copies). Exits non-zero if a fuzzer finds a crash, leak,
-# sanitizer error or timeout; the reproducer is left in build-fuzz/artifacts/.
+# Runs the libFuzzer targets (BVH, tracker CSV, GLB) built with clang + ASan/UBSan.
+#   scripts/fuzz.sh [SECONDS]     bounded run, SECONDS in total (default 45):
+#                                 40% BVH, 25% tracker CSV, 35% GLB
+#   scripts/fuzz.sh --long [RUNS] each target until RUNS executions (default
+#                                 10,000,000), at most LEGWORK_FUZZ_LONG_HOURS
+#                                 hours each (default 6); the corpus persists
+#                                 in build-fuzz/corpus-*/ between runs
+# Each target goes past parsing: BVH into forward kinematics of every frame
+# and the writer; tracker CSV into io::frames_from_table, the frame clock and
+# usable(); GLB into FK and the writer. Seed corpora come from the repo's real
+# files (data/cmu samples, fuzz/corpus/), with a dictionary per target.
+# Exits non-zero if a fuzzer finds a crash, leak, sanitizer error, timeout or
+# out-of-memory; the reproducer is left in build-fuzz/artifacts/. The last
+# line of each run's stats (executions, exec/s) is printed as "fuzz: ...".
 set -euo pipefail
-seconds="${1:-60}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LEGWORK_FUZZ_BUILD:-$root/build-fuzz}"
 jobs="${LEGWORK_FUZZ_BUILD_JOBS:-2}"
+long=0
+if [ "${1:-}" = "--long" ]; then
+  long=1
+  runs="${2:-10000000}"
+else
+  seconds="${1:-45}"
+fi
 
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+launcher=()
+if command -v ccache >/dev/null 2>&1; then
+  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
   -DLEGWORK_FUZZ=ON -DLEGWORK_TESTS=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_WERROR=OFF >/dev/null
-ninja -C "$build" -j"$jobs" bvh_fuzz tracker_csv_fuzz
-# -max_total_time=0 would mean "forever": every run gets at least a second.
-bvh_seconds=$((seconds * 3 / 4 > 0 ? seconds * 3 / 4 : 1))
-csv_seconds=$((seconds - bvh_seconds > 0 ? seconds - bvh_seconds : 1))
+ninja -C "$build" -j"$jobs" bvh_fuzz tracker_csv_fuzz glb_fuzz
+mkdir -p "$build/artifacts"
 
-# Seed corpus: each sample trial cut to its hierarchy + 3 motion lines (with
+# BVH seeds: each sample trial cut to its hierarchy + 3 motion lines (with
 # 'Frames: 3'), and the same cut mid-hierarchy and mid-motion.
 seeds="$build/corpus-seed"
-corpus="$build/corpus"
 rm -rf "$seeds"
-mkdir -p "$seeds" "$corpus" "$build/artifacts"
+mkdir -p "$seeds"
 i=0
-for f in "$root"/data/cmu/bvh/*/*.bvh "$root"/data/cmu/bvh_daz/*/*.bvh; do
+for f in "$root"/data/cmu/bvh/*/*.bvh "$root"/data/cmu/bvh_daz/*/*.bvh "$root"/tests/wip/data/*.bvh; do
   i=$((i + 1))
   awk 'BEGIN{m=0} /^Frames:/{print "Frames: 3"; next} {print} /^Frame Time:/{m=1; n=0; next} m{n++; if(n>=3) exit}' \
     "$f" >"$seeds/s$i.bvh"
@@ -34,18 +50,51 @@ for f in "$root"/data/cmu/bvh/*/*.bvh "$root"/data/cmu/bvh_daz/*/*.bvh; do
   head -c $(($(wc -c <"$seeds/s$i.bvh") - 17)) "$seeds/s$i.bvh" >"$seeds/s$i-cut2.bvh"
 done
 sed 's/$/\r/' "$seeds/s1.bvh" >"$seeds/crlf.bvh"
+cp "$root"/tests/io/data/*.bvh "$seeds/"
 
-echo "fuzzing the BVH reader for ${bvh_seconds}s (corpus $corpus)" >&2
-"$build/fuzz/bvh_fuzz" "$corpus" "$seeds" \
-  -dict="$root/fuzz/bvh.dict" -max_total_time="$bvh_seconds" -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
-  -artifact_prefix="$build/artifacts/" -print_final_stats=1
-
+# Tracker CSV seeds: the repo's CSVs and fuzz/corpus/tracker_csv (sessions
+# written by legwork from the sample trials).
 csv_seeds="$build/corpus-csv-seed"
-csv_corpus="$build/corpus-csv"
-mkdir -p "$csv_seeds" "$csv_corpus"
-printf 'time,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz,lhand_x,lhand_y,lhand_z\n0,0,1.7,0,1,0,0,0,0.3,1,0.1\n0.1,0.01,1.69,0.02,0.7071068,0,0.7071068,0,,,\n0.2,0,1.7,0,1,0,0,0,nan,1,0.1\r\n' \
+rm -rf "$csv_seeds"
+mkdir -p "$csv_seeds"
+cp "$root"/tests/wip/data/*.csv "$root"/fuzz/corpus/tracker_csv/* "$csv_seeds/"
+printf 'time,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz,left_hand_x,left_hand_y,left_hand_z\n0,0,1.7,0,1,0,0,0,0.3,1,0.1\n0.1,0.01,1.69,0.02,0.7071068,0,0.7071068,0,,,\n0.2,0,1.7,0,1,0,0,0,nan,1,0.1\r\n' \
   >"$csv_seeds/tracker.csv"
-echo "fuzzing the tracker CSV reader for ${csv_seconds}s" >&2
-"$build/fuzz/tracker_csv_fuzz" "$csv_corpus" "$csv_seeds" \
-  -max_total_time="$csv_seconds" -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
-  -artifact_prefix="$build/artifacts/" -print_final_stats=1
+
+# GLB seeds: fuzz/corpus/glb (sample trials written by 'legwork convert', as
+# .glb and split as JSON\0BIN, the form glb_fuzz wraps itself).
+glb_seeds="$root/fuzz/corpus/glb"
+
+summary=()
+run() {  # name seeds dict max_len seconds|runs
+  local name=$1 seed_dir=$2 dict=$3 max_len=$4 budget=$5
+  local corpus="$build/corpus-$name" log="$build/fuzz-$name.log"
+  mkdir -p "$corpus"
+  local limit=(-max_total_time="$budget")
+  if [ $long = 1 ]; then limit=(-runs="$budget" -max_total_time=$((${LEGWORK_FUZZ_LONG_HOURS:-6} * 3600))); fi
+  echo "fuzz: $name (${limit[*]})" >&2
+  local rc=0
+  "$build/fuzz/${name}_fuzz" "$corpus" "$seed_dir" -dict="$dict" "${limit[@]}" -max_len="$max_len" \
+    -timeout=10 -rss_limit_mb=2560 -artifact_prefix="$build/artifacts/$name-" -print_final_stats=1 2>"$log" || rc=$?
+  local execs speed
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  summary+=("fuzz: $name: ${execs:-?} executions, ${speed:-?} exec/s, corpus $(ls "$corpus" | wc -l) files, exit $rc")
+  if [ $rc != 0 ]; then
+    tail -60 "$log" >&2
+    printf '%s\n' "${summary[@]}" >&2
+    exit $rc
+  fi
+}
+if [ $long = 1 ]; then
+  run bvh "$seeds" "$root/fuzz/bvh.dict" 16384 "$runs"
+  run tracker_csv "$csv_seeds" "$root/fuzz/tracker_csv.dict" 8192 "$runs"
+  run glb "$glb_seeds" "$root/fuzz/glb.dict" 131072 "$runs"
+else
+  # -max_total_time=0 would mean "forever": every run gets at least a second.
+  share() { local s=$((seconds * $1 / 100)); echo $((s > 0 ? s : 1)); }
+  run bvh "$seeds" "$root/fuzz/bvh.dict" 16384 "$(share 40)"
+  run tracker_csv "$csv_seeds" "$root/fuzz/tracker_csv.dict" 8192 "$(share 25)"
+  run glb "$glb_seeds" "$root/fuzz/glb.dict" 131072 "$(share 35)"
+fi
+printf '%s\n' "${summary[@]}"

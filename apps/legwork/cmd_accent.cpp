@@ -5,24 +5,18 @@
 #include <legwork/accent/accent.hpp>
 #include <legwork/accent/offline/builder.hpp>
 #include <legwork/accent/offline/run.hpp>
-#include <legwork/eval/metrics.hpp>
+#include <legwork/accent/offline/report.hpp>
+#include <legwork/eval/session.hpp>
 #include <legwork/eval/run.hpp>
 #include <legwork/accent/offline/retarget.hpp>
-#include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/core/measure.hpp>
-#include <legwork/io/bvh.hpp>
-#include <legwork/io/gltf.hpp>
 #include <legwork/io/text.hpp>
 #include <legwork/io/tracker_csv.hpp>
-#include <legwork/render/render.hpp>
-
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <filesystem>
 
@@ -34,33 +28,6 @@ using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// A one-line progress bar on stderr.
-Progress progress_bar(const std::string& what) {
-  return [what](int done, int total, const std::string& item) {
-    const int width = 30;
-    const int filled = total > 0 ? done * width / total : width;
-    std::fprintf(stderr, "\r%s [%s%s] %d/%d %-40.40s", what.c_str(), std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 std::string(static_cast<std::size_t>(width - filled), '.').c_str(), done, total, item.c_str());
-    if (done >= total) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  };
-}
-
-std::vector<std::string> split_commas(const std::string& s) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : s) {
-    if (c == ',') {
-      if (!cur.empty()) out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  if (!cur.empty()) out.push_back(cur);
-  return out;
-}
 
 SearchMode parse_mode(const std::string& m) {
   if (m == "fast") return SearchMode::Fast;
@@ -77,54 +44,6 @@ struct BuildArgs {
   std::vector<std::string> exclude;
   BuildConfig cfg;
 };
-
-json build_report_json(const BuildReport& r, const Database& db, const BuildArgs& a) {
-  json j;
-  j["database"] = a.out;
-  j["windows"] = r.windows;
-  j["poses"] = r.poses;
-  j["bytes"] = r.bytes;
-  j["build_seconds"] = r.seconds;
-  j["skeleton_from"] = r.skeleton_from;
-  j["height_m"] = db.height();
-  j["typical_distance"] = db.typical_distance();
-  j["settings"] = {{"fps", a.cfg.fps}, {"hop", a.cfg.hop}, {"correlation_threshold", a.cfg.correlation_threshold},
-                   {"speeds", speed_factors(a.cfg)}, {"mirror", a.cfg.mirror}, {"group_weight", a.cfg.group_weight}};
-  json trials = json::array();
-  for (const auto& t : r.trials)
-    trials.push_back({{"file", t.file}, {"class", t.cls}, {"kept", t.kept}, {"correlation", t.correlation}, {"windows", t.windows}, {"reason", t.reason}});
-  j["trials"] = trials;
-  return j;
-}
-
-void print_class_table(const BuildReport& r) {
-  struct Row {
-    int kept = 0, dropped = 0, windows = 0;
-    std::map<std::string, int> why;
-  };
-  std::map<std::string, Row> rows;
-  for (const auto& t : r.trials) {
-    auto& row = rows[t.cls];
-    if (t.kept) {
-      ++row.kept;
-      row.windows += t.windows;
-    } else {
-      ++row.dropped;
-      std::string why = t.reason;
-      if (why.rfind("hand-foot correlation", 0) == 0) why = "hand-foot correlation below threshold";
-      ++row.why[why];
-    }
-  }
-  std::printf("%-18s %6s %8s %9s  %s\n", "class", "kept", "dropped", "windows", "why dropped");
-  for (const auto& [cls, row] : rows) {
-    std::string why;
-    for (const auto& [w, n] : row.why) why += (why.empty() ? "" : "; ") + std::to_string(n) + "x " + w;
-    std::printf("%-18s %6d %8d %9d  %s\n", cls.c_str(), row.kept, row.dropped, row.windows, why.c_str());
-  }
-  for (const auto& t : r.trials)
-    if (t.kept && t.reason.find("roles") != std::string::npos)
-      std::printf("note: %s %s\n", t.file.c_str(), t.reason.c_str());
-}
 
 void register_build(CLI::App& parent) {
   auto* cmd = parent.add_subcommand("build",
@@ -144,7 +63,7 @@ void register_build(CLI::App& parent) {
   cmd->add_option("--weights", a->weights, "feature group weights position,velocity,acceleration (default 1,1,0.5)");
   cmd->add_option("--json", a->json_path, "write the build report (per-trial verdicts) as JSON");
   cmd->callback([a] {
-    if (io::extension_of(a->out) != ".lwdb") throw Error("--out '" + a->out + "' must end in .lwdb");
+    require_extension("--out", a->out, {".lwdb"});
     if (!a->weights.empty()) {
       const auto w = split_commas(a->weights);
       if (w.size() != 3) throw Error("--weights '" + a->weights + "': expected three numbers p,v,a");
@@ -159,11 +78,11 @@ void register_build(CLI::App& parent) {
     try {
       db = build_database(trials, a->cfg, &report, progress_bar("building"));
     } catch (const Error&) {
-      print_class_table(report);
+      std::printf("%s", class_table(report).c_str());
       throw;
     }
     save_database(a->out, db);
-    print_class_table(report);
+    std::printf("%s", class_table(report).c_str());
     int kept = 0;
     for (const auto& t : report.trials) kept += t.kept;
     std::printf("database: %d of %zu trials kept, %d classes, %d windows, %d poses, %.1f MB, built in %.2f s (+ %.2f s reading BVH)\n",
@@ -171,7 +90,7 @@ void register_build(CLI::App& parent) {
     std::printf("skeleton: %s (%d joints, %.2f m tall)\n", report.skeleton_from.c_str(), db.joint_count(), db.height());
     announce("database", a->out);
     if (!a->json_path.empty()) {
-      auto j = build_report_json(report, db, *a);
+      auto j = build_report_json(report, db, a->cfg, a->out);
       j["read_seconds"] = read_s;
       io::write_text_file(a->json_path, j.dump(2) + "\n");
       announce("build report", a->json_path);
@@ -189,14 +108,6 @@ struct RunArgs {
   double threshold = 6.0, height = 0, exaggerate = 1.0, hand_ik = Settings{}.hand_ik, max_tilt = Settings{}.max_head_tilt_deg;
   double smooth_halflife = Settings{}.smooth_halflife;
 };
-
-void write_motion(const std::string& path, const Motion& m) {
-  const auto ext = io::extension_of(path);
-  if (ext == ".bvh")
-    io::write_bvh(path, m);
-  else
-    io::write_glb(path, m);
-}
 
 void register_run(CLI::App& parent) {
   auto* cmd = parent.add_subcommand(
@@ -238,9 +149,8 @@ void register_run(CLI::App& parent) {
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");
   cmd->add_option("--save-session", a->save_session, "also write the input as a headset session CSV (the format --input reads)");
   cmd->callback([a] {
-    const auto out_ext = io::extension_of(a->out);
-    if (out_ext != ".glb" && out_ext != ".bvh") throw Error("--out '" + a->out + "' must end in .glb or .bvh");
-    if (!a->video.empty() && io::extension_of(a->video) != ".mp4") throw Error("--video '" + a->video + "' must end in .mp4");
+    require_extension("--out", a->out, {".glb", ".bvh"});
+    if (!a->video.empty()) require_extension("--video", a->video, {".mp4"});
     const auto t0 = Clock::now();
     const Database db = load_database(a->db);
     const double load_s = seconds_since(t0);
@@ -278,16 +188,11 @@ void register_run(CLI::App& parent) {
       announce("headset session", a->save_session);
     }
     AccentRun run = accentuate(make_model(db, cfg), frames, fps);
-    std::map<std::string, int> statuses;
-    double weight = 0;
-    for (const auto& i : run.info) {
-      ++statuses[status_name(i.match)];
-      weight += i.match_weight;
-    }
+    const eval::SessionFigures fig = eval::session_figures(run);
     std::printf("database: %s (%d windows, loaded in %.1f ms)\n", a->db.c_str(), db.window_count(), load_s * 1e3);
     std::printf("frames: %d at %.4g Hz; %.0f frames/s in update() (%s search); mean match weight %.2f\n", run.output.frame_count(), fps,
-                run.output.frame_count() / std::max(run.seconds, 1e-9), mode_name(cfg.search), weight / run.info.size());
-    for (const auto& [s, n] : statuses) std::printf("  %-14s %d frames\n", s.c_str(), n);
+                fig.frames_per_second, mode_name(cfg.search), fig.mean_match_weight);
+    for (const auto& [s, n] : fig.statuses) std::printf("  %-14s %d frames\n", s.c_str(), n);
     Motion result = run.output;
     if (!a->target.empty()) {
       Motion tgt = io::load_bvh(a->target, io::BvhReadOptions{});
@@ -295,8 +200,7 @@ void register_run(CLI::App& parent) {
       tgt.skeleton.scale(cfg.user_height > 0 ? cfg.user_height / std::max(measure_body(tgt.skeleton).standing_height, 1e-6) : 1.0);
       result = retarget_motion_at_head(run.output, tgt.skeleton);
     }
-    write_motion(a->out, result);
-    announce("accentuated motion", a->out);
+    write_motion(a->out, result, "accentuated motion", "motion");
     Motion ik;
     if (a->compare_ik) ik = eval::run_ik_baseline(truth.skeleton.names.empty() ? run.output.skeleton : truth.skeleton, frames, fps);
     json j;
@@ -304,57 +208,27 @@ void register_run(CLI::App& parent) {
     j["database"] = a->db;
     j["frames"] = run.output.frame_count();
     j["fps"] = fps;
-    j["frames_per_second"] = run.output.frame_count() / std::max(run.seconds, 1e-9);
+    j["frames_per_second"] = fig.frames_per_second;
     j["load_ms"] = load_s * 1e3;
-    j["statuses"] = statuses;
+    j["statuses"] = fig.statuses;
     if (!truth.skeleton.names.empty()) {
-      // Ground-truth comparison (cm), when the input was a full-body trial.
-      auto err = [&](const Motion& m) {
-        const eval::TrialMetrics t = eval::evaluate_trial(eval::role_track(m), eval::role_track(truth));
-        return json{{"left_hand_cm", t.part_cm[0]}, {"right_hand_cm", t.part_cm[1]}, {"full_body_cm", t.mpjpe_cm},
-                    {"lower_body_cm", t.part_cm[3]}, {"foot_skating_cm", t.foot_skating_cm}};
-      };
-      auto print = [&](const char* label, const json& e) {
-        std::printf("%-12s full body %.1f cm, lower body %.1f cm, hands %.1f / %.1f cm, foot skating %.2f cm/frame\n", label,
-                    e["full_body_cm"].get<double>(), e["lower_body_cm"].get<double>(), e["left_hand_cm"].get<double>(),
-                    e["right_hand_cm"].get<double>(), e["foot_skating_cm"].get<double>());
-      };
       std::printf("vs ground truth:\n");
-      j["accent_error"] = err(run.output);
-      print("accent", j["accent_error"]);
+      j["accent_error"] = eval::truth_error(run.output, truth);
+      std::printf("%s", eval::describe_truth_error("accent", j["accent_error"]).c_str());
       if (a->compare_ik) {
-        j["ik_error"] = err(ik);
-        print("IK baseline", j["ik_error"]);
+        j["ik_error"] = eval::truth_error(ik, truth);
+        std::printf("%s", eval::describe_truth_error("IK baseline", j["ik_error"]).c_str());
       }
     }
     if (!a->json_path.empty()) {
-      json per = json::array();
-      for (const auto& i : run.info)
-        per.push_back({{"status", status_name(i.match)}, {"match_weight", i.match_weight}, {"fallback", i.fallback},
-                       {"matches", i.matches}, {"best_distance", i.best_distance}});
-      j["per_frame"] = per;
+      j["per_frame"] = eval::session_per_frame(run);
       io::write_text_file(a->json_path, j.dump(1) + "\n");
       announce("run report", a->json_path);
     }
     if (!a->video.empty()) {
-      const Motion input = input_markers(frames, fps);
-      std::vector<const Motion*> panels{&input, &run.output};
-      std::vector<std::string> labels{"input (head, hands)", "accentuated"};
-      if (a->compare_ik) {
-        panels.push_back(&ik);
-        labels.push_back("IK baseline");
-      }
-      if (!truth.skeleton.names.empty()) {
-        panels.push_back(&truth);
-        labels.push_back("ground truth");
-      }
-      render::VideoOptions vo;
-      vo.fps = 30;
-      vo.camera.view = render::View::ThreeQuarter;
-      vo.camera.width = 280 * static_cast<int>(panels.size());
-      vo.camera.height = 420;
-      vo.title = "legwork accent: " + std::filesystem::path(a->input.path).filename().string();
-      render::render_video_side_by_side(panels, labels, vo, a->video);
+      eval::render_session_video(frames, fps, run.output, a->compare_ik ? &ik : nullptr,
+                                 truth.skeleton.names.empty() ? nullptr : &truth,
+                                 "legwork accent: " + std::filesystem::path(a->input.path).filename().string(), a->video);
       announce("video", a->video);
     }
   });

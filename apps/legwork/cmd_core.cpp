@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -98,6 +100,26 @@ void register_info(CLI::App& app) {
   });
 }
 
+// Resampling bounds: no capture system records faster, and the output stays
+// a file a tool can load (frames x joints, checked before any work).
+constexpr double kMaxConvertRate = 1000.0;
+constexpr double kMaxConvertJointPoses = 16777216.0;  // 2^24: 0.9 GB of poses
+
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+void check_resample_size(const Motion& m, double rate) {
+  const double frames = std::floor(m.duration() * rate + 1e-6) + 1;
+  if (frames * m.joint_count() > kMaxConvertJointPoses)
+    throw Error("--rate " + number_text(rate) + " Hz would make " + number_text(frames) + " frames x " +
+                std::to_string(m.joint_count()) + " joints; the limit is " + number_text(kMaxConvertJointPoses) +
+                " joint poses (at most " + number_text(std::floor(kMaxConvertJointPoses / m.joint_count() / std::max(m.duration(), 1e-9))) +
+                " Hz for this clip)");
+}
+
 void register_convert(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "convert",
@@ -117,12 +139,15 @@ void register_convert(CLI::App& app) {
     const auto ext = io::extension_of(*out);
     if (ext != ".bvh" && ext != ".glb")
       throw Error("output '" + *out + "' must end in .bvh or .glb");
+    if (*rate > kMaxConvertRate)
+      throw Error("--rate " + number_text(*rate) + " Hz is above the limit of " + number_text(kMaxConvertRate) + " Hz");
     auto f = in->load();
     Motion m = std::move(f.motion);
     if (!frames->empty()) {
       auto [a, b] = parse_frame_range(*frames, m.frame_count());
       m = trim(m, a, b);
     }
+    if (*rate > 0) check_resample_size(m, *rate);
     if (*mirror) m = mirror_motion(m);
     if (*rate > 0) m = resample(m, *rate);
     if (ext == ".bvh") {

@@ -8,25 +8,13 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <mutex>
 #include <regex>
-#include <sstream>
 
 namespace legwork::cli {
 namespace {
-
-std::vector<std::string> split_commas(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
 
 struct EvalArgs {
   std::string data, manifest, test, test_manifest, classes, protocols, out;
@@ -38,21 +26,6 @@ struct EvalArgs {
   double threshold = -1, hand_ik = -1;
   bool mirror = false, exact = false;
 };
-
-std::vector<eval::Protocol> parse_protocols(const std::string& s, bool have_test) {
-  if (s.empty()) {
-    if (have_test) return {eval::Protocol::CrossDataset};
-    return {eval::Protocol::CrossSubject, eval::Protocol::CrossTrial};
-  }
-  std::vector<eval::Protocol> out;
-  for (const auto& p : split_commas(s)) {
-    if (p == "cross_subject" || p == "cross-subject") out.push_back(eval::Protocol::CrossSubject);
-    else if (p == "cross_trial" || p == "cross-trial") out.push_back(eval::Protocol::CrossTrial);
-    else if (p == "cross_dataset" || p == "cross-dataset") out.push_back(eval::Protocol::CrossDataset);
-    else throw Error("--protocols: unknown protocol '" + p + "' (cross_subject, cross_trial, cross_dataset)");
-  }
-  return out;
-}
 
 // A progress line on stderr: rewritten in place on a terminal, one line each otherwise.
 std::function<void(const std::string&)> progress_printer() {
@@ -80,32 +53,6 @@ std::function<void(const std::string&)> progress_printer() {
     std::fflush(stderr);
     *last = line;
   };
-}
-
-void print_summary(const nlohmann::json& r) {
-  auto val = [](const nlohmann::json& m, const char* k) {
-    return m.contains(k) && m[k].is_number() ? m[k].get<double>() : NAN;
-  };
-  for (const char* p : {"cross_subject", "cross_trial", "cross_dataset"}) {
-    if (!r.contains(p)) continue;
-    std::printf("%s (%d folds):\n", p, r[p]["folds"].get<int>());
-    for (const char* m : {"accent", "ik"}) {
-      if (!r[p].contains(m)) continue;
-      const auto& x = r[p][m];
-      std::printf("  %-6s full %5.2f cm (SD %.2f)  upper %5.2f  lower %5.2f  hands %.2f / %.2f cm  "
-                  "MPJVE %.1f cm/s  jitter %.2f  hand r %.3f  %.0f frames/s\n",
-                  m, val(x, "full_body_cm"), val(x, "full_body_cm_sd"), val(x, "upper_body_cm"),
-                  val(x, "lower_body_cm"), val(x, "left_hand_cm"), val(x, "right_hand_cm"), val(x, "mpjve_cm_s"),
-                  val(x, "jitter"), val(x, "hand_correlation"), val(x, "frames_per_second"));
-    }
-    if (r[p].contains("ablation"))
-      for (const auto& [k, x] : r[p]["ablation"].items())
-        std::printf("  ablation %-16s full %5.2f cm  lower %5.2f cm\n", k.c_str(), val(x, "full_body_cm"),
-                    val(x, "lower_body_cm"));
-  }
-  for (const auto& t : r["targets"])
-    std::printf("target %-58s %s\n", t["target"].get<std::string>().c_str(),
-                t["met"].is_null() ? "n/a" : (t["met"].get<bool>() ? "met" : "NOT met"));
 }
 
 void register_eval(CLI::App& app) {
@@ -156,7 +103,7 @@ void register_eval(CLI::App& app) {
     std::unique_ptr<eval::Catalogue> test;
     if (!a->test.empty()) test = std::make_unique<eval::Catalogue>(eval::read_catalogue(a->test, a->test_manifest, classes));
     eval::RunOptions opt;
-    opt.protocols = parse_protocols(a->protocols, test != nullptr);
+    opt.protocols = eval::parse_protocols(a->protocols, test != nullptr);
     for (auto p : opt.protocols)
       if (p == eval::Protocol::CrossDataset && !test) throw Error("--protocols cross_dataset needs --test DIR");
     if (a->quick) {
@@ -182,7 +129,7 @@ void register_eval(CLI::App& app) {
     const eval::EvalResult res = eval::run_evaluation(data, test.get(), opt);
     if (isatty(fileno(stderr))) std::fprintf(stderr, "\n");
     const nlohmann::json report = eval::report_json(res);
-    print_summary(report);
+    std::printf("%s", eval::report_summary(report).c_str());
     std::printf("%zu trials, %.1f s on %d threads\n", data.trials.size(), res.seconds, res.threads);
     if (!a->out.empty()) {
       for (const auto& f : eval::write_report(res, a->out))

@@ -6,7 +6,8 @@
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/io/text.hpp>
-#include <legwork/render/render.hpp>
+#include <legwork/render/compose.hpp>
+#include <legwork/walkcycle/keys.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -32,100 +33,18 @@ struct RenderArgs {
   bool footprints = false;
 };
 
-// Rough footprints for pictures: runs of frames (>= 0.1 s) where an ankle is
-// within 5 cm of its lowest height and moves slower than 0.5 m/s horizontally.
-// One print per run at the run's mean ankle position, turned along ankle->toe.
-// A visual aid only; gait modules have their own contact detection.
-std::vector<render::Footprint> detect_footprints(const Motion& m, int first, int last) {
-  std::vector<render::Footprint> out;
-  const auto pos = joint_positions(m);
-  const auto nj = static_cast<std::size_t>(m.joint_count());
-  auto at = [&](int f, int j) { return pos[static_cast<std::size_t>(f) * nj + static_cast<std::size_t>(j)]; };
-  for (bool left : {true, false}) {
-    const int ankle = m.skeleton.roles[left ? Role::LeftAnkle : Role::RightAnkle];
-    const int toe = m.skeleton.roles[left ? Role::LeftToe : Role::RightToe];
-    if (ankle < 0) continue;
-    double low = 1e300;
-    for (int f = first; f <= last; ++f) low = std::min(low, at(f, ankle).y());
-    const int min_run = std::max(2, static_cast<int>(0.1 * m.fps));
-    int run_start = -1;
-    for (int f = first; f <= last + 1; ++f) {
-      bool contact = false;
-      if (f <= last) {
-        const int g = f < last ? f + 1 : f - 1;
-        const Vec3 d = at(g, ankle) - at(f, ankle);
-        const double speed = std::hypot(d.x(), d.z()) * m.fps;
-        contact = at(f, ankle).y() < low + 0.05 && speed < 0.5;
-      }
-      if (contact && run_start < 0) run_start = f;
-      if (!contact && run_start >= 0) {
-        if (f - run_start >= min_run) {
-          Vec3 a = Vec3::Zero(), dir = Vec3::Zero();
-          for (int k = run_start; k < f; ++k) {
-            a += at(k, ankle);
-            if (toe >= 0) dir += at(k, toe) - at(k, ankle);
-          }
-          a /= f - run_start;
-          const double heading = toe >= 0 ? std::atan2(dir.x(), dir.z()) : 0.0;
-          // The sole's origin sits ~3 cm ahead of the ankle, on the floor.
-          out.push_back({Vec3(a.x() + 0.03 * std::sin(heading), 0.0, a.z() + 0.03 * std::cos(heading)), heading, left});
-        }
-        run_start = -1;
-      }
-    }
-  }
-  return out;
-}
-
-// A joint by exact name or by role name (e.g. LeftAnkle); the error lists the valid names.
+// A joint by exact name or by role name (e.g. left_ankle); the error lists the valid names.
 int find_trace_joint(const Skeleton& skel, const std::string& name) {
-  if (int j = skel.find(name); j >= 0) return j;
-  for (int r = 0; r < kRoleCount; ++r)
-    if (role_name(static_cast<Role>(r)) == name && skel.roles.joint[static_cast<std::size_t>(r)] >= 0)
-      return skel.roles.joint[static_cast<std::size_t>(r)];
+  if (const int j = walkcycle::find_joint_or_role(skel, name); j >= 0) return j;
   std::string valid;
   for (const auto& n : skel.names) valid += (valid.empty() ? "" : ", ") + n;
   throw Error("--trace: unknown joint '" + name + "'; valid joints: " + valid +
               " (role names such as left_ankle also work)");
 }
 
-// Frames first..last sampled every `every` frames (or ~6 evenly), last included.
-std::vector<int> sample_frames(int first, int last, int every) {
-  std::vector<int> out;
-  if (every <= 0) {
-    const int n = std::min(6, last - first + 1);
-    for (int i = 0; i < n; ++i) out.push_back(first + (n > 1 ? i * (last - first) / (n - 1) : 0));
-    return out;
-  }
-  for (int f = first; f <= last; f += every) out.push_back(f);
-  if (out.back() != last && last - out.back() >= every / 2) out.push_back(last);
-  return out;
-}
-
-// A picture height that suits the content's aspect in this view (less empty
-// space for long flat paths seen from above), between 240 and 960 pixels.
-int fitted_height(const Motion& m, int first, int last, render::View view, int width) {
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = -lo;
-  const auto pos = joint_positions(m);
-  const auto nj = static_cast<std::size_t>(m.joint_count());
-  for (int f = first; f <= last; ++f)
-    for (std::size_t j = 0; j < nj; ++j) {
-      Vec3 p = pos[static_cast<std::size_t>(f) * nj + j];
-      for (int floor = 0; floor < (view == render::View::Top ? 1 : 2); ++floor) {
-        if (floor) p.y() = 0;
-        const auto q = render::project(view, p);
-        lo = lo.cwiseMin(q);
-        hi = hi.cwiseMax(q);
-      }
-    }
-  const double aspect = (hi.y() - lo.y()) / std::max(hi.x() - lo.x(), 1e-3);
-  return std::clamp(static_cast<int>(width * 0.84 * aspect) + 110, 240, 960) / 2 * 2;
-}
-
 void run_render(const RenderArgs& a) {
+  require_extension("--out", a.out, {".png", ".svg", ".mp4"});
   const std::string ext = io::extension_of(a.out);
-  if (ext != ".png" && ext != ".svg" && ext != ".mp4")
-    throw Error("--out '" + a.out + "' must end in .png, .svg or .mp4");
   const auto view = a.view.empty() ? render::View::Side : render::parse_view(a.view);
   const auto file = a.in.load();
   const Motion& m = file.motion;
@@ -175,13 +94,13 @@ void run_render(const RenderArgs& a) {
     render::Camera cam;
     cam.view = view;
     cam.width = a.width > 0 ? a.width : 960;
-    cam.height = a.height > 0 ? a.height : fitted_height(m, first, last, view, cam.width);
+    cam.height = a.height > 0 ? a.height : render::fitted_height(m, first, last, view, cam.width);
     render::TrajectoryOptions opt;
     opt.first_frame = first;
     opt.last_frame = last;
     opt.title = a.title;
-    if (a.footprints) opt.footprints = detect_footprints(m, first, last);
-    render::render_trajectory(m, trace, sample_frames(first, last, a.every), cam, a.out, opt);
+    if (a.footprints) opt.footprints = render::detect_footprints(m, first, last);
+    render::render_trajectory(m, trace, render::sample_frames(first, last, a.every), cam, a.out, opt);
     announce("trajectory", a.out);
     return;
   }
@@ -189,7 +108,7 @@ void run_render(const RenderArgs& a) {
   if (!a.view.empty()) opt.views = {view};
   if (a.height > 0) opt.panel_height = a.height;
   std::vector<Pose> poses;
-  for (int f : sample_frames(first, last, a.every)) {
+  for (int f : render::sample_frames(first, last, a.every)) {
     const auto fr = m.frame(f);
     Pose p;
     p.rotations.assign(fr.rotations.begin(), fr.rotations.end());

@@ -3,10 +3,13 @@
 // LEGWORK_COMMAND(fn, order), so modules never edit main.cpp.
 #include <CLI/CLI.hpp>
 
+#include <legwork/core/motion.hpp>
 #include <legwork/core/types.hpp>
 
+#include <functional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace legwork::cli {
 
@@ -18,6 +21,21 @@ std::pair<int, int> parse_frame_range(const std::string& spec, int frames);
 
 // Prints "wrote PATH" consistently.
 void announce(const std::string& what, const std::string& path);
+
+// "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
+std::vector<std::string> split_commas(const std::string& s);
+
+// Throws "OPTION 'PATH' must end in A or B" unless PATH ends in one of `exts` (".png", ...).
+void require_extension(const std::string& option, const std::string& path, const std::vector<std::string>& exts);
+
+// Creates the folder `path` will be written into.
+void ensure_parent(const std::string& path);
+
+// Writes a motion as .bvh or .glb (by extension; `name` = the glTF animation name) and announces it.
+void write_motion(const std::string& path, const Motion& m, const std::string& what, const std::string& name);
+
+// A one-line progress bar on stderr: "what [####......] done/total item".
+std::function<void(int, int, const std::string&)> progress_bar(const std::string& what);
 
 }  // namespace legwork::cli
 

@@ -12,10 +12,6 @@
 namespace legwork::accent {
 namespace {
 
-bool finite(const Vec3& v) { return all_finite(v); }
-bool finite(const Quat& q) { return all_finite(q) && q.norm() > 1e-6; }
-
-
 // Swing-twist clamp of a local rotation about the bone axis.
 Quat clamp_rotation(const Quat& q, const Vec3& axis, double max_swing, double max_twist) {
   const Vec3 v(q.x(), q.y(), q.z());
@@ -270,7 +266,7 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
     const auto root = db.pose_rotations(static_cast<int>(db.source(win).pose));
     st.pose_rot[hu][iu] = root.data();
     Quat q0(root[0], root[1], root[2], root[3]);
-    if (model.settings().align) q0 = Quat(Eigen::AngleAxisd(align_yaw(query_xz, db.align(win)), Vec3::UnitY())) * q0;
+    if (model.settings().align) q0 = yaw_rotation(align_yaw(query_xz, db.align(win))) * q0;
     st.root_aligned[hu][iu] = q0;
     const double d = m[iu].distance;
     st.weight[hu][iu] = 1.0 / (d + 1e-3 * typical);
@@ -475,8 +471,8 @@ bool take_devices(const Model& model, const TrackerFrame& in, State& st) {
 }
 
 bool pose_finite(ConstPoseRef p) {
-  bool ok = finite(p.translations[0]);
-  for (const auto& q : p.rotations) ok = ok && finite(q);
+  bool ok = all_finite(p.translations[0]);
+  for (const auto& q : p.rotations) ok = ok && all_finite(q) && q.norm() > 1e-6;
   return ok;
 }
 

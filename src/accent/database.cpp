@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
@@ -122,6 +124,8 @@ const T* section(const Database::Impl& d, std::uint64_t offset, std::uint64_t co
   return reinterpret_cast<const T*>(d.base + offset);
 }
 
+void validate_contents(const Database::Impl& d, const std::string& source, bool scan_data);
+
 // Validates the block in d.base/d.size and fills the views.
 void open_block(Database::Impl& d, const std::string& source, bool verify) {
   if (d.size < sizeof(FileHeader)) fail(source, "file is " + std::to_string(d.size) + " bytes, shorter than the header (truncated or not a database)");
@@ -157,6 +161,44 @@ void open_block(Database::Impl& d, const std::string& source, bool verify) {
   for (std::uint32_t w = 0; w < h.window_count; ++w)
     if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count)
       fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
+  validate_contents(d, source, verify);
+}
+
+// Contents beyond the checksum: a checksum-valid file can still hold values
+// that make every result wrong while reporting 'matched'. Metadata is always
+// checked; with `scan_data` (the checksum pass reads every byte anyway) every
+// pose is a finite unit quaternion and every feature and head axis is finite.
+void validate_contents(const Database::Impl& d, const std::string& source, bool scan_data) {
+  const DatabaseMeta& m = d.meta;
+  auto positive = [&](double v, double max, const char* what) {
+    if (!(v > 0 && v <= max))
+      fail(source, std::string(what) + " is " + std::to_string(v) + ", expected a finite value in (0, " +
+                       std::to_string(max) + "]; rebuild the database");
+  };
+  positive(m.settings.fps, 10000, "build fps");
+  positive(m.space.fps, 10000, "feature fps");
+  positive(m.height, 10, "height_m");
+  positive(m.typical_distance, 1e6, "typical_distance");
+  for (double v : m.space.scale)
+    if (!std::isfinite(v)) fail(source, "feature scale is not finite");
+  for (double v : m.space.projection)
+    if (!std::isfinite(v)) fail(source, "feature projection is not finite");
+  if (!scan_data) return;
+  const std::uint32_t joints = d.header.joint_count;
+  for (std::uint32_t p = 0; p < d.header.pose_count; ++p)
+    for (std::uint32_t j = 0; j < joints; ++j) {
+      const float* q = d.poses + (std::size_t{p} * joints + j) * 4;
+      const double norm2 = double{q[0]} * q[0] + double{q[1]} * q[1] + double{q[2]} * q[2] + double{q[3]} * q[3];
+      if (!(std::abs(norm2 - 1.0) < 1e-3))
+        fail(source, "pose " + std::to_string(p) + " joint '" + m.skeleton.names[j] +
+                         "' is not a finite unit quaternion; rebuild the database");
+    }
+  for (std::uint32_t p = 0; p < 3 * d.header.pose_count; ++p)
+    if (!std::isfinite(d.head_up[p])) fail(source, "head axis of pose " + std::to_string(p / 3) + " is not finite");
+  for (int hand = 0; hand < 2; ++hand)
+    for (std::uint32_t w = 0; w < d.header.window_count; ++w)
+      for (float v : d.features[hand][w])
+        if (!std::isfinite(v)) fail(source, "feature of window " + std::to_string(w) + " is not finite");
 }
 
 }  // namespace
@@ -344,12 +386,39 @@ Database load_database(const std::string& path, const LoadOptions& opt) {
   return db;
 }
 
+// Written to a temporary file in the same folder, then renamed over `path`:
+// a process that has the old file mapped keeps its (unlinked) pages instead of
+// dying with SIGBUS on a file truncated under it, and a failed write never
+// leaves a half-written database behind.
 void save_database(const std::string& path, const Database& db) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw Error("cannot write accent database '" + path + "'");
+  std::string tmp = path + ".tmp-XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) throw Error("cannot write accent database '" + path + "': " + std::strerror(errno));
+  auto failed = [&](const char* what) {
+    const std::string reason = std::strerror(errno);
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw Error(std::string(what) + " accent database '" + path + "': " + reason);
+  };
   const auto b = db.bytes();
-  out.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
-  if (!out) throw Error("write failed for accent database '" + path + "'");
+  const auto* data = reinterpret_cast<const char*>(b.data());
+  for (std::size_t done = 0; done < b.size();) {
+    const ssize_t n = ::write(fd, data + done, b.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) failed("write failed for");
+    done += static_cast<std::size_t>(n);
+  }
+  // mkstemp makes the file private (0600); a database is shared data.
+  if (::fchmod(fd, 0644) != 0 || ::fsync(fd) != 0) failed("cannot finish");
+  if (::close(fd) != 0) {
+    ::unlink(tmp.c_str());
+    throw Error("cannot finish accent database '" + path + "': " + std::strerror(errno));
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(tmp.c_str());
+    throw Error("cannot write accent database '" + path + "': " + reason);
+  }
 }
 
 }  // namespace legwork::accent

@@ -42,10 +42,21 @@ void sample_motion(const Motion& m, double t, PoseRef out) {
   blend_poses(m.frame(i0), m.frame(i1), x - i0, out);
 }
 
-Motion resample(const Motion& m, double fps) {
+int resampled_frame_count(const Motion& m, double fps) {
   if (!(fps > 0) || !std::isfinite(fps)) throw Error("resample: frame rate must be positive, got " + std::to_string(fps));
-  if (m.frame_count() == 0) return Motion(m.skeleton, fps, 0);
-  const int frames = static_cast<int>(std::floor(m.duration() * fps + 1e-6)) + 1;
+  if (m.frame_count() == 0) return 0;
+  // In double first: a huge rate must not overflow the int it becomes.
+  const double frames = std::floor(m.duration() * fps + 1e-6) + 1;
+  if (!(frames * std::max(m.joint_count(), 1) <= kMaxResampledJointPoses))
+    throw Error("resample: " + std::to_string(m.duration()) + " s at " + std::to_string(fps) + " Hz is " +
+                std::to_string(static_cast<long long>(std::min(frames, 1e18))) + " frames x " +
+                std::to_string(m.joint_count()) + " joints, more than " +
+                std::to_string(static_cast<long long>(kMaxResampledJointPoses)) + " joint poses");
+  return static_cast<int>(frames);
+}
+
+Motion resample(const Motion& m, double fps) {
+  const int frames = resampled_frame_count(m, fps);
   Motion out(m.skeleton, fps, frames);
   for (int f = 0; f < frames; ++f) sample_motion(m, f / fps, out.frame(f));
   return out;

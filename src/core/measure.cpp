@@ -42,9 +42,15 @@ BodyMeasures measure_body(const Skeleton& skel) {
     const double leg = 0.5 * (bone(p, r[Role::LeftHip], r[Role::LeftKnee]) + bone(p, r[Role::LeftKnee], r[Role::LeftAnkle]) +
                               bone(p, r[Role::RightHip], r[Role::RightKnee]) + bone(p, r[Role::RightKnee], r[Role::RightAnkle]));
     // Ankle above the sole: lowest point of the foot's subtree (toes, end sites).
+    // Parents precede children, so one pass marks the subtree (linear, not joints x depth).
     double sole = at(Role::LeftAnkle).y();
-    for (int j = 0; j < skel.joint_count(); ++j)
-      if (skel.is_ancestor(r[Role::LeftAnkle], j)) sole = std::min(sole, std::min(p[static_cast<std::size_t>(j)].y(), end_site_position(skel, g, j).y()));
+    std::vector<unsigned char> in_foot(static_cast<std::size_t>(skel.joint_count()), 0);
+    for (int j = r[Role::LeftAnkle]; j < skel.joint_count(); ++j) {
+      const auto ju = static_cast<std::size_t>(j);
+      const int parent = skel.parents[ju];
+      in_foot[ju] = j == r[Role::LeftAnkle] || (parent >= 0 && parent < j && in_foot[static_cast<std::size_t>(parent)]);
+      if (in_foot[ju]) sole = std::min(sole, std::min(p[ju].y(), end_site_position(skel, g, j).y()));
+    }
     const double ankle_height = at(Role::LeftAnkle).y() - sole;
     m.standing_height = (head_top - pelvis) + hip_drop + leg + ankle_height;
     m.hip_height = hip_drop + leg + ankle_height;

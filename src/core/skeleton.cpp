@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <sstream>
+#include <unordered_map>
 
 namespace legwork {
 
@@ -114,18 +115,28 @@ bool base_has(const std::string& base, std::initializer_list<std::string_view> w
   return false;
 }
 
-int depth_of(const Skeleton& s, int j) {
-  int d = 0;
-  while (s.parents[static_cast<std::size_t>(j)] >= 0) {
-    j = s.parents[static_cast<std::size_t>(j)];
-    ++d;
+// Depth of every joint in one pass (parents come before their children);
+// a parent index that breaks that order is walked up, with a step bound.
+std::vector<int> joint_depths(const Skeleton& s) {
+  const int n = s.joint_count();
+  std::vector<int> depth(static_cast<std::size_t>(n), 0);
+  for (int j = 0; j < n; ++j) {
+    const int p = s.parents[static_cast<std::size_t>(j)];
+    if (p < 0) continue;
+    if (p < j) {
+      depth[static_cast<std::size_t>(j)] = depth[static_cast<std::size_t>(p)] + 1;
+      continue;
+    }
+    int d = 0;
+    for (int k = j; k >= 0 && k < n && d <= n; k = s.parents[static_cast<std::size_t>(k)]) ++d;
+    depth[static_cast<std::size_t>(j)] = d - 1;
   }
-  return d;
+  return depth;
 }
 
 // Shallowest joint on `side` whose base name is one of `exact` (or, failing
 // that, contains one of `fuzzy` and none of the excluded words).
-int find_sided(const Skeleton& s, const std::vector<SideSplit>& split, Side side,
+int find_sided(const Skeleton& s, const std::vector<SideSplit>& split, const std::vector<int>& depth, Side side,
                std::initializer_list<std::string_view> exact,
                std::initializer_list<std::string_view> fuzzy) {
   int best = -1, best_depth = 1 << 30;
@@ -137,7 +148,7 @@ int find_sided(const Skeleton& s, const std::vector<SideSplit>& split, Side side
                           : base_has(sp.base, fuzzy) &&
                                 !base_has(sp.base, {"end", "index", "thumb", "finger", "pinky",
                                                     "middle", "ring", "toe", "site"});
-      int d = depth_of(s, j);
+      const int d = depth[static_cast<std::size_t>(j)];
       if (ok && d < best_depth) best = j, best_depth = d;
     }
   }
@@ -217,28 +228,35 @@ void Skeleton::scale(double s) {
   for (auto& e : end_sites) e *= s;
 }
 
-std::vector<Role> resolve_roles(Skeleton& skel) {
-  const int n = skel.joint_count();
-  std::vector<SideSplit> split(static_cast<std::size_t>(n));
-  for (int j = 0; j < n; ++j) split[static_cast<std::size_t>(j)] = split_side(skel.names[static_cast<std::size_t>(j)]);
+namespace {
 
-  // Mirror pairs: a sided joint whose counterpart name exists.
+// Mirror pairs: a sided joint whose counterpart name exists. Unpaired sided
+// joints become central in `split`. A name index keeps this linear in the
+// joint count (first joint of each name, as Skeleton::find).
+void resolve_mirrors(Skeleton& skel, std::vector<SideSplit>& split) {
+  const int n = skel.joint_count();
+  std::unordered_map<std::string_view, int> index;
+  index.reserve(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) index.emplace(skel.names[static_cast<std::size_t>(j)], j);
   skel.mirror.assign(static_cast<std::size_t>(n), 0);
   for (int j = 0; j < n; ++j) {
     const auto& sp = split[static_cast<std::size_t>(j)];
-    int other = sp.side == Side::Centre ? -1 : skel.find(sp.counterpart);
+    const auto found = sp.side == Side::Centre ? index.end() : index.find(sp.counterpart);
+    const int other = found == index.end() ? -1 : found->second;
     skel.mirror[static_cast<std::size_t>(j)] = other >= 0 ? other : j;
     if (other < 0) split[static_cast<std::size_t>(j)].side = Side::Centre;  // unpaired: treat as central
   }
+}
 
-  JointRoles r;
-  // Limbs: end joints by name, the rest of each chain by hierarchy.
+// Limbs: end joints by name, the rest of each chain by hierarchy.
+void resolve_limbs(const Skeleton& skel, const std::vector<SideSplit>& split, const std::vector<int>& depth,
+                   JointRoles& r) {
   for (auto [side, hand, elbow, shoulder, clav, ankle, knee, hip, toe] :
        {std::tuple{Side::Left, Role::LeftHand, Role::LeftElbow, Role::LeftShoulder, Role::LeftClavicle,
                    Role::LeftAnkle, Role::LeftKnee, Role::LeftHip, Role::LeftToe},
         std::tuple{Side::Right, Role::RightHand, Role::RightElbow, Role::RightShoulder,
                    Role::RightClavicle, Role::RightAnkle, Role::RightKnee, Role::RightHip, Role::RightToe}}) {
-    int h = find_sided(skel, split, side, {"hand", "wrist"}, {"hand", "wrist"});
+    int h = find_sided(skel, split, depth, side, {"hand", "wrist"}, {"hand", "wrist"});
     if (h >= 0) {
       r[hand] = h;
       r[elbow] = parent_of(skel, h);
@@ -246,21 +264,37 @@ std::vector<Role> resolve_roles(Skeleton& skel) {
       int c = parent_of(skel, r[shoulder]);
       if (c >= 0 && split[static_cast<std::size_t>(c)].side == side) r[clav] = c;
     }
-    int a = find_sided(skel, split, side, {"foot", "ankle"}, {"foot", "ankle"});
+    int a = find_sided(skel, split, depth, side, {"foot", "ankle"}, {"foot", "ankle"});
     if (a >= 0) {
       r[ankle] = a;
       r[knee] = parent_of(skel, a);
       r[hip] = parent_of(skel, r[knee]);
-      for (int c : skel.children(a)) {
+      const auto ch = skel.children(a);
+      for (int c : ch) {
         const auto& b = split[static_cast<std::size_t>(c)].base;
         if (base_has(b, {"toe", "ball"})) { r[toe] = c; break; }
       }
-      if (r[toe] < 0) {
-        auto ch = skel.children(a);
-        if (!ch.empty()) r[toe] = ch.front();
-      }
+      if (r[toe] < 0 && !ch.empty()) r[toe] = ch.front();
     }
   }
+}
+
+// Pelvis: the deepest common ancestor of both hips (usually the root; side
+// joints such as CMU's LHipJoint are skipped, being ancestors of one hip only).
+int common_ancestor(const Skeleton& skel, int a, int b) {
+  std::vector<unsigned char> above_b(skel.parents.size(), 0);
+  for (int p = b, steps = 0; p >= 0 && steps <= skel.joint_count(); p = parent_of(skel, p), ++steps)
+    above_b[static_cast<std::size_t>(p)] = 1;
+  int p = a;
+  for (int steps = 0; p >= 0 && !above_b[static_cast<std::size_t>(p)] && steps <= skel.joint_count(); ++steps)
+    p = parent_of(skel, p);
+  return p >= 0 && above_b[static_cast<std::size_t>(p)] ? p : -1;
+}
+
+// Head, pelvis, neck and the spine chain between them.
+void resolve_trunk(const Skeleton& skel, const std::vector<SideSplit>& split, const std::vector<int>& depth,
+                   JointRoles& r) {
+  const int n = skel.joint_count();
   // Head: exact "head", else a central joint containing "head" (not HeadTop_End).
   int head = -1, best_depth = 1 << 30;
   for (int pass = 0; pass < 2 && head < 0; ++pass)
@@ -268,38 +302,46 @@ std::vector<Role> resolve_roles(Skeleton& skel) {
       const auto& sp = split[static_cast<std::size_t>(j)];
       if (sp.side != Side::Centre) continue;
       bool ok = pass == 0 ? sp.base == "head" : base_has(sp.base, {"head"}) && !base_has(sp.base, {"end", "top", "site"});
-      if (ok && depth_of(skel, j) < best_depth) head = j, best_depth = depth_of(skel, j);
+      if (ok && depth[static_cast<std::size_t>(j)] < best_depth) head = j, best_depth = depth[static_cast<std::size_t>(j)];
     }
   r[Role::Head] = head;
-  // Pelvis: the deepest common ancestor of both hips (usually the root).
-  int lh = r[Role::LeftHip], rh = r[Role::RightHip];
-  if (lh >= 0 && rh >= 0) {
-    int p = lh;
-    while (p >= 0 && !skel.is_ancestor(p, rh)) p = parent_of(skel, p);
-    // Skip side joints such as CMU's LHipJoint (sided, so not an ancestor of both).
-    r[Role::Pelvis] = p;
-  } else {
-    r[Role::Pelvis] = 0;
-  }
+  const int lh = r[Role::LeftHip], rh = r[Role::RightHip];
+  r[Role::Pelvis] = lh >= 0 && rh >= 0 ? common_ancestor(skel, lh, rh) : 0;
+  if (head < 0) return;
   // Neck: lowest joint named *neck* between pelvis and head.
-  if (head >= 0) {
-    std::vector<int> path;  // head's ancestors below pelvis, top-down order reversed later
-    for (int j = parent_of(skel, head); j >= 0 && j != r[Role::Pelvis]; j = parent_of(skel, j)) path.push_back(j);
-    std::reverse(path.begin(), path.end());  // bottom-up from just above the pelvis
-    int neck = -1;
-    for (int j : path)
-      if (base_has(split[static_cast<std::size_t>(j)].base, {"neck"})) { neck = j; break; }
-    if (neck < 0 && !path.empty()) neck = path.back();
-    r[Role::Neck] = neck;
-    for (int j : path) {
-      if (j == neck) break;
-      r.spine_chain.push_back(j);
-    }
-    if (!r.spine_chain.empty()) {
-      r[Role::Spine] = r.spine_chain.front();
-      r[Role::Chest] = r.spine_chain.back();
-    }
+  std::vector<int> path;  // head's ancestors below pelvis, top-down order reversed later
+  for (int j = parent_of(skel, head); j >= 0 && j != r[Role::Pelvis] && static_cast<int>(path.size()) < n;
+       j = parent_of(skel, j))
+    path.push_back(j);
+  std::reverse(path.begin(), path.end());  // bottom-up from just above the pelvis
+  int neck = -1;
+  for (int j : path)
+    if (base_has(split[static_cast<std::size_t>(j)].base, {"neck"})) { neck = j; break; }
+  if (neck < 0 && !path.empty()) neck = path.back();
+  r[Role::Neck] = neck;
+  for (int j : path) {
+    if (j == neck) break;
+    r.spine_chain.push_back(j);
   }
+  if (!r.spine_chain.empty()) {
+    r[Role::Spine] = r.spine_chain.front();
+    r[Role::Chest] = r.spine_chain.back();
+  }
+}
+
+}  // namespace
+
+// Linear in the joint count (names are indexed, depths computed once), so a
+// 100,000-joint skeleton resolves as fast as it is read.
+std::vector<Role> resolve_roles(Skeleton& skel) {
+  const int n = skel.joint_count();
+  std::vector<SideSplit> split(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) split[static_cast<std::size_t>(j)] = split_side(skel.names[static_cast<std::size_t>(j)]);
+  const std::vector<int> depth = joint_depths(skel);
+  resolve_mirrors(skel, split);
+  JointRoles r;
+  resolve_limbs(skel, split, depth, r);
+  resolve_trunk(skel, split, depth, r);
   skel.roles = r;
   std::vector<Role> missing;
   for (int i = 0; i < kRoleCount; ++i)

@@ -1,4 +1,5 @@
 #include <legwork/eval/metrics.hpp>
+#include <legwork/core/stats.hpp>
 
 #include <legwork/core/fk.hpp>
 
@@ -100,29 +101,6 @@ RoleTrack role_track(const Motion& m) {
   return t;
 }
 
-double pearson(std::span<const double> a, std::span<const double> b) {
-  const std::size_t n = std::min(a.size(), b.size());
-  if (n < 2) return kNaN;
-  double ma = 0, mb = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    ma += a[i];
-    mb += b[i];
-  }
-  ma /= static_cast<double>(n);
-  mb /= static_cast<double>(n);
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double da = a[i] - ma, db = b[i] - mb;
-    sab += da * db;
-    saa += da * da;
-    sbb += db * db;
-  }
-  // A series that does not move (below a micrometre of spread) has no defined correlation.
-  constexpr double kFlat = 1e-12;
-  if (saa <= kFlat * static_cast<double>(n) || sbb <= kFlat * static_cast<double>(n)) return kNaN;
-  return std::clamp(sab / std::sqrt(saa * sbb), -1.0, 1.0);
-}
-
 double mean_jerk(const RoleTrack& t) {
   if (t.frames < 4) return 0;
   const double k = t.fps * t.fps * t.fps;
@@ -151,10 +129,7 @@ FootSkate foot_skating(const RoleTrack& t, double contact_height) {
     for (int f = 0; f < t.frames; ++f) heights[static_cast<std::size_t>(f)] = t.at(f, r).y();
     // The joint's own floor level: robust to a drifting capture floor and to
     // skeletons whose ankle sits at different heights.
-    std::vector<double> sorted = heights;
-    const auto k = static_cast<std::ptrdiff_t>(0.05 * static_cast<double>(sorted.size() - 1));
-    std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end());
-    const double floor = sorted[static_cast<std::size_t>(k)];
+    const double floor = percentile(heights, 0.05);
     auto in_contact = [&](int f) { return heights[static_cast<std::size_t>(f)] < floor + contact_height; };
     for (int f = 0; f < t.frames; ++f) {
       ++joint_frames;
@@ -243,28 +218,6 @@ TrialMetrics evaluate_trial(const RoleTrack& output, const RoleTrack& truth, con
   m.foot_skating_truth_cm = 100.0 * t.slide_m;
   m.foot_contact_fraction = o.contact_fraction;
   return m;
-}
-
-Stats summarize(std::span<const double> values) {
-  Stats s;
-  double sum = 0;
-  for (double v : values)
-    if (std::isfinite(v)) {
-      sum += v;
-      ++s.n;
-    }
-  if (s.n == 0) {
-    s.mean = kNaN;
-    return s;
-  }
-  s.mean = sum / s.n;
-  if (s.n > 1) {
-    double ss = 0;
-    for (double v : values)
-      if (std::isfinite(v)) ss += (v - s.mean) * (v - s.mean);
-    s.sd = std::sqrt(ss / (s.n - 1));
-  }
-  return s;
 }
 
 TrialMetrics combine(std::span<const TrialMetrics> trials) {

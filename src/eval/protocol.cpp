@@ -128,4 +128,24 @@ Catalogue quick_subset(const Catalogue& c, int per_class) {
   return q;
 }
 
+std::vector<Protocol> parse_protocols(const std::string& names, bool have_test) {
+  if (names.empty()) {
+    if (have_test) return {Protocol::CrossDataset};
+    return {Protocol::CrossSubject, Protocol::CrossTrial};
+  }
+  std::vector<Protocol> out;
+  std::size_t start = 0;
+  while (start <= names.size()) {
+    const std::size_t end = std::min(names.find(',', start), names.size());
+    const std::string p = names.substr(start, end - start);
+    start = end + 1;
+    if (p.empty()) continue;
+    if (p == "cross_subject" || p == "cross-subject") out.push_back(Protocol::CrossSubject);
+    else if (p == "cross_trial" || p == "cross-trial") out.push_back(Protocol::CrossTrial);
+    else if (p == "cross_dataset" || p == "cross-dataset") out.push_back(Protocol::CrossDataset);
+    else throw Error("--protocols: unknown protocol '" + p + "' (cross_subject, cross_trial, cross_dataset)");
+  }
+  return out;
+}
+
 }  // namespace legwork::eval

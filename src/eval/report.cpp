@@ -1,4 +1,5 @@
 #include <legwork/eval/report.hpp>
+#include <legwork/core/stats.hpp>
 
 #include <legwork/core/interpolate.hpp>
 #include <legwork/render/plot.hpp>
@@ -34,7 +35,7 @@ json summarize_folds(const std::vector<const MethodFold*>& folds) {
   for (const auto& k : metric_keys()) {
     std::vector<double> v;
     for (const MethodFold* f : folds) v.push_back(metric_value(f->metrics, k.key));
-    const Stats s = summarize(v);
+    const MeanSd s = mean_sd(v);
     out[k.key] = num(s.mean);
     out[std::string(k.key) + "_sd"] = num(s.sd);
   }
@@ -72,7 +73,7 @@ json summarize_method(const ProtocolResult& p, const std::string& method) {
   for (const auto& k : metric_keys()) {
     std::vector<double> v;
     for (const auto& [cls, c] : classes.items()) v.push_back(get(c, k.key));
-    macro[k.key] = num(summarize(v).mean);
+    macro[k.key] = num(mean_sd(v).mean);
   }
   out["class_mean"] = macro;
   if (!failures.empty()) out["failed_folds"] = failures;
@@ -320,16 +321,10 @@ json report_json(const EvalResult& r) {
   return out;
 }
 
-std::string report_markdown(const json& r) {
-  std::ostringstream md;
-  const json& paper = r["paper"];
-  const json& meta = r["meta"];
-  md << "# Accentuation evaluation (CoolMoves section 4.1 protocol)\n\n";
-  md << "Data: `" << meta["data"].get<std::string>() << "`, " << meta["trials"] << " trials; run took "
-     << fmt(meta["seconds"].get<double>(), 0) << " s on " << meta["threads"] << " threads.\n\n";
-  md << "Every figure below comes from this run's report.json; the document's published figures are printed "
-        "beside ours (\"doc.\"). Errors in cm, mean (SD across folds).\n\n";
+namespace {
 
+// Per body part (the document's Figure 4 A), over folds and over classes.
+void md_body_parts(std::ostringstream& md, const json& r) {
   // Headline: per protocol and method, body parts.
   md << "## Per body part (document's Figure 4 A)\n\n";
   md << "| protocol | method | left hand | right hand | upper body | lower body | full body | doc. full body | "
@@ -349,6 +344,10 @@ std::string report_markdown(const json& r) {
        << " | " << fmt(get(x, "upper_body_cm")) << " | " << fmt(get(x, "lower_body_cm")) << " | "
        << fmt(get(x, "full_body_cm")) << " |\n";
   });
+}
+
+// Motion quality and speed per protocol and method.
+void md_quality(std::ostringstream& md, const json& r) {
   md << "\n## Motion quality and speed\n\n";
   md << "| protocol | method | MPJVE (cm/s) | jitter (10² m/s³) | jitter of truth | hand corr. (L/R) | doc. hand corr. "
         "| foot skating (cm/frame) | truth skating | frames/s | doc. frames/s |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -361,8 +360,11 @@ std::string report_markdown(const json& r) {
                : (pp.contains("hand_correlation") ? fmt(pp["hand_correlation"].get<double>(), 2) : "–"))
        << " | " << fmt(get(x, "foot_skating_cm"), 2) << " | " << fmt(get(x, "foot_skating_truth_cm"), 2) << " | "
        << fmt(get(x, "frames_per_second"), 0) << " | " << paper_cell(pp, "frames_per_second", 0) << " |\n";
-});
+  });
+}
 
+// Per protocol: per class, and the classes left out.
+void md_per_class(std::ostringstream& md, const json& r) {
   // Per class.
   for (const auto& p : kProtocols) {
     if (!r.contains(p)) continue;
@@ -389,7 +391,12 @@ std::string report_markdown(const json& r) {
       for (const auto& [c, why] : r[p]["skipped_classes"].items()) md << "- " << c << ": " << why.get<std::string>() << "\n";
     }
   }
+}
 
+// The cross-subject ablation beside the document's figures.
+void md_ablation(std::ostringstream& md, const json& r) {
+  const json& paper = r["paper"];
+  const json& meta = r["meta"];
   // Ablation.
   if (r.contains("cross_subject") && r["cross_subject"].contains("ablation")) {
     md << "\n## Ablation (cross-subject, full body cm)\n\n| variant | full body | lower body | hands L/R | MPJVE | "
@@ -409,7 +416,11 @@ std::string report_markdown(const json& r) {
          << " | " << (paper["ablation"].contains(k) ? fmt(paper["ablation"][k].get<double>()) : "–") << " |\n";
     }
   }
+}
 
+// The speed pass, the targets, the IK baseline against the document's, dropped trials.
+void md_speed_and_targets(std::ostringstream& md, const json& r) {
+  const json& meta = r["meta"];
   if (meta.contains("speed") && meta["speed"]["frames"].get<int>() > 0) {
     const json& sp = meta["speed"];
     md << "\n## Speed (measured in this run)\n\nSingle-threaded pass after the folds on held-out trial "
@@ -436,9 +447,112 @@ std::string report_markdown(const json& r) {
     for (const auto& [t, why] : meta["dropped_by_correlation_filter"].items())
       md << "- " << t << ": " << why.get<std::string>() << "\n";
   }
+}
+
+}  // namespace
+
+std::string report_markdown(const json& r) {
+  std::ostringstream md;
+  const json& meta = r["meta"];
+  md << "# Accentuation evaluation (CoolMoves section 4.1 protocol)\n\n";
+  md << "Data: `" << meta["data"].get<std::string>() << "`, " << meta["trials"] << " trials; run took "
+     << fmt(meta["seconds"].get<double>(), 0) << " s on " << meta["threads"] << " threads.\n\n";
+  md << "Every figure below comes from this run's report.json; the document's published figures are printed "
+        "beside ours (\"doc.\"). Errors in cm, mean (SD across folds).\n\n";
+
+  md_body_parts(md, r);
+  md_quality(md, r);
+  md_per_class(md, r);
+  md_ablation(md, r);
+  md_speed_and_targets(md, r);
   md << "\nDefinitions: " << meta["definitions"].get<std::string>() << "\n";
   return md.str();
 }
+
+namespace {
+
+// An empty bar chart in cm, values with one decimal, 1000 pixels wide.
+render::BarChart cm_chart(const std::string& title) {
+  render::BarChart c;
+  c.title = title;
+  c.y_label = "cm";
+  c.width = 1000;
+  c.value_decimals = 1;
+  return c;
+}
+
+// Figure 4 A: per body part, this run's methods beside the document's figures.
+render::BarChart body_parts_chart(const json& r) {
+  render::BarChart c = cm_chart("Mean joint error per body part (cm)");
+  const std::vector<std::pair<std::string, std::string>> parts{{"left_hand_cm", "left hand"},
+                                                               {"right_hand_cm", "right hand"},
+                                                               {"upper_body_cm", "upper body"},
+                                                               {"lower_body_cm", "lower body"},
+                                                               {"full_body_cm", "full body"}};
+  for (const auto& [k, label] : parts) c.groups.push_back(label);
+  for (const auto& p : kProtocols)
+    for (const char* m : {"accent", "ik"}) {
+      if (!r.contains(p) || !r[p].contains(m)) continue;
+      render::BarSeries s;
+      s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
+      for (const auto& [k, label] : parts) s.values.push_back(value_of(r, p, m, k));
+      c.series.push_back(s);
+    }
+  for (const auto& [p, m, name] : {std::tuple{"cross_subject", "accent", "document accent cross_subject"},
+                                   std::tuple{"cross_trial", "accent", "document accent cross_trial"},
+                                   std::tuple{"cross_subject", "ik", "document IK"}}) {
+    render::BarSeries s;
+    s.name = name;
+    const json& pp = r["paper"][p][m];
+    for (const auto& [k, label] : parts) s.values.push_back(pp.contains(k) ? pp[k].get<double>() : kNaN);
+    c.series.push_back(s);
+  }
+  return c;
+}
+
+// Full-body error per class.
+render::BarChart classes_chart(const json& r) {
+  render::BarChart c = cm_chart("Full-body error per class (cm)");
+  std::set<std::string> classes;
+  for (const auto& p : kProtocols)
+    for (const char* m : {"accent", "ik"})
+      if (r.contains(p) && r[p].contains(m))
+        for (const auto& [cls, v] : r[p][m]["classes"].items()) classes.insert(cls);
+  c.groups.assign(classes.begin(), classes.end());
+  for (const auto& p : kProtocols)
+    for (const char* m : {"accent", "ik"}) {
+      if (!r.contains(p) || !r[p].contains(m)) continue;
+      render::BarSeries s;
+      s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
+      for (const auto& cls : c.groups) {
+        const json& cj = r[p][m]["classes"];
+        s.values.push_back(cj.contains(cls) ? get(cj[cls], "full_body_cm") : kNaN);
+      }
+      c.series.push_back(s);
+    }
+  return c;
+}
+
+// Cross-subject ablation, this run beside the document.
+render::BarChart ablation_chart(const json& r) {
+  render::BarChart c = cm_chart("Ablation, cross-subject full-body error (cm)");
+  const json& ab = r["cross_subject"]["ablation"];
+  std::vector<std::string> order{"nn", "nn_align", "paper", "spring", "spring_k", "accent"};
+  for (const auto& [k, v] : ab.items())
+    if (std::find(order.begin(), order.end(), k) == order.end()) order.push_back(k);
+  render::BarSeries ours{"this run", {}}, doc{"document", {}};
+  for (const auto& k : order) {
+    if (!ab.contains(k)) continue;
+    c.groups.push_back(k);
+    ours.values.push_back(get(ab[k], "full_body_cm"));
+    doc.values.push_back(r["paper"]["ablation"].contains(k) ? r["paper"]["ablation"][k].get<double>() : kNaN);
+  }
+  c.series = {ours, doc};
+  c.width = std::max(800, 105 * static_cast<int>(c.groups.size()));
+  return c;
+}
+
+}  // namespace
 
 std::vector<std::string> write_report(const EvalResult& res, const std::string& dir) {
   namespace fs = std::filesystem;
@@ -453,7 +567,6 @@ std::vector<std::string> write_report(const EvalResult& res, const std::string& 
   };
   write_text("report.json", r.dump(2) + "\n");
   write_text("report.md", report_markdown(r));
-
   auto both = [&](const render::BarChart& c, const std::string& stem) {
     for (const char* ext : {".png", ".svg"}) {
       const std::string path = (fs::path(dir) / (stem + ext)).string();
@@ -461,85 +574,9 @@ std::vector<std::string> write_report(const EvalResult& res, const std::string& 
       written.push_back(path);
     }
   };
-  // Figure 4 A: per body part.
-  {
-    render::BarChart c;
-    c.title = "Mean joint error per body part (cm)";
-    c.y_label = "cm";
-    const std::vector<std::pair<std::string, std::string>> parts{{"left_hand_cm", "left hand"},
-                                                                 {"right_hand_cm", "right hand"},
-                                                                 {"upper_body_cm", "upper body"},
-                                                                 {"lower_body_cm", "lower body"},
-                                                                 {"full_body_cm", "full body"}};
-    for (const auto& [k, label] : parts) c.groups.push_back(label);
-    for (const auto& p : kProtocols)
-      for (const char* m : {"accent", "ik"}) {
-        if (!r.contains(p) || !r[p].contains(m)) continue;
-        render::BarSeries s;
-        s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
-        for (const auto& [k, label] : parts) s.values.push_back(value_of(r, p, m, k));
-        c.series.push_back(s);
-      }
-    for (const auto& [p, m, name] : {std::tuple{"cross_subject", "accent", "document accent cross_subject"},
-                                     std::tuple{"cross_trial", "accent", "document accent cross_trial"},
-                                     std::tuple{"cross_subject", "ik", "document IK"}}) {
-      render::BarSeries s;
-      s.name = name;
-      const json& pp = r["paper"][p][m];
-      for (const auto& [k, label] : parts) s.values.push_back(pp.contains(k) ? pp[k].get<double>() : kNaN);
-      c.series.push_back(s);
-    }
-    c.width = 1000;
-    c.value_decimals = 1;
-    both(c, "body_parts");
-  }
-  // Per class.
-  {
-    render::BarChart c;
-    c.title = "Full-body error per class (cm)";
-    c.y_label = "cm";
-    std::set<std::string> classes;
-    for (const auto& p : kProtocols)
-      for (const char* m : {"accent", "ik"})
-        if (r.contains(p) && r[p].contains(m))
-          for (const auto& [cls, v] : r[p][m]["classes"].items()) classes.insert(cls);
-    c.groups.assign(classes.begin(), classes.end());
-    for (const auto& p : kProtocols)
-      for (const char* m : {"accent", "ik"}) {
-        if (!r.contains(p) || !r[p].contains(m)) continue;
-        render::BarSeries s;
-        s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
-        for (const auto& cls : c.groups) {
-          const json& cj = r[p][m]["classes"];
-          s.values.push_back(cj.contains(cls) ? get(cj[cls], "full_body_cm") : kNaN);
-        }
-        c.series.push_back(s);
-      }
-    c.width = 1000;
-    c.value_decimals = 1;
-    if (!c.groups.empty()) both(c, "classes");
-  }
-  // Ablation.
-  if (r.contains("cross_subject") && r["cross_subject"].contains("ablation")) {
-    render::BarChart c;
-    c.title = "Ablation, cross-subject full-body error (cm)";
-    c.y_label = "cm";
-    const json& ab = r["cross_subject"]["ablation"];
-    std::vector<std::string> order{"nn", "nn_align", "paper", "spring", "spring_k", "accent"};
-    for (const auto& [k, v] : ab.items())
-      if (std::find(order.begin(), order.end(), k) == order.end()) order.push_back(k);
-    render::BarSeries ours{"this run", {}}, doc{"document", {}};
-    for (const auto& k : order) {
-      if (!ab.contains(k)) continue;
-      c.groups.push_back(k);
-      ours.values.push_back(get(ab[k], "full_body_cm"));
-      doc.values.push_back(r["paper"]["ablation"].contains(k) ? r["paper"]["ablation"][k].get<double>() : kNaN);
-    }
-    c.series = {ours, doc};
-    c.width = std::max(800, 105 * static_cast<int>(c.groups.size()));
-    c.value_decimals = 1;
-    both(c, "ablation");
-  }
+  both(body_parts_chart(r), "body_parts");
+  if (const auto c = classes_chart(r); !c.groups.empty()) both(c, "classes");
+  if (r.contains("cross_subject") && r["cross_subject"].contains("ablation")) both(ablation_chart(r), "ablation");
   return written;
 }
 
@@ -558,6 +595,41 @@ std::string write_comparison_video(const EvalResult& r, const std::string& dir, 
   const std::string path = (fs::path(dir) / "compare.mp4").string();
   render::render_video_side_by_side({&truth, &engine, &ik}, {"ground truth", "accent engine", "IK baseline"}, opt, path);
   return path;
+}
+
+std::string report_summary(const nlohmann::json& r) {
+  auto val = [](const nlohmann::json& m, const char* k) {
+    return m.contains(k) && m[k].is_number() ? m[k].get<double>() : NAN;
+  };
+  std::string out;
+  char buf[1024];
+  for (const char* p : {"cross_subject", "cross_trial", "cross_dataset"}) {
+    if (!r.contains(p)) continue;
+    std::snprintf(buf, sizeof buf, "%s (%d folds):\n", p, r[p]["folds"].get<int>());
+    out += buf;
+    for (const char* m : {"accent", "ik"}) {
+      if (!r[p].contains(m)) continue;
+      const auto& x = r[p][m];
+      std::snprintf(buf, sizeof buf,
+                    "  %-6s full %5.2f cm (SD %.2f)  upper %5.2f  lower %5.2f  hands %.2f / %.2f cm  "
+                    "MPJVE %.1f cm/s  jitter %.2f  hand r %.3f  %.0f frames/s\n",
+                    m, val(x, "full_body_cm"), val(x, "full_body_cm_sd"), val(x, "upper_body_cm"), val(x, "lower_body_cm"),
+                    val(x, "left_hand_cm"), val(x, "right_hand_cm"), val(x, "mpjve_cm_s"), val(x, "jitter"),
+                    val(x, "hand_correlation"), val(x, "frames_per_second"));
+      out += buf;
+    }
+    if (r[p].contains("ablation"))
+      for (const auto& [k, x] : r[p]["ablation"].items()) {
+        std::snprintf(buf, sizeof buf, "  ablation %-16s full %5.2f cm  lower %5.2f cm\n", k.c_str(), val(x, "full_body_cm"),
+                      val(x, "lower_body_cm"));
+        out += buf;
+      }
+  }
+  for (const auto& t : r["targets"]) {
+    std::snprintf(buf, sizeof buf, "target %-58s ", t["target"].get<std::string>().c_str());
+    out += std::string(buf) + (t["met"].is_null() ? "n/a" : (t["met"].get<bool>() ? "met" : "NOT met")) + "\n";
+  }
+  return out;
 }
 
 }  // namespace legwork::eval

@@ -241,37 +241,23 @@ Motion run_ik_baseline(const Motion& truth, double* seconds) {
   return out;
 }
 
-EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const RunOptions& opt) {
-  const auto t_start = Clock::now();
-  EvalResult res;
-  res.threads = opt.threads > 0 ? opt.threads : std::max(1u, std::thread::hardware_concurrency());
-  const auto say = [&](const std::string& s) {
-    if (opt.progress) opt.progress(s);
-  };
+namespace {
 
-  // Variants: the engine first, then the ablation.
-  res.variants.push_back({"accent", "accent engine", opt.build, opt.config});
-  if (opt.ablation)
-    for (auto& v : ablation_variants(opt.build, opt.config, opt.quick_ablation)) res.variants.push_back(std::move(v));
+using Prepared = std::map<std::string, std::vector<accent::PreparedTrial>>;  // by prepare_key
+using Say = std::function<void(const std::string&)>;
 
-  // Load and prepare every trial once; folds assemble databases from them.
-  const std::vector<accent::TrialInput> inputs = load_all(data, opt.drop_first_frame, res.threads, opt.progress);
-  const bool cross_dataset =
-      std::find(opt.protocols.begin(), opt.protocols.end(), Protocol::CrossDataset) != opt.protocols.end();
-  if (cross_dataset && !test) throw Error("cross-dataset evaluation needs a test folder");
-  std::vector<accent::TrialInput> test_inputs;
-  if (cross_dataset) test_inputs = load_all(*test, opt.drop_first_frame, res.threads, opt.progress);
-  const Skeleton reference = accent::reference_skeleton(inputs);
-
-  std::map<std::string, std::vector<accent::PreparedTrial>> prepared;  // by prepare_key
+// Every trial prepared once per distinct preparation of the variants.
+Prepared prepare_all(const std::vector<accent::TrialInput>& inputs, const Skeleton& reference,
+                     const std::vector<Variant>& variants, int threads, const Say& say) {
+  Prepared prepared;
   std::map<std::string, accent::BuildConfig> prepare_cfg;
-  for (const auto& v : res.variants) prepare_cfg.emplace(prepare_key(v.build), v.build);
+  for (const auto& v : variants) prepare_cfg.emplace(prepare_key(v.build), v.build);
   for (const auto& [key, cfg] : prepare_cfg) {
     auto& set = prepared[key];
     set.resize(inputs.size());
     std::atomic<int> done{0};
     std::mutex m;
-    parallel_for(iota(static_cast<int>(inputs.size())), res.threads, [&](int i) {
+    parallel_for(iota(static_cast<int>(inputs.size())), threads, [&](int i) {
       set[static_cast<std::size_t>(i)] = accent::prepare_trial(inputs[static_cast<std::size_t>(i)], reference, cfg);
       const int d = ++done;
       std::lock_guard<std::mutex> lock(m);
@@ -279,35 +265,27 @@ EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const Ru
           "/" + std::to_string(inputs.size()));
     });
   }
+  return prepared;
+}
 
-  // Dataset summary.
-  res.data.root = data.root;
-  res.data.trials = static_cast<int>(data.trials.size());
-  {
-    std::map<std::string, std::set<int>> subjects;
-    for (const auto& e : data.trials) {
-      ++res.data.trials_per_class[e.cls];
-      subjects[e.cls].insert(e.subject);
-    }
-    for (const auto& [c, s] : subjects) res.data.subjects_per_class[c] = static_cast<int>(s.size());
-    const auto& base = prepared.at(prepare_key(opt.build));
-    for (std::size_t i = 0; i < base.size(); ++i)
-      if (!base[i].kept) res.data.dropped[data.trials[i].id() + " (" + data.trials[i].cls + ")"] = base[i].reason;
+// Trials and subjects per class, and the trials the build drops (with why).
+DatasetSummary summarize_data(const Catalogue& data, const std::vector<accent::PreparedTrial>& base) {
+  DatasetSummary out;
+  out.root = data.root;
+  out.trials = static_cast<int>(data.trials.size());
+  std::map<std::string, std::set<int>> subjects;
+  for (const auto& e : data.trials) {
+    ++out.trials_per_class[e.cls];
+    subjects[e.cls].insert(e.subject);
   }
+  for (const auto& [c, s] : subjects) out.subjects_per_class[c] = static_cast<int>(s.size());
+  for (std::size_t i = 0; i < base.size(); ++i)
+    if (!base[i].kept) out.dropped[data.trials[i].id() + " (" + data.trials[i].cls + ")"] = base[i].reason;
+  return out;
+}
 
-  // Test tracks at the database rate.
-  const std::vector<accent::TrialInput>& test_src = cross_dataset ? test_inputs : inputs;
-  std::vector<TestTrack> tests(test_src.size());
-  parallel_for(iota(static_cast<int>(test_src.size())), res.threads, [&](int i) {
-    tests[static_cast<std::size_t>(i)] = make_test(test_src[static_cast<std::size_t>(i)], opt.build.fps, opt.max_test_seconds);
-  });
-
-  // Plan every protocol's folds; one task per fold.
-  struct Task {
-    int protocol, fold;
-    double cost;
-  };
-  std::vector<Task> tasks;
+// Each protocol's folds (checked for leaks) and the methods it scores.
+void plan_protocols(EvalResult& res, const Catalogue& data, const Catalogue* test, const RunOptions& opt) {
   for (Protocol p : opt.protocols) {
     ProtocolResult pr;
     pr.protocol = p;
@@ -326,6 +304,16 @@ EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const Ru
       if (v.key == "accent" || p == Protocol::CrossSubject) pr.methods.push_back(v.key);
     res.protocols.push_back(std::move(pr));
   }
+}
+
+// One task per fold, with a cost estimate (database frames + 20 x test frames, x methods).
+struct Task {
+  int protocol, fold;
+  double cost;
+};
+std::vector<Task> plan_tasks(const EvalResult& res, const std::vector<accent::TrialInput>& inputs,
+                             const std::vector<TestTrack>& tests) {
+  std::vector<Task> tasks;
   for (int p = 0; p < static_cast<int>(res.protocols.size()); ++p)
     for (int f = 0; f < static_cast<int>(res.protocols[static_cast<std::size_t>(p)].folds.size()); ++f) {
       const Fold& fold = res.protocols[static_cast<std::size_t>(p)].folds[static_cast<std::size_t>(f)].fold;
@@ -335,80 +323,141 @@ EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const Ru
       cost *= static_cast<double>(res.protocols[static_cast<std::size_t>(p)].methods.size());
       tasks.push_back({p, f, cost});
     }
+  return tasks;
+}
+
+// What one fold needs to score its methods.
+struct FoldContext {
+  const std::vector<Variant>& variants;
+  const Prepared& prepared;
+  const Skeleton& reference;
+  const std::vector<TestTrack>& tests;
+  const RunOptions& opt;
+};
+
+// The accent variants of a fold, grouped by the database they need.
+void score_accent(const FoldContext& c, const ProtocolResult& pr, const std::vector<std::string>& test_files,
+                  FoldResult& fr) {
+  const Fold& fold = fr.fold;
+  std::map<std::string, std::vector<const Variant*>> by_db;
+  for (const auto& v : c.variants)
+    if (std::find(pr.methods.begin(), pr.methods.end(), v.key) != pr.methods.end()) by_db[build_key(v.build)].push_back(&v);
+  for (const auto& [key, variants] : by_db) {
+    const accent::BuildConfig& bc = variants.front()->build;
+    const auto& set = c.prepared.at(prepare_key(bc));
+    std::vector<const accent::PreparedTrial*> members;
+    for (int d : fold.database) members.push_back(&set[static_cast<std::size_t>(d)]);
+    accent::Database db;
+    try {
+      db = accent::assemble_database(members, c.reference, bc);
+      db.build_index();
+    } catch (const Error& e) {
+      for (const Variant* v : variants) fr.methods[v->key].error = e.what();
+      continue;
+    }
+    const std::string leak = leak_in_database(fold, db, test_files);
+    if (!leak.empty()) throw Error("fold leak: " + leak);
+    for (const Variant* v : variants) {
+      MethodFold& mf = fr.methods[v->key];
+      mf.database_windows = db.window_count();
+      std::vector<TrialMetrics> per;
+      for (int t : fold.test) {
+        const TestTrack& tt = c.tests[static_cast<std::size_t>(t)];
+        const accent::AccentRun run = accent::accentuate_motion(db, v->config, tt.motion);
+        per.push_back(evaluate_trial(role_track(run.output), tt.truth, c.opt.metrics));
+        mf.frames += tt.motion.frame_count();
+        mf.seconds += run.seconds;
+      }
+      mf.metrics = combine(per);
+      mf.ok = true;
+    }
+  }
+}
+
+// The IK baseline on a fold's test trials.
+void score_ik(const FoldContext& c, FoldResult& fr) {
+  MethodFold& mf = fr.methods["ik"];
+  std::vector<TrialMetrics> per;
+  try {
+    for (int t : fr.fold.test) {
+      const TestTrack& tt = c.tests[static_cast<std::size_t>(t)];
+      const Motion out = run_ik_baseline(tt.motion, &mf.seconds);
+      per.push_back(evaluate_trial(role_track(out), tt.truth, c.opt.metrics));
+      mf.frames += tt.motion.frame_count();
+    }
+    mf.metrics = combine(per);
+    mf.ok = true;
+  } catch (const Error& e) {
+    mf.error = e.what();
+  }
+}
+
+// "d/n folds  protocol class held-out: accent x cm, ik y cm  (s)"
+std::string fold_line(int d, std::size_t n, const ProtocolResult& pr, const FoldResult& fr, double seconds) {
+  char line[256];
+  const auto a = fr.methods.find("accent"), i = fr.methods.find("ik");
+  std::snprintf(line, sizeof line, "%d/%zu folds  %s %s %s: accent %.1f cm, ik %.1f cm  (%.0f s)", d, n,
+                protocol_key(pr.protocol), fr.fold.cls.c_str(), fr.fold.held_out.c_str(),
+                a != fr.methods.end() && a->second.ok ? a->second.metrics.mpjpe_cm : NAN,
+                i != fr.methods.end() && i->second.ok ? i->second.metrics.mpjpe_cm : NAN, seconds);
+  return line;
+}
+
+}  // namespace
+
+EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const RunOptions& opt) {
+  const auto t_start = Clock::now();
+  EvalResult res;
+  res.threads = opt.threads > 0 ? opt.threads : std::max(1u, std::thread::hardware_concurrency());
+  const Say say = [&](const std::string& s) {
+    if (opt.progress) opt.progress(s);
+  };
+
+  // Variants: the engine first, then the ablation.
+  res.variants.push_back({"accent", "accent engine", opt.build, opt.config});
+  if (opt.ablation)
+    for (auto& v : ablation_variants(opt.build, opt.config, opt.quick_ablation)) res.variants.push_back(std::move(v));
+
+  // Load and prepare every trial once; folds assemble databases from them.
+  const std::vector<accent::TrialInput> inputs = load_all(data, opt.drop_first_frame, res.threads, opt.progress);
+  const bool cross_dataset =
+      std::find(opt.protocols.begin(), opt.protocols.end(), Protocol::CrossDataset) != opt.protocols.end();
+  if (cross_dataset && !test) throw Error("cross-dataset evaluation needs a test folder");
+  std::vector<accent::TrialInput> test_inputs;
+  if (cross_dataset) test_inputs = load_all(*test, opt.drop_first_frame, res.threads, opt.progress);
+  const Skeleton reference = accent::reference_skeleton(inputs);
+  const Prepared prepared = prepare_all(inputs, reference, res.variants, res.threads, say);
+  res.data = summarize_data(data, prepared.at(prepare_key(opt.build)));
+
+  // Test tracks at the database rate.
+  const std::vector<accent::TrialInput>& test_src = cross_dataset ? test_inputs : inputs;
+  std::vector<TestTrack> tests(test_src.size());
+  parallel_for(iota(static_cast<int>(test_src.size())), res.threads, [&](int i) {
+    tests[static_cast<std::size_t>(i)] = make_test(test_src[static_cast<std::size_t>(i)], opt.build.fps, opt.max_test_seconds);
+  });
+
+  // Plan every protocol's folds; one task per fold, the costliest first.
+  plan_protocols(res, data, test, opt);
+  const std::vector<Task> tasks = plan_tasks(res, inputs, tests);
   std::vector<int> order = iota(static_cast<int>(tasks.size()));
   std::sort(order.begin(), order.end(), [&](int a, int b) {
     return tasks[static_cast<std::size_t>(a)].cost > tasks[static_cast<std::size_t>(b)].cost;
   });
 
+  const FoldContext context{res.variants, prepared, reference, tests, opt};
   std::atomic<int> done{0};
   std::mutex say_mutex;
   parallel_for(order, res.threads, [&](int k) {
     const Task& task = tasks[static_cast<std::size_t>(k)];
     ProtocolResult& pr = res.protocols[static_cast<std::size_t>(task.protocol)];
     FoldResult& fr = pr.folds[static_cast<std::size_t>(task.fold)];
-    const Fold& fold = fr.fold;
     const Catalogue& tc = pr.protocol == Protocol::CrossDataset ? *test : data;
     std::vector<std::string> test_files;
-    for (int t : fold.test) test_files.push_back(tc.trials[static_cast<std::size_t>(t)].file);
-
-    // Accent variants, grouped by the database they need.
-    std::map<std::string, std::vector<const Variant*>> by_db;
-    for (const auto& v : res.variants)
-      if (std::find(pr.methods.begin(), pr.methods.end(), v.key) != pr.methods.end())
-        by_db[build_key(v.build)].push_back(&v);
-    for (const auto& [key, variants] : by_db) {
-      const accent::BuildConfig& bc = variants.front()->build;
-      const auto& set = prepared.at(prepare_key(bc));
-      std::vector<const accent::PreparedTrial*> members;
-      for (int d : fold.database) members.push_back(&set[static_cast<std::size_t>(d)]);
-      accent::Database db;
-      try {
-        db = accent::assemble_database(members, reference, bc);
-        db.build_index();
-      } catch (const Error& e) {
-        for (const Variant* v : variants) fr.methods[v->key].error = e.what();
-        continue;
-      }
-      const std::string leak = leak_in_database(fold, db, test_files);
-      if (!leak.empty()) throw Error("fold leak: " + leak);
-      for (const Variant* v : variants) {
-        MethodFold& mf = fr.methods[v->key];
-        mf.database_windows = db.window_count();
-        std::vector<TrialMetrics> per;
-        for (int t : fold.test) {
-          const TestTrack& tt = tests[static_cast<std::size_t>(t)];
-          const accent::AccentRun run = accent::accentuate_motion(db, v->config, tt.motion);
-          per.push_back(evaluate_trial(role_track(run.output), tt.truth, opt.metrics));
-          mf.frames += tt.motion.frame_count();
-          mf.seconds += run.seconds;
-        }
-        mf.metrics = combine(per);
-        mf.ok = true;
-      }
-    }
-    if (opt.ik) {
-      MethodFold& mf = fr.methods["ik"];
-      std::vector<TrialMetrics> per;
-      try {
-        for (int t : fold.test) {
-          const TestTrack& tt = tests[static_cast<std::size_t>(t)];
-          const Motion out = run_ik_baseline(tt.motion, &mf.seconds);
-          per.push_back(evaluate_trial(role_track(out), tt.truth, opt.metrics));
-          mf.frames += tt.motion.frame_count();
-        }
-        mf.metrics = combine(per);
-        mf.ok = true;
-      } catch (const Error& e) {
-        mf.error = e.what();
-      }
-    }
+    for (int t : fr.fold.test) test_files.push_back(tc.trials[static_cast<std::size_t>(t)].file);
+    score_accent(context, pr, test_files, fr);
+    if (opt.ik) score_ik(context, fr);
     const int d = ++done;
-    char line[256];
-    const auto a = fr.methods.find("accent"), i = fr.methods.find("ik");
-    std::snprintf(line, sizeof line, "%d/%zu folds  %s %s %s: accent %.1f cm, ik %.1f cm  (%.0f s)", d, tasks.size(),
-                  protocol_key(pr.protocol), fold.cls.c_str(), fold.held_out.c_str(),
-                  a != fr.methods.end() && a->second.ok ? a->second.metrics.mpjpe_cm : NAN,
-                  i != fr.methods.end() && i->second.ok ? i->second.metrics.mpjpe_cm : NAN, since(t_start));
+    const std::string line = fold_line(d, tasks.size(), pr, fr, since(t_start));
     std::lock_guard<std::mutex> lock(say_mutex);
     say(line);
   });

@@ -1,6 +1,7 @@
 // Walking-in-place evaluation: detected vs true swings, depth agreement,
 // the key-frame baseline, and the `legwork wip eval` report.
 #include <legwork/eval/wip.hpp>
+#include <legwork/core/stats.hpp>
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
@@ -103,19 +104,17 @@ StepScore combine(std::span<const StepScore> scores) {
   return c;
 }
 
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const double rank = std::ceil(std::clamp(q, 0.0, 1.0) * static_cast<double>(v.size()));
-  return v[static_cast<std::size_t>(std::clamp(rank - 1, 0.0, static_cast<double>(v.size() - 1)))];
-}
+namespace {
+// A percentile of the latencies; NaN (n/a) when there are none.
+double latency_percentile(const std::vector<double>& v, double p) { return v.empty() ? NAN : percentile(v, p); }
+}  // namespace
 
 void StrictScore::finish() {
   precision = detected ? double(matched) / detected : NAN;
   recall = true_steps ? double(matched) / true_steps : NAN;
   f1 = true_steps + detected ? 2.0 * matched / (true_steps + detected) : NAN;
-  median_ms = quantile(latencies_ms, 0.5);
-  p90_ms = quantile(latencies_ms, 0.9);
+  median_ms = latency_percentile(latencies_ms, 0.5);
+  p90_ms = latency_percentile(latencies_ms, 0.9);
   mean_ms = NAN;
   if (!latencies_ms.empty()) {
     double sum = 0;

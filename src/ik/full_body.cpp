@@ -1,5 +1,6 @@
 // VRIK-style full-body IK from head + two hands (see full_body.hpp).
 #include <legwork/ik/full_body.hpp>
+#include <legwork/core/rotation.hpp>
 
 #include <legwork/core/fk.hpp>
 
@@ -10,16 +11,7 @@
 namespace legwork::ik {
 namespace {
 
-Quat yaw_rotation(double yaw) { return Quat(Eigen::AngleAxisd(yaw, Vec3::UnitY())); }
 Quat pitch_rotation(double pitch) { return Quat(Eigen::AngleAxisd(pitch, Vec3::UnitX())); }
-// Wraps an angle to (-pi, pi].
-double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
-// Heading of a direction about y (0 = facing +z), or `fallback` if it is vertical.
-double heading_of(const Vec3& dir, double fallback) {
-  if (dir.x() * dir.x() + dir.z() * dir.z() < 1e-8) return fallback;
-  return std::atan2(dir.x(), dir.z());
-}
-Vec3 horizontal(const Vec3& v) { return {v.x(), 0.0, v.z()}; }
 
 // Horizontal distance from p to the segment [a, b].
 double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
@@ -30,7 +22,6 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (ph - (ah + t * ab)).norm();
 }
 
-double smoothstep(double u) { return u * u * (3.0 - 2.0 * u); }
 
 Quat parent_model_rotation(const Skeleton& skel, std::span<const Transform> model, int j) {
   const int p = skel.parents[static_cast<std::size_t>(j)];
@@ -89,14 +80,14 @@ void Solver::headings() {
   if (in.hand_valid[0] && in.hand_valid[1]) {
     const Vec3 across = horizontal(in.hand_position[0] - in.hand_position[1]);  // right -> left
     const double hands_yaw = heading_of(across.cross(Vec3::UnitY()), head_yaw);
-    const double d = wrap(hands_yaw - head_yaw);
+    const double d = wrap_angle(hands_yaw - head_yaw);
     // Crossed hands (|d| > 90 degrees) say nothing about the body's heading.
     if (std::abs(d) < 0.5 * kPi) chest_yaw = head_yaw + S.hands_heading_weight * std::clamp(across.norm() / 0.3, 0.0, 1.0) * d;
   }
   if (first) st.pelvis_yaw = chest_yaw;
-  else st.pelvis_yaw += wrap(chest_yaw - st.pelvis_yaw) * (1.0 - std::exp(-S.pelvis_turn_rate * dt));
+  else st.pelvis_yaw += wrap_angle(chest_yaw - st.pelvis_yaw) * (1.0 - std::exp(-S.pelvis_turn_rate * dt));
   const double max_twist = 0.6;
-  st.pelvis_yaw = chest_yaw - std::clamp(wrap(chest_yaw - st.pelvis_yaw), -max_twist, max_twist);
+  st.pelvis_yaw = chest_yaw - std::clamp(wrap_angle(chest_yaw - st.pelvis_yaw), -max_twist, max_twist);
   st.chest_yaw = chest_yaw;
 }
 
@@ -136,7 +127,7 @@ void Solver::torso(double lean) {
     out.translations[idx(j)] = skel.rest_offsets[idx(j)];
   }
   const auto root = idx(M.pelvis_);
-  const double twist = wrap(st.chest_yaw - st.pelvis_yaw);
+  const double twist = wrap_angle(st.chest_yaw - st.pelvis_yaw);
   const double n_spine = static_cast<double>(std::max<std::size_t>(M.spine_.size(), 1));
   const double hip_lean = M.spine_.empty() ? lean : S.pelvis_lean_share * lean;
   out.rotations[root] = yaw_rotation(st.pelvis_yaw) * pitch_rotation(hip_lean);
@@ -251,7 +242,7 @@ bool Solver::advance_steps(const std::array<Vec3, 2>& place, double foot_y) {
     const double e = smoothstep(u);
     f.position = f.from + (to - f.from) * e;
     f.position.y() = foot_y + std::sin(kPi * u) * S.step_height;
-    f.yaw = f.from_yaw + wrap(st.pelvis_yaw - f.from_yaw) * e;
+    f.yaw = f.from_yaw + wrap_angle(st.pelvis_yaw - f.from_yaw) * e;
     if (u >= 1.0) {
       f.stepping = false;
       f.position = to;
@@ -271,7 +262,7 @@ void Solver::start_step(const std::array<Vec3, 2>& place, const Vec3& balance, d
   for (int s = 0; s < 2; ++s) {
     const auto& f = st.feet[idx(s)];
     const double away = horizontal(landing(place, s, 0.0, S.min_step_time, foot_y) - f.position).norm();
-    const bool turned = std::abs(wrap(st.pelvis_yaw - f.yaw)) > S.step_angle_threshold;
+    const bool turned = std::abs(wrap_angle(st.pelvis_yaw - f.yaw)) > S.step_angle_threshold;
     const double score = away + (turned ? 1.0 : 0.0);
     if ((off_balance || away > S.foot_distance_threshold || turned) && score > worst) {
       worst = score;
@@ -328,7 +319,7 @@ void Solver::legs() {
     t.position = f.position;
     t.rotation = yaw_rotation(f.yaw);
     t.rotation_weight = 1.0;
-    const double knee_yaw = f.yaw + 0.5 * wrap(st.pelvis_yaw - f.yaw);
+    const double knee_yaw = f.yaw + 0.5 * wrap_angle(st.pelvis_yaw - f.yaw);
     t.hint = 0.5 * (hip + f.position) + yaw_rotation(knee_yaw) * Vec3(0.0, 0.0, 0.6);
     solve_two_bone(skel, M.leg_[s], t, out, model);
   }

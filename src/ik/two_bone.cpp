@@ -1,6 +1,7 @@
 // Analytic two-bone IK: the law of cosines gives the mid-joint angle, the
 // hint (pole) picks the bend plane, and two minimal rotations move the chain.
 #include <legwork/ik/two_bone.hpp>
+#include <legwork/core/rotation.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +14,6 @@ TwoBoneChain chain_of(const Skeleton& s, Role root, Role mid, Role end) {
   return {s.roles[root], s.roles[mid], s.roles[end]};
 }
 
-bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
 // Unit vector perpendicular to `axis` (unit) in the direction of v, or false
 // if v is (nearly) parallel to the axis.
@@ -74,7 +74,7 @@ void solve_two_bone(const Skeleton& skel, const TwoBoneChain& chain, const TwoBo
   const double wh = std::clamp(target.hint_weight, 0.0, 1.0);
   const double wr = std::clamp(target.rotation_weight, 0.0, 1.0);
   // Bad input leaves the pose untouched rather than spreading NaN.
-  if (!finite(target.position) || !finite(target.hint) || !std::isfinite(wp + wh + wr)) return;
+  if (!all_finite(target.position) || !all_finite(target.hint) || !std::isfinite(wp + wh + wr)) return;
 
   const Vec3 t = c + wp * (target.position - c);
   const double lab = (b - a).norm(), lcb = (c - b).norm();

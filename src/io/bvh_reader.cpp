@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cmath>
 #include <sstream>
+#include <unordered_set>
 
 namespace legwork::io {
 
@@ -65,11 +66,11 @@ class Lexer {
     return t.empty() ? std::string("end of file") : "'" + printable(t.substr(0, 40)) + "'";
   }
   // Binary input (a .glb given as .bvh) must not put control bytes in messages.
-  static std::string printable(std::string_view t) {
-    std::string out(t);
-    for (char& c : out)
-      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
-    return out;
+  static std::string printable(std::string_view t) { return printable_text(t, t.size()); }
+  static std::string describe_number(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
   }
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
   // A well-formed number that does not fit a double (1e999).
@@ -189,7 +190,19 @@ const char* parse_plain_decimal(const char* b, const char* e, double& v) {
   return p;
 }
 
-void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int joint, int depth);
+// The hierarchy being read; `seen` indexes the joint names (views into the
+// text) so duplicate checks stay linear in the joint count.
+struct Hierarchy {
+  Skeleton skel;
+  std::vector<JointChannels> channels;
+  std::unordered_set<std::string_view> seen;
+};
+
+void parse_joint_body(Lexer& lx, Hierarchy& h, int joint, int depth);
+
+// Lengths (offsets, position channels) beyond this many file units are not a
+// body in any unit (1000 km in millimetres); unbounded, they overflow FK to Inf.
+constexpr double kMaxFileLength = 1e9;
 
 // Deeper nesting than this is not a body (and would overflow the stack).
 constexpr int kMaxJointDepth = 256;
@@ -199,18 +212,21 @@ bool is_keyword(std::string_view t) {
          t == "ROOT";
 }
 
-void parse_joint(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int parent, int depth) {
+void parse_joint(Lexer& lx, Hierarchy& h, int parent, int depth) {
   if (depth > kMaxJointDepth) lx.fail("joints nested more than " + std::to_string(kMaxJointDepth) + " deep");
   auto name = lx.next();
   if (name.empty() || is_keyword(name)) lx.fail("expected a joint name after JOINT/ROOT, found " + Lexer::describe(name));
-  if (skel.find(name) >= 0) lx.fail("duplicate joint name '" + std::string(name) + "'");
-  int j = skel.add_joint(std::string(name), parent, Vec3::Zero());
-  channels.emplace_back();
+  // Names go into JSON and glTF output, which need UTF-8.
+  if (!is_valid_utf8(name)) lx.fail("joint name " + Lexer::describe(name) + " is not UTF-8 text (save the file as UTF-8)");
+  if (!h.seen.insert(name).second) lx.fail("duplicate joint name '" + std::string(name) + "'");
+  int j = h.skel.add_joint(std::string(name), parent, Vec3::Zero());
+  h.channels.emplace_back();
   lx.expect("{", "after joint '" + std::string(name) + "'");
-  parse_joint_body(lx, skel, channels, j, depth);
+  parse_joint_body(lx, h, j, depth);
 }
 
-void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& channels, int j, int depth) {
+void parse_joint_body(Lexer& lx, Hierarchy& h, int j, int depth) {
+  Skeleton& skel = h.skel;
   const std::string jname = skel.names[static_cast<std::size_t>(j)];
   bool have_offset = false, have_channels = false;
   for (;;) {
@@ -219,6 +235,8 @@ void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& cha
     if (t == "OFFSET") {
       Vec3 o;
       for (int k = 0; k < 3; ++k) o[k] = lx.number("OFFSET of joint '" + jname + "'");
+      if (o.cwiseAbs().maxCoeff() > kMaxFileLength)
+        lx.fail("OFFSET of joint '" + jname + "' is beyond " + Lexer::describe_number(kMaxFileLength) + " file units");
       skel.rest_offsets[static_cast<std::size_t>(j)] = o;
       have_offset = true;
     } else if (t == "CHANNELS") {
@@ -226,7 +244,7 @@ void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& cha
       double cnt = 0;
       if (!Lexer::parse_double(count_tok, cnt) || cnt < 0 || cnt > 6 || cnt != std::floor(cnt))
         lx.fail("CHANNELS of joint '" + jname + "' needs a count from 0 to 6, found " + Lexer::describe(count_tok));
-      auto& jc = channels[static_cast<std::size_t>(j)].channels;
+      auto& jc = h.channels[static_cast<std::size_t>(j)].channels;
       for (int k = 0; k < static_cast<int>(cnt); ++k) {
         auto ct = lx.next();
         Channel c;
@@ -242,7 +260,7 @@ void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& cha
       }
       have_channels = true;
     } else if (t == "JOINT") {
-      parse_joint(lx, skel, channels, j, depth + 1);
+      parse_joint(lx, h, j, depth + 1);
     } else if (t == "End") {
       auto site = lx.next();
       if (site != "Site") lx.fail("expected 'Site' after 'End', found " + Lexer::describe(site));
@@ -250,6 +268,9 @@ void parse_joint_body(Lexer& lx, Skeleton& skel, std::vector<JointChannels>& cha
       lx.expect("OFFSET", "in End Site of joint '" + jname + "'");
       Vec3 o;
       for (int k = 0; k < 3; ++k) o[k] = lx.number("End Site OFFSET of joint '" + jname + "'");
+      if (o.cwiseAbs().maxCoeff() > kMaxFileLength)
+        lx.fail("End Site OFFSET of joint '" + jname + "' is beyond " + Lexer::describe_number(kMaxFileLength) +
+                " file units");
       lx.expect("}", "closing End Site of joint '" + jname + "'");
       skel.end_sites[static_cast<std::size_t>(j)] = o;
       skel.has_end_site[static_cast<std::size_t>(j)] = 1;
@@ -289,42 +310,193 @@ Quat euler_to_quat(const Channel* order, const double* degrees, int n) {
   return q;
 }
 
-BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadOptions& opt) {
-  Lexer lx(text, source);
-  BvhFile out;
-  Skeleton skel;
+namespace {
+
+// Frame times outside this range are not motion capture (and 1e300 s makes
+// every derived sample count overflow).
+constexpr double kMinFrameTime = 1e-4, kMaxFrameTime = 10.0;
+
+// What precedes the motion lines.
+struct Header {
+  Hierarchy h;
+  double declared = 0;  // the 'Frames:' value
+  int frames_line = 0;
+  double frame_time = 0;
+};
+
+void parse_header(Lexer& lx, Header& hd) {
   if (auto t = lx.next(); t != "HIERARCHY")
     lx.fail("expected 'HIERARCHY' at the start of a BVH file, found " + Lexer::describe(t));
   if (auto t = lx.next(); t != "ROOT") {
     if (t == "MOTION" || t.empty()) lx.fail("empty hierarchy: expected 'ROOT' after HIERARCHY, found " + Lexer::describe(t));
     lx.fail("expected 'ROOT' after HIERARCHY, found " + Lexer::describe(t));
   }
-  parse_joint(lx, skel, out.channels, -1, 0);
+  parse_joint(lx, hd.h, -1, 0);
   if (auto t = lx.next(); t != "MOTION") {
     if (t == "ROOT") lx.fail("more than one ROOT; legwork reads single-root BVH files");
     lx.fail("expected 'MOTION' after the hierarchy, found " + Lexer::describe(t));
   }
   expect_label(lx, {"Frames"}, "Frames:");
-  const int frames_line = lx.line();
+  hd.frames_line = lx.line();
   auto ft = lx.next();
-  double declared = 0;
-  if (!Lexer::parse_double(ft, declared) || declared < 0 || declared != std::floor(declared) || declared > 1e8)
-    lx.fail("'Frames:' needs a whole number from 0 to 100000000, found " + Lexer::describe(ft), frames_line);
+  if (!Lexer::parse_double(ft, hd.declared) || hd.declared < 0 || hd.declared != std::floor(hd.declared) ||
+      hd.declared > 1e8)
+    lx.fail("'Frames:' needs a whole number from 0 to 100000000, found " + Lexer::describe(ft), hd.frames_line);
   expect_label(lx, {"Frame", "Time"}, "Frame Time:");
-  const double frame_time = lx.number("Frame Time");
-  if (!(frame_time > 0) || !std::isfinite(1.0 / frame_time))
-    lx.fail("'Frame Time:' must be a positive number of seconds, found " + std::to_string(frame_time));
-
-  const int n = skel.joint_count();
-  // Channels flattened: joint j's are flat[first[j] .. first[j + 1]).
-  std::vector<Channel> flat;
-  std::vector<int> first_channel(static_cast<std::size_t>(n) + 1, 0);
-  for (int j = 0; j < n; ++j) {
-    const auto& jc = out.channels[static_cast<std::size_t>(j)].channels;
-    flat.insert(flat.end(), jc.begin(), jc.end());
-    first_channel[static_cast<std::size_t>(j) + 1] = static_cast<int>(flat.size());
+  hd.frame_time = lx.number("Frame Time");
+  if (!(hd.frame_time > 0) || !std::isfinite(1.0 / hd.frame_time))
+    lx.fail("'Frame Time:' must be a positive number of seconds, found " + std::to_string(hd.frame_time));
+  if (hd.frame_time < kMinFrameTime || hd.frame_time > kMaxFrameTime) {
+    std::ostringstream os;
+    os << "'Frame Time: " << hd.frame_time << "' is outside " << kMinFrameTime << " to " << kMaxFrameTime
+       << " seconds (" << 1 / kMaxFrameTime << " to " << 1 / kMinFrameTime << " frames per second)";
+    lx.fail(os.str());
   }
-  const int total = static_cast<int>(flat.size());
+}
+
+// Channels flattened: joint j's are flat[first[j] .. first[j + 1]).
+struct FlatChannels {
+  std::vector<Channel> flat;
+  std::vector<int> first;
+  int total() const { return static_cast<int>(flat.size()); }
+};
+
+FlatChannels flatten(const std::vector<JointChannels>& channels) {
+  FlatChannels fc;
+  fc.first.assign(channels.size() + 1, 0);
+  for (std::size_t j = 0; j < channels.size(); ++j) {
+    fc.flat.insert(fc.flat.end(), channels[j].channels.begin(), channels[j].channels.end());
+    fc.first[j + 1] = fc.total();
+  }
+  return fc;
+}
+
+// One motion line's values, parsed in place into v.
+struct LineValues {
+  int count = 0;
+  bool blank = true, all_zero = true;
+};
+
+// Parses the values of the line starting at t[p] (up to '\n' or the end);
+// p ends on that '\n'. Every value must be a finite number.
+LineValues read_line(const Lexer& lx, std::string_view t, std::size_t& p, int line, std::vector<double>& v) {
+  const int total = static_cast<int>(v.size());
+  LineValues lv;
+  while (p < t.size() && t[p] != '\n') {
+    char c = t[p];
+    if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') { ++p; continue; }
+    lv.blank = false;
+    const char* b = t.data() + p;
+    const char* e = t.data() + t.size();
+    double val;
+    const char* ptr = parse_plain_decimal(b, e, val);
+    std::errc ec{};
+    if (!ptr) {  // exponents, long mantissas, junk: the general parser decides
+      if (*b == '+' && b + 1 < e && b[1] != '-') ++b;
+      const auto r = std::from_chars(b, e, val);
+      ptr = r.ptr;
+      ec = r.ec;
+    }
+    auto token = [&] {
+      std::size_t q = p;
+      while (q < t.size() && !Lexer::is_space(t[q])) ++q;
+      return Lexer::printable(t.substr(p, std::min<std::size_t>(q - p, 40)));
+    };
+    const std::string which = "motion line value " + std::to_string(lv.count + 1);
+    if (lv.count >= total)
+      lx.fail("motion line has more than the " + std::to_string(total) + " values the hierarchy declares (extra '" +
+                  token() + "')", line);
+    if (ec == std::errc::result_out_of_range && (ptr == e || Lexer::is_space(*ptr)))
+      lx.fail(which + " is out of range: '" + token() + "'", line);
+    if (ec != std::errc() || (ptr < e && !Lexer::is_space(*ptr))) lx.fail(which + " is not a number: '" + token() + "'", line);
+    if (!std::isfinite(val)) lx.fail(which + " is not finite (NaN or Inf): '" + token() + "'", line);
+    v[static_cast<std::size_t>(lv.count)] = val;
+    lv.all_zero = lv.all_zero && val == 0.0;
+    ++lv.count;
+    p = static_cast<std::size_t>(ptr - t.data());
+  }
+  return lv;
+}
+
+// A pose from one line's channel values (degrees; positions in file units).
+// Returns the 0-based index of a position value beyond kMaxFileLength, or -1.
+int store_pose(const FlatChannels& fc, const Skeleton& skel, double scale, const double* val, PoseRef pose) {
+  int absurd = -1;
+  const int n = skel.joint_count();
+  for (int j = 0; j < n; ++j) {
+    const auto ju = static_cast<std::size_t>(j);
+    Vec3 tr = skel.rest_offsets[ju];
+    Quat q = Quat::Identity();
+    for (int k = fc.first[ju]; k < fc.first[ju + 1]; ++k) {
+      const Channel c = fc.flat[static_cast<std::size_t>(k)];
+      if (is_rotation(c)) q = rotate_about_axis(q, axis_of(c), val[k]);
+      else {
+        tr[axis_of(c)] = val[k] * scale;  // position channels replace the OFFSET
+        if (std::abs(val[k]) > kMaxFileLength) absurd = k;
+      }
+    }
+    pose.rotations[ju] = q;
+    pose.translations[ju] = tr;
+  }
+  return absurd;
+}
+
+// Frames that are all zeros (a CMU export glitch) take the nearest real
+// frame's pose; the dropped T-pose is never a source. Returns the count.
+int repair_zero_frames(Motion& m, const std::vector<unsigned char>& zero) {
+  const int count = m.frame_count();
+  std::vector<int> before(static_cast<std::size_t>(count), -1), after(static_cast<std::size_t>(count), -1);
+  for (int f = 0, last = -1; f < count; ++f) {
+    before[static_cast<std::size_t>(f)] = last;
+    if (!zero[static_cast<std::size_t>(f)]) last = f;
+  }
+  for (int f = count - 1, next = -1; f >= 0; --f) {
+    after[static_cast<std::size_t>(f)] = next;
+    if (!zero[static_cast<std::size_t>(f)]) next = f;
+  }
+  int repaired = 0;
+  for (int f = 0; f < count; ++f) {
+    const auto fu = static_cast<std::size_t>(f);
+    if (!zero[fu]) continue;
+    const int b = before[fu], a = after[fu];
+    const int best = b < 0 ? a : a < 0 ? b : (f - b < a - f ? b : a);  // ties go to the later frame
+    if (best < 0) continue;  // every frame is zero: nothing to repair from
+    m.set_frame(f, m.frame(best));  // sources are unrepaired real frames
+    ++repaired;
+  }
+  return repaired;
+}
+
+// Frames the motion can hold, bounded before anything is allocated. Every
+// value takes at least two characters, so the text bounds the line count (a
+// bogus 'Frames:' fails after counting, it never reserves gigabytes). Joints
+// without channels cost pose memory but no motion text, so the joint poses
+// (frames x joints) are bounded by the file's size too: 2^21 + 8 per byte
+// (a real file needs well under one per byte), and never more than 2^26.
+int frame_capacity(const Lexer& lx, const Header& hd, int total, std::size_t motion_bytes) {
+  const int n = hd.h.skel.joint_count();
+  const std::size_t max_lines = total > 0 ? motion_bytes / (2 * static_cast<std::size_t>(total)) + 1 : 0;
+  const int capacity = static_cast<int>(std::min(static_cast<std::size_t>(hd.declared), max_lines));
+  const double limit = std::min(static_cast<double>(1 << 26), static_cast<double>(1 << 21) + 8.0 * lx.text().size());
+  if (static_cast<double>(capacity) * n > limit)
+    lx.fail(std::to_string(capacity) + " frames x " + std::to_string(n) + " joints is more than legwork reads from a " +
+                std::to_string(lx.text().size()) + "-byte file (" + std::to_string(static_cast<long long>(limit)) +
+                " joint poses)",
+            hd.frames_line);
+  return capacity;
+}
+
+}  // namespace
+
+BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadOptions& opt) {
+  Lexer lx(text_body(text, source), source);
+  BvhFile out;
+  Header hd;
+  parse_header(lx, hd);
+  Skeleton& skel = hd.h.skel;
+  out.channels = std::move(hd.h.channels);
+  const FlatChannels fc = flatten(out.channels);
+  const int total = fc.total();
 
   // Units come from the rest pose alone, so the motion can be converted as it is read.
   double scale = opt.scale;
@@ -347,136 +519,53 @@ BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadO
     if (!Lexer::is_space(t[p])) lx.fail("unexpected text after Frame Time value");
     ++p;
   }
-
-  // Lines are parsed straight into the motion's poses. Every value takes at
-  // least two characters, so the text bounds the line count: a bogus
-  // 'Frames:' must not allocate gigabytes (it fails below, after counting).
-  const std::size_t max_lines = total > 0 ? (t.size() - p) / (2 * static_cast<std::size_t>(total)) + 1 : 0;
-  const int capacity = static_cast<int>(std::min(static_cast<std::size_t>(declared), max_lines));
-  // Joints without channels cost memory per frame but no text: bound the pose
-  // storage (2^26 joint poses = 3.5 GB, e.g. 5 hours of a 31-joint body at 120 fps).
-  if (static_cast<double>(capacity) * n > static_cast<double>(1 << 26))
-    lx.fail(std::to_string(capacity) + " frames x " + std::to_string(n) +
-                " joints is more than legwork reads (2^26 joint poses)", frames_line);
-  // With drop_first_frame, line 0 (the CMU T-pose) goes to a side pose and is
-  // only kept if it turns out to be the only frame.
+  const int capacity = frame_capacity(lx, hd, total, t.size() - p);
+  // Lines are parsed straight into the motion's poses. With drop_first_frame,
+  // line 0 (the CMU T-pose) goes to a side pose and is only kept if it turns
+  // out to be the only frame.
   const int skip = opt.drop_first_frame ? 1 : 0;
-  Motion m(skel, 1.0 / frame_time, std::max(capacity - skip, 0));
+  Motion m(skel, 1.0 / hd.frame_time, std::max(capacity - skip, 0));
   Pose line0(skel);
   std::vector<unsigned char> zero(static_cast<std::size_t>(std::max(capacity - skip, 0)), 0);
   bool line0_zero = false;
   std::vector<double> v(static_cast<std::size_t>(total));
-
-  auto store = [&](PoseRef pose) {
-    const double* val = v.data();
-    for (int j = 0; j < n; ++j) {
-      const auto ju = static_cast<std::size_t>(j);
-      Vec3 tr = m.skeleton.rest_offsets[ju];
-      Quat q = Quat::Identity();
-      for (int k = first_channel[ju]; k < first_channel[ju + 1]; ++k) {
-        const Channel c = flat[static_cast<std::size_t>(k)];
-        if (is_rotation(c)) q = rotate_about_axis(q, axis_of(c), val[k]);
-        else tr[axis_of(c)] = val[k] * scale;  // position channels replace the OFFSET
-      }
-      pose.rotations[ju] = q;
-      pose.translations[ju] = tr;
-    }
-  };
-
   int frames = 0;
   while (p < t.size()) {
     ++p;  // past '\n'
     ++line;
-    int count = 0;
-    bool blank = true, all_zero = true;
-    while (p < t.size() && t[p] != '\n') {
-      char c = t[p];
-      if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') { ++p; continue; }
-      blank = false;
-      const char* b = t.data() + p;
-      const char* e = t.data() + t.size();
-      double val;
-      const char* ptr = parse_plain_decimal(b, e, val);
-      std::errc ec{};
-      if (!ptr) {  // exponents, long mantissas, junk: the general parser decides
-        if (*b == '+' && b + 1 < e && b[1] != '-') ++b;
-        const auto r = std::from_chars(b, e, val);
-        ptr = r.ptr;
-        ec = r.ec;
-      }
-      auto token = [&] {
-        std::size_t q = p;
-        while (q < t.size() && !Lexer::is_space(t[q])) ++q;
-        return Lexer::printable(t.substr(p, std::min<std::size_t>(q - p, 40)));
-      };
-      if (count >= total)
-        lx.fail("motion line has more than the " + std::to_string(total) + " values the hierarchy declares (extra '" +
-                    token() + "')", line);
-      if (ec == std::errc::result_out_of_range && (ptr == e || Lexer::is_space(*ptr)))
-        lx.fail("motion line value " + std::to_string(count + 1) + " is out of range: '" + token() + "'", line);
-      if (ec != std::errc() || (ptr < e && !Lexer::is_space(*ptr)))
-        lx.fail("motion line value " + std::to_string(count + 1) + " is not a number: '" + token() + "'", line);
-      if (!std::isfinite(val))
-        lx.fail("motion line value " + std::to_string(count + 1) + " is not finite (NaN or Inf): '" + token() + "'", line);
-      v[static_cast<std::size_t>(count)] = val;
-      all_zero = all_zero && val == 0.0;
-      ++count;
-      p = static_cast<std::size_t>(ptr - t.data());
-    }
-    if (blank) continue;
-    if (count < total)
-      lx.fail("motion line has " + std::to_string(count) + " values, the hierarchy declares " + std::to_string(total) +
-                  " channels", line);
+    const LineValues lv = read_line(lx, t, p, line, v);
+    if (lv.blank) continue;
+    if (lv.count < total)
+      lx.fail("motion line has " + std::to_string(lv.count) + " values, the hierarchy declares " +
+                  std::to_string(total) + " channels", line);
     if (frames < capacity) {  // lines past 'Frames:' are checked, not kept
-      if (frames < skip) {
-        store(line0.ref());
-        line0_zero = all_zero;
-      } else {
-        store(m.frame(frames - skip));
-        zero[static_cast<std::size_t>(frames - skip)] = all_zero ? 1 : 0;
-      }
+      const int absurd = frames < skip ? store_pose(fc, m.skeleton, scale, v.data(), line0.ref())
+                                       : store_pose(fc, m.skeleton, scale, v.data(), m.frame(frames - skip));
+      if (absurd >= 0)
+        lx.fail("motion line value " + std::to_string(absurd + 1) + " is a position beyond " +
+                    Lexer::describe_number(kMaxFileLength) + " file units", line);
+      if (frames < skip) line0_zero = lv.all_zero;
+      else zero[static_cast<std::size_t>(frames - skip)] = lv.all_zero ? 1 : 0;
     }
     ++frames;
   }
-  if (frames != static_cast<int>(declared)) {
+  const int declared = static_cast<int>(hd.declared);
+  if (frames != declared) {
     std::ostringstream os;
-    os << "'Frames: " << static_cast<long>(declared) << "' but the file has " << frames << " motion lines";
-    if (opt.strict_frame_count || frames < static_cast<int>(declared)) lx.fail(os.str(), frames_line);
-    out.report.warnings.push_back(os.str() + "; using the " + std::to_string(static_cast<int>(declared)) + " declared frames");
-    frames = static_cast<int>(declared);
+    os << "'Frames: " << declared << "' but the file has " << frames << " motion lines";
+    if (opt.strict_frame_count || frames < declared) lx.fail(os.str(), hd.frames_line);
+    out.report.warnings.push_back(os.str() + "; using the " + std::to_string(declared) + " declared frames");
+    frames = declared;
   }
-  if (frames == 0) lx.fail("the file has no motion frames", frames_line);
-  out.report.declared_frames = static_cast<int>(declared);
+  if (frames == 0) lx.fail("the file has no motion frames", hd.frames_line);
+  out.report.declared_frames = declared;
   if (skip == 1 && frames == 1) {  // nothing to drop: keep the only frame
     m.resize(1);
     m.set_frame(0, line0);
     zero.assign(1, line0_zero ? 1 : 0);
   }
   out.report.dropped_first_frame = skip == 1 && frames > 1;
-
-  // Frames that are all zeros (a CMU export glitch) take the nearest real
-  // frame's pose; the dropped T-pose is never a source.
-  if (opt.repair_zero_frames && total > 0) {
-    const int count = m.frame_count();
-    std::vector<int> before(static_cast<std::size_t>(count), -1), after(static_cast<std::size_t>(count), -1);
-    for (int f = 0, last = -1; f < count; ++f) {
-      before[static_cast<std::size_t>(f)] = last;
-      if (!zero[static_cast<std::size_t>(f)]) last = f;
-    }
-    for (int f = count - 1, next = -1; f >= 0; --f) {
-      after[static_cast<std::size_t>(f)] = next;
-      if (!zero[static_cast<std::size_t>(f)]) next = f;
-    }
-    for (int f = 0; f < count; ++f) {
-      const auto fu = static_cast<std::size_t>(f);
-      if (!zero[fu]) continue;
-      const int b = before[fu], a = after[fu];
-      const int best = b < 0 ? a : a < 0 ? b : (f - b < a - f ? b : a);  // ties go to the later frame
-      if (best < 0) continue;  // every frame is zero: nothing to repair from
-      m.set_frame(f, m.frame(best));  // sources are unrepaired real frames
-      ++out.report.repaired_zero_frames;
-    }
-  }
+  if (opt.repair_zero_frames && total > 0) out.report.repaired_zero_frames = repair_zero_frames(m, zero);
   if (opt.resolve_roles) out.report.missing_roles = resolve_roles(m.skeleton);
   out.motion = std::move(m);
   return out;

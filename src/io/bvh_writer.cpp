@@ -43,8 +43,24 @@ std::vector<JointChannels> default_layout(const Motion& m) {
   return out;
 }
 
-void write_joint(std::string& out, const Skeleton& s, const std::vector<JointChannels>& layout, int j, int depth,
-                 double scale) {
+// Children of every joint, in order (one pass, not one scan per joint).
+std::vector<std::vector<int>> children_lists(const Skeleton& s) {
+  std::vector<std::vector<int>> kids(s.parents.size());
+  for (int j = 1; j < s.joint_count(); ++j) {
+    const int p = s.parents[static_cast<std::size_t>(j)];
+    if (p >= 0 && p < j) kids[static_cast<std::size_t>(p)].push_back(j);
+  }
+  return kids;
+}
+
+// Deeper nesting than the reader accepts is refused (and would overflow the stack here).
+constexpr int kMaxWriteDepth = 256;
+
+void write_joint(std::string& out, const Skeleton& s, const std::vector<JointChannels>& layout,
+                 const std::vector<std::vector<int>>& kids, int j, int depth, double scale) {
+  if (depth > kMaxWriteDepth)
+    throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] + "' is nested more than " +
+                std::to_string(kMaxWriteDepth) + " deep");
   const std::string ind(static_cast<std::size_t>(depth), '\t');
   out += ind + (j == 0 ? "ROOT " : "JOINT ") + s.names[static_cast<std::size_t>(j)] + "\n" + ind + "{\n";
   out += ind + "\tOFFSET";
@@ -53,7 +69,7 @@ void write_joint(std::string& out, const Skeleton& s, const std::vector<JointCha
   out += "\n" + ind + "\tCHANNELS " + std::to_string(ch.size());
   for (Channel c : ch) out += ' ', out += channel_name(c);
   out += '\n';
-  for (int c : s.children(j)) write_joint(out, s, layout, c, depth + 1, scale);
+  for (int c : kids[static_cast<std::size_t>(j)]) write_joint(out, s, layout, kids, c, depth + 1, scale);
   if (s.has_end_site[static_cast<std::size_t>(j)]) {
     out += ind + "\tEnd Site\n" + ind + "\t{\n" + ind + "\t\tOFFSET";
     for (int k = 0; k < 3; ++k) out += ' ', append_number(out, s.end_sites[static_cast<std::size_t>(j)][k] * scale);
@@ -119,7 +135,7 @@ std::string format_bvh(const Motion& m, const BvhWriteOptions& opt) {
     }
   }
   std::string out = "HIERARCHY\n";
-  write_joint(out, s, layout, 0, 0, opt.scale);
+  write_joint(out, s, layout, children_lists(s), 0, 0, opt.scale);
   out += "MOTION\nFrames: " + std::to_string(m.frame_count()) + "\nFrame Time: ";
   char buf[64];
   auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, 1.0 / m.fps, std::chars_format::general, 10);

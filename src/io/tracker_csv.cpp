@@ -89,7 +89,7 @@ Header parse_header(const std::vector<Cell>& cells, TrackerTable& table, const F
   bool has_time = false;
   for (const Cell& c : cells) has_time = has_time || c.text == "time";
   if (!has_time) fail.at(1, 1, "missing 'time' column (the header must start with 'time')");
-  if (cells[0].text != "time") fail.at(1, cells[0].column, "the first column must be 'time', found '" + std::string(cells[0].text) + "'");
+  if (cells[0].text != "time") fail.at(1, cells[0].column, "the first column must be 'time', found '" + printable_text(cells[0].text, 40) + "'");
   h.columns.resize(cells.size());
   std::map<std::string, int, std::less<>> index;
   for (std::size_t i = 1; i < cells.size(); ++i) {
@@ -105,7 +105,7 @@ Header parse_header(const std::vector<Cell>& cells, TrackerTable& table, const F
     }
     if (c.text == "time") fail.at(1, c.column, "column 'time' appears twice");
     if (comp < 0)
-      fail.at(1, c.column, "column '" + std::string(c.text) +
+      fail.at(1, c.column, "column '" + printable_text(c.text, 40) +
                                "' is not '<point>_x/_y/_z' or '<point>_qw/_qx/_qy/_qz'");
     auto it = index.find(name);
     if (it == index.end()) {
@@ -116,7 +116,7 @@ Header parse_header(const std::vector<Cell>& cells, TrackerTable& table, const F
       h.cell_of.back().fill(-1);
     }
     auto& slot = h.cell_of[static_cast<std::size_t>(it->second)][static_cast<std::size_t>(comp)];
-    if (slot >= 0) fail.at(1, c.column, "column '" + std::string(c.text) + "' appears twice");
+    if (slot >= 0) fail.at(1, c.column, "column '" + printable_text(c.text, 40) + "' appears twice");
     slot = static_cast<int>(i);
     h.columns[i] = {it->second, comp};
   }
@@ -165,6 +165,7 @@ const TrackedPoint& TrackerTable::point(std::string_view name) const {
 }
 
 TrackerTable parse_tracker_csv(std::string_view text, std::string_view source) {
+  text = text_body(text, source);  // UTF-16 is named; a UTF-8 byte-order mark is skipped
   const Failure fail{source};
   TrackerTable table;
   std::vector<Cell> cells;
@@ -192,13 +193,13 @@ TrackerTable parse_tracker_csv(std::string_view text, std::string_view source) {
     for (std::size_t i = 0; i < cells.size(); ++i) {
       auto v = parse_cell(cells[i].text);
       if (!v)
-        fail.at(line_no, cells[i].column, "cell '" + std::string(cells[i].text.substr(0, 40)) + "' in column " +
+        fail.at(line_no, cells[i].column, "cell '" + printable_text(cells[i].text, 40) + "' in column " +
                                               std::to_string(i + 1) + " is not a number");
       row[i] = *v;
     }
     if (std::isnan(row[0])) fail.at(line_no, cells[0].column, "the time cell is empty or NaN; every row needs a time");
     if (!table.time.empty() && !(row[0] > table.time.back()))
-      fail.at(line_no, cells[0].column, "time " + std::string(cells[0].text) + " is not after the previous row's time (times must increase strictly)");
+      fail.at(line_no, cells[0].column, "time " + printable_text(cells[0].text, 40) + " is not after the previous row's time (times must increase strictly)");
     table.time.push_back(row[0]);
     for (std::size_t p = 0; p < table.points.size(); ++p) {
       TrackedPoint& pt = table.points[p];

@@ -67,14 +67,20 @@ std::vector<Side> joint_sides(const Skeleton& skel) {
   const Root roots[] = {{Role::LeftHip, Side::Left},         {Role::LeftClavicle, Side::Left},
                         {Role::LeftShoulder, Side::Left},    {Role::RightHip, Side::Right},
                         {Role::RightClavicle, Side::Right},  {Role::RightShoulder, Side::Right}};
-  for (int j = 0; j < n; ++j) {
-    for (const auto& r : roots) {
-      const int rj = skel.roles[r.role];
-      if (rj >= 0 && skel.is_ancestor(rj, j)) {
-        side[static_cast<std::size_t>(j)] = r.side;
-        break;
-      }
+  // One pass (parents precede children): a role joint takes its side, any
+  // other joint its parent's (linear, not joints x depth).
+  std::vector<unsigned char> is_root(static_cast<std::size_t>(n), 0);
+  for (const auto& r : roots) {
+    const int rj = skel.roles[r.role];
+    if (rj >= 0 && !is_root[static_cast<std::size_t>(rj)]) {
+      is_root[static_cast<std::size_t>(rj)] = 1;
+      side[static_cast<std::size_t>(rj)] = r.side;
     }
+  }
+  for (int j = 0; j < n; ++j) {
+    const int parent = skel.parents[static_cast<std::size_t>(j)];
+    if (!is_root[static_cast<std::size_t>(j)] && parent >= 0 && parent < j)
+      side[static_cast<std::size_t>(j)] = side[static_cast<std::size_t>(parent)];
   }
   // Mirror pairs no role covered (e.g. extra helper joints): the one further
   // to +x in the rest pose is the left one (+x = the character's left).

@@ -8,6 +8,11 @@
 
 namespace legwork::render {
 
+namespace {
+// Widest multi-view sheet drawn (pixels); wider content is scaled into it by the camera fit.
+constexpr double kMaxSheetWidth = 16384;
+}  // namespace
+
 using detail::Align;
 using detail::Canvas;
 
@@ -150,8 +155,9 @@ void render_contact_sheet(const Skeleton& skel, const std::vector<Pose>& poses, 
   for (auto& p : panels) {
     Eigen::Vector2d lo, hi;
     detail::plane_bounds(p.scene, p.camera.view, lo, hi);
-    const int w = static_cast<int>(std::ceil((hi.x() - lo.x()) / mpp / (1 - 2 * p.camera.margin))) + 20;
-    width = std::max(width, w);
+    // In double first: a clip that wanders kilometres sideways must not overflow the int.
+    const double w = std::ceil((hi.x() - lo.x()) / mpp / (1 - 2 * p.camera.margin)) + 20;
+    width = std::max(width, static_cast<int>(std::clamp(std::isfinite(w) ? w : 0.0, 0.0, kMaxSheetWidth)));
   }
   width = std::max(width, 360);
   for (auto& p : panels) {

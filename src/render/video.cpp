@@ -15,6 +15,9 @@ namespace legwork::render {
 
 namespace {
 
+// Longest video rendered: 1,000,000 frames (9 hours at 30 fps).
+constexpr double kMaxVideoFrames = 1e6;
+
 using detail::Align;
 
 // The ffmpeg program: $LEGWORK_FFMPEG if set, else the first "ffmpeg" on PATH.
@@ -201,7 +204,13 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
 
   double duration = 0;
   for (const Motion* m : motions) duration = std::max(duration, m->duration());
-  const int frames = static_cast<int>(std::floor(duration * opt.fps + 1e-9)) + 1;
+  // Bounded in double before it becomes an int (a 1e8-frame clip at 240 fps would overflow it).
+  const double frame_count = std::floor(duration * opt.fps + 1e-9) + 1;
+  if (!(frame_count <= kMaxVideoFrames))
+    throw Error("video '" + path + "': " + std::to_string(duration) + " s at " + std::to_string(opt.fps) +
+                " fps is more frames than legwork renders (" + std::to_string(static_cast<int>(kMaxVideoFrames)) +
+                "); use --frames to pick a part");
+  const int frames = static_cast<int>(frame_count);
 
   detail::Canvas canvas(W, H);
   FfmpegPipe pipe(path, W, H, opt.fps);

@@ -1,4 +1,5 @@
 #include <legwork/walkcycle/cycle.hpp>
+#include <legwork/core/rotation.hpp>
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/mirror.hpp>
@@ -9,23 +10,6 @@
 namespace legwork::walkcycle {
 
 namespace {
-
-// Rotation vector (angle * axis, radians) of a unit quaternion, shortest arc.
-Vec3 quat_log(Quat q) {
-  if (q.w() < 0) q.coeffs() = -q.coeffs();
-  const Vec3 v = q.vec();
-  const double s = v.norm();
-  if (s < 1e-12) return 2.0 * v;
-  return v * (2.0 * std::atan2(s, q.w()) / s);
-}
-
-Quat quat_exp(const Vec3& r) {
-  const double a = r.norm();
-  if (a < 1e-12) return Quat(1.0, 0.5 * r.x(), 0.5 * r.y(), 0.5 * r.z()).normalized();
-  const Vec3 axis = r / a;
-  const double s = std::sin(0.5 * a);
-  return Quat(std::cos(0.5 * a), axis.x() * s, axis.y() * s, axis.z() * s);
-}
 
 Quat positive_w(Quat q) {
   if (q.w() < 0) q.coeffs() = -q.coeffs();
@@ -86,7 +70,7 @@ CycleModel::Channel add_channel(CycleModel& m, std::vector<Entry> entries, bool 
   }
   for (const auto& e : entries) {
     m.key_time.push_back(e.time);
-    m.key_value.push_back(rotation ? quat_log(c.ref.conjugate() * e.rotation) : e.offset);
+    m.key_value.push_back(rotation ? rotation_log(c.ref.conjugate() * e.rotation) : e.offset);
   }
   const int k = c.count;
   for (int i = 0; i < k; ++i) {
@@ -180,7 +164,7 @@ void sample_cycle_rotations_only(const CycleModel& m, const Inbetween& ib, const
   for (int j = 0; j < m.skeleton.joint_count(); ++j) {
     const auto& c = m.rotation[static_cast<std::size_t>(j)];
     const Quat* q = ib.pose.find(j);
-    p.rotations[static_cast<std::size_t>(j)] = q ? *q : Quat(c.ref * quat_exp(eval_channel(m, c, wrap(ib.frame + shift[static_cast<std::size_t>(j)], m.frames_per_cycle))));
+    p.rotations[static_cast<std::size_t>(j)] = q ? *q : Quat(c.ref * rotation_exp(eval_channel(m, c, wrap(ib.frame + shift[static_cast<std::size_t>(j)], m.frames_per_cycle))));
   }
 }
 
@@ -347,7 +331,7 @@ void sample_cycle(const CycleModel& m, double frame, PoseRef out) {
   const int n = m.skeleton.joint_count();
   for (int j = 0; j < n; ++j) {
     const auto& c = m.rotation[static_cast<std::size_t>(j)];
-    out.rotations[static_cast<std::size_t>(j)] = c.ref * quat_exp(eval_channel(m, c, t));
+    out.rotations[static_cast<std::size_t>(j)] = c.ref * rotation_exp(eval_channel(m, c, t));
     out.translations[static_cast<std::size_t>(j)] = m.skeleton.rest_offsets[static_cast<std::size_t>(j)];
   }
   out.translations[0] = Vec3(0, m.stand_height, 0) + eval_channel(m, m.root_offset, t);

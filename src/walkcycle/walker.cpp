@@ -1,4 +1,5 @@
 #include <legwork/walkcycle/walker.hpp>
+#include <legwork/core/rotation.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +9,6 @@ namespace legwork::walkcycle {
 
 namespace {
 
-Quat yaw(double theta) { return Quat(Eigen::AngleAxisd(theta, Vec3::UnitY())); }
-Vec3 horizontal(const Vec3& v) { return Vec3(v.x(), 0.0, v.z()); }
-double smoothstep(double u) {
-  u = std::clamp(u, 0.0, 1.0);
-  return u * u * (3 - 2 * u);
-}
 
 // Index into State::feet: [right heel, right ball, left heel, left ball].
 int foot_index(bool left, Pivot p) { return (left ? 2 : 0) + (p == Pivot::Ball ? 1 : 0); }
@@ -24,8 +19,8 @@ void feet_of(const CycleModel& m, ConstPoseRef pose, std::array<Vec3, 4>& feet) 
 }
 
 void place(const State& s, PoseRef out) {
-  out.rotations[0] = yaw(s.heading) * out.rotations[0];
-  out.translations[0] = yaw(s.heading) * out.translations[0] + s.offset;
+  out.rotations[0] = yaw_rotation(s.heading) * out.rotations[0];
+  out.translations[0] = yaw_rotation(s.heading) * out.translations[0] + s.offset;
 }
 
 // The walk's first pose: a contact with the root above the start point.
@@ -36,7 +31,7 @@ void start_walk(const CycleModel& m, State& s, PoseRef out) {
   s.heading = s.heading_from = s.heading_to = s.start_heading;
   sample_cycle(m, 0.0, out);
   feet_of(m, out, s.feet);
-  s.offset = horizontal(s.start_position - yaw(s.heading) * horizontal(out.translations[0]));
+  s.offset = horizontal(s.start_position - yaw_rotation(s.heading) * horizontal(out.translations[0]));
   place(s, out);
 }
 
@@ -49,7 +44,7 @@ StanceAt advance(const CycleModel& m, double max_turn, State& s, double seconds,
   while ((s.decided_step + 0.5) * half <= t) {
     ++s.decided_step;
     s.heading_from = s.heading_to;
-    double d = std::remainder(s.desired_heading - s.heading_from, 2 * kPi);
+    double d = wrap_angle(s.desired_heading - s.heading_from);
     d = std::clamp(d, -max_turn, max_turn);
     s.heading_to = s.heading_from + d;
   }
@@ -60,9 +55,9 @@ StanceAt advance(const CycleModel& m, double max_turn, State& s, double seconds,
   feet_of(m, out, feet);
   const StanceAt st = stance_at(m, 0.5 * (t_prev + t));
   const auto k = static_cast<std::size_t>(foot_index(st.left, st.pivot));
-  // Keep the pivot where it was: world = yaw(heading) * in-place + offset.
-  const Vec3 was = yaw(s.heading) * s.feet[k] + s.offset;
-  s.offset = horizontal(was - yaw(heading) * feet[k]);
+  // Keep the pivot where it was: world = yaw_rotation(heading) * in-place + offset.
+  const Vec3 was = yaw_rotation(s.heading) * s.feet[k] + s.offset;
+  s.offset = horizontal(was - yaw_rotation(heading) * feet[k]);
   s.heading = heading;
   s.feet = feet;
   s.time = t;
@@ -75,7 +70,7 @@ bool head_heading(const DevicePose& head, double& heading) {
   if (!usable(head)) return false;
   const Vec3 f = head.rotation.normalized() * Vec3::UnitZ();
   if (f.x() * f.x() + f.z() * f.z() < 1e-8) return false;
-  heading = std::atan2(f.x(), f.z());
+  heading = heading_of(f);
   return true;
 }
 

@@ -3,6 +3,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/measure.hpp>
+#include <legwork/core/rotation.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -62,12 +63,6 @@ double approach(double current, double target, double dt, double tau) {
   return current + (target - current) * (1 - std::exp(-dt / tau));
 }
 
-// Yaw about +y of a rotation (0 = looking along +z); `fallback` when it
-// looks (almost) straight up or down and has no usable yaw.
-double yaw_of(const Quat& q, double fallback) {
-  const Vec3 f = q * Vec3::UnitZ();
-  return std::hypot(f.x(), f.z()) > 1e-3 ? std::atan2(f.x(), f.z()) : fallback;
-}
 
 }  // namespace
 
@@ -262,7 +257,7 @@ void update_depth_targets(const Model& m, State& st, const unsigned ev[2], doubl
 
 void solve_pose(const Model& m, State& st, const double lift[2], PoseRef out, Vec3 target_world[2]) {
   const auto& mp = m.settings().mapping;
-  const Quat yaw(Eigen::AngleAxisd(st.heading, Vec3::UnitY()));
+  const Quat yaw = yaw_rotation(st.heading);
   const Pose& base = m.base_pose();
   std::copy(base.rotations.begin(), base.rotations.end(), out.rotations.begin());
   std::copy(base.translations.begin(), base.translations.end(), out.translations.begin());

@@ -147,3 +147,17 @@ TEST(Mirror, MirroredWalkStillWalksForward) {
   EXPECT_NEAR(d0.z(), d1.z(), 1e-12);
   EXPECT_NEAR(d0.x(), -d1.x(), 1e-12);
 }
+
+TEST(Resample, HugeRateIsRefusedBeforeAllocating) {
+  // 'convert --rate 1000000' wrote a 2.4 GB file using 6.9 GB; 1e300 Hz overflowed the frame count.
+  const Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
+  for (double rate : {1e6, 1e300}) {
+    try {
+      (void)resample(m, rate);
+      ADD_FAILURE() << rate << " Hz: expected an error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("joints, more than 67108864 joint poses"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(resampled_frame_count(m, 30), resample(m, 30).frame_count());
+}

@@ -96,3 +96,64 @@ TEST(Units, CmuAndDazConvertToPlausibleHumans) {
   EXPECT_NEAR(io::read_bvh(testdata::sample("cmu/bvh_daz/climbing_ladder/14_33.bvh").string()).report.scale, 0.01, 1e-12);
   EXPECT_EQ(guess_unit_scale(7000.0), 0.0);
 }
+
+namespace {
+// The CMU body plus `pairs` left/right helper joints (a 100,000-joint rig took
+// 9.6 s to resolve when name lookups were linear scans). Helpers hang in
+// chains of 200 off the chest, so depths reach ~200 too.
+Skeleton cmu_with_helpers(int pairs) {
+  Skeleton s = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string()).skeleton;
+  const int chest = s.require("Spine1");
+  for (const char* side : {"Left", "Right"}) {
+    int parent = chest;
+    for (int i = 0; i < pairs; ++i) {
+      parent = s.add_joint(std::string(side) + "Helper" + std::to_string(i), i % 200 == 0 ? chest : parent, Vec3(0, 0.01, 0));
+    }
+  }
+  return s;
+}
+}  // namespace
+
+TEST(Roles, HundredThousandJointsResolveWithMirrorPairs) {
+  Skeleton s = cmu_with_helpers(50000);
+  ASSERT_EQ(s.joint_count(), 31 + 100000);
+  const auto missing = resolve_roles(s);
+  for (Role r : missing) EXPECT_FALSE(role_is_required(r)) << role_name(r);
+  EXPECT_EQ(s.names[static_cast<std::size_t>(s.roles[Role::LeftAnkle])], "LeftFoot");
+  EXPECT_EQ(s.names[static_cast<std::size_t>(s.roles[Role::Head])], "Head");
+  for (int i : {0, 1, 199, 200, 49999}) {
+    const int l = s.find("LeftHelper" + std::to_string(i));
+    const int r = s.find("RightHelper" + std::to_string(i));
+    ASSERT_GE(l, 0);
+    EXPECT_EQ(s.mirror[static_cast<std::size_t>(l)], r);
+    EXPECT_EQ(s.mirror[static_cast<std::size_t>(r)], l);
+  }
+  // The body is measured the same with or without the helpers.
+  const double plain = measure_body(io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string()).skeleton).standing_height;
+  EXPECT_NEAR(measure_body(s).standing_height, plain, 1e-9);
+}
+
+TEST(Roles, HundredThousandJointBvhReads) {
+  // Duplicate checks while reading used to scan every earlier joint.
+  std::string text = "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Yrotation Xrotation\n";
+  for (int i = 0; i < 100000; ++i) text += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 0.01 0\nCHANNELS 0\n}\n";
+  text += "}\nMOTION\nFrames: 2\nFrame Time: 0.01\n0 0 0\n0 0 90\n";
+  io::BvhReadOptions o;
+  o.scale = 1;
+  const auto f = io::parse_bvh(text, "wide.bvh", o);
+  EXPECT_EQ(f.motion.joint_count(), 100001);
+  EXPECT_EQ(f.motion.frame_count(), 2);
+  // A duplicate far down the list is still found.
+  const std::string dup = text.substr(0, text.find("MOTION") - 2) + "JOINT j5\n{\nOFFSET 0 0 0\nCHANNELS 0\n}\n}\n" +
+                          text.substr(text.find("MOTION"));
+  EXPECT_THROW(
+      {
+        try {
+          io::parse_bvh(dup, "dup.bvh", o);
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("duplicate joint name 'j5'"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      Error);
+}

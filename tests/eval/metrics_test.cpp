@@ -99,16 +99,6 @@ TEST(EvalMetrics, KnownJerk) {
   EXPECT_NEAR(m.jitter, 0.03, 1e-8);
 }
 
-TEST(EvalMetrics, PearsonKnownValues) {
-  const std::vector<double> x{1, 2, 3, 4, 5};
-  const std::vector<double> up{3, 5, 7, 9, 11}, down{5, 4, 3, 2, 1}, flat{2, 2, 2, 2, 2};
-  EXPECT_NEAR(pearson(x, up), 1.0, 1e-12);
-  EXPECT_NEAR(pearson(x, down), -1.0, 1e-12);
-  EXPECT_TRUE(std::isnan(pearson(x, flat)));
-  const std::vector<double> y{1, 3, 2, 5, 4};  // r = 0.8 by hand: sxy = 8, sxx = syy = 10
-  EXPECT_NEAR(pearson(x, y), 0.8, 1e-12);
-}
-
 TEST(EvalMetrics, StaticOutputHandsCorrelateWithNothing) {
   const RoleTrack truth = moving_body(300, 90);
   RoleTrack out = truth;
@@ -133,14 +123,6 @@ TEST(EvalMetrics, FootSkatingOfASlidingPlantedFoot) {
   const FootSkate s = foot_skating(t, 0.03);
   EXPECT_NEAR(s.slide_m, 0.01, 1e-12);
   EXPECT_NEAR(s.contact_fraction, 0.5, 1e-12);
-}
-
-TEST(EvalMetrics, SummarizeMeanAndSampleSd) {
-  const std::vector<double> v{1, 2, 3, std::nan("")};
-  const Stats s = summarize(v);
-  EXPECT_EQ(s.n, 3);
-  EXPECT_NEAR(s.mean, 2.0, 1e-12);
-  EXPECT_NEAR(s.sd, 1.0, 1e-12);
 }
 
 TEST(EvalMetrics, CombineIsFrameWeighted) {

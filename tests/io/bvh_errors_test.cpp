@@ -86,6 +86,24 @@ std::vector<Case> cases() {
       {"no_frames", replace(replace(v, "Frames: 2", "Frames: 0"), "0 1 0 0 0 0 10 20 30\n0 1 0.1 0 0 0 10 20 30\n", ""),
        17, "the file has no motion frames"},
       {"joint_without_name", replace(v, "JOINT Spine", "JOINT"), 7, "expected a joint name after JOINT/ROOT, found '{'"},
+      // Absurd frame times: 1e300 s overflowed every derived sample count
+      // (SIGSEGV in 'wip --input'), 1e4 s made a 2-frame file use 5.67 GB.
+      {"frame_time_1e300", replace(v, "Frame Time: 0.1", "Frame Time: 1e300"), 18,
+       "'Frame Time: 1e+300' is outside 0.0001 to 10 seconds"},
+      {"frame_time_1e4", replace(v, "Frame Time: 0.1", "Frame Time: 1e4"), 18,
+       "'Frame Time: 10000' is outside 0.0001 to 10 seconds"},
+      {"frame_time_1e-7", replace(v, "Frame Time: 0.1", "Frame Time: 1e-7"), 18,
+       "'Frame Time: 1e-07' is outside 0.0001 to 10 seconds"},
+      // Lengths that overflow forward kinematics to Inf.
+      {"offset_1e300", replace(v, "OFFSET 0 0.5 0\n    CHANNELS", "OFFSET 0 1e300 0\n    CHANNELS"), 8,
+       "OFFSET of joint 'Spine' is beyond 1e+09 file units"},
+      {"end_site_1e300", replace(v, "      OFFSET 0 0.5 0", "      OFFSET 0 1e300 0"), 12,
+       "End Site OFFSET of joint 'Spine' is beyond 1e+09 file units"},
+      {"position_1e300", replace(v, "0 1 0.1 0 0 0 10 20 30", "0 1e300 0.1 0 0 0 10 20 30"), 20,
+       "motion line value 2 is a position beyond 1e+09 file units"},
+      // Names go into JSON and glTF: a Latin-1 name must fail here, by line.
+      {"joint_name_not_utf8", replace(v, "JOINT Spine", "JOINT Sp\xe9ne"), 6,
+       "joint name 'Sp?ne' is not UTF-8 text"},
   };
 }
 
@@ -146,4 +164,54 @@ TEST(BvhErrors, HugeDeclaredFrameCountDoesNotAllocate) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'Frames: 99999999' but the file has 2 motion lines"), std::string::npos);
   }
+}
+
+TEST(BvhErrors, JointsWithoutChannelsCannotMultiplyTheFrameCount) {
+  // 500 joints with no channels under a 1-channel root and 20,000 one-value
+  // lines (a 50 KB file) declared 10 M joint poses (560 MB) before the fix;
+  // the bound now follows the file's size.
+  std::string text = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 1 Yrotation\n";
+  for (int i = 0; i < 500; ++i) text += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 1 0\nCHANNELS 0\n}\n";
+  text += "}\nMOTION\nFrames: 20000\nFrame Time: 0.01\n";
+  for (int i = 0; i < 20000; ++i) text += "0\n";
+  try {
+    io::parse_bvh(text, "wide.bvh", metres());
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("wide.bvh:", 0), 0u) << msg;
+    EXPECT_NE(msg.find("20000 frames x 501 joints is more than legwork reads from a"), std::string::npos) << msg;
+  }
+  // The same skeleton with a plausible number of frames reads.
+  std::string few = text.substr(0, text.find("Frames: 20000")) + "Frames: 100\nFrame Time: 0.01\n";
+  for (int i = 0; i < 100; ++i) few += "0\n";
+  EXPECT_EQ(io::parse_bvh(few, "wide.bvh", metres()).motion.frame_count(), 100);
+}
+
+TEST(BvhErrors, Utf16TextIsNamed) {
+  // Windows tools save "Unicode" as UTF-16: say so instead of "found '??H?I?'".
+  std::string le = "\xFF\xFE";
+  for (char c : kValid) le += c, le += '\0';
+  std::string be = "\xFE\xFF";
+  for (char c : kValid) be += '\0', be += c;
+  std::string bare;  // no byte-order mark
+  for (char c : kValid) bare += c, bare += '\0';
+  for (const auto& text : {le, be, bare}) {
+    try {
+      io::parse_bvh(text, "wide.bvh", metres());
+      ADD_FAILURE() << "expected an error";
+    } catch (const Error& e) {
+      EXPECT_STREQ(e.what(), "wide.bvh: UTF-16 text; save it as UTF-8");
+    }
+  }
+}
+
+TEST(BvhErrors, Utf8ByteOrderMarkIsAccepted) {
+  const auto f = io::parse_bvh("\xEF\xBB\xBF" + kValid, "bom.bvh", metres());
+  EXPECT_EQ(f.motion.frame_count(), 2);
+}
+
+TEST(BvhErrors, UnicodeJointNamesAreKept) {
+  const auto f = io::parse_bvh(replace(kValid, "JOINT Spine", "JOINT Wirbels\xC3\xA4ule"), "utf8.bvh", metres());
+  EXPECT_EQ(f.motion.skeleton.names[1], "Wirbels\xC3\xA4ule");
 }

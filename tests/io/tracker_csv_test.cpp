@@ -114,3 +114,27 @@ TEST(TrackerCsv, FormatRejectsInconsistentTables) {
   t.time = {0.1, 0.1};
   EXPECT_THROW(io::format_tracker_csv(t), Error);
 }
+
+TEST(TrackerCsv, EncodingsAreNamedAndBinaryIsNotEchoed) {
+  const std::string csv = "time,head_x,head_y,head_z\n0,0,1.7,0\n0.1,0,1.7,0\n";
+  // A UTF-8 byte-order mark (Excel's "CSV UTF-8") is read as if absent.
+  EXPECT_EQ(io::parse_tracker_csv("\xEF\xBB\xBF" + csv, "bom.csv").sample_count(), 2);
+  // UTF-16 ("Unicode text") is named instead of "the first column must be 'time', found '??t?i?m?e'".
+  std::string utf16 = "\xFF\xFE";
+  for (char c : csv) utf16 += c, utf16 += '\0';
+  try {
+    io::parse_tracker_csv(utf16, "u16.csv");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "u16.csv: UTF-16 text; save it as UTF-8");
+  }
+  // Control and non-ASCII bytes of a bad cell are not copied into the message.
+  try {
+    io::parse_tracker_csv("time,head_x,head_y,head_z\n0,\x1b[2J\xff,1.7,0\n", "bin.csv");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("bin.csv:2:3: cell '?[2J?'"), std::string::npos) << msg;
+    for (char c : msg) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << "byte " << static_cast<int>(static_cast<unsigned char>(c));
+  }
+}

@@ -106,3 +106,28 @@ TEST(Video, FfmpegFailureIsAnError) {
   // A directory that does not exist: ffmpeg cannot open the output and exits non-zero.
   EXPECT_THROW(render_video(m, opt, "/nonexistent-dir/x.mp4"), Error);
 }
+
+TEST(Video, OverlongClipIsRefusedBeforeStartingFfmpeg) {
+  // 2 frames 3 hours apart at 240 fps: 2.6 M frames. The count must be
+  // refused as a number (it used to become an int directly, overflowing for
+  // long enough clips), before any encoder starts or file appears.
+  Motion m = short_walk(0.1);
+  m = trim(m, 0, 1);
+  m.fps = 1.0 / (3 * 3600.0);
+  VideoOptions opt;
+  opt.camera.width = 320;
+  opt.camera.height = 240;
+  opt.fps = 240;
+  const auto file = (render::testing::out_dir() / "overlong.mp4").string();
+  std::filesystem::remove(file);
+  try {
+    render_video(m, opt, file);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("video '" + file + "': 10800.000000 s at 240.000000 fps is more frames than "
+                                         "legwork renders (1000000)"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(file));
+}

@@ -17,7 +17,13 @@ void blend_poses(ConstPoseRef a, ConstPoseRef b, double t, PoseRef out);
 // duration. No allocation.
 void sample_motion(const Motion& m, double t, PoseRef out);
 
+// Largest motion resample() makes: frames x joints (2^26 joint poses = 3.7 GB).
+inline constexpr double kMaxResampledJointPoses = 67108864.0;
+// Frames resample(m, fps) makes; throws legwork::Error when fps is not
+// positive or the result would exceed kMaxResampledJointPoses.
+int resampled_frame_count(const Motion& m, double fps);
 // New motion at `fps`, same duration (last sample at floor(duration*fps)/fps).
+// Bounded as resampled_frame_count says, checked before allocating.
 Motion resample(const Motion& m, double fps);
 // Frames [first, last] inclusive; throws legwork::Error if out of range.
 Motion trim(const Motion& m, int first, int last);

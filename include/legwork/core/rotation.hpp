@@ -26,6 +26,12 @@ inline double yaw_of(const Quat& q) {
   const Vec3 f = q * Vec3::UnitZ();
   return std::atan2(f.x(), f.z());
 }
+// The same, or `fallback` when the rotation looks (almost) straight up or down
+// and has no usable yaw.
+inline double yaw_of(const Quat& q, double fallback) {
+  const Vec3 f = q * Vec3::UnitZ();
+  return std::hypot(f.x(), f.z()) > 1e-3 ? std::atan2(f.x(), f.z()) : fallback;
+}
 // Wraps an angle to [-pi, pi].
 inline double wrap_angle(double a) { return std::remainder(a, 2.0 * kPi); }
 // The horizontal (x, z) part of a vector.

@@ -47,9 +47,6 @@ RoleTrack role_track(const Motion& m);
 // An empty track of `frames` frames with the given roles present.
 RoleTrack make_track(double fps, int frames, const std::array<bool, kRoleCount>& present);
 
-// Pearson correlation of two equally long series; NaN if either is constant
-// (or shorter than 2 samples).
-double pearson(std::span<const double> a, std::span<const double> b);
 
 struct MetricOptions {
   // Foot contact: a foot joint is in contact while it is within this height
@@ -91,14 +88,6 @@ struct FootSkate {
   double contact_fraction = 0;
 };
 FootSkate foot_skating(const RoleTrack& t, double contact_height);
-
-// Mean and sample standard deviation (n - 1; 0 for n < 2) over finite values.
-struct Stats {
-  double mean = 0;
-  double sd = 0;
-  int n = 0;
-};
-Stats summarize(std::span<const double> values);
 
 // Frame-weighted mean of several trials' metrics (a fold's several held-out
 // trials). Correlations average over the trials where they are defined.

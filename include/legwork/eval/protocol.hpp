@@ -25,6 +25,10 @@ using io::TrialEntry;
 
 enum class Protocol { CrossSubject, CrossTrial, CrossDataset };
 const char* protocol_key(Protocol p);  // "cross_subject", "cross_trial", "cross_dataset"
+// Comma-separated protocol keys (or with '-' for '_'); empty = cross_dataset
+// when there is a test set, else cross_subject and cross_trial. Throws
+// legwork::Error naming --protocols for an unknown name.
+std::vector<Protocol> parse_protocols(const std::string& names, bool have_test);
 
 struct Fold {
   Protocol protocol = Protocol::CrossSubject;

@@ -34,6 +34,9 @@ double metric_value(const TrialMetrics& m, const std::string& key);
 //     "cross_trial": {...}, "cross_dataset": {...} }
 nlohmann::json report_json(const EvalResult& r);
 std::string report_markdown(const nlohmann::json& report);
+// The printed summary of report.json: per protocol the engine's and the IK
+// baseline's figures, the ablation, and each target met or not.
+std::string report_summary(const nlohmann::json& report);
 // Writes report.json, report.md, body_parts.{png,svg}, classes.{png,svg},
 // ablation.{png,svg} (when there is an ablation) into dir (created).
 // Returns the files written.

@@ -48,7 +48,7 @@ struct StrictScore {
   int true_steps = 0, detected = 0, matched = 0;
   double precision = NAN, recall = NAN, f1 = NAN;
   std::vector<double> latencies_ms;  // signed, detected - true foot-off, per match
-  double median_ms = NAN, p90_ms = NAN, mean_ms = NAN;
+  double median_ms = NAN, p90_ms = NAN, mean_ms = NAN;  // core percentile(): index floor(p (n - 1))
   void finish();  // rates and latency statistics from the counts and latencies
 };
 StrictScore match_foot_offs(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth, double tolerance,
@@ -56,8 +56,6 @@ StrictScore match_foot_offs(std::span<const SwingEvent> detected, std::span<cons
 StrictScore combine(std::span<const StrictScore> scores);
 // "precision 0.950, recall n/a, F1 ..., foot-off latency median 55 ms, p90 90 ms".
 std::string format_strict(const StrictScore& s);
-// q-quantile (0..1, nearest rank) of `v`; NaN when empty.
-double quantile(std::vector<double> v, double q);
 
 // A still stretch of a trial: both feet in contact throughout (ground truth).
 struct StillSegment {

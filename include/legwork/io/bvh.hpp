@@ -52,8 +52,12 @@ struct BvhFile {
 // Parses BVH text. `source` names the file in error messages
 // ("source:line: what was expected"). Accepts any channel order, 0-6 channels
 // on any joint (position channels replace the OFFSET), End Sites, tabs, CRLF,
-// scientific notation. Limits: joints nested <= 256 deep, frames x joints
-// <= 2^26. Thread-safe (no shared state). See docs/io.md.
+// scientific notation, a UTF-8 byte-order mark. Limits (each an error naming
+// file and line): joints nested <= 256 deep; frames x joints <= 2^21 + 8 per
+// byte of text and <= 2^26 (joints without channels cost memory but no text);
+// Frame Time in [1e-4, 10] s; offsets and positions within 1e9 file units;
+// joint names UTF-8; UTF-16/UTF-32 text is named. Thread-safe (no shared
+// state). See docs/io.md and docs/reliability.md.
 BvhFile parse_bvh(std::string_view text, std::string_view source, const BvhReadOptions& opt = {});
 BvhFile read_bvh(const std::string& path, const BvhReadOptions& opt = {});
 // Convenience: the motion only.

@@ -1,5 +1,6 @@
 // Offline database builder (CoolMoves 3.1.1-3.1.2).
 #include <legwork/accent/offline/builder.hpp>
+#include <legwork/core/stats.hpp>
 #include <legwork/accent/offline/retarget.hpp>
 
 #include "../database_impl.hpp"
@@ -33,21 +34,6 @@ bool excluded(const std::string& file, const std::vector<std::string>& exclude) 
   for (const auto& e : exclude)
     if (file == e || fs::path(file).filename() == fs::path(e).filename()) return true;
   return false;
-}
-
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  const std::size_t n = a.size();
-  if (n < 2) return 0;
-  const double ma = std::accumulate(a.begin(), a.end(), 0.0) / static_cast<double>(n);
-  const double mb = std::accumulate(b.begin(), b.end(), 0.0) / static_cast<double>(n);
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  if (saa < 1e-18 || sbb < 1e-18) return 0;
-  return sab / std::sqrt(saa * sbb);
 }
 
 std::vector<Vec3> head_relative(const Motion& m, const std::vector<Vec3>& pos, Role role) {
@@ -152,7 +138,8 @@ double hand_foot_correlation(const Motion& m) {
       for (int a = 0; a < 3; ++a) {
         std::vector<double> x(hp.size()), y(fp.size());
         for (std::size_t i = 0; i < hp.size(); ++i) x[i] = hp[i][a], y[i] = fp[i][a];
-        sum += std::abs(pearson(x, y));
+        const double r = pearson(x, y);
+        sum += std::isfinite(r) ? std::abs(r) : 0.0;  // a series that does not move: no correlation
         ++n;
       }
     }
@@ -361,8 +348,7 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
       if (best < std::numeric_limits<float>::max()) nn.push_back(std::sqrt(best));
     }
     if (!nn.empty()) {
-      std::nth_element(nn.begin(), nn.begin() + static_cast<std::ptrdiff_t>(nn.size() / 2), nn.end());
-      parts.meta.typical_distance = std::max(nn[nn.size() / 2], 1e-6);
+      parts.meta.typical_distance = std::max(median(nn), 1e-6);
     } else {
       parts.meta.typical_distance = 1.0;  // a single trial: no cross-trial distance to measure
     }

@@ -1,4 +1,6 @@
 #include <legwork/core/series.hpp>
+#include <legwork/core/stats.hpp>
+#include <legwork/core/rotation.hpp>
 #include <legwork/walkcycle/offline/extract.hpp>
 
 #include <legwork/core/fk.hpp>
@@ -14,15 +16,6 @@ namespace legwork::walkcycle {
 
 namespace {
 
-Quat yaw(double theta) { return Quat(Eigen::AngleAxisd(theta, Vec3::UnitY())); }
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const auto i = static_cast<std::size_t>(std::clamp(p, 0.0, 1.0) * static_cast<double>(v.size() - 1));
-  return v[i];
-}
-
 
 // Pose with the heading `psi` taken out of the root and the root put at
 // (0, y, 0); mirrored (left <-> right) if `mirror`.
@@ -31,7 +24,7 @@ Pose normalised_pose(const Motion& clip, int f, double psi, bool mirror) {
   const auto src = clip.frame(f);
   std::copy(src.rotations.begin(), src.rotations.end(), p.rotations.begin());
   std::copy(src.translations.begin(), src.translations.end(), p.translations.begin());
-  p.rotations[0] = yaw(-psi) * p.rotations[0];
+  p.rotations[0] = yaw_rotation(-psi) * p.rotations[0];
   p.translations[0] = Vec3(0, p.translations[0].y(), 0);
   if (!mirror) return p;
   Pose q(clip.skeleton);
@@ -52,17 +45,6 @@ KeyPose key_from_pose(const Pose& p) {
   k.root_offset = Vec3::Zero();
   k.height_on_floor = true;
   return k;
-}
-
-double facing(const Quat& root) {
-  const Vec3 f = root * Vec3::UnitZ();
-  return std::atan2(f.x(), f.z());
-}
-
-double wrap_pi(double a) {
-  while (a > kPi) a -= 2 * kPi;
-  while (a < -kPi) a += 2 * kPi;
-  return a;
 }
 
 }  // namespace
@@ -156,7 +138,7 @@ void mark_steady(const Motion& clip, Extraction& ex) {
   const double median = percentile(durations, 0.5);
   for (auto& e : ex.steps) {
     const double d = e.next_contact - e.contact;
-    const double turn = wrap_pi(facing(clip.frame(e.next_contact).rotations[0]) - facing(clip.frame(e.contact).rotations[0]));
+    const double turn = wrap_angle(yaw_of(clip.frame(e.next_contact).rotations[0]) - yaw_of(clip.frame(e.contact).rotations[0]));
     e.used = std::abs(d - median) <= 0.25 * median && std::abs(turn) < deg2rad(25);
     ex.steps_used += e.used;
   }

@@ -1,4 +1,5 @@
 #include <legwork/walkcycle/offline/measure.hpp>
+#include <legwork/core/stats.hpp>
 
 #include <legwork/core/fk.hpp>
 
@@ -126,9 +127,8 @@ ArcSmoothness arc_smoothness(const Arc& arc) {
     jerk[static_cast<std::size_t>(i)] = j;
     if (j > best) best = j, s.jerk_frame = (i + 0.5) / arc.samples_per_frame;
   }
-  std::nth_element(jerk.begin(), jerk.begin() + n / 2, jerk.end());
-  const double median = jerk[static_cast<std::size_t>(n / 2)];
-  s.jerk_ratio = median > 1e-15 ? best / median : 0.0;
+  const double mid = median(std::move(jerk));
+  s.jerk_ratio = mid > 1e-15 ? best / mid : 0.0;
   return s;
 }
 

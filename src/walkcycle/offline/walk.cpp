@@ -1,4 +1,5 @@
 #include <legwork/walkcycle/offline/walk.hpp>
+#include <legwork/core/rotation.hpp>
 
 #include <legwork/core/interpolate.hpp>
 
@@ -22,20 +23,12 @@ FootPoints foot_points(const CycleModel& m, ConstPoseRef pose) {
   return f;
 }
 
-Quat yaw(double theta) { return Quat(Eigen::AngleAxisd(theta, Vec3::UnitY())); }
-
-Vec3 horizontal(const Vec3& v) { return Vec3(v.x(), 0.0, v.z()); }
-
 // Floor offset C that keeps `pivot_prev` (world, previous frame) under the
-// same foot point now: world = yaw(theta) * model + C.
+// same foot point now: world = yaw_rotation(theta) * model + C.
 Vec3 planted_offset(const Vec3& world_prev, const Vec3& model_now, double theta) {
-  return horizontal(world_prev - yaw(theta) * model_now);
+  return horizontal(world_prev - yaw_rotation(theta) * model_now);
 }
 
-double smoothstep(double u) {
-  u = std::clamp(u, 0.0, 1.0);
-  return u * u * (3 - 2 * u);
-}
 
 }  // namespace
 
@@ -210,15 +203,15 @@ FrameLabel PathWalk::label_at(double t, bool stopping) const {
 // placed so the pivot stays put.
 void PathWalk::place(int f, double theta, const FootPoints& cur, const FrameLabel& label) {
   if (f == 0) {
-    c = horizontal(path.points.front() - yaw(theta) * horizontal(local.translations[0]));
+    c = horizontal(path.points.front() - yaw_rotation(theta) * horizontal(local.translations[0]));
   } else {
-    const Vec3 was = yaw(theta_prev) * prev.get(label.left_stance, label.pivot) + c;
+    const Vec3 was = yaw_rotation(theta_prev) * prev.get(label.left_stance, label.pivot) + c;
     c = planted_offset(was, cur.get(label.left_stance, label.pivot), theta);
   }
   world.rotations = local.rotations;
   world.translations = local.translations;
-  world.rotations[0] = yaw(theta) * local.rotations[0];
-  world.translations[0] = yaw(theta) * local.translations[0] + c;
+  world.rotations[0] = yaw_rotation(theta) * local.rotations[0];
+  world.translations[0] = yaw_rotation(theta) * local.translations[0] + c;
   Motion& out = r.motion;
   if (f >= out.frame_count()) out.resize(2 * out.frame_count());
   out.set_frame(f, world);
@@ -232,8 +225,8 @@ void PathWalk::record(int f, double theta, const FootPoints& cur, const FrameLab
   if (label.step != last_step_recorded && (stop_step < 0 || label.step <= stop_step)) {
     last_step_recorded = label.step;
     Footstep fs;
-    fs.heel = horizontal(yaw(theta) * cur.get(label.left_stance, Pivot::Heel) + c);
-    fs.ball = horizontal(yaw(theta) * cur.get(label.left_stance, Pivot::Ball) + c);
+    fs.heel = horizontal(yaw_rotation(theta) * cur.get(label.left_stance, Pivot::Heel) + c);
+    fs.ball = horizontal(yaw_rotation(theta) * cur.get(label.left_stance, Pivot::Ball) + c);
     fs.heading = theta;
     fs.left = label.left_stance;
     fs.step = label.step;
@@ -256,8 +249,8 @@ void PathWalk::finish() {
   if (opt.stop && out.frame_count() > 0) {
     const int lf = out.frame_count() - 1;
     const bool other_left = !r.labels.back().left_stance;
-    const Vec3 h = horizontal(yaw(theta_prev) * prev.get(other_left, Pivot::Heel) + c);
-    const Vec3 b = horizontal(yaw(theta_prev) * prev.get(other_left, Pivot::Ball) + c);
+    const Vec3 h = horizontal(yaw_rotation(theta_prev) * prev.get(other_left, Pivot::Heel) + c);
+    const Vec3 b = horizontal(yaw_rotation(theta_prev) * prev.get(other_left, Pivot::Ball) + c);
     r.footsteps.push_back({h, b, theta_prev, other_left, r.labels.back().step + 1, lf});
   }
   r.steps = r.labels.empty() ? 0 : r.labels.back().step + 1;

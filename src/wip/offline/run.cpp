@@ -1,4 +1,5 @@
 #include <legwork/wip/offline/run.hpp>
+#include <legwork/core/stats.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -97,8 +98,7 @@ double median_rate(std::span<const TrackerFrame> frames, const std::string& sour
   if (frames.size() < 3) throw Error(source + ": fewer than 3 samples");
   std::vector<double> dts;
   for (std::size_t i = 1; i < frames.size(); ++i) dts.push_back(frames[i].time - frames[i - 1].time);
-  std::nth_element(dts.begin(), dts.begin() + static_cast<std::ptrdiff_t>(dts.size() / 2), dts.end());
-  const double dt = dts[dts.size() / 2];
+  const double dt = median(std::move(dts));
   if (!(dt > 0) || !std::isfinite(1.0 / dt)) throw Error(source + ": cannot tell the sample rate (median time step " +
                                                          std::to_string(dt) + " s)");
   return 1.0 / dt;

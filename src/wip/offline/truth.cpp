@@ -2,6 +2,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/series.hpp>
+#include <legwork/core/stats.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -29,12 +30,6 @@ JointTrack track(const Motion& m, const std::vector<Vec3>& pos, int j) {
   return t;
 }
 
-double quantile(std::vector<double> v, double q) {
-  const auto i = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(i), v.end());
-  return v[i];
-}
-
 // The former detector: within height_tol of a rolling floor and slow.
 std::vector<char> contact_fixed(const JointTrack (&parts)[2], double fps, const TruthOptions& p) {
   const std::size_t n = parts[0].y.size();
@@ -59,7 +54,7 @@ std::vector<double> resting_floor(const JointTrack& t, int w, double speed_tol) 
     window.clear();
     for (int k = std::max(0, f - w); k <= std::min(n - 1, f + w); ++k)
       if (t.speed[static_cast<std::size_t>(k)] < speed_tol) window.push_back(t.y[static_cast<std::size_t>(k)]);
-    floor[static_cast<std::size_t>(f)] = window.empty() ? fallback[static_cast<std::size_t>(f)] : quantile(window, 0.5);
+    floor[static_cast<std::size_t>(f)] = window.empty() ? fallback[static_cast<std::size_t>(f)] : percentile(window, 0.5);
   }
   return floor;
 }
@@ -74,8 +69,8 @@ std::vector<char> contact_learned(const JointTrack (&parts)[2], double fps, cons
     const auto floor = resting_floor(parts[i], w, p.speed_tol);
     above[i].resize(n);
     for (std::size_t f = 0; f < n; ++f) above[i][f] = parts[i].y[f] - floor[f];
-    const double stance = quantile(above[i], p.stance_percentile);
-    const double range = quantile(above[i], p.lift_percentile) - stance;
+    const double stance = percentile(above[i], p.stance_percentile);
+    const double range = percentile(above[i], p.lift_percentile) - stance;
     off[i] = stance + std::max(p.lift_off * range, p.min_lift_off);
     on[i] = stance + std::max(p.lift_on * range, p.min_lift_on);
   }
@@ -141,7 +136,7 @@ std::vector<SwingEvent> true_swings(const Motion& m, const TruthOptions& p) {
   for (int foot = 0; foot < 2; ++foot) {
     const auto& contact = contacts[static_cast<std::size_t>(foot)];
     const JointTrack ankle = track(m, pos, r[ankles[foot]]);
-    const double rest = quantile(ankle.y, p.stance_percentile);
+    const double rest = percentile(ankle.y, p.stance_percentile);
     for (int f = 0; f < n;) {
       if (contact[static_cast<std::size_t>(f)]) { ++f; continue; }
       int e = f;

@@ -2,6 +2,7 @@
 
 #include <legwork/core/interpolate.hpp>
 #include <legwork/core/measure.hpp>
+#include <legwork/core/rotation.hpp>
 #include <legwork/wip/offline/truth.hpp>
 
 #include <algorithm>
@@ -34,7 +35,7 @@ Motion extract_walk_cycle(const Motion& trial) {
   Vec3 travel = p1 - p0;
   travel.y() = 0;
   const double yaw = travel.norm() > 1e-6 ? std::atan2(travel.x(), travel.z()) : 0.0;
-  const Quat unturn(Eigen::AngleAxisd(-yaw, Vec3::UnitY()));
+  const Quat unturn = yaw_rotation(-yaw);
   const int n = cycle.frame_count();
   for (int f = 0; f < n; ++f) {
     auto fr = cycle.frame(f);

@@ -1,0 +1,165 @@
+// legwork.accent: databases (build, load, save), Settings/Model/State/Info/update, whole-clip runs.
+#include "bindings.hpp"
+
+#include <legwork/accent/accent.hpp>
+#include <legwork/accent/database.hpp>
+#include <legwork/accent/offline/builder.hpp>
+#include <legwork/accent/offline/run.hpp>
+
+namespace legwork::py {
+namespace {
+
+using namespace pybind11::literals;
+using namespace legwork::accent;
+
+Database build(const std::string& folder, const std::vector<std::string>& classes, const std::vector<std::string>& exclude,
+               double fps, int hop, int speed_variants, bool mirror) {
+  require_rate(fps, "fps");
+  if (hop < 1) value_error("hop: expected samples between window ends >= 1, got " + std::to_string(hop));
+  if (speed_variants < 0) value_error("speed_variants: expected >= 0, got " + std::to_string(speed_variants));
+  const auto trials = load_trials(folder, classes, exclude);
+  BuildConfig cfg;
+  cfg.fps = fps;
+  cfg.hop = hop;
+  cfg.speed_variants = speed_variants;
+  cfg.mirror = mirror;
+  Database db = build_database(trials, cfg);
+  db.build_index();
+  return db;
+}
+
+void bind_database(pb::module_& m) {
+  pb::class_<Database>(m, "Database",
+                       "An accentuation database (read-only, memory-mapped when loaded). Shared by any number of models.")
+      .def_property_readonly("window_count", &Database::window_count)
+      .def_property_readonly("pose_count", &Database::pose_count)
+      .def_property_readonly("classes", &Database::classes, "activity class names, list[str]")
+      .def_property_readonly("skeleton", &Database::skeleton, pb::return_value_policy::reference_internal,
+                             "the database skeleton (metres)")
+      .def_property_readonly("height", &Database::height, "the database skeleton's standing height, metres")
+      .def_property_readonly("fps", [](const Database& d) { return d.feature_space().fps; }, "the database (tracker) rate, Hz")
+      .def_property_readonly("trials", [](const Database& d) {
+        std::vector<std::string> files;
+        for (const auto& t : d.trials()) files.push_back(t.file);
+        return files;
+      }, "source trial files, list[str]")
+      .def_property_readonly("is_mapped", &Database::is_mapped)
+      .def("save", [](const Database& d, const std::string& path) { save_database(path, d); }, "path"_a,
+           "Writes the database file (.lwdb).");
+  m.def(
+      "load_database",
+      [](const std::string& path, bool verify_checksum) {
+        LoadOptions opt;
+        opt.verify_checksum = verify_checksum;
+        return load_database(path, opt);
+      },
+      "path"_a, "verify_checksum"_a = true,
+      "Memory-maps a .lwdb file; legwork.Error naming the file if missing, truncated, corrupted or of another version.");
+  m.def("build_database", &build, "folder"_a, "classes"_a = std::vector<std::string>{}, "exclude"_a = std::vector<std::string>{},
+        "fps"_a = 90.0, "hop"_a = 4, "speed_variants"_a = 2, "mirror"_a = false,
+        "Builds a database in memory from a folder laid out like data/cmu (MANIFEST.tsv or bvh/<class>/*.bvh), as\n"
+        "`legwork accent build` does; classes: [] = all; exclude: trial files to leave out (manifest path or name);\n"
+        "fps: tracker rate (Hz); hop: samples between window ends; speed_variants: re-timed copies per window.");
+}
+
+void bind_settings(pb::module_& m) {
+  pb::enum_<SearchMode>(m, "SearchMode")
+      .value("BruteForce", SearchMode::BruteForce)
+      .value("Exact", SearchMode::Exact)
+      .value("Fast", SearchMode::Fast);
+  pb::class_<Settings>(m, "Settings", "Accentuation options (the C++ legwork::accent::Settings; docs/accent.md).")
+      .def(pb::init<>())
+      .def_readwrite("search", &Settings::search)
+      .def_readwrite("fast_eps", &Settings::fast_eps, "Fast search: KD-tree pruning slack")
+      .def_readwrite("fast_max_checks", &Settings::fast_max_checks)
+      .def_readwrite("k_left", &Settings::k_left, "matches for the left hand (1..32)")
+      .def_readwrite("k_right", &Settings::k_right, "matches for the right hand (1..32)")
+      .def_readwrite("threshold", &Settings::threshold, "match distance limit in typical-distance units; <= 0: none")
+      .def_readwrite("align", &Settings::align)
+      .def_readwrite("smooth", &Settings::smooth)
+      .def_readwrite("smooth_halflife", &Settings::smooth_halflife, "seconds; 0 = EWMA only")
+      .def_readwrite("min_smoothing_weight", &Settings::min_smoothing_weight)
+      .def_readwrite("user_height", &Settings::user_height, "metres; 0 = the database skeleton's height")
+      .def_readwrite("exaggeration", &Settings::exaggeration, "hands scaled about the head before matching (> 0)")
+      .def_readwrite("classes", &Settings::classes, "classes to match, list[str] ([] = all)")
+      .def_readwrite("joint_limits", &Settings::joint_limits)
+      .def_readwrite("drive_head", &Settings::drive_head)
+      .def_readwrite("fallback_seconds", &Settings::fallback_seconds, "seconds")
+      .def_readwrite("hand_ik", &Settings::hand_ik, "0..1: wrists pulled onto the controllers")
+      .def_readwrite("direct_only", &Settings::direct_only)
+      .def_readwrite("max_head_tilt_deg", &Settings::max_head_tilt_deg, "degrees; 0 = off");
+  pb::enum_<MatchStatus>(m, "MatchStatus")
+      .value("Matched", MatchStatus::Matched)
+      .value("Partial", MatchStatus::Partial)
+      .value("Unmatched", MatchStatus::Unmatched)
+      .value("TrackingLost", MatchStatus::TrackingLost)
+      .value("Rejected", MatchStatus::Rejected);
+  pb::class_<Info>(m, "Info", "Per-frame diagnostics of update().")
+      .def(pb::init<>())
+      .def_readonly("match", &Info::match)
+      .def_readonly("match_weight", &Info::match_weight, "global match weight (0..1)")
+      .def_readonly("fallback", &Info::fallback, "share of the direct mapping (0..1)")
+      .def_readonly("matches", &Info::matches, "matches per hand [left, right]")
+      .def_readonly("best_distance", &Info::best_distance, "best distance per hand, typical-distance units");
+}
+
+pb::dict run_dict(AccentRun run) {
+  const auto n = static_cast<pb::ssize_t>(run.info.size());
+  pb::array_t<int> status(n), match(n);
+  Array weight = new_array({n});
+  for (pb::ssize_t i = 0; i < n; ++i) {
+    status.mutable_data()[i] = static_cast<int>(run.status[static_cast<std::size_t>(i)]);
+    match.mutable_data()[i] = static_cast<int>(run.info[static_cast<std::size_t>(i)].match);
+    weight.mutable_data()[i] = run.info[static_cast<std::size_t>(i)].match_weight;
+  }
+  return pb::dict("motion"_a = std::move(run.output), "status"_a = status, "match"_a = match, "match_weight"_a = weight,
+                  "seconds"_a = run.seconds);
+}
+
+pb::dict accentuate_arrays(const Database& db, const pb::handle& head_position, const pb::handle& head_rotation,
+                           const pb::handle& left_hand, const pb::handle& right_hand, double fps, const Settings& settings) {
+  const auto frames = frames_from_arrays(fps, head_position, head_rotation, left_hand, right_hand, pb::none(), pb::none(), 0.0);
+  const Model model = make_model(db, settings);
+  AccentRun run;
+  {
+    pb::gil_scoped_release release;
+    run = accentuate(model, frames, fps);
+  }
+  return run_dict(std::move(run));
+}
+
+void bind_runtime(pb::module_& m) {
+  auto [model, state] = def_model_state<Model, State>(
+      m, &reset, "Immutable accentuation model (database + settings; skeleton scaled to the user); keeps its database alive.",
+      "One avatar's memory between frames.");
+  model.def_property_readonly("scale", &Model::scale, "user height / database height");
+  state.def_property_readonly("bytes", &State::bytes);
+  m.def("make_model", &make_model, "db"_a, "settings"_a = Settings{}, pb::keep_alive<0, 1>(),
+        "Model from a database and settings; legwork.Error for an unknown class (listing the database's), k out of\n"
+        "range, a non-positive exaggeration or height.");
+  def_update(m, &update,
+             "One frame: head and hands of `frame` in, `out` (a legwork.core.Pose of model.skeleton()) written; returns\n"
+             "legwork.core.UpdateStatus. Rejected frames leave state and out untouched.");
+  m.def("accentuate", &accentuate_arrays, "db"_a, "head_position"_a, "head_rotation"_a, "left_hand"_a, "right_hand"_a, "fps"_a,
+        "settings"_a = Settings{},
+        "Whole clip: head_position (frames, 3) metres, head_rotation (frames, 4) w,x,y,z, left_hand/right_hand\n"
+        "(frames, 3) metres (wrists) at `fps` Hz (time = frame / fps; NaN rows = lost tracking). Returns a dict:\n"
+        "motion (legwork.core.Motion on the model's skeleton, one frame per input frame), status (int32 (frames,)\n"
+        "UpdateStatus values), match (int32 (frames,) MatchStatus values), match_weight (float64 (frames,)),\n"
+        "seconds (time in update()).");
+  m.def(
+      "accentuate_motion", [](const Database& db, const Settings& s, const Motion& input) { return run_dict(accentuate_motion(db, s, input)); },
+      "db"_a, "settings"_a, "input"_a,
+      "Whole clip from a motion's head and hands, resampled to the database rate; settings.user_height 0 = the\n"
+      "motion's standing height. Returns the same dict as accentuate().");
+}
+
+}  // namespace
+
+void bind_accent(pb::module_& m) {
+  bind_database(m);
+  bind_settings(m);
+  bind_runtime(m);
+}
+
+}  // namespace legwork::py

@@ -1,0 +1,122 @@
+// legwork.eval: role tracks and the metrics of legwork/eval/metrics.hpp.
+#include "bindings.hpp"
+
+#include <legwork/eval/metrics.hpp>
+#include <legwork/eval/wip.hpp>
+
+namespace legwork::py {
+namespace {
+
+using namespace pybind11::literals;
+using namespace legwork::eval;
+
+RoleTrack track_from_arrays(double fps, const pb::handle& positions, const std::vector<bool>& present) {
+  require_rate(fps, "fps");
+  const Array p = require_array(positions, "positions", {kAny, kRoleCount, 3}, "(frames, 21 roles, 3) metres");
+  if (present.size() != static_cast<std::size_t>(kRoleCount))
+    value_error("present: expected " + std::to_string(kRoleCount) + " flags (one per role, see legwork.eval.ROLES), got " +
+                std::to_string(present.size()));
+  std::array<bool, kRoleCount> flags{};
+  for (int r = 0; r < kRoleCount; ++r) flags[static_cast<std::size_t>(r)] = present[static_cast<std::size_t>(r)];
+  RoleTrack t = make_track(fps, static_cast<int>(p.shape(0)), flags);
+  std::copy(p.data(), p.data() + p.size(), t.positions.front().data());
+  return t;
+}
+
+void bind_track(pb::module_& m) {
+  std::vector<std::string> roles;
+  for (int r = 0; r < kRoleCount; ++r) roles.emplace_back(role_name(static_cast<Role>(r)));
+  m.attr("ROLES") = roles;
+  std::vector<std::string> parts;
+  for (int p = 0; p < kPartCount; ++p) parts.emplace_back(part_name(static_cast<Part>(p)));
+  m.attr("PARTS") = parts;
+  pb::class_<RoleTrack>(m, "RoleTrack", "Role-joint positions over time (frames, 21 roles in ROLES order, 3), metres.")
+      .def(pb::init(&track_from_arrays), "fps"_a, "positions"_a, "present"_a,
+           "RoleTrack(fps: Hz, positions: float64 (frames, 21, 3) metres model space, present: 21 bools)")
+      .def_readonly("fps", &RoleTrack::fps)
+      .def_readonly("frames", &RoleTrack::frames)
+      .def_property_readonly("present", [](const RoleTrack& t) { return std::vector<bool>(t.present.begin(), t.present.end()); })
+      .def_property_readonly(
+          "positions",
+          [](const pb::object& self) {
+            auto& t = self.cast<RoleTrack&>();
+            return view(t.positions.empty() ? nullptr : t.positions.front().data(), {t.frames, kRoleCount, 3}, self, false);
+          },
+          "float64 (frames, 21, 3) metres (read-only view; zero where a role is absent)");
+  m.def("role_track", &role_track, "motion"_a, "FK of every frame, keeping the role joints.");
+}
+
+void bind_metrics(pb::module_& m) {
+  pb::class_<TrialMetrics>(m, "TrialMetrics", "Metrics of one output track against ground truth.")
+      .def_readonly("frames", &TrialMetrics::frames)
+      .def_property_readonly("part_cm", [](const TrialMetrics& t) {
+        pb::dict d;
+        for (int p = 0; p < kPartCount; ++p) d[pb::str(std::string(part_name(static_cast<Part>(p))))] = t.part_cm[static_cast<std::size_t>(p)];
+        return d;
+      }, "dict part name -> mean per-joint position error, cm")
+      .def_readonly("mpjpe_cm", &TrialMetrics::mpjpe_cm, "mean per-joint position error over role joints, cm")
+      .def_readonly("mpjve_cm_s", &TrialMetrics::mpjve_cm_s, "mean per-joint velocity error, cm/s")
+      .def_readonly("jitter", &TrialMetrics::jitter, "output mean jerk, 10^2 m/s^3")
+      .def_readonly("jitter_truth", &TrialMetrics::jitter_truth, "ground truth mean jerk, 10^2 m/s^3")
+      .def_readonly("hand_correlation", &TrialMetrics::hand_correlation, "[left, right] Pearson r of hand positions")
+      .def_readonly("foot_skating_cm", &TrialMetrics::foot_skating_cm, "mean foot slide in contact, cm per frame")
+      .def_readonly("foot_skating_truth_cm", &TrialMetrics::foot_skating_truth_cm)
+      .def_readonly("foot_contact_fraction", &TrialMetrics::foot_contact_fraction);
+  m.def(
+      "evaluate_trial",
+      [](const RoleTrack& out, const RoleTrack& truth, double contact_height) {
+        MetricOptions opt;
+        opt.contact_height = contact_height;
+        return evaluate_trial(out, truth, opt);
+      },
+      "output"_a, "truth"_a, "contact_height"_a = 0.03,
+      "Every metric of `output` against `truth` (same frames and rate); legwork.Error if they differ or share no role.");
+  m.def("mean_jerk", &mean_jerk, "track"_a, "Mean jerk magnitude over role joints and frames, m/s^3.");
+  m.def(
+      "foot_skating",
+      [](const RoleTrack& t, double h) {
+        const FootSkate s = foot_skating(t, h);
+        return pb::make_tuple(s.slide_m, s.contact_fraction);
+      },
+      "track"_a, "contact_height"_a = 0.03,
+      "(mean horizontal slide per frame of foot joints in contact, metres; fraction of foot-joint frames in contact).");
+  m.def(
+      "mpjpe", [](const RoleTrack& o, const RoleTrack& t) { return evaluate_trial(o, t).mpjpe_cm; }, "output"_a, "truth"_a,
+      "Mean per-joint position error over the role joints, cm.");
+  m.def(
+      "mpjve", [](const RoleTrack& o, const RoleTrack& t) { return evaluate_trial(o, t).mpjve_cm_s; }, "output"_a, "truth"_a,
+      "Mean per-joint velocity error over the role joints, cm/s.");
+}
+
+void bind_steps(pb::module_& m) {
+  pb::class_<StepScore>(m, "StepScore", "Step detection against true gait events (one-to-one matching).")
+      .def_readonly("true_steps", &StepScore::true_steps)
+      .def_readonly("detected", &StepScore::detected)
+      .def_readonly("matched", &StepScore::matched)
+      .def_readonly("precision", &StepScore::precision)
+      .def_readonly("recall", &StepScore::recall)
+      .def_readonly("f1", &StepScore::f1)
+      .def_readonly("off_latency_ms", &StepScore::off_latency_ms, "mean detected - true foot-off, ms")
+      .def_readonly("strike_latency_ms", &StepScore::strike_latency_ms, "mean detected - true foot-strike, ms");
+  m.def(
+      "detected_swings", [](const std::vector<wip::Info>& frames) { return detected_swings(frames); }, "frames"_a,
+      "Swings (legwork.wip.SwingEvent) seen by the gait machines in a list of legwork.wip.Info, one per consumed frame.");
+  m.def(
+      "score_steps",
+      [](const std::vector<SwingEvent>& detected, const std::vector<SwingEvent>& truth, double t_begin, double t_end) {
+        return score_steps(detected, truth, t_begin, t_end);
+      },
+      "detected"_a, "truth"_a, "t_begin"_a, "t_end"_a,
+        "Step precision/recall/F1 and latencies: swings of the same foot whose intervals overlap are matched one to\n"
+        "one; swings outside [t_begin, t_end] seconds are ignored. truth: legwork.wip.true_swings(motion).");
+}
+
+}  // namespace
+
+void bind_eval(pb::module_& m) {
+  bind_track(m);
+  bind_metrics(m);
+  bind_steps(m);
+}
+
+}  // namespace legwork::py

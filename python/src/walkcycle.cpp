@@ -1,0 +1,54 @@
+// legwork.walkcycle: walk cycles from key-pose files and the frame-by-frame walker.
+#include "bindings.hpp"
+
+#include <legwork/walkcycle/cycle.hpp>
+#include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/walker.hpp>
+
+namespace legwork::py {
+
+void bind_walkcycle(pb::module_& m) {
+  using namespace pybind11::literals;
+  using namespace legwork::walkcycle;
+  pb::class_<CycleModel>(m, "CycleModel", "A walk cycle built from four key poses (immutable).")
+      .def_readonly("skeleton", &CycleModel::skeleton)
+      .def_readonly("frames_per_cycle", &CycleModel::frames_per_cycle)
+      .def_readonly("fps", &CycleModel::fps, "cycle frames per second");
+  pb::class_<WalkKeys>(m, "WalkKeys", "Four key poses and timing of a walk (from a walk file).");
+  pb::class_<WalkFile>(m, "WalkFile", "A walk file's skeleton and key poses.")
+      .def_readonly("skeleton", &WalkFile::skeleton)
+      .def_readonly("keys", &WalkFile::keys);
+  m.def("load_walk", &load_walk, "walk_path"_a, "skeleton_bvh"_a = "",
+        "A walk file (data/walks/*.json) and its skeleton (the BVH next to it, or skeleton_bvh); legwork.Error\n"
+        "naming the file and field at fault.");
+  m.def("build_cycle", &build_cycle, "skeleton"_a, "keys"_a, "The mirrored walk cycle of four key poses.");
+  pb::enum_<Pivot>(m, "Pivot").value("Heel", Pivot::Heel).value("Ball", Pivot::Ball);
+  pb::class_<Settings>(m, "Settings", "Walker options (legwork::walkcycle::Settings).")
+      .def(pb::init<>())
+      .def_readwrite("max_turn_per_step", &Settings::max_turn_per_step, "radians of heading change per step")
+      .def_property(
+          "start_position", [](const Settings& s) { return std::vector<double>{s.start_position.x(), s.start_position.y(), s.start_position.z()}; },
+          [](Settings& s, const pb::handle& p) {
+            const Array a = require_array(p, "start_position", {3}, "(3,) metres");
+            s.start_position = Vec3(a.at(0), a.at(1), a.at(2));
+          },
+          "floor point under the root at the start, metres (y ignored)")
+      .def_readwrite("start_heading", &Settings::start_heading, "radians about y, 0 = facing +z");
+  def_model_state<Model, State>(m, static_cast<void (*)(const Model&, State&)>(&reset), "Immutable walker model (owns its cycle).",
+                                "One walker's memory between frames.")
+      .first.def("cycle", &Model::cycle, pb::return_value_policy::reference_internal);
+  m.def("make_model", &make_model, "cycle"_a, "settings"_a = Settings{}, "Walker from a cycle.");
+  pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
+      .def(pb::init<>())
+      .def_readonly("step", &Info::step)
+      .def_readonly("cycle_time", &Info::cycle_time, "cycle frames since the start")
+      .def_readonly("heading", &Info::heading, "radians")
+      .def_readonly("desired_heading", &Info::desired_heading, "radians")
+      .def_readonly("left_planted", &Info::left_planted)
+      .def_readonly("pivot", &Info::pivot);
+  def_update(m, &update,
+             "One frame: the head device's yaw steers (held when not usable); the walk advances by the frame's dt;\n"
+             "`out` (a legwork.core.Pose of model.skeleton()) gets the world pose; returns legwork.core.UpdateStatus.");
+}
+
+}  // namespace legwork::py

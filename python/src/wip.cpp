@@ -1,0 +1,102 @@
+// legwork.wip: walking-in-place legs on the per-frame contract.
+#include "bindings.hpp"
+
+#include <legwork/wip/offline/truth.hpp>
+#include <legwork/wip/wip.hpp>
+
+namespace legwork::py {
+namespace {
+
+using namespace pybind11::literals;
+using namespace legwork::wip;
+
+template <class T>
+pb::tuple pair(const T (&a)[2]) {
+  return pb::make_tuple(a[0], a[1]);
+}
+
+void bind_settings(pb::module_& m) {
+  pb::class_<SignalSettings>(m, "SignalSettings", "Ankle-height signal filtering.")
+      .def(pb::init<>())
+      .def_readwrite("rate", &SignalSettings::rate, "nominal tracker rate, Hz")
+      .def_readwrite("cutoff", &SignalSettings::cutoff, "low-pass cutoff, Hz")
+      .def_readwrite("order", &SignalSettings::order)
+      .def_readwrite("buffer_seconds", &SignalSettings::buffer_seconds)
+      .def_readwrite("confidence_tau", &SignalSettings::confidence_tau, "seconds")
+      .def_readwrite("floor_tau", &SignalSettings::floor_tau, "seconds; 0 = fixed floor");
+  pb::class_<GaitSettings>(m, "GaitSettings", "Gait-phase thresholds (metres, m/s, seconds).")
+      .def(pb::init<>())
+      .def_readwrite("h1", &GaitSettings::h1)
+      .def_readwrite("v1", &GaitSettings::v1)
+      .def_readwrite("v2", &GaitSettings::v2)
+      .def_readwrite("land_fraction", &GaitSettings::land_fraction)
+      .def_readwrite("min_stance_time", &GaitSettings::min_stance_time)
+      .def_readwrite("max_ascent_time", &GaitSettings::max_ascent_time)
+      .def_readwrite("lost_confidence", &GaitSettings::lost_confidence)
+      .def_readwrite("adaptive", &GaitSettings::adaptive);
+  pb::enum_<SpeedModel>(m, "SpeedModel").value("StepSpeed", SpeedModel::StepSpeed).value("StepFrequency", SpeedModel::StepFrequency);
+  pb::class_<MappingSettings>(m, "MappingSettings", "Step mapping onto the avatar (metres, seconds, m/s).")
+      .def(pb::init<>())
+      .def_readwrite("reference_leg", &MappingSettings::reference_leg)
+      .def_readwrite("step_length", &MappingSettings::step_length)
+      .def_readwrite("user_step_height", &MappingSettings::user_step_height)
+      .def_readwrite("lift_scale", &MappingSettings::lift_scale)
+      .def_readwrite("stop_time", &MappingSettings::stop_time)
+      .def_readwrite("speed_model", &MappingSettings::speed_model)
+      .def_readwrite("speed_gain", &MappingSettings::speed_gain)
+      .def_readwrite("max_speed", &MappingSettings::max_speed);
+  pb::class_<Settings>(m, "Settings", "Walking-in-place options (legwork::wip::Settings): signal, gait, mapping.")
+      .def(pb::init<>())
+      .def_readwrite("signal", &Settings::signal)
+      .def_readwrite("gait", &Settings::gait)
+      .def_readwrite("mapping", &Settings::mapping);
+}
+
+void bind_runtime(pb::module_& m) {
+  pb::enum_<GaitPhase>(m, "GaitPhase")
+      .value("DoubleSupport", GaitPhase::DoubleSupport)
+      .value("InitialSwing", GaitPhase::InitialSwing)
+      .value("MidSwing", GaitPhase::MidSwing)
+      .value("TerminalSwing", GaitPhase::TerminalSwing);
+  auto [model, state] = def_model_state<Model, State>(m, &reset, "Immutable walking-in-place model of an avatar skeleton (copied).",
+                                                      "One avatar's memory between frames (filters, gait machines, floor).");
+  state.def_readonly("calibrated", &State::calibrated);
+  model.def_property_readonly("leg_length", &Model::leg_length, "metres")
+      .def_property_readonly("root_height", &Model::root_height, "standing root height above the floor, metres");
+  m.def(
+      "make_model", [](const Skeleton& s, const Settings& st) { return make_model(s, st); }, "avatar"_a, "settings"_a = Settings{},
+      "Model from an avatar skeleton with legs; legwork.Error naming missing roles.");
+  m.def("set_floor", &set_floor, "state"_a, "left"_a, "right"_a, "Tracker-space floor height under each ankle, metres.");
+  pb::class_<Info>(m, "Info", "Per-frame diagnostics ([left, right] pairs).")
+      .def(pb::init<>())
+      .def_readonly("time", &Info::time, "seconds")
+      .def_property_readonly("phase", [](const Info& i) { return pair(i.phase); })
+      .def_property_readonly("h", [](const Info& i) { return pair(i.h); }, "filtered ankle height above the floor, metres")
+      .def_property_readonly("v", [](const Info& i) { return pair(i.v); }, "its velocity, m/s")
+      .def_property_readonly("z", [](const Info& i) { return pair(i.z); }, "IK-target depth, metres (forward +)")
+      .def_property_readonly("y", [](const Info& i) { return pair(i.y); }, "IK-target height, metres")
+      .def_readonly("speed", &Info::speed, "forward speed, m/s")
+      .def_readonly("distance", &Info::distance, "distance walked, metres")
+      .def_readonly("heading", &Info::heading, "radians, 0 = +z")
+      .def_readonly("walking", &Info::walking);
+  def_update(m, &update,
+             "One frame: the feet devices' heights in (the head's yaw steers when usable); `out` (a legwork.core.Pose\n"
+             "of model.skeleton()) written; returns legwork.core.UpdateStatus.");
+}
+
+}  // namespace
+
+void bind_wip(pb::module_& m) {
+  bind_settings(m);
+  bind_runtime(m);
+  pb::class_<SwingEvent>(m, "SwingEvent", "One swing of a foot: foot (0 left, 1 right), off/strike times (s), apex (m).")
+      .def_readonly("foot", &SwingEvent::foot)
+      .def_readonly("off", &SwingEvent::off)
+      .def_readonly("strike", &SwingEvent::strike)
+      .def_readonly("apex", &SwingEvent::apex);
+  m.def(
+      "true_swings", [](const Motion& mo) { return true_swings(mo); }, "motion"_a,
+      "Ground-truth swings of a walking motion (toe off to first contact; default TruthOptions).");
+}
+
+}  // namespace legwork::py

@@ -1,0 +1,147 @@
+"""legwork.accent against `legwork accent build/run`, frame by frame, the C example, and bad input."""
+import json
+import os
+
+import numpy as np
+import pytest
+
+import legwork
+from conftest import HELD_OUT, SOURCE, TRIAL
+
+core, accent = legwork.core, legwork.accent
+
+
+def tracks(motion):
+    """Head position/rotation and wrist positions of a motion, as contiguous arrays."""
+    pos, rot = core.forward_kinematics(motion)
+    roles = motion.skeleton.roles
+    c = np.ascontiguousarray
+    return (c(pos[:, roles["head"]]), c(rot[:, roles["head"]]), c(pos[:, roles["left_hand"]]),
+            c(pos[:, roles["right_hand"]]))
+
+
+@pytest.fixture(scope="module")
+def truth(db):
+    """The held-out trial at the database rate, as `legwork accent run` prepares it."""
+    return core.resample(legwork.io.read_bvh(str(TRIAL), drop_first=True), db.fps)
+
+
+def settings_for(motion):
+    s = accent.Settings()
+    s.user_height = core.measure_body(motion.skeleton)["standing_height"]
+    return s
+
+
+def test_python_build_equals_cli_build(db):
+    built = accent.build_database(str(SOURCE / "data/cmu"), exclude=[HELD_OUT])
+    assert built.classes == db.classes
+    assert built.window_count == db.window_count and built.pose_count == db.pose_count
+    assert HELD_OUT not in db.trials and db.is_mapped
+
+
+def test_accentuate_equals_cli_run(cli, db, db_path, truth, tmp_path):
+    out_bvh, report = tmp_path / "run.bvh", tmp_path / "run.json"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--json", report)
+    run = accent.accentuate(db, *tracks(truth), fps=db.fps, settings=settings_for(truth))
+    motion = run["motion"]
+    back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
+    assert back.frame_count == motion.frame_count == truth.frame_count
+    # The CLI's file has 6 decimals (mm-level rounding of degrees and metres).
+    assert np.abs(back.positions() - motion.positions()).max() < 2e-4
+    # Its ground-truth figures are the eval module's on the same output.
+    cli_err = json.loads(report.read_text())["accent_error"]
+    m = legwork.eval.evaluate_trial(legwork.eval.role_track(motion), legwork.eval.role_track(truth))
+    assert m.mpjpe_cm == pytest.approx(cli_err["full_body_cm"], rel=1e-12)
+    assert m.part_cm["left_hand"] == pytest.approx(cli_err["left_hand_cm"], rel=1e-12)
+    assert m.part_cm["lower_body"] == pytest.approx(cli_err["lower_body_cm"], rel=1e-12)
+    assert m.foot_skating_cm == pytest.approx(cli_err["foot_skating_cm"], rel=1e-12)
+    assert 1.0 < m.mpjpe_cm < 30.0  # a body, not a collapsed or exploded pose
+
+
+def test_frame_by_frame_equals_whole_clip(db, truth):
+    settings = settings_for(truth)
+    head, head_rot, left, right = tracks(truth)
+    whole = accent.accentuate(db, head, head_rot, left, right, fps=db.fps, settings=settings)
+    model = accent.make_model(db, settings)
+    state = accent.State(model)
+    pose = core.Pose(model.skeleton())
+    info = accent.Info()
+    frames = core.tracker_frames(db.fps, head, head_rot, left, right)
+    rotations = np.empty((len(frames), model.skeleton().joint_count, 4))
+    matched = 0
+    for i, frame in enumerate(frames):
+        status = accent.update(model, frame, state, pose, info)
+        assert status == core.UpdateStatus.Ok
+        matched += info.match == accent.MatchStatus.Matched
+        rotations[i] = pose.rotations
+    assert np.array_equal(rotations, whole["motion"].rotations)
+    assert np.array_equal(whole["status"], np.zeros(len(frames), dtype=np.int32))
+    assert matched > len(frames) // 2
+
+
+def g17(x):
+    return "%.17g" % x
+
+
+def test_same_csv_as_the_c_example(db_path):
+    """examples/c/main.c's CSV (from CTest's capi fixtures), written again through Python."""
+    c_csv = os.environ.get("LEGWORK_CAPI_CSV")
+    if not c_csv or not os.path.exists(c_csv):
+        pytest.skip("LEGWORK_CAPI_CSV (the C example's output) not available")
+    db = accent.load_database(str(db_path))
+    settings = accent.Settings()
+    settings.user_height = 1.7
+    model = accent.make_model(db, settings)
+    state, pose = accent.State(model), core.Pose(model.skeleton())
+    frames = core.tracker_frames_from_motion(legwork.io.read_bvh(str(TRIAL), drop_first=True), 90.0)
+    lines = []
+    for f, frame in enumerate(frames):
+        status = accent.update(model, frame, state, pose).name.lower()
+        rot, pos = pose.rotations, pose.positions(model.skeleton())
+        for j in range(len(rot)):
+            lines.append(",".join([str(f), status, str(j)] + [g17(v) for v in rot[j]] + [g17(v) for v in pos[j]]))
+    with open(c_csv) as fh:
+        assert fh.read() == "\n".join(lines) + "\n"
+
+
+def test_lost_tracking_rows_degrade_not_fail(db, truth):
+    head, head_rot, left, right = tracks(truth)
+    left = left.copy()
+    left[100:120] = np.nan
+    run = accent.accentuate(db, head, head_rot, left, right, fps=db.fps, settings=settings_for(truth))
+    status = run["status"]
+    assert (status[100:120] == int(core.UpdateStatus.Degraded)).all()
+    assert (status[:100] == int(core.UpdateStatus.Ok)).all()
+    assert np.isfinite(run["motion"].positions()).all()
+
+
+def test_bad_settings_and_arrays(db, truth):
+    s = accent.Settings()
+    s.classes = ["walking", "flying"]
+    with pytest.raises(legwork.Error, match=r"flying.*walking|walking.*flying"):
+        accent.make_model(db, s)
+    s = accent.Settings()
+    s.k_left = 33
+    with pytest.raises(legwork.Error, match="k must be between 0 and 32"):
+        accent.make_model(db, s)
+    head, head_rot, left, right = tracks(truth)
+    with pytest.raises(ValueError, match=r"head_rotation: .*\(frames, 4\)"):
+        accent.accentuate(db, head, head, left, right, fps=90.0)
+    with pytest.raises(ValueError, match=r"left_hand: .*frames as head_position.*got shape \(10, 3\)"):
+        accent.accentuate(db, head, head_rot, left[:10].copy(), right, fps=90.0)
+    with pytest.raises(ValueError, match=r"right_hand: .*non-contiguous"):
+        accent.accentuate(db, head, head_rot, left, np.asfortranarray(np.tile(right, (1, 2))[:, :3]), fps=90.0)
+    with pytest.raises(ValueError, match=r"fps"):
+        accent.accentuate(db, head, head_rot, left, right, fps=-1.0)
+    model = accent.make_model(db)
+    with pytest.raises(ValueError, match=r"out: a Pose of the model's skeleton \(31 joints\)"):
+        accent.update(model, core.TrackerFrame(0.0), accent.State(model), core.Pose(core.Skeleton(["a"], [-1], np.zeros((1, 3)))))
+
+
+def test_corrupt_database_raises(tmp_path):
+    bad = tmp_path / "bad.lwdb"
+    bad.write_bytes(b"not a database at all" * 10)
+    with pytest.raises(legwork.Error, match=r"bad.lwdb.*not a legwork accent database"):
+        accent.load_database(str(bad))
+    with pytest.raises(legwork.Error, match="missing.lwdb"):
+        accent.load_database(str(tmp_path / "missing.lwdb"))

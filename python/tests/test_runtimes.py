@@ -1,0 +1,141 @@
+"""legwork.ik, legwork.wip, legwork.walkcycle: the same contract (Settings, make_model, State, reset,
+update, Info), against the CLI where it reports figures, and by behaviour otherwise."""
+import json
+
+import numpy as np
+import pytest
+
+import legwork
+from conftest import SOURCE, TRIAL
+
+core, ik, wip, walkcycle = legwork.core, legwork.ik, legwork.wip, legwork.walkcycle
+
+
+def drive(module, model, frames, info=None):
+    """Runs one avatar over frames; returns (Motion at 90 Hz, statuses)."""
+    state, pose = module.State(model), core.Pose(model.skeleton())
+    rot, trans, status = [], [], []
+    for frame in frames:
+        status.append(module.update(model, frame, state, pose, info))
+        rot.append(pose.rotations)
+        trans.append(np.array(pose.translations))
+    return core.Motion(model.skeleton(), 90.0, np.ascontiguousarray(rot), np.ascontiguousarray(trans)), status
+
+
+@pytest.mark.parametrize("module", [ik, wip, walkcycle, legwork.accent])
+def test_every_runtime_has_the_contract_names(module):
+    for name in ("Settings", "Model", "make_model", "State", "reset", "update", "Info"):
+        assert hasattr(module, name), f"{module.__name__}.{name}"
+
+
+def test_ik_equals_the_cli_baseline(cli, db_path, tmp_path):
+    report = tmp_path / "ik.json"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", tmp_path / "a.bvh",
+        "--compare-ik", "--json", report)
+    truth = core.resample(legwork.io.read_bvh(str(TRIAL), drop_first=True), 90.0)
+    model = ik.make_model(truth.skeleton)
+    out, status = drive(ik, model, core.tracker_frames_from_motion(truth))
+    assert all(s == core.UpdateStatus.Ok for s in status)
+    m = legwork.eval.evaluate_trial(legwork.eval.role_track(out), legwork.eval.role_track(truth))
+    assert m.mpjpe_cm == pytest.approx(json.loads(report.read_text())["ik_error"]["full_body_cm"], rel=1e-12)
+    head = truth.skeleton.roles["head"]
+    assert np.abs(out.positions()[:, head] - truth.positions()[:, head]).max() < 1e-6  # the head is placed exactly
+
+
+def test_rejected_frames_leave_state_and_pose_untouched():
+    walk = legwork.io.read_bvh(str(TRIAL), drop_first=True)
+    model = ik.make_model(walk.skeleton)
+    state, pose = ik.State(model), core.Pose(model.skeleton())
+    frames = core.tracker_frames_from_motion(walk)
+    assert ik.update(model, frames[0], state, pose) == core.UpdateStatus.Ok
+    before = pose.rotations
+    assert ik.update(model, frames[0], state, pose) == core.UpdateStatus.Rejected
+    bad = frames[1]
+    bad.time = float("nan")
+    assert ik.update(model, bad, state, pose) == core.UpdateStatus.Rejected
+    assert np.array_equal(pose.rotations, before)
+    with pytest.raises(ValueError, match=r"out: a Pose of the model's skeleton \(31 joints\)"):
+        ik.update(model, frames[1], state, core.Pose(core.Skeleton(["a"], [-1], np.zeros((1, 3)))))
+
+
+def test_wip_walks_while_the_feet_step_and_stands_when_they_stop():
+    walk = core.resample(legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/16_15.bvh"), drop_first=True), 90.0)
+    settings = wip.Settings()
+    settings.signal.rate = 90.0
+    model = wip.make_model(walk.skeleton, settings)
+    frames = core.tracker_frames_from_motion(walk)
+    for f in frames:  # walking in place: the ankles keep their heights, not their travel
+        for d in (core.Device.LeftFoot, core.Device.RightFoot):
+            p, r, _ = f.get(d)
+            f.set(d, np.array([0.1 if d == core.Device.LeftFoot else -0.1, p[1], 0.0]), r)
+    info = wip.Info()
+    state, pose = wip.State(model), core.Pose(model.skeleton())
+    floor = min(f.get(core.Device.LeftFoot)[0][1] for f in frames)
+    wip.set_floor(state, floor, floor)
+    walking = 0
+    for f in frames:
+        assert wip.update(model, f, state, pose, info) in (core.UpdateStatus.Ok, core.UpdateStatus.Degraded)
+        walking += info.walking
+    assert state.calibrated and walking > len(frames) // 3
+    assert info.distance > 1.0  # metres walked by the avatar
+    still = frames[-1]
+    distance = []
+    for i in range(1, 361):  # four seconds of standing still
+        f = core.TrackerFrame(still.time + i / 90.0)
+        for d in (core.Device.Head, core.Device.LeftFoot, core.Device.RightFoot):
+            p, r, _ = still.get(d)
+            f.set(d, p, r)
+        wip.update(model, f, state, pose, info)
+        distance.append(info.distance)
+    # It stops (after the document's stop time of double support) and then stays put.
+    # The speed decays exponentially (speed_tau): below 1 mm/s, under a millimetre in the last second.
+    assert not info.walking and info.speed < 1e-3
+    assert distance[-1] - distance[-90] < 1e-3
+
+
+def test_walker_walks_forward_and_turns_to_the_head():
+    walk = walkcycle.load_walk(str(SOURCE / "data/walks/normal.json"))
+    cycle = walkcycle.build_cycle(walk.skeleton, walk.keys)
+    settings = walkcycle.Settings()
+    model = walkcycle.make_model(cycle, settings)
+    state, pose, info = walkcycle.State(model), core.Pose(model.skeleton()), walkcycle.Info()
+    yaw90 = np.array([np.cos(np.pi / 4), 0.0, np.sin(np.pi / 4), 0.0])  # 90 degrees about +y
+    headings = []
+    for i in range(300):  # 5 s at 60 Hz: straight for 2 s, then the head turns left
+        f = core.TrackerFrame(i / 60.0)
+        f.set(core.Device.Head, np.array([0.0, 1.7, 0.0]), np.array([1.0, 0, 0, 0]) if i < 120 else yaw90)
+        assert walkcycle.update(model, f, state, pose, info) == core.UpdateStatus.Ok
+        headings.append(info.heading)
+        if i == 119:
+            root_at_2s = np.array(pose.translations[0])
+            assert abs(info.heading) < 1e-9 and root_at_2s[2] > 1.0  # walked forward (+z)
+    assert info.heading == pytest.approx(np.pi / 2, abs=1e-6)
+    steps = np.abs(np.diff(headings))
+    assert steps.max() <= settings.max_turn_per_step + 1e-9
+    with pytest.raises(legwork.Error, match="missing.json"):
+        walkcycle.load_walk(str(SOURCE / "data/walks/missing.json"))
+
+
+def test_step_f1_equals_cli_wip_eval(cli, tmp_path):
+    """Walking in place driven frame by frame from Python, scored by legwork.eval, against `legwork wip eval`."""
+    folder = SOURCE / "data/cmu/bvh/walking"
+    cli("wip", "eval", "--data", folder, "--clip", folder / "07_01.bvh", "--out", tmp_path)
+    report = json.loads((tmp_path / "report.json").read_text())
+    assert report["per_trial"]
+    for trial in report["per_trial"]:
+        motion = legwork.io.read_bvh(str(folder / (trial["trial"] + ".bvh")), drop_first=True)
+        settings = wip.Settings()  # the CLI's defaults: 30 Hz trackers
+        model = wip.make_model(motion.skeleton, settings)
+        state, pose = wip.State(model), core.Pose(model.skeleton())
+        infos = []
+        for frame in core.tracker_frames_from_motion(motion, settings.signal.rate):
+            info = wip.Info()
+            if wip.update(model, frame, state, pose, info) != core.UpdateStatus.Rejected:
+                infos.append(info)
+        score = legwork.eval.score_steps(legwork.eval.detected_swings(infos), wip.true_swings(motion), 0.5,
+                                         motion.duration - 0.1)
+        cli_steps = trial["steps"]
+        assert (score.true_steps, score.detected, score.matched) == (
+            cli_steps["true_steps"], cli_steps["detected"], cli_steps["matched"]), trial["trial"]
+        assert score.f1 == pytest.approx(cli_steps["f1"], rel=1e-12)
+        assert score.off_latency_ms == pytest.approx(cli_steps["foot_off_latency_ms"], rel=1e-12)

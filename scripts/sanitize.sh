@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Builds legwork with sanitizers and runs its tests there.
+#   scripts/sanitize.sh            AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/), whole ctest suite
+#   scripts/sanitize.sh --tsan     ThreadSanitizer (build-tsan/), the threaded tests only
+#   extra arguments after the mode go to ctest (e.g. -R Bvh)
+# Any sanitizer report fails the run (-fno-sanitize-recover=all, halt_on_error).
+# float-cast-overflow is added where the compiler has it (GCC's
+# -fsanitize=undefined leaves it out, so it is asked for by name). Leaks in third-party libraries are suppressed by
+# scripts/lsan.supp, each with its reason; nothing of legwork's is.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+mode=asan
+if [ "${1:-}" = "--tsan" ]; then mode=tsan; shift; fi
+jobs="${LEGWORK_SANITIZE_JOBS:-$(nproc)}"
+
+# g++ by default: the project's compiler (Debian 12's clang 14 cannot build
+# all of legwork's C++20, e.g. lambdas capturing structured bindings in
+# src/eval/run.cpp). LEGWORK_SANITIZE_CXX=clang++ picks another.
+cxx="${LEGWORK_SANITIZE_CXX:-g++}"
+# Does the compiler know float-cast-overflow (GCC's -fsanitize=undefined leaves it out)?
+extra=""
+if echo 'int main(){}' | "$cxx" -x c++ -fsanitize=float-cast-overflow -o /dev/null - 2>/dev/null; then
+  extra=",float-cast-overflow"
+fi
+if [ "$mode" = asan ]; then
+  build="${LEGWORK_SANITIZE_BUILD:-$root/build-asan}"
+  flags="-fsanitize=address,undefined${extra} -fno-sanitize-recover=all -fno-omit-frame-pointer -g"
+else
+  build="${LEGWORK_SANITIZE_BUILD:-$root/build-tsan}"
+  flags="-fsanitize=thread -fno-omit-frame-pointer -g"
+fi
+# A build dir configured with another compiler cannot be reused.
+if [ -f "$build/CMakeCache.txt" ] &&
+  ! grep -q "^CMAKE_CXX_COMPILER:[A-Z]*=$(command -v "$cxx")\$" "$build/CMakeCache.txt"; then
+  rm -rf "$build"
+fi
+launcher=()
+if command -v ccache >/dev/null 2>&1; then
+  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
+# Warnings are the Release build's job (-Werror there); here only the sanitizers judge.
+CXX=$cxx cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
+  -DLEGWORK_WERROR=OFF -DLEGWORK_BENCH=OFF >/dev/null
+
+export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp:print_suppressions=0"
+export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
+start=$(date +%s)
+if [ "$mode" = asan ]; then
+  ninja -C "$build" -j"$jobs"
+  echo "sanitize: ASan+UBSan build with $cxx took $(($(date +%s) - start)) s (load: $(cut -d' ' -f1-3 /proc/loadavg))" >&2
+  ctest --test-dir "$build" --output-on-failure -j"$jobs" --timeout 1800 "$@"
+else
+  # The tests that run threads: many avatars over one database, the
+  # evaluation's parallel trial loading and its CLI run.
+  ninja -C "$build" -j"$jobs" test_accent test_eval legwork
+  echo "sanitize: TSan build with $cxx took $(($(date +%s) - start)) s (load: $(cut -d' ' -f1-3 /proc/loadavg))" >&2
+  ctest --test-dir "$build" --output-on-failure -j"$jobs" --timeout 1800 \
+    -R 'Thread|Concurrent|EvalRun|cli\.eval_quick' "$@"
+fi
+echo "sanitize: $mode done in $(($(date +%s) - start)) s (load: $(cut -d' ' -f1-3 /proc/loadavg))" >&2

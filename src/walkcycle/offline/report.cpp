@@ -1,0 +1,166 @@
+// Reports of the walk-cycle generator (see report.hpp).
+#include <legwork/walkcycle/offline/report.hpp>
+
+#include <legwork/walkcycle/keys.hpp>
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+
+namespace legwork::walkcycle {
+
+using nlohmann::json;
+
+namespace {
+// printf into a string (summary lines).
+void appendf(std::string& s, const char* fmt, ...) {
+  char buf[512];
+  va_list ap;
+  va_start(ap, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  s += buf;
+}
+}  // namespace
+
+double round6(double v) { return std::round(v * 1e6) / 1e6 + 0.0; }
+
+json cycle_report(const CycleModel& model, const std::string& name, std::string& text) {
+  const auto seam = measure_loop_seam(model);
+  const auto feet = key_foot_heights(model);
+  appendf(text, "cycle: %d frames, step length %.3f m, loop seam %.2e m / %.2e m/s\n", model.frames_per_cycle,
+          step_length(model), seam.position_m, seam.velocity_mps);
+  json report;
+  report["walk"] = name;
+  report["frames_per_cycle"] = model.frames_per_cycle;
+  report["fps"] = model.fps;
+  report["step_length_m"] = round6(step_length(model));
+  report["loop_seam_error"] = seam.position_m;  // metres (position; velocity below)
+  report["loop_seam_error_m"] = seam.position_m;
+  report["loop_seam_velocity_error_mps"] = seam.velocity_mps;
+  report["key_frames"] = {model.key_frames[0], model.key_frames[1], model.key_frames[2], model.key_frames[3]};
+  report["key_foot_height_mm"] = json::array();
+  for (double h : feet) report["key_foot_height_mm"].push_back(round6(h * 1e3));
+  const auto floor = cycle_floor_contact(model);
+  report["cycle_lowest_foot_mm"] = round6(floor.lowest_m * 1e3);
+  report["cycle_lowest_foot_frame"] = floor.at_frame;
+  report["floor_clamp"] = model.floor_clamp;
+  report["floor_lift_mm_max"] = round6(floor.max_lift_m * 1e3);
+  report["floor_lift_frame"] = floor.lift_frame;
+  if (floor.max_lift_m > 0.01)
+    appendf(text, "note: between the keys a foot would dip %.0f mm below the floor at frame %.2f%s\n", floor.max_lift_m * 1e3,
+            floor.lift_frame, model.floor_clamp ? "; the root is lifted there (floor_clamp)" : " (floor_clamp is off)");
+  return report;
+}
+
+void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, json& report, std::string& text) {
+  const auto slip = measure_stance_slip(model, w.motion, w.labels);
+  appendf(text,
+          "walk: %d steps, %d frames at %g fps (%.1f ms), path %.2f m, turning %.1f deg, end %.3f m from the path's end, "
+          "max deviation %.3f m\n",
+          w.steps, w.motion.frame_count(), w.motion.fps, ms, w.path_length, rad2deg(w.turning), w.end_distance,
+          w.max_path_deviation);
+  appendf(text, "stance slip: max %.2e mm, mean %.2e mm over %d pivot phases\n", slip.max_mm, slip.mean_mm, slip.phases);
+  report["steps"] = w.steps;
+  report["frames"] = w.motion.frame_count();
+  report["output_fps"] = w.motion.fps;
+  report["stance_slip_mm_max"] = slip.max_mm;
+  report["stance_slip_mm_mean"] = slip.mean_mm;
+  report["stance_phases"] = slip.phases;
+  report["path_length_m"] = round6(w.path_length);
+  report["turning_deg"] = round6(rad2deg(w.turning));
+  report["turning_abs_deg"] = round6(rad2deg(w.turning_abs));
+  report["end_distance_m"] = round6(w.end_distance);
+  report["max_path_deviation_m"] = round6(w.max_path_deviation);
+  json steps = json::array();
+  for (const auto& s : w.footsteps)
+    steps.push_back({{"step", s.step}, {"frame", s.frame}, {"foot", s.left ? "left" : "right"},
+                     {"heel", {round6(s.heel.x()), round6(s.heel.z())}}, {"heading_deg", round6(rad2deg(s.heading))}});
+  report["footsteps"] = steps;
+}
+
+void add_in_place_report(const Motion& cycle, json& report) {
+  report["steps"] = 2;
+  report["frames"] = cycle.frame_count();
+  report["stance_slip_mm_max"] = nullptr;  // in place: the feet slide by design
+}
+
+ArcFigures arc_figures(const CycleModel& m, const std::string& joint_name) {
+  ArcFigures a;
+  a.joint = find_joint_or_role(m.skeleton, joint_name);
+  if (a.joint < 0) throw Error("--arc: unknown joint '" + joint_name + "'");
+  a.name = m.skeleton.names[static_cast<std::size_t>(a.joint)];
+  a.arc = trace_arc(m, a.joint, 1);
+  a.fine = trace_arc(m, a.joint, 4);
+  a.smooth = arc_smoothness(a.fine);
+  a.jerky = a.smooth.jerk_ratio > 5.0 && a.smooth.extent_m > 0.1;  // (a hand held still has a tiny, noisy arc)
+  return a;
+}
+
+std::string arc_csv(const ArcFigures& a) {
+  std::string csv = "frame,x,y,z,key\n";
+  const char* key_names[] = {"contact", "down", "pass", "up", "contact2", "down2", "pass2", "up2"};
+  for (std::size_t i = 0; i < a.arc.points.size(); ++i) {
+    std::string key;
+    for (std::size_t k = 0; k < a.arc.key_indices.size(); ++k)
+      if (a.arc.key_indices[k] == static_cast<int>(i)) key = key_names[k];
+    appendf(csv, "%zu,%.6f,%.6f,%.6f,%s\n", i, a.arc.points[i].x(), a.arc.points[i].y(), a.arc.points[i].z(), key.c_str());
+  }
+  return csv;
+}
+
+std::string arc_title(const ArcFigures& a) {
+  std::string t;
+  appendf(t, "%s arc over the cycle - jerk ratio %.2f (frame %.1f), curvature jump %.0f deg", a.name.c_str(),
+          a.smooth.jerk_ratio, a.smooth.jerk_frame, a.smooth.max_curvature_jump_deg);
+  return t.substr(0, 199);
+}
+
+std::string arc_summary(const ArcFigures& a) {
+  std::string t;
+  appendf(t, "arc %s: spans %.2f m, jerk ratio %.2f at frame %.1f, largest curvature jump %.1f deg at frame %.1f%s\n",
+          a.name.c_str(), a.smooth.extent_m, a.smooth.jerk_ratio, a.smooth.jerk_frame, a.smooth.max_curvature_jump_deg,
+          a.smooth.jump_frame, a.jerky ? "  <- jerky: check the keys near this frame" : "");
+  return t;
+}
+
+json arc_report(const ArcFigures& a, const std::string& csv_path) {
+  return {{"joint", a.name},
+          {"extent_m", round6(a.smooth.extent_m)},
+          {"jerky", a.jerky},
+          {"jerk_ratio", round6(a.smooth.jerk_ratio)},
+          {"jerk_frame", round6(a.smooth.jerk_frame)},
+          {"max_curvature_jump_deg", round6(a.smooth.max_curvature_jump_deg)},
+          {"jump_frame", round6(a.smooth.jump_frame)},
+          {"csv", csv_path}};
+}
+
+json extraction_report(const Extraction& ex, const Motion& clip, const std::string& clip_path) {
+  json r;
+  r["clip"] = clip_path;
+  r["frames"] = clip.frame_count();
+  r["fps"] = clip.fps;
+  r["cycle_seconds"] = round6(ex.cycle_seconds);
+  r["steps_found"] = ex.steps.size();
+  r["steps_used"] = ex.steps_used;
+  r["resynthesis_mean_mm"] = round6(ex.resynthesis_mean_mm);
+  r["resynthesis_max_mm"] = round6(ex.resynthesis_max_mm);
+  json steps = json::array();
+  for (const auto& s : ex.steps)
+    steps.push_back({{"foot", s.left ? "left" : "right"}, {"contact", s.contact}, {"down", s.down}, {"pass", s.pass},
+                     {"up", s.up}, {"next_contact", s.next_contact}, {"used", s.used}});
+  r["steps"] = steps;
+  return r;
+}
+
+std::string extraction_summary(const Extraction& ex, const WalkKeys& keys) {
+  std::string t;
+  appendf(t, "%zu steps found (%d used), cycle %.3f s -> %d frames at %g fps; timing down %.2f pass %.2f up %.2f\n",
+          ex.steps.size(), ex.steps_used, ex.cycle_seconds, keys.frames_per_cycle, keys.fps, keys.key_frames[1],
+          keys.key_frames[2], keys.key_frames[3]);
+  appendf(t, "resynthesis vs the clip's mean cycle: joint positions %.1f mm mean, %.1f mm max\n", ex.resynthesis_mean_mm,
+          ex.resynthesis_max_mm);
+  return t;
+}
+
+}  // namespace legwork::walkcycle

@@ -1,0 +1,137 @@
+// Database files (reliability): saving replaces the file atomically, so a
+// process that has the old one mapped keeps working; checksum-valid files
+// with absurd contents are rejected by name.
+#include <legwork/accent/database.hpp>
+#include <legwork/io/text.hpp>
+
+#include "../../src/accent/database_impl.hpp"
+#include "accent_testing.hpp"  // the builder (its header moves with the module layout)
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace legwork::accent {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir() {
+  const auto d = fs::temp_directory_path() / "legwork_database_file_test";
+  fs::create_directories(d);
+  return d;
+}
+
+std::vector<std::byte> read_all(const fs::path& p) {
+  const std::string bytes = io::read_binary_file(p.string());
+  const auto* b = reinterpret_cast<const std::byte*>(bytes.data());
+  return {b, b + bytes.size()};
+}
+
+// Writes `block` with its checksum recomputed, as a valid-looking file would be.
+void write_with_checksum(const fs::path& p, std::vector<std::byte> block) {
+  FileHeader h;
+  std::memcpy(&h, block.data(), sizeof h);
+  h.checksum = 0;
+  std::memcpy(block.data(), &h, sizeof h);
+  h.checksum = block_checksum(block);
+  std::memcpy(block.data(), &h, sizeof h);
+  std::ofstream(p, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(block.data()), static_cast<std::streamsize>(block.size()));
+}
+
+std::string load_error(const fs::path& p) {
+  try {
+    (void)load_database(p.string());
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// Replaces the JSON number after `"key":` in the metadata by `value`, padded
+// with spaces to the same length (so no offset moves).
+void set_meta_number(std::vector<std::byte>& block, const std::string& key, const std::string& value) {
+  FileHeader h;
+  std::memcpy(&h, block.data(), sizeof h);
+  char* meta = reinterpret_cast<char*>(block.data() + h.meta_offset);
+  std::string_view text(meta, h.meta_bytes);
+  const auto at = text.find("\"" + key + "\":");
+  ASSERT_NE(at, std::string_view::npos) << key;
+  std::size_t b = at + key.size() + 3, e = b;
+  while (e < text.size() && (std::isdigit(static_cast<unsigned char>(text[e])) || std::strchr(".-+eE", text[e]))) ++e;
+  ASSERT_LE(value.size(), e - b) << key;
+  std::string repl = value + std::string(e - b - value.size(), ' ');
+  std::memcpy(meta + b, repl.data(), repl.size());
+}
+
+}  // namespace
+
+TEST(DatabaseFile, SavingOverAMappedFileLeavesTheReaderIntact) {
+  const fs::path path = temp_dir() / "mapped.lwdb";
+  save_database(path.string(), testing::indexed_database({"walking/07_01", "running/09_01"}));
+  const Database mapped = load_database(path.string());
+  ASSERT_TRUE(mapped.is_mapped());
+  const std::vector<std::byte> before(mapped.bytes().begin(), mapped.bytes().end());
+  // A smaller database replaces it: truncating in place made the first
+  // process's next page touch a SIGBUS.
+  save_database(path.string(), testing::indexed_database({"walking/07_01"}));
+  EXPECT_LT(fs::file_size(path), before.size());
+  EXPECT_TRUE(std::equal(before.begin(), before.end(), mapped.bytes().begin()));
+  EXPECT_EQ(load_database(path.string()).trials().size(), 1u);
+  // Nothing left behind but the database itself.
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(temp_dir()))
+    if (e.path().filename().string().rfind("mapped.lwdb", 0) == 0) ++files;
+  EXPECT_EQ(files, 1);
+  EXPECT_EQ(fs::status(path).permissions() & fs::perms::others_read, fs::perms::others_read);
+}
+
+TEST(DatabaseFile, SavingIntoAMissingFolderIsAClearError) {
+  const fs::path path = temp_dir() / "no-such-folder" / "x.lwdb";
+  try {
+    save_database(path.string(), testing::indexed_database({"walking/07_01"}));
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write accent database '" + path.string() + "': No such file"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(DatabaseFile, ChecksumValidButAbsurdContentsAreRejectedByName) {
+  const fs::path good = temp_dir() / "good.lwdb", bad = temp_dir() / "bad.lwdb";
+  save_database(good.string(), testing::indexed_database({"walking/07_01"}));
+  const std::vector<std::byte> block = read_all(good);
+  ASSERT_EQ(load_error(good), "(no error)");
+  FileHeader h;
+  std::memcpy(&h, block.data(), sizeof h);
+
+  auto pose = block;  // a rotation of 1e38 (reported 'matched' with 42 cm error before)
+  const float huge[4] = {1e38f, 0, 0, 1e38f};
+  std::memcpy(pose.data() + h.pose_offset, huge, sizeof huge);
+  write_with_checksum(bad, pose);
+  EXPECT_NE(load_error(bad).find("pose 0 joint 'Hips' is not a finite unit quaternion"), std::string::npos)
+      << load_error(bad);
+
+  auto zero = block;  // a zero rotation fell back to neutral, also 'matched'
+  std::memset(zero.data() + h.pose_offset + 16 * 5, 0, 16);
+  write_with_checksum(bad, zero);
+  EXPECT_NE(load_error(bad).find("pose 0 joint '"), std::string::npos) << load_error(bad);
+
+  for (const auto& [key, value, expect] : {std::tuple{"height_m", "0", "height_m is 0.000000"},
+                                           std::tuple{"typical_distance", "-1", "typical_distance is -1.000000"}}) {
+    auto meta = block;
+    set_meta_number(meta, key, value);
+    write_with_checksum(bad, meta);
+    const std::string msg = load_error(bad);
+    EXPECT_NE(msg.find(expect), std::string::npos) << msg;
+    EXPECT_NE(msg.find("rebuild the database"), std::string::npos) << msg;
+  }
+}
+
+}  // namespace legwork::accent

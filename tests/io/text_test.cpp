@@ -1,0 +1,96 @@
+// File helpers: every failure names the path and says what is wrong, in
+// words a user can act on (never "std::bad_alloc" for a directory).
+#include <legwork/io/text.hpp>
+
+#include <legwork/core/types.hpp>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace legwork;
+
+namespace {
+
+std::filesystem::path temp_dir() {
+  const auto d = std::filesystem::temp_directory_path() / "legwork_text_test";
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+std::string write_bytes(const std::string& name, const std::string& bytes) {
+  const auto p = (temp_dir() / name).string();
+  std::ofstream(p, std::ios::binary) << bytes;
+  return p;
+}
+
+std::string error_of(const std::string& path) {
+  try {
+    io::read_text_file(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST(Text, DirectoryIsNamedNotABadAlloc) {
+  // An ifstream opens a directory on Linux and reports a size of 2^63.
+  const std::string dir = temp_dir().string();
+  EXPECT_EQ(error_of(dir), dir + ": is a directory, not a file");
+}
+
+TEST(Text, MissingFileSaysWhy) {
+  const std::string p = (temp_dir() / "no-such-file.bvh").string();
+  EXPECT_EQ(error_of(p), p + ": cannot open file (No such file or directory)");
+}
+
+TEST(Text, Utf16AndUtf32AreNamed) {
+  const std::string le = write_bytes("le.csv", std::string("\xFF\xFEt\0i\0m\0e\0", 10));
+  EXPECT_EQ(error_of(le), le + ": UTF-16 text; save it as UTF-8");
+  const std::string be = write_bytes("be.csv", std::string("\xFE\xFF\0t\0i", 6));
+  EXPECT_EQ(error_of(be), be + ": UTF-16 text; save it as UTF-8");
+  const std::string u32 = write_bytes("u32.csv", std::string("\xFF\xFE\0\0t\0\0\0", 8));
+  EXPECT_EQ(error_of(u32), u32 + ": UTF-32 text; save it as UTF-8");
+}
+
+TEST(Text, Utf8ByteOrderMarkIsDropped) {
+  const std::string p = write_bytes("bom.csv", "\xEF\xBB\xBFtime\n0\n");
+  EXPECT_EQ(io::read_text_file(p), "time\n0\n");
+  // Binary reads keep every byte.
+  EXPECT_EQ(io::read_binary_file(p).size(), 10u);
+}
+
+TEST(Text, PipesAndDevicesAreReadByStreaming) {
+  // No size to trust: /dev/null reads as empty rather than failing.
+  EXPECT_EQ(io::read_text_file("/dev/null"), "");
+}
+
+TEST(Text, WritingOverADirectoryIsNamed) {
+  const std::string dir = temp_dir().string();
+  try {
+    io::write_text_file(dir, "x");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), dir + ": is a directory, not a file");
+  }
+}
+
+TEST(Text, Utf8Validation) {
+  EXPECT_TRUE(io::is_valid_utf8("Hips"));
+  EXPECT_TRUE(io::is_valid_utf8("Wirbels\xC3\xA4ule"));        // 2 bytes
+  EXPECT_TRUE(io::is_valid_utf8("\xE8\x85\xB0"));              // 3 bytes (CJK)
+  EXPECT_TRUE(io::is_valid_utf8("\xF0\x9F\xA6\xB5"));          // 4 bytes (emoji leg)
+  EXPECT_FALSE(io::is_valid_utf8("Sp\xE9ne"));                 // Latin-1
+  EXPECT_FALSE(io::is_valid_utf8("\xC0\xAF"));                 // overlong '/'
+  EXPECT_FALSE(io::is_valid_utf8("\xED\xA0\x80"));             // UTF-16 surrogate
+  EXPECT_FALSE(io::is_valid_utf8("\xF4\x90\x80\x80"));         // past U+10FFFF
+  EXPECT_FALSE(io::is_valid_utf8("\xE8\x85"));                 // truncated
+}
+
+TEST(Text, PrintableTextHidesControlBytes) {
+  EXPECT_EQ(io::printable_text(std::string("a\0b\xff", 4)), "a?b?");
+  EXPECT_EQ(io::printable_text("abcdef", 3), "abc...");
+}
