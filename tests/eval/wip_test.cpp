@@ -8,6 +8,7 @@
 #include "cmu_sample.hpp"
 #include "testdata.hpp"
 
+#include <cmath>
 #include <filesystem>
 
 namespace legwork::eval {
@@ -46,6 +47,128 @@ TEST(Synthetic, StepsAreDetectedAtSeveralRatesWithNoiseAndDrops) {
   }
 }
 
+// ---- strict foot-off matching ---------------------------------------------
+
+TEST(StrictScore, LateDetectionIsAMissAndAFalsePositive) {
+  const std::vector<SwingEvent> truth = {{kLeft, 1.0, 1.5, 0.1}};
+  const std::vector<SwingEvent> det = {{kLeft, 1.25, 1.6, 0.1}};
+  const StrictScore s = match_foot_offs(det, truth, 0.2, 0, 10);
+  EXPECT_EQ(s.true_steps, 1);
+  EXPECT_EQ(s.detected, 1);
+  EXPECT_EQ(s.matched, 0);
+  EXPECT_EQ(s.precision, 0);
+  EXPECT_EQ(s.recall, 0);
+  EXPECT_EQ(s.f1, 0);
+  EXPECT_TRUE(std::isnan(s.median_ms));
+  // The lenient overlap score counts the same detection as found.
+  EXPECT_EQ(score_steps(det, truth, 0, 10).matched, 1);
+}
+
+TEST(StrictScore, TwoDetectionsNearOneTruthCountOnce) {
+  const std::vector<SwingEvent> truth = {{kLeft, 2.0, 2.5, 0.1}};
+  const std::vector<SwingEvent> det = {{kLeft, 2.1, 2.5, 0.1}, {kLeft, 2.05, 2.4, 0.1}};
+  const StrictScore s = match_foot_offs(det, truth, 0.2, 0, 10);
+  EXPECT_EQ(s.matched, 1);
+  EXPECT_EQ(s.detected, 2);
+  EXPECT_NEAR(s.precision, 0.5, 1e-12);
+  EXPECT_NEAR(s.recall, 1.0, 1e-12);
+  EXPECT_NEAR(s.f1, 2.0 / 3, 1e-12);
+  ASSERT_EQ(s.latencies_ms.size(), 1u);
+  EXPECT_NEAR(s.latencies_ms[0], 50, 1e-9);  // the closer one
+}
+
+TEST(StrictScore, ClosestPairsFirstPerFootWithSignedLatencyAndWindow) {
+  const std::vector<SwingEvent> truth = {{kLeft, 1.0, 1.3, 0.1}, {kLeft, 1.3, 1.6, 0.1}, {kRight, 3.0, 3.4, 0.1},
+                                         {kLeft, 9.8, 10.2, 0.1}};
+  // 1.15 lies within 200 ms of both left truths; 1.35 is closest to 1.3, so
+  // 1.15 goes to 1.0. The right truth gets an early detection (negative
+  // latency) and a left one at its time, which must not match across feet.
+  const std::vector<SwingEvent> det = {{kLeft, 1.15, 1.4, 0.1}, {kLeft, 1.35, 1.7, 0.1}, {kRight, 2.9, 3.3, 0.1},
+                                       {kLeft, 3.0, 3.3, 0.1}, {kLeft, 9.85, 10.2, 0.1}};
+  const StrictScore s = match_foot_offs(det, truth, 0.2, 0, 9.5);  // the last pair lies outside the window
+  EXPECT_EQ(s.true_steps, 3);
+  EXPECT_EQ(s.matched, 3);
+  EXPECT_EQ(s.detected, 4);  // the left detection at 3.0 is false
+  ASSERT_EQ(s.latencies_ms.size(), 3u);
+  EXPECT_NEAR(s.median_ms, 50, 1e-9);   // latencies -100, 50, 150
+  EXPECT_NEAR(s.p90_ms, 50, 1e-9);      // index floor(0.9 * 2) = 1
+  EXPECT_NEAR(s.mean_ms, 100.0 / 3, 1e-9);
+  // +-100 ms: the 150 ms late one becomes a miss plus a false positive.
+  const StrictScore t = match_foot_offs(det, truth, 0.1, 0, 9.5);
+  EXPECT_EQ(t.matched, 2);
+  EXPECT_EQ(t.detected, 4);
+  const StrictScore both[2] = {s, t};
+  const StrictScore c = combine(both);
+  EXPECT_EQ(c.matched, 5);
+  EXPECT_EQ(c.true_steps, 6);
+  EXPECT_EQ(c.latencies_ms.size(), 5u);
+}
+
+TEST(StrictScore, NoStepsIsNotAZeroScore) {
+  const StrictScore s = match_foot_offs({}, {}, 0.2, 0, 10);
+  EXPECT_TRUE(std::isnan(s.f1));
+  EXPECT_TRUE(std::isnan(s.precision));
+  EXPECT_TRUE(std::isnan(s.recall));
+  const std::string text = format_strict(s);
+  EXPECT_NE(text.find("F1 n/a"), std::string::npos) << text;
+  EXPECT_NE(text.find("median n/a"), std::string::npos) << text;
+  EXPECT_EQ(text.find("0.000"), std::string::npos) << text;
+}
+
+// ---- ground-truth contacts -------------------------------------------------
+
+// 07_12: the ankle rests 3-5 cm above its rolling floor during stance (the
+// floor level drifts up over the trial), so the former fixed-margin detector
+// sees no contact there and merges two steps of each foot into one swing of
+// over a second; the learned stance height finds each step.
+TEST(TrueContacts, LearnedStanceHeightFindsStepsWhereTheFixedMarginSeesOneLongSwing) {
+  const Motion m = load("cmu/bvh/walking/07_12.bvh");
+  wip::TruthOptions fixed;
+  fixed.learned = false;
+  const auto old_swings = wip::true_swings(m, fixed), swings = wip::true_swings(m);
+  for (int foot : {kLeft, kRight}) {
+    std::vector<SwingEvent> o, n;
+    for (const auto& s : old_swings)
+      if (s.foot == foot) o.push_back(s);
+    for (const auto& s : swings)
+      if (s.foot == foot) n.push_back(s);
+    ASSERT_EQ(o.size(), 1u) << "foot " << foot << ": the fixed margin should merge this foot's steps";
+    EXPECT_GT(o[0].strike - o[0].off, 1.2);
+    ASSERT_EQ(n.size(), 2u) << "foot " << foot;
+    for (const auto& s : n) {
+      EXPECT_GT(s.strike - s.off, 0.3);
+      EXPECT_LT(s.strike - s.off, 0.7);
+      EXPECT_GT(s.apex, 0.1);  // real steps, not weight shifts
+    }
+    // The stance between them lies inside the old single swing.
+    EXPECT_GT(n[0].strike, o[0].off);
+    EXPECT_LT(n[1].off, o[0].strike);
+    EXPECT_GT(n[1].off - n[0].strike, 0.1);
+  }
+  // Both feet alternate: left and right foot-offs interleave.
+  ASSERT_EQ(swings.size(), 4u);
+  for (std::size_t i = 1; i < swings.size(); ++i) EXPECT_NE(swings[i].foot, swings[i - 1].foot);
+}
+
+TEST(TrueContacts, StillSegmentsAreWhereBothFeetRest) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  const Motion m = io::load_bvh((testdata::shared_cmu() / "bvh" / "walking" / "105_02.bvh").string(), opt);
+  const auto swings = wip::true_swings(m);
+  const auto still = still_segments(m, "105_02", {}, swings, 1.0, 0.5, m.duration() - 0.1);
+  ASSERT_FALSE(still.empty());
+  for (const auto& g : still) {
+    EXPECT_GE(g.end - g.begin, 1.0);
+    EXPECT_EQ(g.false_steps, 0) << "true foot-offs inside a true still segment";
+    for (const auto& s : swings) EXPECT_FALSE(s.off < g.end && s.strike > g.begin) << g.begin << "-" << g.end;
+  }
+  // Counting detections: a foot-off placed inside the first segment is a false step.
+  std::vector<SwingEvent> det = swings;
+  det.push_back({kLeft, 0.5 * (still[0].begin + still[0].end), still[0].end, 0.05});
+  EXPECT_EQ(still_segments(m, "105_02", {}, det, 1.0, 0.5, m.duration() - 0.1)[0].false_steps, 1);
+}
+
 // ---- real walking ----------------------------------------------------------
 
 const std::vector<std::string> kSampleTrials = {"05_01", "07_01", "07_02", "07_12", "10_04", "16_15", "16_21"};
@@ -53,11 +176,14 @@ const std::vector<std::string> kSampleTrials = {"05_01", "07_01", "07_02", "07_1
 TEST(RealWalking, StepsAreDetectedAndDepthsFollowTheRealFeetOnSampleTrials) {
   const Motion cycle = wip::extract_walk_cycle(load("cmu/bvh/walking/07_01.bvh"));
   std::vector<StepScore> scores;
+  std::vector<StrictScore> strict, strict_100;
   Agreement depth, baseline;
   int i = 0;
   for (const auto& name : kSampleTrials) {
     const auto e = evaluate_wip_trial(load("cmu/bvh/walking/" + name + ".bvh"), name, cycle, {}, i++);
     scores.push_back(e.steps);
+    strict.push_back(e.strict);
+    strict_100.push_back(e.strict_100);
     depth.merge(e.depth);
     baseline.merge(e.baseline_depth);
   }
@@ -71,6 +197,12 @@ TEST(RealWalking, StepsAreDetectedAndDepthsFollowTheRealFeetOnSampleTrials) {
   EXPECT_GT(depth.correlation, 0.8);
   EXPECT_LT(depth.rms, 0.15);
   EXPECT_GT(depth.correlation, baseline.correlation + 0.2);  // synchronised legs beat the canned clip
+  const auto s200 = combine(strict), s100 = combine(strict_100);
+  EXPECT_EQ(s200.true_steps, s100.true_steps);
+  EXPECT_LE(s100.matched, s200.matched);  // a tighter window matches no more
+  EXPECT_GE(s200.f1, 0.85) << s200.matched << "/" << s200.true_steps << ", " << s200.detected << " detected";
+  EXPECT_GT(s200.median_ms, 0);  // causal filtering: detection follows the event
+  EXPECT_LE(s200.p90_ms, 200);
 }
 
 TEST(RealWalking, FullSharedSetKeepsStepF1Above90Percent) {

@@ -9,6 +9,7 @@
 #include <legwork/wip/offline/truth.hpp>
 #include <legwork/wip/wip.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -36,6 +37,39 @@ StepScore score_steps(std::span<const SwingEvent> detected, std::span<const Swin
 // Sums counts; latencies averaged over all matched steps.
 StepScore combine(std::span<const StepScore> scores);
 
+// The field's standard step score: detected and true foot-offs of the same
+// foot matched one to one when within +-tolerance, closest pairs first
+// (greedy by |detected - true|). Only true foot-offs in [t_begin, t_end]
+// count; a detection in [t_begin, t_end] with no partner is a false positive.
+// Rates are NaN (reported as n/a) when undefined: precision without
+// detections, recall without true steps, F1 without either.
+struct StrictScore {
+  double tolerance_ms = 200;
+  int true_steps = 0, detected = 0, matched = 0;
+  double precision = NAN, recall = NAN, f1 = NAN;
+  std::vector<double> latencies_ms;  // signed, detected - true foot-off, per match
+  double median_ms = NAN, p90_ms = NAN, mean_ms = NAN;  // core percentile(): index floor(p (n - 1))
+  void finish();  // rates and latency statistics from the counts and latencies
+};
+StrictScore match_foot_offs(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth, double tolerance,
+                            double t_begin, double t_end);
+StrictScore combine(std::span<const StrictScore> scores);
+// "precision 0.950, recall n/a, F1 ..., foot-off latency median 55 ms, p90 90 ms".
+std::string format_strict(const StrictScore& s);
+
+// A still stretch of a trial: both feet in contact throughout (ground truth).
+struct StillSegment {
+  std::string trial;
+  double begin = 0, end = 0;  // s
+  int false_steps = 0;        // detected foot-offs inside
+  int false_steps_noisy = 0;  // the same in the noisy run
+};
+// Still stretches of at least `min_duration` s within [t_begin, t_end], from
+// the true contacts of both feet; false steps counted from `detected`.
+std::vector<StillSegment> still_segments(const Motion& m, const std::string& name, const wip::TruthOptions& truth,
+                                         std::span<const SwingEvent> detected, double min_duration, double t_begin,
+                                         double t_end);
+
 // True forward offset of each ankle from the pelvis along the walking heading
 // (from the hip line, smoothed over +-0.5 s), at `rate` Hz from t = 0.
 struct DepthTrack {
@@ -61,6 +95,7 @@ struct WipEvalOptions {
   double drop_rate = 0.02;     // dropped samples in the noisy run
   std::uint64_t seed = 1;      // noise seed (mixed with the trial index)
   double settle = 0.5;         // s at the start ignored (filter and floor settle)
+  double min_still = 1.0;      // s: shortest still segment scored for false steps
 };
 
 // One trial driven through the method with its own ankles as the tracker and
@@ -69,7 +104,9 @@ struct WipTrialEval {
   std::string name;
   double duration = 0, leg_length = 0;
   std::vector<SwingEvent> truth, detected, detected_noisy;
-  StepScore steps, steps_noisy;
+  StepScore steps, steps_noisy;  // lenient: overlapping swings (secondary)
+  StrictScore strict, strict_100, strict_noisy;  // +-200 ms, +-100 ms, +-200 ms noisy
+  std::vector<StillSegment> still;
   Agreement depth, baseline_depth;
   std::vector<wip::Info> frames;       // clean run
   DepthTrack true_depth;               // at the tracker rate
@@ -91,7 +128,10 @@ struct WipEvalRun {
 };
 struct WipEvalSummary {
   int trials = 0, skipped = 0;
-  StepScore steps, steps_noisy, steps_fixed;
+  StepScore steps, steps_noisy, steps_fixed;  // lenient overlap scores (secondary)
+  StrictScore strict, strict_100, strict_noisy, strict_fixed;
+  std::vector<StillSegment> still;
+  double still_minutes = 0, false_steps_per_minute = NAN, false_steps_per_minute_noisy = NAN;
   Agreement depth, baseline_depth;
   std::vector<std::string> written;  // report.md, report.json
 };

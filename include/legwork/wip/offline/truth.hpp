@@ -4,21 +4,44 @@
 #include <legwork/core/motion.hpp>
 #include <legwork/wip/offline/synthetic.hpp>
 
+#include <array>
 #include <vector>
 
 namespace legwork::wip {
 
-// Ground-truth contact: a foot is down when its ankle (heel) or toe is within
-// `height_tol` of its local floor (rolling minimum over +-floor_window) and
-// moving slower than `speed_tol`. Foot-off = the toe leaves, foot-strike =
-// the first contact again.
+// Ground-truth contact of each foot from its ankle (heel) and toe heights.
+//
+// Learned (default): each joint's stance height is a low percentile of its
+// height over the trial and its lift range the distance from there to a high
+// percentile, so a subject whose ankle rests 3-5 cm above the lowest sample
+// is judged against its own stance level, not a fixed margin. A foot leaves
+// contact when both its joints rise above stance + max(lift_off x range,
+// min_lift_off) and comes back when one joint is below stance +
+// max(lift_on x range, min_lift_on) and slower than `speed_tol`
+// (hysteresis: lift_on < lift_off).
+//
+// Fixed margin (learned = false, the former detector): a foot is down when
+// its ankle or toe is within `height_tol` of its local floor (rolling minimum
+// over +-floor_window) and slower than `speed_tol`.
+//
+// Foot-off = the foot leaves contact, foot-strike = the first contact again.
 struct TruthOptions {
-  double height_tol = 0.03;   // m
-  double speed_tol = 0.5;     // m/s
-  double floor_window = 1.0;  // s each side
-  double min_swing = 0.15;    // s: shorter lifts are not steps
-  double min_stance = 0.05;   // s: shorter touch-downs do not split a swing
+  bool learned = true;
+  double stance_percentile = 0.05;  // stance height of a joint: this quantile of its height
+  double lift_percentile = 0.95;    // lift range: this quantile minus the stance height
+  double lift_off = 0.25;           // fraction of the lift range to leave contact
+  double lift_on = 0.15;            // fraction of the lift range to come back (hysteresis)
+  double min_lift_off = 0.02;       // m: never leave contact below this lift (still subjects)
+  double min_lift_on = 0.012;       // m
+  double height_tol = 0.03;         // m, fixed-margin detector
+  double floor_window = 1.0;        // s each side, fixed-margin detector
+  double speed_tol = 0.5;           // m/s
+  double min_swing = 0.15;          // s: shorter lifts are not steps
+  double min_stance = 0.05;         // s: shorter touch-downs do not split a swing
 };
+
+// Per frame of `m`: 1 while the foot (0 left, 1 right) is in contact.
+std::array<std::vector<char>, 2> true_contacts(const Motion& m, const TruthOptions& p = {});
 std::vector<SwingEvent> true_swings(const Motion& m, const TruthOptions& p = {});
 
 }  // namespace legwork::wip
