@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <span>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -132,15 +133,9 @@ void check_writable(const Motion& m) {
     if (!q.coeffs().allFinite() || q.norm() < 1e-9) throw Error("write_glb: the motion has an invalid joint rotation");
 }
 
-tinygltf::Model build_model(const Motion& m, const GltfOptions& opt) {
-  const Skeleton& s = m.skeleton;
+// Joint nodes in skeleton order (rest pose TRS), then one tip node per end site.
+void add_joint_nodes(tinygltf::Model& model, const Skeleton& s) {
   const int n = s.joint_count();
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "legwork";
-  BufferBuilder buffers(model);
-
-  // Joint nodes in skeleton order, rest pose TRS.
   for (int j = 0; j < n; ++j) {
     tinygltf::Node node;
     node.name = s.names[static_cast<std::size_t>(j)];
@@ -158,12 +153,12 @@ tinygltf::Model build_model(const Motion& m, const GltfOptions& opt) {
     model.nodes.push_back(tip);
     model.nodes[static_cast<std::size_t>(j)].children.push_back(static_cast<int>(model.nodes.size()) - 1);
   }
+}
 
-  // Skin: the inverse bind matrix of a joint in the rest pose (identity
-  // rotations) is a pure translation by minus its model-space position.
-  Pose rest(s);
-  std::vector<Transform> bind(static_cast<std::size_t>(n));
-  forward_kinematics(s, rest, bind);
+// Skin: the inverse bind matrix of a joint in the rest pose (identity
+// rotations) is a pure translation by minus its model-space position.
+void add_skin(tinygltf::Model& model, BufferBuilder& buffers, const Skeleton& s, std::span<const Transform> bind) {
+  const int n = s.joint_count();
   std::vector<float> ibm;
   ibm.reserve(static_cast<std::size_t>(n) * 16);
   for (int j = 0; j < n; ++j) {
@@ -178,58 +173,58 @@ tinygltf::Model build_model(const Motion& m, const GltfOptions& opt) {
   for (int j = 0; j < n; ++j) skin.joints.push_back(j);
   skin.inverseBindMatrices = buffers.add_floats(ibm, TINYGLTF_TYPE_MAT4, 16);
   model.skins.push_back(skin);
+}
 
-  tinygltf::Scene scene;
-  scene.name = "legwork";
-  scene.nodes.push_back(0);
-
-  if (opt.include_mesh) {
-    BoneMesh mesh;
-    for (int j = 1; j < n; ++j) {
-      const int p = s.parents[static_cast<std::size_t>(j)];
-      mesh.add_bone(bind[static_cast<std::size_t>(p)].translation, bind[static_cast<std::size_t>(j)].translation, p);
-    }
-    for (int j = 0; j < n; ++j)
-      if (s.has_end_site[static_cast<std::size_t>(j)])
-        mesh.add_bone(bind[static_cast<std::size_t>(j)].translation, bind[static_cast<std::size_t>(j)].apply(s.end_sites[static_cast<std::size_t>(j)]), j);
-    if (mesh.vertex_count() > 0) {
-      tinygltf::Material mat;
-      mat.name = "bone";
-      mat.pbrMetallicRoughness.baseColorFactor = {0.8, 0.55, 0.3, 1.0};
-      mat.pbrMetallicRoughness.metallicFactor = 0.0;
-      mat.pbrMetallicRoughness.roughnessFactor = 0.7;
-      model.materials.push_back(mat);
-
-      tinygltf::Primitive prim;
-      prim.mode = TINYGLTF_MODE_TRIANGLES;
-      prim.material = 0;
-      prim.attributes["POSITION"] = buffers.add_floats(mesh.positions, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-      prim.attributes["NORMAL"] = buffers.add_floats(mesh.normals, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER);
-      prim.attributes["JOINTS_0"] = buffers.add_accessor(mesh.joints, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4,
-                                                         mesh.vertex_count(), TINYGLTF_TARGET_ARRAY_BUFFER);
-      prim.attributes["WEIGHTS_0"] = buffers.add_floats(mesh.weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
-      tinygltf::Mesh gm;
-      gm.name = "bones";
-      gm.primitives.push_back(prim);
-      model.meshes.push_back(gm);
-
-      tinygltf::Node mesh_node;
-      mesh_node.name = "bones";
-      mesh_node.mesh = 0;
-      mesh_node.skin = 0;
-      model.nodes.push_back(mesh_node);
-      scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
-    }
+// A skinned bone mesh (one pyramid pair per bone) so viewers show a body.
+void add_bone_mesh(tinygltf::Model& model, BufferBuilder& buffers, const Skeleton& s, std::span<const Transform> bind,
+                   tinygltf::Scene& scene) {
+  const int n = s.joint_count();
+  BoneMesh mesh;
+  for (int j = 1; j < n; ++j) {
+    const int p = s.parents[static_cast<std::size_t>(j)];
+    mesh.add_bone(bind[static_cast<std::size_t>(p)].translation, bind[static_cast<std::size_t>(j)].translation, p);
   }
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
+  for (int j = 0; j < n; ++j)
+    if (s.has_end_site[static_cast<std::size_t>(j)])
+      mesh.add_bone(bind[static_cast<std::size_t>(j)].translation, bind[static_cast<std::size_t>(j)].apply(s.end_sites[static_cast<std::size_t>(j)]), j);
+  if (mesh.vertex_count() == 0) return;
+  tinygltf::Material mat;
+  mat.name = "bone";
+  mat.pbrMetallicRoughness.baseColorFactor = {0.8, 0.55, 0.3, 1.0};
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  mat.pbrMetallicRoughness.roughnessFactor = 0.7;
+  model.materials.push_back(mat);
 
-  // Animation: one time input shared by every sampler.
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = 0;
+  prim.attributes["POSITION"] = buffers.add_floats(mesh.positions, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  prim.attributes["NORMAL"] = buffers.add_floats(mesh.normals, TINYGLTF_TYPE_VEC3, 3, TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["JOINTS_0"] = buffers.add_accessor(mesh.joints, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4,
+                                                     mesh.vertex_count(), TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["WEIGHTS_0"] = buffers.add_floats(mesh.weights, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+  tinygltf::Mesh gm;
+  gm.name = "bones";
+  gm.primitives.push_back(prim);
+  model.meshes.push_back(gm);
+
+  tinygltf::Node mesh_node;
+  mesh_node.name = "bones";
+  mesh_node.mesh = 0;
+  mesh_node.skin = 0;
+  model.nodes.push_back(mesh_node);
+  scene.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+}
+
+// Animation: one time input shared by every sampler; per joint a translation
+// and a rotation channel.
+void add_animation(tinygltf::Model& model, BufferBuilder& buffers, const Motion& m, const std::string& name) {
+  const int n = m.joint_count();
   const int frames = m.frame_count();
   std::vector<float> times(static_cast<std::size_t>(frames));
   for (int f = 0; f < frames; ++f) times[static_cast<std::size_t>(f)] = static_cast<float>(f / m.fps);
   tinygltf::Animation anim;
-  anim.name = opt.animation_name;
+  anim.name = name;
   const int input = buffers.add_floats(times, TINYGLTF_TYPE_SCALAR, 1, 0, true);
   for (int j = 0; j < n; ++j) {
     std::vector<float> tr, rot;
@@ -260,6 +255,26 @@ tinygltf::Model build_model(const Motion& m, const GltfOptions& opt) {
     }
   }
   model.animations.push_back(anim);
+}
+
+tinygltf::Model build_model(const Motion& m, const GltfOptions& opt) {
+  const Skeleton& s = m.skeleton;
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "legwork";
+  BufferBuilder buffers(model);
+  add_joint_nodes(model, s);
+  Pose rest(s);
+  std::vector<Transform> bind(static_cast<std::size_t>(s.joint_count()));
+  forward_kinematics(s, rest, bind);
+  add_skin(model, buffers, s, bind);
+  tinygltf::Scene scene;
+  scene.name = "legwork";
+  scene.nodes.push_back(0);
+  if (opt.include_mesh) add_bone_mesh(model, buffers, s, bind, scene);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  add_animation(model, buffers, m, opt.animation_name);
   model.buffers[0].name = "data";
   return model;
 }
