@@ -156,6 +156,17 @@ struct lw_avatar {
   std::vector<Transform> world;  // scratch for lw_avatar_pose
 };
 
+namespace {
+// A model handle that owns `model`; its output skeleton is exposed as lw_skeleton.
+template <class M>
+lw_status store_model(lw_method method, M model, lw_model** out) {
+  auto* h = make_handle<lw_model>(lw_model{method, std::move(model), {}});
+  h->skeleton.skeleton = std::get<M>(h->model).skeleton();
+  *out = h;
+  return LW_OK;
+}
+}  // namespace
+
 extern "C" {
 
 uint32_t lw_abi_version(void) { return LW_ABI_VERSION; }
@@ -290,10 +301,7 @@ lw_status lw_model_create_accent(const lw_database* db, const lw_accent_settings
         }
       }
     }
-    auto* h = make_handle<lw_model>(lw_model{LW_METHOD_ACCENT, accent::make_model(db->db, cfg), {}});
-    h->skeleton.skeleton = std::get<accent::Model>(h->model).skeleton();
-    *out = h;
-    return LW_OK;
+    return store_model(LW_METHOD_ACCENT, accent::make_model(db->db, cfg), out);
   });
 }
 
@@ -301,10 +309,7 @@ lw_status lw_model_create_ik(const lw_skeleton* skeleton, lw_model** out) {
   if (!skeleton || !out) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_ik: skeleton and out must not be NULL");
   *out = nullptr;
   return guarded("lw_model_create_ik", [&] {
-    auto* h = make_handle<lw_model>(lw_model{LW_METHOD_IK, ik::make_model(skeleton->skeleton, ik::Settings{}), {}});
-    h->skeleton.skeleton = std::get<ik::Model>(h->model).skeleton();
-    *out = h;
-    return LW_OK;
+    return store_model(LW_METHOD_IK, ik::make_model(skeleton->skeleton, ik::Settings{}), out);
   });
 }
 
@@ -312,10 +317,7 @@ lw_status lw_model_create_wip(const lw_skeleton* skeleton, lw_model** out) {
   if (!skeleton || !out) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_wip: skeleton and out must not be NULL");
   *out = nullptr;
   return guarded("lw_model_create_wip", [&] {
-    auto* h = make_handle<lw_model>(lw_model{LW_METHOD_WIP, wip::make_model(skeleton->skeleton, wip::Settings{}), {}});
-    h->skeleton.skeleton = std::get<wip::Model>(h->model).skeleton();
-    *out = h;
-    return LW_OK;
+    return store_model(LW_METHOD_WIP, wip::make_model(skeleton->skeleton, wip::Settings{}), out);
   });
 }
 
@@ -325,10 +327,7 @@ lw_status lw_model_create_walker(const char* keys_json_path, lw_model** out) {
   return guarded("lw_model_create_walker", [&] {
     const walkcycle::WalkFile walk = walkcycle::load_walk(keys_json_path);
     const walkcycle::CycleModel cycle = walkcycle::build_cycle(walk.skeleton, walk.keys);
-    auto* h = make_handle<lw_model>(lw_model{LW_METHOD_WALKER, walkcycle::make_model(cycle, walkcycle::Settings{}), {}});
-    h->skeleton.skeleton = std::get<walkcycle::Model>(h->model).skeleton();
-    *out = h;
-    return LW_OK;
+    return store_model(LW_METHOD_WALKER, walkcycle::make_model(cycle, walkcycle::Settings{}), out);
   });
 }
 
