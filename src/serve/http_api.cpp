@@ -3,6 +3,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/core/measure.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/io/bvh.hpp>
 #include <legwork/serve/protocol.hpp>
@@ -135,7 +136,11 @@ json trial_json(const ApiContext& ctx, const std::string& name, double rate) {
       for (int i = 0; i < 3; ++i) row.push_back(std::round(p[i] * 1e5) / 1e5);
     positions.push_back(std::move(row));
   }
-  return {{"name", name}, {"fps", rate}, {"frames", std::move(jf)},
+  // The subject's standing height: replay clients pass it as user_height so
+  // the avatars are the subject's size (an IK body taller than the headset
+  // height would hang crouched with its feet off the floor).
+  const double height = std::round(measure_body(m.skeleton).standing_height * 1e3) / 1e3;
+  return {{"name", name}, {"fps", rate}, {"height", height}, {"frames", std::move(jf)},
           {"truth", {{"names", m.skeleton.names}, {"parents", m.skeleton.parents}, {"positions", std::move(positions)}}}};
 }
 

@@ -74,9 +74,12 @@ function sessionOptions() {
 
 // (Re)connects the two lane sessions, then plays `getTrial()`'s frames.
 async function play(getTrial) {
-  replay.options = sessionOptions();
-  await replay.connect([$('methodA').value, $('methodB').value]);
   const tr = await getTrial();
+  replay.options = sessionOptions();
+  // A trial carries its subject's standing height: the avatars take it (a
+  // recorded session has none and keeps the avatar's own, or ?height=).
+  if (replay.options.user_height === undefined && tr.height >= 0.5 && tr.height <= 2.5) replay.options.user_height = tr.height;
+  await replay.connect([$('methodA').value, $('methodB').value]);
   state.trial = tr.name;
   state.frames = tr.frames.length;
   $('scrub').max = tr.frames.length - 1;
