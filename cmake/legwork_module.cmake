@@ -51,3 +51,16 @@ function(legwork_tests name)
   gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60
     PROPERTIES ENVIRONMENT "LEGWORK_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
 endfunction()
+
+# legwork_link_modules(TARGET): links every module library that exists (the
+# runtime and offline target of each module) into TARGET, privately. For the
+# CLI, benchmarks and checks that use everything.
+function(legwork_link_modules target)
+  foreach(m IN LISTS LEGWORK_MODULES)
+    foreach(t ${m} ${m}_offline)
+      if(TARGET legwork_${t})
+        target_link_libraries(${target} PRIVATE legwork::${t})
+      endif()
+    endforeach()
+  endforeach()
+endfunction()
