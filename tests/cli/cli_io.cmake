@@ -8,36 +8,32 @@ legwork_cli_fail(convert_glb_unwritable convert ${D}/walking/07_01.bvh ${O}/no-s
 # Bad input must fail with a message a user can act on: each test below checks
 # the message (never a raw "std::bad_alloc", "stod" or "filesystem error").
 # "legwork: error: " is printed only on the failing exit path.
-function(legwork_cli_io_error name regex)
-  add_test(NAME cli.${name} COMMAND legwork ${ARGN})
-  set_tests_properties(cli.${name} PROPERTIES PASS_REGULAR_EXPRESSION "legwork: error: ${regex}")
-endfunction()
 set(IOD ${PROJECT_SOURCE_DIR}/tests/io/data)
 # A directory given as a file (was: "error: std::bad_alloc" where no option
 # validator catches it first; io::read_text_file now says so, see Text.*).
 add_test(NAME cli.info_directory COMMAND legwork info ${O})
 set_tests_properties(cli.info_directory PROPERTIES PASS_REGULAR_EXPRESSION "File is actually a directory: ${O}")
 file(MAKE_DIRECTORY ${O}/folder.bvh ${O}/folder.glb)
-legwork_cli_io_error(convert_output_is_directory "${O}/folder.bvh: is a directory, not a file"
+legwork_cli_error(convert_output_is_directory "error: ${O}/folder.bvh: is a directory, not a file"
                   convert ${D}/walking/07_01.bvh ${O}/folder.bvh)
-legwork_cli_io_error(convert_glb_output_is_directory "${O}/folder.glb: is a directory, not a file"
+legwork_cli_error(convert_glb_output_is_directory "error: ${O}/folder.glb: is a directory, not a file"
                   convert ${D}/walking/07_01.bvh ${O}/folder.glb)
 # A UTF-16 file (was: "found '??H?I?E?R?'").
-legwork_cli_io_error(info_utf16 "${IOD}/utf16.bvh: UTF-16 text; save it as UTF-8" info ${IOD}/utf16.bvh)
+legwork_cli_error(info_utf16 "error: ${IOD}/utf16.bvh: UTF-16 text; save it as UTF-8" info ${IOD}/utf16.bvh)
 # A Latin-1 joint name (was: "[json.exception.type_error.316]" from --json or GLB output, naming no file).
-legwork_cli_io_error(info_json_latin1_joint "${IOD}/latin1_joint.bvh:10: joint name 'LeftUpLeg\\?' is not UTF-8 text"
+legwork_cli_error(info_json_latin1_joint "error: ${IOD}/latin1_joint.bvh:10: joint name 'LeftUpLeg\\?' is not UTF-8 text"
                   info ${IOD}/latin1_joint.bvh --json)
-legwork_cli_io_error(convert_latin1_joint ".*/latin1_joint.bvh:10: joint name" convert ${IOD}/latin1_joint.bvh ${O}/x.glb)
+legwork_cli_error(convert_latin1_joint "error: .*/latin1_joint.bvh:10: joint name" convert ${IOD}/latin1_joint.bvh ${O}/x.glb)
 # Frame Time: 1e300 (was: a SIGSEGV in 'wip --input' after the sample count overflowed).
-legwork_cli_io_error(info_frame_time_1e300 "${IOD}/frame_time_1e300.bvh:187: 'Frame Time: 1e\\+300' is outside 0.0001 to 10 seconds"
+legwork_cli_error(info_frame_time_1e300 "error: ${IOD}/frame_time_1e300.bvh:187: 'Frame Time: 1e\\+300' is outside 0.0001 to 10 seconds"
                   info ${IOD}/frame_time_1e300.bvh)
 # Resampling is bounded before any work (was: a 2.4 GB file using 6.9 GB).
-legwork_cli_io_error(convert_rate_too_high "--rate 1e\\+06 Hz is above the limit of 1000 Hz"
+legwork_cli_error(convert_rate_too_high "error: --rate 1e\\+06 Hz is above the limit of 1000 Hz"
                   convert ${D}/walking/07_01.bvh ${O}/x.bvh --rate 1000000)
-legwork_cli_io_error(convert_missing_output_folder "${O}/no-such-dir/x.bvh: cannot write file \\(No such file or directory\\)"
+legwork_cli_error(convert_missing_output_folder "error: ${O}/no-such-dir/x.bvh: cannot write file \\(No such file or directory\\)"
                   convert ${D}/walking/07_01.bvh ${O}/no-such-dir/x.bvh)
 # A std::filesystem error reaches the user as "<path>: <reason>", not
 # "filesystem error: cannot create directories: Not a directory [...]".
-legwork_cli_io_error(filesystem_error_is_mapped "[^\n]*MANIFEST.tsv/report: Not a directory\n"
+legwork_cli_error(filesystem_error_is_mapped "error: [^\n]*MANIFEST.tsv/report: Not a directory\n"
                   eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --classes walking --quick
                   --out ${PROJECT_SOURCE_DIR}/data/cmu/MANIFEST.tsv/report)
