@@ -132,7 +132,7 @@ def test_step_f1_equals_cli_wip_eval(cli, tmp_path):
             info = wip.Info()
             if wip.update(model, frame, state, pose, info) != core.UpdateStatus.Rejected:
                 infos.append(info)
-        score = legwork.eval.score_steps(legwork.eval.detected_swings(infos), wip.true_swings(motion), 0.5,
+        score = legwork.eval.score_steps(legwork.eval.detected_swings(infos), wip.foot_swings(motion), 0.5,
                                          motion.duration - 0.1)
         cli_steps = trial["lenient_overlap"]  # overlap score; strict_200ms is the headline
         assert (score.true_steps, score.detected, score.matched) == (

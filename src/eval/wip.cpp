@@ -166,10 +166,10 @@ StrictScore combine(std::span<const StrictScore> scores) {
   return c;
 }
 
-std::vector<StillSegment> still_segments(const Motion& m, const std::string& name, const wip::TruthOptions& truth,
+std::vector<StillSegment> still_segments(const Motion& m, const std::string& name, const ContactOptions& truth,
                                          std::span<const SwingEvent> detected, double min_duration, double t_begin,
                                          double t_end) {
-  const auto contact = wip::true_contacts(m, truth);
+  const auto contact = foot_contacts(m, truth);
   std::vector<StillSegment> out;
   const int n = m.frame_count();
   for (int f = 0; f < n;) {
@@ -254,7 +254,7 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
   const double rate = opt.settings.signal.rate;
   const wip::Model model = wip::make_model(trial.skeleton, opt.settings);
   e.leg_length = model.leg_length();
-  e.truth = wip::true_swings(trial, opt.truth);
+  e.truth = foot_swings(trial, opt.truth);
   wip::RunOptions ro;
   ro.calibrate = false;  // real walking has no still period: rolling floor
   ro.keep_poses = false;
