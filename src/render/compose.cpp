@@ -4,6 +4,7 @@
 #include <legwork/core/contacts.hpp>
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/io/progress.hpp>
 
 #include <unistd.h>
 
@@ -119,6 +120,7 @@ void render_slide_video(const Skeleton& skel, const SlideVideo& v, const std::st
   cam.bounds_max = Vec3(0.5, 2.0, last_key * v.spacing + 0.7);
   const int frames = static_cast<int>(std::lround(v.duration * 4));  // quarter-frame steps, slowed down
   Pose pose(skel);
+  const auto progress = io::progress_printer("sliding video: frame");
   for (int f = 0; f <= frames; ++f) {
     const double t = v.duration * f / frames;
     int k = 0;
@@ -134,8 +136,7 @@ void render_slide_video(const Skeleton& skel, const SlideVideo& v, const std::st
     s.title = title;
     char name[32];
     std::snprintf(name, sizeof name, "f%05d.png", f);
-    std::fprintf(stderr, "\rsliding video: frame %d/%d", f + 1, frames + 1);
-    if (f == frames) std::fprintf(stderr, "\n");
+    progress(f + 1, frames + 1, "");
     render_scene(s, cam, (dir / name).string());
   }
   const std::string cmd = "ffmpeg -loglevel error -y -framerate 24 -i '" + (dir / "f%05d.png").string() +
