@@ -50,7 +50,7 @@ void register_build(CLI::App& parent) {
       for (std::size_t i = 0; i < 3; ++i) a->cfg.group_weight[i] = std::stod(w[i]);
     }
     const auto t0 = Clock::now();
-    auto trials = load_trials(a->data, split_commas(a->classes), a->exclude, progress_bar("reading "));
+    auto trials = load_trials(a->data, split_commas(a->classes), a->exclude, progress_bar("reading"));
     if (trials.empty()) throw Error("no trials selected in '" + a->data + "'");
     const double read_s = seconds_since(t0);
     BuildReport report;
