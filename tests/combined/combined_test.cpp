@@ -4,6 +4,7 @@
 // popping; the per-frame contract (bad time, no allocation).
 #include <legwork/combined/combined.hpp>
 
+#include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
 
 #include "accent/accent_testing.hpp"
@@ -42,7 +43,9 @@ double angle(const Quat& a, const Quat& b) { return a.angularDistance(b); }
 TEST(Combined, LegsComeFromWalkingInPlaceAndTheRestFromTheUpperMethod) {
   const Skeleton& skel = testdata::sample_skeleton();
   const auto frames = walk_frames();
-  const combined::Model model = combined::make_model(skel, settings_at_rate());
+  combined::Settings settings = settings_at_rate();
+  settings.foot_lock = false;  // walking-in-place's legs exactly
+  const combined::Model model = combined::make_model(skel, settings);
   combined::State state(model);
   // The two sources alone, on the same frames.
   ik::State ik_state(*model.ik());
@@ -66,6 +69,42 @@ TEST(Combined, LegsComeFromWalkingInPlaceAndTheRestFromTheUpperMethod) {
   EXPECT_GE(full_weight, static_cast<int>(frames.size()) - static_cast<int>(std::ceil(0.3 * kRate)) - 1)
       << "the legs reach walking-in-place within blend_time";
   EXPECT_EQ(model.leg_joints().size(), 8u);  // CMU: LeftUpLeg (the hip role), LeftLeg, LeftFoot, LeftToeBase; and right
+}
+
+TEST(Combined, ALockedFootStaysWhereItTouchedDown) {
+  const Skeleton& skel = testdata::sample_skeleton();
+  const auto frames = walk_frames("cmu/bvh/walking/16_15.bvh");
+  const combined::Model model = combined::make_model(skel, settings_at_rate());
+  combined::State state(model);
+  Pose pose(model.skeleton());
+  std::vector<Transform> g(static_cast<std::size_t>(skel.joint_count()));
+  const int ankles[2] = {skel.roles[Role::LeftAnkle], skel.roles[Role::RightAnkle]};
+  std::array<Vec3, 2> held{Vec3::Zero(), Vec3::Zero()};
+  std::array<bool, 2> was{false, false};
+  double worst = 0, travel = 0;
+  int locked_frames = 0;
+  Vec3 root0 = Vec3::Zero();
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    combined::Info info;
+    combined::update(model, frames[i], state, pose.ref(), &info);
+    forward_kinematics(skel, pose, g);
+    if (i == 0) root0 = pose.translations[0];
+    travel = (pose.translations[0] - root0).norm();
+    for (int f = 0; f < 2; ++f) {
+      const Vec3 a = g[static_cast<std::size_t>(ankles[f])].translation;
+      if (info.foot_locked[f] && was[f] && info.legs_weight == 1.0) {
+        worst = std::max(worst, (a - held[f]).norm());
+        ++locked_frames;
+      }
+      held[f] = a;
+      was[f] = info.foot_locked[f];
+    }
+  }
+  std::printf("[combined] 16_15: %d locked foot-frames, root travelled %.2f m, a held ankle moved at most %.2f mm per frame\n",
+              locked_frames, travel, worst * 1e3);
+  EXPECT_GT(travel, 1.0);
+  EXPECT_GT(locked_frames, static_cast<int>(frames.size()) / 2);
+  EXPECT_LT(worst, 0.005) << "a held ankle moves only when re-planted (leg out of reach)";
 }
 
 TEST(Combined, LosingTheFeetFadesTheLegsInsteadOfPopping) {

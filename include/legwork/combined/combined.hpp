@@ -16,8 +16,10 @@
 #include <legwork/core/motion.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/ik/full_body.hpp>
+#include <legwork/ik/two_bone.hpp>
 #include <legwork/wip/wip.hpp>
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -25,6 +27,12 @@ namespace legwork::combined {
 
 struct Settings {
   double blend_time = 0.3;  // s for the legs to fade fully between the two sources (> 0)
+  // Foot locking: while walking-in-place has a foot down, that ankle is held
+  // where it touched down (two-bone IK on the leg) as the root travels with the
+  // head; released over unlock_time when the foot lifts or when the leg can no
+  // longer reach it (then held again where it is once the release has faded).
+  bool foot_lock = true;
+  double unlock_time = 0.1;  // s (> 0)
   accent::Settings accent;  // the upper body with a database
   ik::Settings ik;          // the upper body without one
   wip::Settings wip;        // the legs
@@ -41,6 +49,7 @@ class Model {
   const wip::Model& wip() const { return *wip_; }
   // Joints driven by the legs source: every joint below a hip, hips included.
   const std::vector<int>& leg_joints() const { return leg_joints_; }
+  const ik::TwoBoneChain& leg(int foot) const { return legs_[static_cast<std::size_t>(foot)]; }
 
  private:
   friend Model make_model(const accent::Database&, const Settings&);
@@ -51,6 +60,7 @@ class Model {
   std::optional<ik::Model> ik_;
   std::optional<wip::Model> wip_;
   std::vector<int> leg_joints_;
+  std::array<ik::TwoBoneChain, 2> legs_{};
 };
 
 // Upper body by accentuation over `db` (which must outlive the model), at
@@ -67,7 +77,12 @@ struct State {
   std::optional<ik::State> ik;
   wip::State wip;
   double legs_weight = 0;  // 0 = the upper method's own legs, 1 = walking-in-place's
-  Pose legs;               // scratch: walking-in-place's pose (no meaning between frames)
+  std::array<bool, 2> locked{false, false};    // foot held where it touched down
+  std::array<bool, 2> released{false, false};  // let go (out of reach) until the release has faded
+  std::array<Vec3, 2> lock_at{Vec3::Zero(), Vec3::Zero()};  // world position of the held ankle
+  std::array<double, 2> lock_weight{0, 0};                  // 0..1 share of the hold in the leg
+  Pose legs;                          // scratch: walking-in-place's pose (no meaning between frames)
+  std::vector<Transform> model_space;  // scratch: FK of the output
 };
 void reset(const Model& model, State& state);
 
@@ -78,6 +93,7 @@ struct Info {
   double legs_weight = 0;                 // share of walking-in-place in the leg joints
   bool walking = false;
   double speed = 0, distance = 0, heading = 0;  // walking-in-place: m/s, m, radians (0 = +z)
+  std::array<bool, 2> foot_locked{false, false};
   accent::MatchStatus match = accent::MatchStatus::Matched;  // with a database
 };
 
