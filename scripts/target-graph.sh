@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Draws the dependency graph of legwork's library targets (docs/targets.svg)
 # from CMake's own graph: runtime targets (per-frame code) depend only on
-# legwork::core and legwork::ik; offline targets on anything. Needs graphviz.
+# legwork::core and legwork::ik (combined: also wip and accent); offline targets on anything. Needs graphviz.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build-tests}
@@ -15,7 +15,7 @@ cp "$out/CMakeGraphVizOptions.cmake" "$BUILD/"
 cmake --graphviz="$out/targets.dot" "$BUILD" >/dev/null
 rm -f "$BUILD/CMakeGraphVizOptions.cmake"
 # Colour runtime targets green, offline ones grey.
-sed -E -e 's/label = "legwork_(core|ik|wip|walkcycle|accent)\\n\(legwork::[a-z_]+\)"/label = "legwork::\1\\nruntime", style = filled, fillcolor = "#c8e6c9"/' \
+sed -E -e 's/label = "legwork_(core|ik|wip|walkcycle|accent|combined)\\n\(legwork::[a-z_]+\)"/label = "legwork::\1\\nruntime", style = filled, fillcolor = "#c8e6c9"/' \
        -e 's/label = "legwork_c\\n\(legwork::c\)"/label = "liblegwork.so\\n(legwork::c, C API)", style = filled, fillcolor = "#bbdefb"/' \
        -e 's/label = "legwork_([a-z_]+)\\n\(legwork::[a-z_]+\)"/label = "legwork::\1\\noffline", style = filled, fillcolor = "#eeeeee"/' \
        -e '/subgraph clusterLegend/,/^}/d' \
