@@ -1,4 +1,6 @@
 #include <legwork/walkcycle/offline/walk.hpp>
+
+#include "root_motion.hpp"
 #include <legwork/core/rotation.hpp>
 
 #include <legwork/core/interpolate.hpp>
@@ -141,6 +143,7 @@ class PathWalk {
   void place(int f, double theta, const FootPoints& cur, const FrameLabel& label);
   void record(int f, double theta, const FootPoints& cur, const FrameLabel& label);
   void finish();
+  void measure_deviation();
   void measure_end();
   bool plan_final_steps(int k, const Vec3& start, double t_here);
   double solve_amplitude(double distance, int stop, Vec3* travel) const;
@@ -166,6 +169,13 @@ class PathWalk {
   Vec3 c = Vec3::Zero();
   double theta_prev = 0;
   int last_step_recorded = -1;
+  std::vector<Vec3> offsets;  // c per frame (smooth root)
+  struct Track {
+    int segment = 0;
+    double s = 0;
+    bool stopping = false;
+  };
+  std::vector<Track> tracks;  // path tracking per frame (deviation)
 };
 
 PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o, const FinalTravel& final_steps,
@@ -176,13 +186,18 @@ PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o,
   half = m.half_cycle();
   r.step_length = step_length(m);
   r.path_length = path.length();
+  r.root = opt.root;
   L = r.step_length;
   if (opt.steps == 0) throw Error("walk: steps must be at least 1 (a walk of 0 steps is the standing pose)");
+  if (!(opt.soft_reach > 0.5 && opt.soft_reach <= 1.0))
+    throw Error("walk: soft_reach " + std::to_string(opt.soft_reach) + " is out of range (0.5, 1]: the fraction of a leg's length it may straighten to");
   if (opt.steps < 0 && L < 0.01)
     throw Error("the walk advances only " + std::to_string(L * 1000) +
                 " mm per step; its key poses do not move the stance foot backwards, so it cannot follow a path");
   lookahead = std::max(opt.lookahead_steps * L, 0.05);  // lead of the heading decisions
-  hold = half / 2;
+  // The final hold: a quarter cycle; with the smooth root one step, so the
+  // averaged root reaches the end of the walk while the body stands.
+  hold = opt.root == RootMotion::Smooth ? half : half / 2;
   stop_travel = 0.5 * L;  // (without a stop, the walk just ends)
   target = {std::atan2(path.tangent(0).x(), path.tangent(0).z())};
   stop_step = opt.steps > 0 ? opt.steps - 1 : -1;  // the stop step is the last of the `steps`
@@ -333,6 +348,8 @@ void PathWalk::place(int f, double theta, const FootPoints& cur, const FrameLabe
   if (f >= out.frame_count()) out.resize(2 * out.frame_count());
   out.set_frame(f, world);
   written = f + 1;
+  if (offsets.size() <= static_cast<std::size_t>(f)) offsets.resize(static_cast<std::size_t>(f) + 1);
+  offsets[static_cast<std::size_t>(f)] = c;
 }
 
 // Per-frame results: heading, label, footsteps, deviation from the path.
@@ -350,10 +367,17 @@ void PathWalk::record(int f, double theta, const FootPoints& cur, const FrameLab
     fs.frame = f;
     r.footsteps.push_back(fs);
   }
-  if (!label.stopping) {  // (past the end, distance to the end point is not deviation)
+  tracks.push_back({seg_track, s_track, label.stopping});
+}
+
+// Largest root distance from the path (forward-only tracking as walked).
+void PathWalk::measure_deviation() {
+  for (int f = 0; f < r.motion.frame_count(); ++f) {
+    const Track& t = tracks[static_cast<std::size_t>(f)];
+    if (t.stopping) continue;  // (past the end, distance to the end point is not deviation)
     double dist = 0;
-    int seg = seg_track;
-    path.project(world.translations[0], std::max(0, seg_track - 2), s_track + 3 * L + lookahead, &seg, &dist);
+    int seg = t.segment;
+    path.project(r.motion.frame(f).translations[0], std::max(0, t.segment - 2), t.s + 3 * L + lookahead, &seg, &dist);
     r.max_path_deviation = std::max(r.max_path_deviation, dist);
   }
 }
@@ -373,6 +397,11 @@ void PathWalk::finish() {
   r.steps = r.labels.empty() ? 0 : r.labels.back().step + 1;
   r.turning = target.back() - target.front();
   for (std::size_t i = 1; i < target.size(); ++i) r.turning_abs += std::abs(target[i] - target[i - 1]);
+  if (opt.root == RootMotion::Smooth) {
+    offsets.resize(static_cast<std::size_t>(written));
+    smooth_root_motion(m, offsets, half / dt, opt, r);
+  }
+  measure_deviation();
   measure_end();
 }
 

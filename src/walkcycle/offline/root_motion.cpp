@@ -1,0 +1,244 @@
+// Smooth root motion with the feet held by leg IK (see root_motion.hpp).
+#include "root_motion.hpp"
+
+#include <legwork/core/fk.hpp>
+#include <legwork/core/rotation.hpp>
+#include <legwork/ik/two_bone.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace legwork::walkcycle {
+
+namespace {
+
+// The series as a function of real frame x: linear between frames, straight
+// lines at the end velocities beyond the ends.
+struct Extended {
+  std::span<const Vec3> q;
+  Vec3 v_first = Vec3::Zero(), v_last = Vec3::Zero();
+  Extended(std::span<const Vec3> series, double width) : q(series) {
+    const double last = static_cast<double>(q.size()) - 1;
+    const double w = std::min(width, last);
+    if (w > 0) {
+      v_first = (at(w) - q.front()) / w;
+      v_last = (q.back() - at(last - w)) / w;
+    }
+  }
+  Vec3 at(double x) const {
+    const double last = static_cast<double>(q.size()) - 1;
+    if (x <= 0) return q.front() + x * v_first;
+    if (x >= last) return q.back() + (x - last) * v_last;
+    const auto i = static_cast<std::size_t>(x);
+    const double u = x - static_cast<double>(i);
+    return (1 - u) * q[i] + u * q[i + 1];
+  }
+  // Exact integral over [a, b] (trapezoids between whole frames).
+  Vec3 integral(double a, double b) const {
+    Vec3 sum = Vec3::Zero();
+    double x = a;
+    Vec3 fx = at(a);
+    while (x < b) {
+      const double next = std::min(b, std::floor(x) + 1.0);
+      const Vec3 fn = at(next);
+      sum += 0.5 * (next - x) * (fx + fn);
+      x = next;
+      fx = fn;
+    }
+    return sum;
+  }
+};
+
+struct LegIk {
+  ik::TwoBoneChain chain;
+  double length = 0;  // thigh + shin, metres
+};
+
+LegIk leg_of(const Skeleton& s, bool left, std::span<const Transform> g) {
+  LegIk leg{left ? ik::left_leg(s) : ik::right_leg(s), 0.0};
+  auto pos = [&](int j) { return g[static_cast<std::size_t>(j)].translation; };
+  leg.length = (pos(leg.chain.mid) - pos(leg.chain.root)).norm() + (pos(leg.chain.end) - pos(leg.chain.mid)).norm();
+  return leg;
+}
+
+// Where the leg can put the ankle: the target pulled towards the hip so the
+// leg never straightens fully. Up to `soft` of its length the target is kept;
+// beyond, the distance approaches the full length exponentially (the knee
+// straightens smoothly instead of snapping). Returns the distance asked for,
+// as a fraction of the leg's length.
+double soften_reach(const Vec3& hip, const LegIk& leg, double soft, Vec3& target) {
+  const Vec3 d = target - hip;
+  const double dist = d.norm(), start = soft * leg.length, room = leg.length - start;
+  if (dist > start && room > 0) {
+    const double reached = start + room * (1.0 - std::exp(-(dist - start) / room));
+    target = hip + d * (reached / dist);
+  }
+  return leg.length > 0 ? dist / leg.length : 0.0;
+}
+
+// A foot whose ankle is out of the leg's reach rolls on the floor instead of
+// dragging: the stance foot about its ball once it pivots on the ball (the
+// heel rises; while it pivots on the heel it does not roll: rolling would
+// move the ball it is about to pivot on); the other foot about its ball when
+// it trails the hip (the heel rises, as at toe-off), about its heel when it
+// leads (the toes rise, as at heel strike).
+// The rolling point stays where it was; the angle is solved by bisection so
+// the ankle comes back to `soft` of the leg's length (at most 60 degrees).
+// `ankle` is updated in place; the toe keeps its world rotation (it stays
+// flat when the heel rises). Returns the angle, radians.
+double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Vec3& forward, const Pivot* stance,
+                 Transform& ankle) {
+  const Vec3 to_ankle = ankle.translation - hip;
+  if (!(to_ankle.norm() > reach) || (stance && *stance == Pivot::Heel)) return 0.0;
+  const bool on_ball = stance || to_ankle.dot(forward) < 0;
+  const Vec3 pivot = ankle.apply(on_ball ? foot.ball_local : foot.heel_local);
+  const Vec3 axis = Vec3::UnitY().cross(forward).normalized();  // the foot's side axis
+  auto ankle_at = [&](double a) -> Vec3 { return pivot + Quat(Eigen::AngleAxisd(a, axis)) * (ankle.translation - pivot); };
+  // The direction that brings the ankle closer to the hip.
+  const double sign = (ankle_at(1e-3) - hip).norm() < (ankle_at(-1e-3) - hip).norm() ? 1.0 : -1.0;
+  // The first angle (1-degree scan, then bisection) that brings the ankle
+  // within reach; if none does, the closest one.
+  auto dist = [&](double a) { return (ankle_at(sign * a) - hip).norm(); };
+  double lo = 0, hi = 0, best = 0, best_d = to_ankle.norm();
+  bool found = false;
+  for (int k = 1; k <= 60 && !found; ++k) {
+    const double a = deg2rad(k), d = dist(a);
+    if (d <= reach) found = true, hi = a, lo = deg2rad(k - 1);
+    if (d < best_d) best_d = d, best = a;
+  }
+  if (!found) hi = best;
+  for (int i = 0; i < 40 && found; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (dist(mid) > reach ? lo : hi) = mid;
+  }
+  const double angle = sign * hi;
+  const Quat q(Eigen::AngleAxisd(angle, axis));
+  ankle.translation = ankle_at(angle);
+  ankle.rotation = (q * ankle.rotation).normalized();
+  return angle;
+}
+
+}  // namespace
+
+std::vector<Vec3> window_average(std::span<const Vec3> q, double width) {
+  std::vector<Vec3> out(q.begin(), q.end());
+  if (q.size() < 2 || !(width > 0)) return out;
+  const Extended e(q, width);
+  for (std::size_t f = 0; f < q.size(); ++f) {
+    const double x = static_cast<double>(f);
+    out[f] = e.integral(x - 0.5 * width, x + 0.5 * width) / width;
+  }
+  return out;
+}
+
+namespace {
+
+// One frame of the smooth root: the pivoting pose (in `pose`) moved by
+// `shift` (horizontal, plus a pelvis drop in y), each foot rolled if out of
+// reach, both legs solved. Returns the pelvis drop that would bring every
+// ankle within reach without the soft limit (0 if none is needed).
+struct FrameSolver {
+  const CycleModel& m;
+  const WalkOptions& opt;
+  std::vector<Transform> before, g;
+  LegIk legs[2];
+  FrameSolver(const CycleModel& model, const WalkOptions& o, const Motion& motion)
+      : m(model), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()) {
+    forward_kinematics(motion.skeleton, motion.frame(0), before);
+    legs[0] = leg_of(motion.skeleton, false, before);
+    legs[1] = leg_of(motion.skeleton, true, before);
+  }
+  double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r);
+};
+
+// Pelvis drop that brings `hip` within `reach` of `target`.
+double drop_to_reach(const Vec3& hip, const Vec3& target, double reach) {
+  const double side = horizontal(target - hip).norm(), above = hip.y() - target.y();
+  if (side >= reach) return std::max(0.0, above);
+  return std::max(0.0, above - std::sqrt(reach * reach - side * side));
+}
+
+double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r) {
+  const Skeleton& s = m.skeleton;
+  forward_kinematics(s, pose, before);
+  pose.translations[0] += shift;
+  forward_kinematics(s, pose, g);
+  bool limited = false;
+  double drop = 0;
+  const Vec3 forward = yaw_rotation(heading) * Vec3::UnitZ();
+  for (int side = 0; side < 2; ++side) {
+    const LegIk& leg = legs[side];
+    const FootPivots& foot = m.foot(side == 1);
+    const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
+    Transform ankle = before[static_cast<std::size_t>(leg.chain.end)];
+    // As straight as the keys had it, or soft_reach, whichever is more.
+    const double keyed = (ankle.translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
+    const double soft = std::max(opt.soft_reach, std::min(keyed, 0.9999));
+    const bool stance = label.left_stance == (side == 1);
+    const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &label.pivot : nullptr, ankle);
+    drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
+    ik::TwoBoneTarget t;
+    t.position = ankle.translation;
+    t.rotation = ankle.rotation;
+    t.rotation_weight = 1.0;
+    // The knee points where it did, carried along with the pelvis.
+    t.hint = before[static_cast<std::size_t>(leg.chain.mid)].translation + shift;
+    const double reach = soften_reach(hip, leg, soft, t.position);
+    if (!r) continue;
+    ik::solve_two_bone(s, leg.chain, t, pose, g);
+    if (roll != 0.0 && foot.toe >= 0)  // the toe keeps its world rotation (flat on the floor)
+      pose.rotations[static_cast<std::size_t>(foot.toe)] =
+          (t.rotation.conjugate() * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
+    r->foot_roll_max = std::max(r->foot_roll_max, std::abs(roll));
+    r->leg_reach_max = std::max(r->leg_reach_max, reach);
+    limited = limited || reach > soft + 1e-6;
+  }
+  if (r) r->reach_limited_frames += limited;
+  return drop;
+}
+
+// Largest value within `half_width` frames of each frame.
+std::vector<double> running_max(const std::vector<double>& v, int half_width) {
+  std::vector<double> out(v.size(), 0.0);
+  const int n = static_cast<int>(v.size());
+  for (int f = 0; f < n; ++f)
+    for (int k = std::max(0, f - half_width); k <= std::min(n - 1, f + half_width); ++k)
+      out[static_cast<std::size_t>(f)] = std::max(out[static_cast<std::size_t>(f)], v[static_cast<std::size_t>(k)]);
+  return out;
+}
+
+}  // namespace
+
+void smooth_root_motion(const CycleModel& m, std::span<const Vec3> floor_offset, double step_frames,
+                        const WalkOptions& opt, WalkResult& r) {
+  Motion& motion = r.motion;
+  const int n = motion.frame_count();
+  if (n < 2 || static_cast<int>(floor_offset.size()) != n) return;
+  const std::vector<Vec3> smooth = window_average(window_average(floor_offset, step_frames), step_frames);
+  std::vector<Vec3> shift(static_cast<std::size_t>(n));
+  for (std::size_t f = 0; f < shift.size(); ++f) shift[f] = horizontal(smooth[f] - floor_offset[f]);
+  FrameSolver solver(m, opt, motion);
+  // First pass: where the legs, rolled, still cannot reach, the pelvis must
+  // drop; the drop is spread smoothly (running maximum over a quarter step,
+  // averaged over as much: never less than needed).
+  std::vector<double> drop(static_cast<std::size_t>(n));
+  Pose scratch(m.skeleton);
+  for (int f = 0; f < n; ++f) {
+    scratch.rotations.assign(motion.frame(f).rotations.begin(), motion.frame(f).rotations.end());
+    scratch.translations.assign(motion.frame(f).translations.begin(), motion.frame(f).translations.end());
+    drop[static_cast<std::size_t>(f)] = solver.solve(scratch.ref(), shift[static_cast<std::size_t>(f)], r.heading[static_cast<std::size_t>(f)],
+                                                 r.labels[static_cast<std::size_t>(f)], nullptr);
+  }
+  const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / 4)));
+  const std::vector<double> envelope = running_max(drop, quarter);
+  std::vector<Vec3> lowered(static_cast<std::size_t>(n));
+  for (std::size_t f = 0; f < lowered.size(); ++f) lowered[f] = Vec3(0, -envelope[f], 0);
+  lowered = window_average(lowered, 2.0 * quarter);
+  for (int f = 0; f < n; ++f) {
+    const Vec3 d = shift[static_cast<std::size_t>(f)] + lowered[static_cast<std::size_t>(f)];
+    r.pelvis_drop_max = std::max(r.pelvis_drop_max, -lowered[static_cast<std::size_t>(f)].y());
+    solver.solve(motion.frame(f), d, r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)], &r);
+  }
+}
+
+}  // namespace legwork::walkcycle
