@@ -17,12 +17,12 @@ namespace {
 struct Extended {
   std::span<const Vec3> q;
   Vec3 v_first = Vec3::Zero(), v_last = Vec3::Zero();
-  Extended(std::span<const Vec3> series, double width) : q(series) {
+  Extended(std::span<const Vec3> series, double width, bool rest_at_end) : q(series) {
     const double last = static_cast<double>(q.size()) - 1;
     const double w = std::min(width, last);
     if (w > 0) {
       v_first = (at(w) - q.front()) / w;
-      v_last = (q.back() - at(last - w)) / w;
+      if (!rest_at_end) v_last = (q.back() - at(last - w)) / w;
     }
   }
   Vec3 at(double x) const {
@@ -120,10 +120,10 @@ double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Ve
 
 }  // namespace
 
-std::vector<Vec3> window_average(std::span<const Vec3> q, double width) {
+std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool rest_at_end) {
   std::vector<Vec3> out(q.begin(), q.end());
   if (q.size() < 2 || !(width > 0)) return out;
-  const Extended e(q, width);
+  const Extended e(q, width, rest_at_end);
   for (std::size_t f = 0; f < q.size(); ++f) {
     const double x = static_cast<double>(f);
     out[f] = e.integral(x - 0.5 * width, x + 0.5 * width) / width;
@@ -173,7 +173,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     Transform ankle = before[static_cast<std::size_t>(leg.chain.end)];
     // As straight as the keys had it, or soft_reach, whichever is more.
     const double keyed = (ankle.translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
-    const double soft = std::max(opt.soft_reach, std::min(keyed, 0.9999));
+    const double soft = std::max(opt.soft_reach, keyed);
     const bool stance = label.left_stance == (side == 1);
     const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &label.pivot : nullptr, ankle);
     drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
@@ -214,7 +214,8 @@ void smooth_root_motion(const CycleModel& m, std::span<const Vec3> floor_offset,
   Motion& motion = r.motion;
   const int n = motion.frame_count();
   if (n < 2 || static_cast<int>(floor_offset.size()) != n) return;
-  const std::vector<Vec3> smooth = window_average(window_average(floor_offset, step_frames), step_frames);
+  const std::vector<Vec3> smooth =
+      window_average(window_average(floor_offset, step_frames, opt.stop), step_frames, opt.stop);
   std::vector<Vec3> shift(static_cast<std::size_t>(n));
   for (std::size_t f = 0; f < shift.size(); ++f) shift[f] = horizontal(smooth[f] - floor_offset[f]);
   FrameSolver solver(m, opt, motion);
@@ -233,7 +234,7 @@ void smooth_root_motion(const CycleModel& m, std::span<const Vec3> floor_offset,
   const std::vector<double> envelope = running_max(drop, quarter);
   std::vector<Vec3> lowered(static_cast<std::size_t>(n));
   for (std::size_t f = 0; f < lowered.size(); ++f) lowered[f] = Vec3(0, -envelope[f], 0);
-  lowered = window_average(lowered, 2.0 * quarter);
+  lowered = window_average(lowered, 2.0 * quarter, true);
   for (int f = 0; f < n; ++f) {
     const Vec3 d = shift[static_cast<std::size_t>(f)] + lowered[static_cast<std::size_t>(f)];
     r.pelvis_drop_max = std::max(r.pelvis_drop_max, -lowered[static_cast<std::size_t>(f)].y());

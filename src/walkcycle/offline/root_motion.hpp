@@ -12,9 +12,10 @@ namespace legwork::walkcycle {
 // Average of the piecewise-linear series `q` (one value per frame) over a
 // window of `width` frames centred on each frame, the series extended beyond
 // its ends by straight lines at its mean velocity over the first / last
-// `width` frames. A window of exactly one step removes everything that
-// repeats every step (the lunge and stall of a pivoting root).
-std::vector<Vec3> window_average(std::span<const Vec3> q, double width);
+// `width` frames (at the end: held still if `rest_at_end`). A window of
+// exactly one step removes everything that repeats every step (the lunge and
+// stall of a pivoting root).
+std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool rest_at_end);
 
 // Replaces the pivoting root of `r.motion` by a smooth one and solves both
 // legs by two-bone IK so each ankle stays where the pivoting walk put it (in
