@@ -46,6 +46,7 @@ struct WalkArgs {
   std::string svg_path;
   double straight = 0;
   int steps = -1;
+  std::string root = "smooth";
   std::string out;
   std::string cycle_out;
   std::string sheet;
@@ -181,6 +182,7 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkArgs& a, const std::
   std::unique_ptr<wc::Path> path;
   wc::WalkOptions wo;
   wo.fps = a.fps;
+  wo.root = a.root == "pivot" ? wc::RootMotion::Pivot : wc::RootMotion::Smooth;
   if (!a.path.empty()) path = std::make_unique<wc::Path>(wc::read_path(a.path));
   else if (!a.svg_path.empty()) path = std::make_unique<wc::Path>(wc::parse_svg_path(a.svg_path, "--svg-path"));
   else if (a.straight > 0) path = std::make_unique<wc::Path>(wc::straight_path(a.straight));
@@ -323,6 +325,9 @@ void register_walkcycle(CLI::App& app) {
   cmd->add_option("--straight", a->straight, "walk this many metres straight ahead (+z)")->check(CLI::PositiveNumber);
   cmd->add_option("--steps", a->steps, "walk exactly this many steps straight ahead, the stop step included (1 to 100000)")
       ->check(CLI::Range(1, 100000));
+  cmd->add_option("--root", a->root, "smooth: the root travels evenly, legs by IK (default); pivot: document 001's root, "
+                                     "pushed so the stance foot stays put (lunges and stalls)")
+      ->check(CLI::IsMember({"smooth", "pivot"}));
   cmd->add_option("--out,-o", a->out, "the walk (or, with no path, the in-place cycle): .bvh or .glb");
   cmd->add_option("--cycle-out", a->cycle_out, "the in-place loop (frame N = frame 0 left out): .bvh or .glb");
   cmd->add_option("--sheet", a->sheet, "key-pose sheet: the five poses of a step side by side (.png or .svg)");
