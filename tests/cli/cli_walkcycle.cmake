@@ -48,3 +48,9 @@ legwork_cli_error(walkcycle_report_short "path 0\\.30 m, .*end 0\\.0[0-4][0-9] m
                   walkcycle --keys ${W}/normal.json --straight 0.3 --report ${O}/wc_short.json)
 legwork_cli_error(walkcycle_report_curve "end 0\\.0[0-4][0-9] m from the path's end, facing -?[01]\\.[0-9] deg off its end tangent"
                   walkcycle --keys ${W}/sneak.json --path ${W}/paths/s-curve.json --report ${O}/wc_scurve.json)
+# Root motion (issue 14, item 1): smooth by default, document 001's pivoting root on request; both printed.
+legwork_cli_error(walkcycle_root_smooth "root: smooth \\(legs by IK\\), speed [0-9.]+-1\\.[34][0-9] m/s \\(mean 1\\.[34][0-9]\\), peak acceleration [0-9]\\.[0-9] m/s\\^2"
+                  walkcycle --keys ${W}/normal.json --steps 10 --report ${O}/wc_root_smooth.json)
+legwork_cli_error(walkcycle_root_pivot "root: pivoting \\(document 001\\), speed 0\\.[0-9]+-[23]\\.[0-9]+ m/s \\(mean [0-9.]+\\), peak acceleration [1-9][0-9]\\.[0-9] m/s\\^2"
+                  walkcycle --keys ${W}/normal.json --steps 10 --root pivot --report ${O}/wc_root_pivot.json)
+legwork_cli_error(walkcycle_root_bad "--root: bogus not in \\{smooth,pivot\\}" walkcycle --keys ${W}/normal.json --steps 3 --root bogus --out ${O}/x.bvh)
