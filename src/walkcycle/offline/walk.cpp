@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 
 namespace legwork::walkcycle {
 
@@ -132,7 +133,11 @@ class PathWalk {
  public:
   PathWalk(const CycleModel& m, const Path& path, const WalkOptions& opt, const FinalTravel& final_steps,
            const Vec3& aim_offset = Vec3::Zero());
-  WalkResult run();
+  // Walks the plan (the pivoting root); planned() has where it ended.
+  void run();
+  const WalkResult& planned() const { return r; }
+  // The walk: the smooth root applied if asked, deviation and end measured.
+  WalkResult take();
 
  private:
   double heading_at(double t) const;
@@ -397,11 +402,6 @@ void PathWalk::finish() {
   r.steps = r.labels.empty() ? 0 : r.labels.back().step + 1;
   r.turning = target.back() - target.front();
   for (std::size_t i = 1; i < target.size(); ++i) r.turning_abs += std::abs(target[i] - target[i - 1]);
-  if (opt.root == RootMotion::Smooth) {
-    offsets.resize(static_cast<std::size_t>(written));
-    smooth_root_motion(m, offsets, half / dt, opt, r);
-  }
-  measure_deviation();
   measure_end();
 }
 
@@ -427,7 +427,17 @@ void PathWalk::measure_end() {
   r.end_heading_error = err;
 }
 
-WalkResult PathWalk::run() {
+WalkResult PathWalk::take() {
+  if (opt.root == RootMotion::Smooth) {
+    offsets.resize(static_cast<std::size_t>(r.motion.frame_count()));
+    smooth_root_motion(m, offsets, half / dt, opt, r);
+  }
+  measure_deviation();
+  measure_end();
+  return std::move(r);
+}
+
+void PathWalk::run() {
   // Frames are written into a motion sized from the expected walk (grown by
   // doubling if needed, trimmed at the end) instead of appended one by one.
   const double expected_steps = opt.steps >= 0 ? opt.steps + 2.0 : path.length() / std::max(L, 0.01) + 3.0;
@@ -451,7 +461,6 @@ WalkResult PathWalk::run() {
     theta_prev = theta;
   }
   finish();
-  return std::move(r);
 }
 
 }  // namespace
@@ -462,16 +471,20 @@ WalkResult PathWalk::run() {
 // up to three times, and keep the closest (deterministic: same input, same walk).
 WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) {
   const FinalTravel finals(m);
-  WalkResult best = PathWalk(m, path, opt, finals).run();
-  if (opt.steps > 0 || !opt.stop) return best;
-  Vec3 offset = Vec3::Zero(), miss = best.end_position - horizontal(path.points.back());
+  auto best = std::make_unique<PathWalk>(m, path, opt, finals);
+  best->run();
+  if (opt.steps > 0 || !opt.stop) return best->take();
+  // (The smooth root rests where the plan does, so the plans are compared
+  // and only the best one is smoothed.)
+  Vec3 offset = Vec3::Zero(), miss = best->planned().end_position - horizontal(path.points.back());
   for (int i = 0; i < 3 && miss.norm() > 0.01; ++i) {
     offset -= miss;
-    WalkResult again = PathWalk(m, path, opt, finals, offset).run();
-    miss = again.end_position - horizontal(path.points.back());
-    if (again.end_distance < best.end_distance) best = std::move(again);
+    auto again = std::make_unique<PathWalk>(m, path, opt, finals, offset);
+    again->run();
+    miss = again->planned().end_position - horizontal(path.points.back());
+    if (again->planned().end_distance < best->planned().end_distance) best = std::move(again);
   }
-  return best;
+  return best->take();
 }
 
 }  // namespace legwork::walkcycle
