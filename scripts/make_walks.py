@@ -125,7 +125,7 @@ WALKS['normal'] = {
                    'elbows shifted one frame behind the shoulders.',
     'frames_per_cycle': 24, 'fps': 24,
     'keys': {
-        'contact': pose(L=(-25, 5, 5, 0), R=(18, 12, -2, -25), LA=(-20, 10), RA=(22, 25),
+        'contact': pose(L=(-25, 4, -8, 0), R=(18, 10, 5, -34), LA=(-20, 10), RA=(22, 25),
                         hips=(5, -6, 0), spine1=(2, 6, 0)),
         'down': pose(L=(-20, 32, -8, 0), R=(12, 48, 0, -10), LA=(-26, 12), RA=(26, 30),
                      hips=(6, -4, -2), spine1=(3, 4, 1)),
