@@ -92,6 +92,15 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   report["root_accel_max_mps2"] = round6(rm.accel_max_mps2);
   report["max_path_deviation_m"] = round6(w.max_path_deviation);
   report["root_motion"] = w.root == RootMotion::Smooth ? "smooth" : "pivot";
+  const auto contact = measure_ground_contact(model, w.motion, w.labels, w.ground);
+  report["ground"] = w.ground.describe();
+  report["ground_penetration_mm_max"] = round6(contact.penetration_mm);
+  report["ground_penetration_frame"] = contact.penetration_frame;
+  report["stance_float_mm_max"] = round6(contact.stance_float_mm);
+  report["stance_float_frame"] = contact.float_frame;
+  appendf(text, "ground: %s; feet at most %.2f mm below it (frame %d), the stance foot at most %.2f mm above it (frame %d)\n",
+          w.ground.describe().c_str(), contact.penetration_mm, contact.penetration_frame, contact.stance_float_mm,
+          contact.float_frame);
   report["foot_roll_max_deg"] = round6(rad2deg(w.foot_roll_max));
   report["pelvis_drop_max_m"] = round6(w.pelvis_drop_max);
   report["leg_reach_max"] = round6(w.leg_reach_max);

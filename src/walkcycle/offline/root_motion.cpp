@@ -118,6 +118,40 @@ double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Ve
   return angle;
 }
 
+// The foot of the flat plan put on the ground: placed on `anchor` (the point
+// it pivots on; the heel for a free foot) raised by the ground height under
+// it, and turned rigidly towards the line between its heel and ball each
+// raised by the ground under them (`full`) - fully while the foot is flat,
+// not at all once heel and ball differ in height by 5 cm or more (a foot on
+// its heel or ball touches the ground at one point only; its toes still
+// follow the ground, see solve). A rigid foot turned on a slope moves its
+// other point sideways by the turn times their height difference, which is
+// what makes the switch from heel to ball slip; fading the turn out keeps
+// that near a millimetre on a 12 % grade. Returns the turn applied.
+Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_ball, Transform& ankle, Quat& full) {
+  full = Quat::Identity();
+  if (ground.flat()) return full;
+  const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
+  const Vec3 up = Vec3::UnitY();
+  const double flat = std::clamp(1.0 - std::abs(ball.y() - heel.y()) / 0.05, 0.0, 1.0);
+  full = Quat::FromTwoVectors(ball - heel, (ball + ground.height(ball) * up) - (heel + ground.height(heel) * up));
+  const Quat q = Quat::Identity().slerp(flat, full);
+  const Vec3 a = anchor_ball ? ball : heel;
+  ankle.translation = a + ground.height(a) * up + q * (ankle.translation - a);
+  ankle.rotation = (q * ankle.rotation).normalized();
+  return q;
+}
+
+// How far the foot's lowest point (heel, ball, toe tip) is below the ground,
+// metres (0 if none is); `g` holds the pose's FK.
+double depth_below(const Ground& ground, const FootPivots& foot, const Skeleton& s, std::span<const Transform> g) {
+  const Transform& a = g[static_cast<std::size_t>(foot.ankle)];
+  auto below = [&](const Vec3& p) { return ground.height(p) - p.y(); };
+  double d = std::max(below(a.apply(foot.heel_local)), below(a.apply(foot.ball_local)));
+  if (foot.toe >= 0) d = std::max(d, below(end_site_position(s, g, foot.toe)));
+  return std::max(0.0, d);
+}
+
 }  // namespace
 
 std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool rest_at_end) {
@@ -139,11 +173,12 @@ namespace {
 // ankle within reach without the soft limit (0 if none is needed).
 struct FrameSolver {
   const CycleModel& m;
+  const Ground& ground;
   const WalkOptions& opt;
   std::vector<Transform> before, g;
   LegIk legs[2];
-  FrameSolver(const CycleModel& model, const WalkOptions& o, const Motion& motion)
-      : m(model), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()) {
+  FrameSolver(const CycleModel& model, const Ground& gr, const WalkOptions& o, const Motion& motion)
+      : m(model), ground(gr), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()) {
     forward_kinematics(motion.skeleton, motion.frame(0), before);
     legs[0] = leg_of(motion.skeleton, false, before);
     legs[1] = leg_of(motion.skeleton, true, before);
@@ -175,6 +210,8 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     const double keyed = (ankle.translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
     const double soft = std::max(opt.soft_reach, keyed);
     const bool stance = label.left_stance == (side == 1);
+    Quat slope;  // the ground's turn under the foot (its toes follow it)
+    fit_to_ground(ground, foot, stance && label.pivot == Pivot::Ball, ankle, slope);
     const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &label.pivot : nullptr, ankle);
     drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
     ik::TwoBoneTarget t;
@@ -185,10 +222,23 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     t.hint = before[static_cast<std::size_t>(leg.chain.mid)].translation + shift;
     const double reach = soften_reach(hip, leg, soft, t.position);
     if (!r) continue;
-    ik::solve_two_bone(s, leg.chain, t, pose, g);
-    if (roll != 0.0 && foot.toe >= 0)  // the toe keeps its world rotation (flat on the floor)
-      pose.rotations[static_cast<std::size_t>(foot.toe)] =
-          (t.rotation.conjugate() * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
+    auto solve_leg = [&] {
+      ik::solve_two_bone(s, leg.chain, t, pose, g);
+      // A rolled foot's toes keep their world rotation (flat on the floor); on
+      // uneven ground they turn with the ground under the foot.
+      if ((roll != 0.0 || !ground.flat()) && foot.toe >= 0)
+        pose.rotations[static_cast<std::size_t>(foot.toe)] =
+            (t.rotation.conjugate() * slope * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
+      forward_kinematics(s, pose, g);
+    };
+    solve_leg();
+    // A foot point below the ground (the plan's blend into the standing pose
+    // can dip) lifts the foot straight up: no slip, no penetration.
+    const double below = depth_below(ground, foot, s, g);
+    if (below > 0) {
+      t.position.y() += below;
+      solve_leg();
+    }
     r->foot_roll_max = std::max(r->foot_roll_max, std::abs(roll));
     r->leg_reach_max = std::max(r->leg_reach_max, reach);
     limited = limited || reach > soft + 1e-6;
@@ -209,16 +259,39 @@ std::vector<double> running_max(const std::vector<double>& v, int half_width) {
 
 }  // namespace
 
-void smooth_root_motion(const CycleModel& m, std::span<const Vec3> floor_offset, double step_frames,
+namespace {
+
+// The pelvis's rise over uneven ground: the mean ground height under the two
+// ankles of the plan, averaged over one step twice (as the root's travel).
+std::vector<Vec3> ground_lift(const Ground& ground, const Motion& motion, double step_frames, bool rest_at_end) {
+  const int n = motion.frame_count();
+  std::vector<Vec3> lift(static_cast<std::size_t>(n), Vec3::Zero());
+  if (ground.flat()) return lift;
+  const Skeleton& s = motion.skeleton;
+  const int feet[2] = {s.roles[Role::LeftAnkle], s.roles[Role::RightAnkle]};
+  std::vector<Transform> g(static_cast<std::size_t>(s.joint_count()));
+  for (int f = 0; f < n; ++f) {
+    forward_kinematics(s, motion.frame(f), g);
+    double h = 0;
+    for (int j : feet) h += 0.5 * ground.height(g[static_cast<std::size_t>(j)].translation);
+    lift[static_cast<std::size_t>(f)] = Vec3(0, h, 0);
+  }
+  return window_average(window_average(lift, step_frames, rest_at_end), step_frames, rest_at_end);
+}
+
+}  // namespace
+
+void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<const Vec3> floor_offset, double step_frames,
                         const WalkOptions& opt, WalkResult& r) {
   Motion& motion = r.motion;
   const int n = motion.frame_count();
   if (n < 2 || static_cast<int>(floor_offset.size()) != n) return;
   const std::vector<Vec3> smooth =
       window_average(window_average(floor_offset, step_frames, opt.stop), step_frames, opt.stop);
+  const std::vector<Vec3> lift = ground_lift(ground, motion, step_frames, opt.stop);
   std::vector<Vec3> shift(static_cast<std::size_t>(n));
-  for (std::size_t f = 0; f < shift.size(); ++f) shift[f] = horizontal(smooth[f] - floor_offset[f]);
-  FrameSolver solver(m, opt, motion);
+  for (std::size_t f = 0; f < shift.size(); ++f) shift[f] = horizontal(smooth[f] - floor_offset[f]) + lift[f];
+  FrameSolver solver(m, ground, opt, motion);
   // First pass: where the legs, rolled, still cannot reach, the pelvis must
   // drop; the drop is spread smoothly (running maximum over a quarter step,
   // averaged over as much: never less than needed).

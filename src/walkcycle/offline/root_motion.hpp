@@ -26,8 +26,11 @@ std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool res
 // the root keeps the pelvis's own offsets from the keys but not the drag of
 // the planted foot. An ankle out of reach rolls its foot about the ball
 // (trailing) or heel (leading) first; what is still out of reach is pulled in
-// by the soft limit. Fills r.leg_reach_max, r.foot_roll_max, r.reach_limited_frames.
-void smooth_root_motion(const CycleModel& m, std::span<const Vec3> floor_offset, double step_frames,
+// by the soft limit. Uneven `ground`: each foot's heel and ball rise by the
+// ground under them (fit_to_ground), the pelvis by the ground under the feet
+// averaged over a step. Fills r.leg_reach_max, r.foot_roll_max,
+// r.pelvis_drop_max, r.reach_limited_frames.
+void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<const Vec3> floor_offset, double step_frames,
                         const WalkOptions& opt, WalkResult& r);
 
 }  // namespace legwork::walkcycle

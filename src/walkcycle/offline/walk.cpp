@@ -192,8 +192,11 @@ PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o,
   r.step_length = step_length(m);
   r.path_length = path.length();
   r.root = opt.root;
+  r.ground = path.ground;
   L = r.step_length;
   if (opt.steps == 0) throw Error("walk: steps must be at least 1 (a walk of 0 steps is the standing pose)");
+  if (!path.ground.flat() && opt.root == RootMotion::Pivot)
+    throw Error("walk: uneven ground (" + path.ground.describe() + ") needs the smooth root: the legs' IK puts the feet on it");
   if (!(opt.soft_reach > 0.5 && opt.soft_reach <= 1.0))
     throw Error("walk: soft_reach " + std::to_string(opt.soft_reach) + " is out of range (0.5, 1]: the fraction of a leg's length it may straighten to");
   if (opt.steps < 0 && L < 0.01)
@@ -430,7 +433,7 @@ void PathWalk::measure_end() {
 WalkResult PathWalk::take() {
   if (opt.root == RootMotion::Smooth) {
     offsets.resize(static_cast<std::size_t>(r.motion.frame_count()));
-    smooth_root_motion(m, offsets, half / dt, opt, r);
+    smooth_root_motion(m, path.ground, offsets, half / dt, opt, r);
   }
   measure_deviation();
   measure_end();
@@ -469,7 +472,18 @@ void PathWalk::run() {
 // the headings); on a path that still turns there the walk can stop a few
 // centimetres off. Closed loop: walk again aiming past the end by the miss,
 // up to three times, and keep the closest (deterministic: same input, same walk).
-WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) {
+WalkResult walk_path(const CycleModel& model, const Path& path, const WalkOptions& opt) {
+  // The smooth root's legs keep every foot above the ground themselves, so
+  // its plan goes without the floor lift (which raises the whole body where
+  // one foot would dip, leaving the planted foot floating); the lift only
+  // moves the root up and down, so the plan's footprints are the same.
+  CycleModel unlifted;
+  const bool lift_by_legs = opt.root == RootMotion::Smooth && model.floor_clamp;
+  if (lift_by_legs) {
+    unlifted = model;
+    unlifted.floor_clamp = false;
+  }
+  const CycleModel& m = lift_by_legs ? unlifted : model;
   const FinalTravel finals(m);
   auto best = std::make_unique<PathWalk>(m, path, opt, finals);
   best->run();

@@ -91,6 +91,7 @@ struct WalkResult {
   double turning = 0;              // net heading change, radians (+ = to the left)
   double turning_abs = 0;          // sum of |heading changes| between steps, radians
   RootMotion root = RootMotion::Smooth;  // how the root travelled
+  Ground ground;                         // the ground walked on (the path's)
   // Smooth root only. A foot out of its leg's reach (WalkOptions::soft_reach)
   // first rolls on the floor - about the ball when it trails the hip (heel
   // up), about the heel when it leads (toes up) - which keeps it planted:
