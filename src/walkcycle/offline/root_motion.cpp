@@ -81,39 +81,41 @@ double soften_reach(const Vec3& hip, const LegIk& leg, double soft, Vec3& target
 // heel rises; while it pivots on the heel it does not roll: rolling would
 // move the ball it is about to pivot on); the other foot about its ball when
 // it trails the hip (the heel rises, as at toe-off), about its heel when it
-// leads (the toes rise, as at heel strike).
-// The rolling point stays where it was; the angle is solved by bisection so
-// the ankle comes back to `soft` of the leg's length (at most 60 degrees).
-// `ankle` is updated in place; the toe keeps its world rotation (it stays
-// flat when the heel rises). Returns the angle, radians.
+// leads (the toes rise, as at heel strike). The rolling point stays where it
+// was; the smallest roll (at most 60 degrees either way) that brings the
+// ankle back to `reach` of the hip, or if none does the one that brings it
+// closest. `ankle` is updated in place. Returns the angle, radians.
+//
+// Rolling by a about the side axis k through the pivot P takes the ankle to
+// P + R(a) v (v = ankle - P), whose squared distance from the hip H is
+// C + A cos a + B sin a = C + M cos(a - phi) with u = P - H,
+// A = 2 u.v_perp, B = 2 u.(k x v), C = |u|^2 + |v|^2 + 2 u.v_par: solved in
+// closed form.
 double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Vec3& forward, const Pivot* stance,
                  Transform& ankle) {
   const Vec3 to_ankle = ankle.translation - hip;
   if (!(to_ankle.norm() > reach) || (stance && *stance == Pivot::Heel)) return 0.0;
   const bool on_ball = stance || to_ankle.dot(forward) < 0;
   const Vec3 pivot = ankle.apply(on_ball ? foot.ball_local : foot.heel_local);
-  const Vec3 axis = Vec3::UnitY().cross(forward).normalized();  // the foot's side axis
-  auto ankle_at = [&](double a) -> Vec3 { return pivot + Quat(Eigen::AngleAxisd(a, axis)) * (ankle.translation - pivot); };
-  // The direction that brings the ankle closer to the hip.
-  const double sign = (ankle_at(1e-3) - hip).norm() < (ankle_at(-1e-3) - hip).norm() ? 1.0 : -1.0;
-  // The first angle (1-degree scan, then bisection) that brings the ankle
-  // within reach; if none does, the closest one.
-  auto dist = [&](double a) { return (ankle_at(sign * a) - hip).norm(); };
-  double lo = 0, hi = 0, best = 0, best_d = to_ankle.norm();
-  bool found = false;
-  for (int k = 1; k <= 60 && !found; ++k) {
-    const double a = deg2rad(k), d = dist(a);
-    if (d <= reach) found = true, hi = a, lo = deg2rad(k - 1);
-    if (d < best_d) best_d = d, best = a;
+  const Vec3 k = Vec3::UnitY().cross(forward).normalized();  // the foot's side axis
+  const Vec3 u = pivot - hip, v = ankle.translation - pivot;
+  const Vec3 v_par = k.dot(v) * k, v_perp = v - v_par;
+  const double A = 2 * u.dot(v_perp), B = 2 * u.dot(k.cross(v)), C = u.squaredNorm() + v.squaredNorm() + 2 * u.dot(v_par);
+  const double M = std::hypot(A, B), phi = std::atan2(B, A), limit = deg2rad(60.0);
+  auto wrap = [](double a) { return std::remainder(a, 2 * kPi); };
+  auto f = [&](double a) { return C + M * std::cos(a - phi); };
+  double angle = 0;
+  const double c = M > 1e-15 ? (reach * reach - C) / M : -2.0;
+  if (c >= -1.0) {  // within reach on the arc of angles around phi + pi; the nearest edge of it
+    const double a1 = wrap(phi + std::acos(std::min(c, 1.0))), a2 = wrap(phi - std::acos(std::min(c, 1.0)));
+    angle = std::abs(a1) < std::abs(a2) ? a1 : a2;
   }
-  if (!found) hi = best;
-  for (int i = 0; i < 40 && found; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (dist(mid) > reach ? lo : hi) = mid;
+  if (c < -1.0 || std::abs(angle) > limit) {  // out of reach: the closest within the limits
+    angle = std::clamp(wrap(phi + kPi), -limit, limit);
+    if (std::abs(wrap(phi + kPi)) > limit) angle = f(limit) < f(-limit) ? limit : -limit;
   }
-  const double angle = sign * hi;
-  const Quat q(Eigen::AngleAxisd(angle, axis));
-  ankle.translation = ankle_at(angle);
+  const Quat q(Eigen::AngleAxisd(angle, k));
+  ankle.translation = pivot + q * v;
   ankle.rotation = (q * ankle.rotation).normalized();
   return angle;
 }
@@ -140,6 +142,15 @@ Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_bal
   ankle.translation = a + ground.height(a) * up + q * (ankle.translation - a);
   ankle.rotation = (q * ankle.rotation).normalized();
   return q;
+}
+
+// The toe's model transform after the leg's IK moved the ankle (the IK
+// updates the chain only; full FK if the toe does not hang from the ankle).
+void update_toe(const Skeleton& s, const FootPivots& foot, ConstPoseRef pose, std::span<Transform> g) {
+  if (foot.toe < 0) return;
+  const auto t = static_cast<std::size_t>(foot.toe);
+  if (s.parents[t] != foot.ankle) return forward_kinematics(s, pose, g);
+  g[t] = g[static_cast<std::size_t>(foot.ankle)] * Transform{pose.rotations[t], pose.translations[t]};
 }
 
 // How far the foot's lowest point (heel, ball, toe tip) is below the ground,
@@ -197,7 +208,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
   const Skeleton& s = m.skeleton;
   forward_kinematics(s, pose, before);
   pose.translations[0] += shift;
-  forward_kinematics(s, pose, g);
+  for (std::size_t j = 0; j < g.size(); ++j) g[j] = {before[j].rotation, before[j].translation + shift};  // (FK of the moved pose)
   bool limited = false;
   double drop = 0;
   const Vec3 forward = yaw_rotation(heading) * Vec3::UnitZ();
@@ -229,7 +240,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
       if ((roll != 0.0 || !ground.flat()) && foot.toe >= 0)
         pose.rotations[static_cast<std::size_t>(foot.toe)] =
             (t.rotation.conjugate() * slope * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
-      forward_kinematics(s, pose, g);
+      update_toe(s, foot, pose, g);
     };
     solve_leg();
     // A foot point below the ground (the plan's blend into the standing pose
