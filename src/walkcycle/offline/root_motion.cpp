@@ -186,7 +186,7 @@ struct FrameSolver {
   const CycleModel& m;
   const Ground& ground;
   const WalkOptions& opt;
-  std::vector<Transform> before, g;
+  std::vector<Transform> before, g;  // FK of the plan's pose, of the moved pose
   LegIk legs[2];
   FrameSolver(const CycleModel& model, const Ground& gr, const WalkOptions& o, const Motion& motion)
       : m(model), ground(gr), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()) {
@@ -194,6 +194,8 @@ struct FrameSolver {
     legs[0] = leg_of(motion.skeleton, false, before);
     legs[1] = leg_of(motion.skeleton, true, before);
   }
+  // A frame of the plan: the first pass (r = nullptr) measures the drop
+  // needed and leaves `pose` alone; the second moves and solves it.
   double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r);
 };
 
@@ -207,7 +209,7 @@ double drop_to_reach(const Vec3& hip, const Vec3& target, double reach) {
 double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r) {
   const Skeleton& s = m.skeleton;
   forward_kinematics(s, pose, before);
-  pose.translations[0] += shift;
+  if (r) pose.translations[0] += shift;
   for (std::size_t j = 0; j < g.size(); ++j) g[j] = {before[j].rotation, before[j].translation + shift};  // (FK of the moved pose)
   bool limited = false;
   double drop = 0;
@@ -307,13 +309,9 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   // drop; the drop is spread smoothly (running maximum over a quarter step,
   // averaged over as much: never less than needed).
   std::vector<double> drop(static_cast<std::size_t>(n));
-  Pose scratch(m.skeleton);
-  for (int f = 0; f < n; ++f) {
-    scratch.rotations.assign(motion.frame(f).rotations.begin(), motion.frame(f).rotations.end());
-    scratch.translations.assign(motion.frame(f).translations.begin(), motion.frame(f).translations.end());
-    drop[static_cast<std::size_t>(f)] = solver.solve(scratch.ref(), shift[static_cast<std::size_t>(f)], r.heading[static_cast<std::size_t>(f)],
-                                                 r.labels[static_cast<std::size_t>(f)], nullptr);
-  }
+  for (int f = 0; f < n; ++f)
+    drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)],
+                                                     r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)], nullptr);
   const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / 4)));
   const std::vector<double> envelope = running_max(drop, quarter);
   std::vector<Vec3> lowered(static_cast<std::size_t>(n));
