@@ -245,8 +245,9 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
       update_toe(s, foot, pose, g);
     };
     solve_leg();
-    // A foot point below the ground (the plan's blend into the standing pose
-    // can dip) lifts the foot straight up: no slip, no penetration.
+    // A foot point below the ground (the plan goes without the floor lift,
+    // and its blend into the standing pose can dip) lifts the foot straight
+    // up: no slip, no penetration.
     const double below = depth_below(ground, foot, s, g);
     if (below > 0) {
       t.position.y() += below;
