@@ -125,9 +125,9 @@ WALKS['normal'] = {
                    'elbows shifted one frame behind the shoulders.',
     'frames_per_cycle': 24, 'fps': 24,
     'keys': {
-        'contact': pose(L=(-25, 5, 5, 0), R=(18, 12, -2, -25), LA=(-20, 10), RA=(22, 25),
+        'contact': pose(L=(-25, 4, -8, 0), R=(18, 10, 5, -34), LA=(-20, 10), RA=(22, 25),
                         hips=(5, -6, 0), spine1=(2, 6, 0)),
-        'down': pose(L=(-20, 32, -8, 0), R=(12, 48, 0, -10), LA=(-26, 12), RA=(26, 30),
+        'down': pose(L=(-20, 32, -13, 0), R=(12, 48, 0, -10), LA=(-26, 12), RA=(26, 30),
                      hips=(6, -4, -2), spine1=(3, 4, 1)),
         'pass': pose(L=(-2, 8, -6, 0), R=(-18, 62, -8, 0), LA=(0, 15), RA=(2, 18),
                      hips=(5, 0, -3), spine1=(2, 0, 2)),

@@ -36,6 +36,9 @@ void register_walkcycle(CLI::App& app) {
   cmd->add_option("--straight", a->straight, "walk this many metres straight ahead (+z)")->check(CLI::PositiveNumber);
   cmd->add_option("--steps", a->steps, "walk exactly this many steps straight ahead, the stop step included (1 to 100000)")
       ->check(CLI::Range(1, 100000));
+  cmd->add_option("--root", a->root, "smooth: the root travels evenly, legs by IK (default); pivot: document 001's root, "
+                                     "pushed so the stance foot stays put (lunges and stalls)")
+      ->check(CLI::IsMember({"smooth", "pivot"}));
   output_file(cmd->add_option("--out,-o", a->out, "the walk (or, with no path, the in-place cycle): .bvh or .glb"));
   output_file(cmd->add_option("--cycle-out", a->cycle_out, "the in-place loop (frame N = frame 0 left out): .bvh or .glb"));
   output_file(cmd->add_option("--sheet", a->sheet, "key-pose sheet: the five poses of a step side by side (.png or .svg)"));

@@ -26,6 +26,24 @@ for w in normal sneak double-bounce; do
   "$LEGWORK" walkcycle --keys "$walks/$w.json" --straight 8 --report "$out/${w}_straight_report.json" >/dev/null
 done
 
+# Root motion before/after (issue 14, item 1): the normal walk on the same
+# path with document 001's pivoting root (lunges and stalls) and the smooth
+# root with the feet held by leg IK (the default, as above).
+pivot_video=()
+[ "$have_ffmpeg" = 1 ] && pivot_video=(--video "$out/normal_path_pivot_root.mp4")
+"$LEGWORK" walkcycle --keys "$walks/normal.json" --path "$path" --root pivot --top "$out/normal_pivot_root_top.png" \
+  --report "$out/normal_pivot_root_report.json" "${pivot_video[@]}" >/dev/null
+
+# Uneven ground (issue 14, item 3): the three walks over a hill and up a ramp
+# (height field and slope in the path files; the feet put on the ground by the
+# legs' IK). The video's floor is drawn flat: read the feet's heights in the reports.
+for w in normal sneak double-bounce; do
+  for g in hill ramp; do
+    "$LEGWORK" walkcycle --keys "$walks/$w.json" --path "$walks/paths/$g.json" --out "$out/${w}_${g}.bvh" \
+      --report "$out/${w}_${g}_report.json" >/dev/null
+  done
+done
+
 # From mocap: key poses of a real walk, ready to stylise, and the walk they make.
 "$LEGWORK" walkcycle extract "$DATA/bvh/walking/16_15.bvh" --out "$out/16_15_keys.json" \
   --sheet "$out/16_15_keys.png" --report "$out/16_15_extract.json"
@@ -37,14 +55,16 @@ if command -v python3 >/dev/null 2>&1; then
 {
   echo "# Walk-cycle demo figures"
   echo
-  echo "| walk | run | steps | frames | stance slip max (mm) | loop seam (m) | net / total turning (deg) | max path deviation (m) | end distance (m) | floor lift (mm) |"
-  echo "|---|---|---|---|---|---|---|---|---|---|"
+  echo "| walk | run | root | ground | steps | frames | stance slip max (mm) | feet below the ground (mm) | root speed min-max (m/s) | peak root acceleration (m/s^2) | loop seam (m) | net / total turning (deg) | max path deviation (m) | end distance (m) | floor lift (mm) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for f in "$out"/*_report.json; do
     python3 - "$f" <<'PY'
 import json, os, sys
 r = json.load(open(sys.argv[1]))
 name = os.path.basename(sys.argv[1]).replace('_report.json', '')
-print(f"| {r.get('walk')} | {name} | {r.get('steps')} | {r.get('frames')} | {r.get('stance_slip_mm_max'):.1e} | "
+print(f"| {r.get('walk')} | {name} | {r.get('root_motion')} | {r.get('ground')} | {r.get('steps')} | {r.get('frames')} | {r.get('stance_slip_mm_max'):.1e} | "
+      f"{r.get('ground_penetration_mm_max', 0):.1f} | "
+      f"{r.get('root_speed_min_mps', 0):.2f}-{r.get('root_speed_max_mps', 0):.2f} | {r.get('root_accel_max_mps2', 0):.1f} | "
       f"{r.get('loop_seam_error_m', 0):.2e} | {r.get('turning_deg', 0):.1f} / {r.get('turning_abs_deg', 0):.1f} | "
       f"{r.get('max_path_deviation_m', 0):.3f} | {r.get('end_distance_m', 0):.3f} | {r.get('floor_lift_mm_max', 0):.1f} |")
 PY
@@ -61,12 +81,19 @@ fi
     echo "${w}_arc_LeftToeBase.png: '$w' left toe arc over the cycle (the animators' figure-eight check)"
     echo "${w}_arc_LeftToeBase.svg: the same toe arc as SVG"
     echo "${w}_top.png: '$w' walking a 90-degree turn, from above: path (grey), root (blue), footprints"
-    echo "${w}_path.mp4: '$w' walking the 90-degree turn without foot slip, left toe traced"
+    echo "${w}_path.mp4: '$w' walking the 90-degree turn without foot slip (smooth root, legs by IK), left toe traced"
     echo "${w}_slide.mp4: '$w' model sliding through its translucent key poses"
     echo "${w}_cycle.glb: '$w' in-place loop (glTF)"
     echo "${w}_path.glb: '$w' along the turn (glTF)"
     echo "${w}_report.json: '$w' along the turn: stance slip, loop seam, steps, frames, arcs, footsteps"
     echo "${w}_straight_report.json: '$w' 8 m straight: the same figures"
+  done
+  echo "normal_path_pivot_root.mp4: before/after: the normal walk on the same turn with document 001's pivoting root (the pelvis lunges and stalls); compare normal_path.mp4"
+  echo "normal_pivot_root_top.png: its top view (root marks bunch and spread every step)"
+  echo "normal_pivot_root_report.json: its report (root speed 0.15-3.08 m/s against the smooth root's even speed)"
+  for w in normal sneak double-bounce; do
+    echo "${w}_hill.bvh / ${w}_hill_report.json: '$w' over a hill (height field, 10 % grades): feet on the ground, slip and penetration in the report"
+    echo "${w}_ramp.bvh / ${w}_ramp_report.json: '$w' up a 12 % ramp"
   done
   echo "16_15_keys.png: key poses extracted from CMU 16_15 (a real walk), averaged over its steady steps"
   echo "16_15_keys.json: the extracted key-pose file, ready to stylise"

@@ -48,3 +48,15 @@ legwork_cli_error(walkcycle_report_short "path 0\\.30 m, .*end 0\\.0[0-4][0-9] m
                   walkcycle --keys ${W}/normal.json --straight 0.3 --report ${O}/wc_short.json)
 legwork_cli_error(walkcycle_report_curve "end 0\\.0[0-4][0-9] m from the path's end, facing -?[01]\\.[0-9] deg off its end tangent"
                   walkcycle --keys ${W}/sneak.json --path ${W}/paths/s-curve.json --report ${O}/wc_scurve.json)
+# Root motion (issue 14, item 1): smooth by default, document 001's pivoting root on request; both printed.
+legwork_cli_error(walkcycle_root_smooth "root: smooth \\(legs by IK\\), speed [0-9.]+-1\\.[34][0-9] m/s \\(mean 1\\.[34][0-9]\\), peak acceleration [0-9]\\.[0-9] m/s\\^2"
+                  walkcycle --keys ${W}/normal.json --steps 10 --report ${O}/wc_root_smooth.json)
+legwork_cli_error(walkcycle_root_pivot "root: pivoting \\(document 001\\), speed 0\\.[0-9]+-[23]\\.[0-9]+ m/s \\(mean [0-9.]+\\), peak acceleration [1-9][0-9]\\.[0-9] m/s\\^2"
+                  walkcycle --keys ${W}/normal.json --steps 10 --root pivot --report ${O}/wc_root_pivot.json)
+legwork_cli_error(walkcycle_root_bad "--root: bogus not in \\{smooth,pivot\\}" walkcycle --keys ${W}/normal.json --steps 3 --root bogus --out ${O}/x.bvh)
+# Uneven ground (issue 14, item 3): the hill's height field is named in the report, no foot goes below it;
+# the pivoting root is refused on it.
+legwork_cli_error(walkcycle_ground_hill "ground: height field 5 x 20, 0\\.50 m cells, 0\\.000-0\\.300 m; feet at most 0\\.00 mm below it"
+                  walkcycle --keys ${W}/normal.json --path ${W}/paths/hill.json --report ${O}/wc_hill.json)
+legwork_cli_error(walkcycle_ground_pivot "error: walk: uneven ground \\(slope 12\\.0 % over 4\\.00 m\\) needs the smooth root"
+                  walkcycle --keys ${W}/normal.json --path ${W}/paths/ramp.json --root pivot --out ${O}/x.bvh)

@@ -80,3 +80,46 @@ TEST(WalkKeys, CopiedWalkFindsItsSkeletonBesideIt) {
   EXPECT_EQ(format_walk_keys(w.keys, w.skeleton), format_walk_keys(read_walk_keys(walk_file("normal"), cmu_skeleton()), cmu_skeleton()));
   fs::remove_all(dir);
 }
+
+// Issue 14, item 5: heel strike and toe-off in the normal walk's keys, as an
+// animator poses them (Williams' contact: front heel on the floor, toes up;
+// back foot on its ball, heel up; down: front foot flat; up: the stance foot
+// rolls onto its ball). Pitch = angle of the heel-to-ball line above the
+// floor, degrees (+ = toes up); heights in mm above the floor of the key.
+TEST(WalkKeys, NormalWalkStrikesWithTheHeelAndPushesOffTheBall) {
+  const CycleModel m = shipped("normal");
+  std::vector<Transform> g(static_cast<std::size_t>(m.skeleton.joint_count()));
+  struct Foot {
+    double pitch, heel_mm, ball_mm, tip_mm;
+  };
+  auto foot = [&](int key, bool left) {
+    forward_kinematics(m.skeleton, m.step_keys[static_cast<std::size_t>(key)], g);
+    const FootPivots& f = m.foot(left);
+    const Transform& a = g[static_cast<std::size_t>(f.ankle)];
+    const Vec3 heel = a.apply(f.heel_local), ball = a.apply(f.ball_local);
+    const Vec3 tip = end_site_position(m.skeleton, g, f.toe);
+    const double run = std::hypot(ball.x() - heel.x(), ball.z() - heel.z());
+    return Foot{rad2deg(std::atan2(ball.y() - heel.y(), run)), heel.y() * 1e3, ball.y() * 1e3, tip.y() * 1e3};
+  };
+  const char* names[] = {"contact", "down", "pass", "up"};
+  for (int k = 0; k < 4; ++k)
+    for (bool left : {true, false}) {
+      const Foot f = foot(k, left);
+      std::printf("[walkcycle] normal %-7s %s foot: pitch %+6.1f deg, heel %6.1f mm, ball %6.1f mm, toe tip %6.1f mm\n", names[k],
+                  left ? "left " : "right", f.pitch, f.heel_mm, f.ball_mm, f.tip_mm);
+    }
+  const Foot front = foot(0, true), back = foot(0, false);
+  // Contact: the front heel strikes (on the floor, the foot's lowest point), toes up.
+  EXPECT_LT(std::abs(front.heel_mm), 3.0);
+  EXPECT_GE(front.pitch, 12.0);
+  EXPECT_LE(front.pitch, 35.0);
+  EXPECT_GT(front.tip_mm, 40.0);
+  // The back foot is on its ball, heel up, toes on the floor.
+  EXPECT_LT(std::abs(back.ball_mm), 10.0);
+  EXPECT_LE(back.pitch, -12.0);
+  EXPECT_GT(back.heel_mm, 40.0);
+  // Down: the front foot has come flat.
+  EXPECT_LT(std::abs(foot(1, true).pitch), 6.0);
+  // Up: the stance foot has rolled onto its ball (heel up).
+  EXPECT_LE(foot(3, true).pitch, -10.0);
+}

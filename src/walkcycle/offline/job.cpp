@@ -151,6 +151,7 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkJob& a, const std::s
   std::unique_ptr<wc::Path> path;
   wc::WalkOptions wo;
   wo.fps = a.fps;
+  wo.root = a.root == "pivot" ? wc::RootMotion::Pivot : wc::RootMotion::Smooth;
   if (!a.path.empty()) path = std::make_unique<wc::Path>(wc::read_path(a.path));
   else if (!a.svg_path.empty()) path = std::make_unique<wc::Path>(wc::parse_svg_path(a.svg_path, "--svg-path"));
   else if (a.straight > 0) path = std::make_unique<wc::Path>(wc::straight_path(a.straight));

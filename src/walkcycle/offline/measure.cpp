@@ -52,6 +52,25 @@ SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::spa
   return r;
 }
 
+GroundContactReport measure_ground_contact(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels,
+                                           const Ground& ground) {
+  GroundContactReport r;
+  const int n = std::min(walk.frame_count(), static_cast<int>(labels.size()));
+  std::vector<Transform> g(static_cast<std::size_t>(walk.joint_count()));
+  auto above = [&](const Vec3& p) { return (p.y() - ground.height(p)) * 1000.0; };
+  for (int f = 0; f < n; ++f) {
+    forward_kinematics(walk.skeleton, walk.frame(f), g);
+    for (bool left : {true, false}) {
+      const FootPivots& foot = m.foot(left);
+      double low = std::min(above(pivot_world(m, g, left, Pivot::Heel)), above(pivot_world(m, g, left, Pivot::Ball)));
+      if (foot.toe >= 0) low = std::min(low, above(end_site_position(m.skeleton, g, foot.toe)));
+      if (-low > r.penetration_mm) r.penetration_mm = -low, r.penetration_frame = f;
+      if (left == labels[static_cast<std::size_t>(f)].left_stance && low > r.stance_float_mm) r.stance_float_mm = low, r.float_frame = f;
+    }
+  }
+  return r;
+}
+
 SeamReport measure_loop_seam(const CycleModel& m) {
   const double n = m.frames_per_cycle, h = 1e-3;
   Pose pose(m.skeleton);

@@ -222,14 +222,9 @@ Path parse_svg_path(std::string_view d, std::string_view source, int samples) {
   return make_path(pts, what);
 }
 
-Path parse_path_json(std::string_view text, std::string_view source) {
-  json doc;
-  try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const json::exception& e) {
-    throw Error(std::string(source) + ": not valid JSON: " + e.what());
-  }
-  if (!doc.is_object()) throw Error(std::string(source) + ": expected an object with polyline, bezier, catmull_rom or svg");
+namespace {
+
+Path parse_path_doc(const json& doc, std::string_view source) {
   int samples = 16;
   if (doc.contains("samples_per_segment")) {
     const auto& s = doc["samples_per_segment"];
@@ -241,7 +236,7 @@ Path parse_path_json(std::string_view text, std::string_view source) {
   for (auto it = doc.begin(); it != doc.end(); ++it) {
     const auto& k = it.key();
     if (k == "polyline" || k == "bezier" || k == "catmull_rom" || k == "svg") ++kinds;
-    else if (k != "samples_per_segment" && k != "comment" && k != "name")
+    else if (k != "samples_per_segment" && k != "comment" && k != "name" && k != "ground")
       throw Error(std::string(source) + ": unknown field '" + k + "' (expected polyline, bezier, catmull_rom or svg)");
   }
   if (kinds != 1)
@@ -270,6 +265,21 @@ Path parse_path_json(std::string_view text, std::string_view source) {
   for (std::size_t i = 0; i + 3 < ctrl.size(); i += 3) append_cubic(pts, ctrl[i], ctrl[i + 1], ctrl[i + 2], ctrl[i + 3], samples);
   check_no_repeats(pts, source, "bezier (flattened)");
   return make_path(pts, source);
+}
+
+}  // namespace
+
+Path parse_path_json(std::string_view text, std::string_view source) {
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {
+    throw Error(std::string(source) + ": not valid JSON: " + e.what());
+  }
+  if (!doc.is_object()) throw Error(std::string(source) + ": expected an object with polyline, bezier, catmull_rom or svg");
+  Path path = parse_path_doc(doc, source);
+  if (doc.contains("ground")) path.ground = parse_ground_json(doc["ground"].dump(), std::string(source) + ": ground");
+  return path;
 }
 
 Path read_path(const std::string& file) { return parse_path_json(io::read_text_file(file), file); }

@@ -91,6 +91,27 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   report["root_speed_max_mps"] = round6(rm.speed_max_mps);
   report["root_accel_max_mps2"] = round6(rm.accel_max_mps2);
   report["max_path_deviation_m"] = round6(w.max_path_deviation);
+  report["root_motion"] = w.root == RootMotion::Smooth ? "smooth" : "pivot";
+  const auto contact = measure_ground_contact(model, w.motion, w.labels, w.ground);
+  report["ground"] = w.ground.describe();
+  report["ground_penetration_mm_max"] = round6(contact.penetration_mm);
+  report["ground_penetration_frame"] = contact.penetration_frame;
+  report["stance_float_mm_max"] = round6(contact.stance_float_mm);
+  report["stance_float_frame"] = contact.float_frame;
+  appendf(text, "ground: %s; feet at most %.2f mm below it (frame %d), the stance foot at most %.2f mm above it (frame %d)\n",
+          w.ground.describe().c_str(), contact.penetration_mm, contact.penetration_frame, contact.stance_float_mm,
+          contact.float_frame);
+  report["foot_roll_max_deg"] = round6(rad2deg(w.foot_roll_max));
+  report["pelvis_drop_max_m"] = round6(w.pelvis_drop_max);
+  report["leg_reach_max"] = round6(w.leg_reach_max);
+  report["reach_limited_frames"] = w.reach_limited_frames;
+  appendf(text, "root: %s, speed %.2f-%.2f m/s (mean %.2f), peak acceleration %.1f m/s^2",
+          w.root == RootMotion::Smooth ? "smooth (legs by IK)" : "pivoting (document 001)", rm.speed_min_mps,
+          rm.speed_max_mps, rm.speed_mean_mps, rm.accel_max_mps2);
+  if (w.root == RootMotion::Smooth)
+    appendf(text, "; feet roll up to %.1f deg and the pelvis drops up to %.1f mm to stay in reach, legs reach up to %.1f %% of their length (softened on %d frames)",
+            rad2deg(w.foot_roll_max), 1e3 * w.pelvis_drop_max, 100 * w.leg_reach_max, w.reach_limited_frames);
+  text += "\n";
   json steps = json::array();
   for (const auto& s : w.footsteps)
     steps.push_back({{"step", s.step}, {"frame", s.frame}, {"foot", s.left ? "left" : "right"},

@@ -1,4 +1,6 @@
 #include <legwork/walkcycle/offline/walk.hpp>
+
+#include "root_motion.hpp"
 #include <legwork/core/rotation.hpp>
 
 #include <legwork/core/interpolate.hpp>
@@ -6,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 
 namespace legwork::walkcycle {
 
@@ -130,7 +133,11 @@ class PathWalk {
  public:
   PathWalk(const CycleModel& m, const Path& path, const WalkOptions& opt, const FinalTravel& final_steps,
            const Vec3& aim_offset = Vec3::Zero());
-  WalkResult run();
+  // Walks the plan (the pivoting root); planned() has where it ended.
+  void run();
+  const WalkResult& planned() const { return r; }
+  // The walk: the smooth root applied if asked, deviation and end measured.
+  WalkResult take();
 
  private:
   double heading_at(double t) const;
@@ -141,6 +148,7 @@ class PathWalk {
   void place(int f, double theta, const FootPoints& cur, const FrameLabel& label);
   void record(int f, double theta, const FootPoints& cur, const FrameLabel& label);
   void finish();
+  void measure_deviation();
   void measure_end();
   bool plan_final_steps(int k, const Vec3& start, double t_here);
   double solve_amplitude(double distance, int stop, Vec3* travel) const;
@@ -166,6 +174,13 @@ class PathWalk {
   Vec3 c = Vec3::Zero();
   double theta_prev = 0;
   int last_step_recorded = -1;
+  std::vector<Vec3> offsets;  // c per frame (smooth root)
+  struct Track {
+    int segment = 0;
+    double s = 0;
+    bool stopping = false;
+  };
+  std::vector<Track> tracks;  // path tracking per frame (deviation)
 };
 
 PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o, const FinalTravel& final_steps,
@@ -176,13 +191,21 @@ PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o,
   half = m.half_cycle();
   r.step_length = step_length(m);
   r.path_length = path.length();
+  r.root = opt.root;
+  r.ground = path.ground;
   L = r.step_length;
   if (opt.steps == 0) throw Error("walk: steps must be at least 1 (a walk of 0 steps is the standing pose)");
+  if (!path.ground.flat() && opt.root == RootMotion::Pivot)
+    throw Error("walk: uneven ground (" + path.ground.describe() + ") needs the smooth root: the legs' IK puts the feet on it");
+  if (!(opt.soft_reach > 0.5 && opt.soft_reach <= 1.0))
+    throw Error("walk: soft_reach " + std::to_string(opt.soft_reach) + " is out of range (0.5, 1]: the fraction of a leg's length it may straighten to");
   if (opt.steps < 0 && L < 0.01)
     throw Error("the walk advances only " + std::to_string(L * 1000) +
                 " mm per step; its key poses do not move the stance foot backwards, so it cannot follow a path");
   lookahead = std::max(opt.lookahead_steps * L, 0.05);  // lead of the heading decisions
-  hold = half / 2;
+  // The final hold: a quarter cycle; with the smooth root one step, so the
+  // averaged root reaches the end of the walk while the body stands.
+  hold = opt.root == RootMotion::Smooth ? half : half / 2;
   stop_travel = 0.5 * L;  // (without a stop, the walk just ends)
   target = {std::atan2(path.tangent(0).x(), path.tangent(0).z())};
   stop_step = opt.steps > 0 ? opt.steps - 1 : -1;  // the stop step is the last of the `steps`
@@ -333,6 +356,8 @@ void PathWalk::place(int f, double theta, const FootPoints& cur, const FrameLabe
   if (f >= out.frame_count()) out.resize(2 * out.frame_count());
   out.set_frame(f, world);
   written = f + 1;
+  if (offsets.size() <= static_cast<std::size_t>(f)) offsets.resize(static_cast<std::size_t>(f) + 1);
+  offsets[static_cast<std::size_t>(f)] = c;
 }
 
 // Per-frame results: heading, label, footsteps, deviation from the path.
@@ -350,10 +375,17 @@ void PathWalk::record(int f, double theta, const FootPoints& cur, const FrameLab
     fs.frame = f;
     r.footsteps.push_back(fs);
   }
-  if (!label.stopping) {  // (past the end, distance to the end point is not deviation)
+  tracks.push_back({seg_track, s_track, label.stopping});
+}
+
+// Largest root distance from the path (forward-only tracking as walked).
+void PathWalk::measure_deviation() {
+  for (int f = 0; f < r.motion.frame_count(); ++f) {
+    const Track& t = tracks[static_cast<std::size_t>(f)];
+    if (t.stopping) continue;  // (past the end, distance to the end point is not deviation)
     double dist = 0;
-    int seg = seg_track;
-    path.project(world.translations[0], std::max(0, seg_track - 2), s_track + 3 * L + lookahead, &seg, &dist);
+    int seg = t.segment;
+    path.project(r.motion.frame(f).translations[0], std::max(0, t.segment - 2), t.s + 3 * L + lookahead, &seg, &dist);
     r.max_path_deviation = std::max(r.max_path_deviation, dist);
   }
 }
@@ -398,7 +430,17 @@ void PathWalk::measure_end() {
   r.end_heading_error = err;
 }
 
-WalkResult PathWalk::run() {
+WalkResult PathWalk::take() {
+  if (opt.root == RootMotion::Smooth) {
+    offsets.resize(static_cast<std::size_t>(r.motion.frame_count()));
+    smooth_root_motion(m, path.ground, offsets, half / dt, opt, r);
+  }
+  measure_deviation();
+  measure_end();
+  return std::move(r);
+}
+
+void PathWalk::run() {
   // Frames are written into a motion sized from the expected walk (grown by
   // doubling if needed, trimmed at the end) instead of appended one by one.
   const double expected_steps = opt.steps >= 0 ? opt.steps + 2.0 : path.length() / std::max(L, 0.01) + 3.0;
@@ -422,7 +464,6 @@ WalkResult PathWalk::run() {
     theta_prev = theta;
   }
   finish();
-  return std::move(r);
 }
 
 }  // namespace
@@ -431,18 +472,33 @@ WalkResult PathWalk::run() {
 // the headings); on a path that still turns there the walk can stop a few
 // centimetres off. Closed loop: walk again aiming past the end by the miss,
 // up to three times, and keep the closest (deterministic: same input, same walk).
-WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt) {
+WalkResult walk_path(const CycleModel& model, const Path& path, const WalkOptions& opt) {
+  // The smooth root's legs keep every foot above the ground themselves, so
+  // its plan goes without the floor lift (which raises the whole body where
+  // one foot would dip, leaving the planted foot floating); the lift only
+  // moves the root up and down, so the plan's footprints are the same.
+  CycleModel unlifted;
+  const bool lift_by_legs = opt.root == RootMotion::Smooth && model.floor_clamp;
+  if (lift_by_legs) {
+    unlifted = model;
+    unlifted.floor_clamp = false;
+  }
+  const CycleModel& m = lift_by_legs ? unlifted : model;
   const FinalTravel finals(m);
-  WalkResult best = PathWalk(m, path, opt, finals).run();
-  if (opt.steps > 0 || !opt.stop) return best;
-  Vec3 offset = Vec3::Zero(), miss = best.end_position - horizontal(path.points.back());
+  auto best = std::make_unique<PathWalk>(m, path, opt, finals);
+  best->run();
+  if (opt.steps > 0 || !opt.stop) return best->take();
+  // (The smooth root rests where the plan does, so the plans are compared
+  // and only the best one is smoothed.)
+  Vec3 offset = Vec3::Zero(), miss = best->planned().end_position - horizontal(path.points.back());
   for (int i = 0; i < 3 && miss.norm() > 0.01; ++i) {
     offset -= miss;
-    WalkResult again = PathWalk(m, path, opt, finals, offset).run();
-    miss = again.end_position - horizontal(path.points.back());
-    if (again.end_distance < best.end_distance) best = std::move(again);
+    auto again = std::make_unique<PathWalk>(m, path, opt, finals, offset);
+    again->run();
+    miss = again->planned().end_position - horizontal(path.points.back());
+    if (again->planned().end_distance < best->planned().end_distance) best = std::move(again);
   }
-  return best;
+  return best->take();
 }
 
 }  // namespace legwork::walkcycle

@@ -22,6 +22,7 @@ struct WalkJob {
   std::string svg_path;
   double straight = 0;
   int steps = -1;
+  std::string root = "smooth";  // smooth (legs by IK) or pivot (document 001's root)
   std::string out;
   std::string cycle_out;
   std::string sheet;

@@ -35,6 +35,16 @@ struct RootMotionReport {
 };
 RootMotionReport measure_root_motion(const Motion& walk, std::span<const FrameLabel> labels);
 
+// Feet against the ground (flat or uneven), by full FK of every frame.
+struct GroundContactReport {
+  double penetration_mm = 0;    // deepest a heel, ball or toe tip goes below the ground (0 = never)
+  int penetration_frame = -1;
+  double stance_float_mm = 0;   // highest the stance foot's lowest point (heel, ball, toe tip) is above the ground
+  int float_frame = -1;
+};
+GroundContactReport measure_ground_contact(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels,
+                                           const Ground& ground);
+
 // Seam of the in-place loop: every joint's model-space position and velocity
 // just before frame N (left limit, quadratic extrapolation) against frame 0
 // (right limit). Largest difference over joints: metres and metres/second.

@@ -6,6 +6,7 @@
 // walks forward. Offline code: allocates, throws legwork::Error with the
 // file/field at fault (empty path, repeated points, NaN, unknown commands).
 #include <legwork/core/types.hpp>
+#include <legwork/walkcycle/offline/ground.hpp>
 
 #include <string>
 #include <string_view>
@@ -16,6 +17,7 @@ namespace legwork::walkcycle {
 struct Path {
   std::vector<Vec3> points;   // floor polyline (y = 0), at least 2 distinct points
   std::vector<double> cumulative;  // arc length at each point, metres
+  Ground ground;                   // under the path (flat unless the path file gives "ground")
 
   double length() const { return cumulative.empty() ? 0.0 : cumulative.back(); }
   // Point and unit tangent at arc length s (clamped to [0, length]).
@@ -39,7 +41,8 @@ Path straight_path(double metres);
 // JSON: {"polyline": [[x, z], ...]} | {"bezier": [[x, z], ...]} (3n+1 points:
 // start, control, control, end, control, control, end...) |
 // {"catmull_rom": [[x, z], ...]} (passes through every point) | {"svg": "M 0 0 C ..."}.
-// Optional "samples_per_segment" (default 16) for the curves.
+// Optional "samples_per_segment" (default 16) for the curves, optional
+// "ground" (uneven ground, see ground.hpp).
 Path parse_path_json(std::string_view text, std::string_view source);
 Path read_path(const std::string& file);
 // SVG path data: M/m, L/l, H/h, V/v, C/c, S/s, Q/q, Z/z.

@@ -30,8 +30,26 @@
 
 namespace legwork::walkcycle {
 
+// How the root travels (issue 14, item 1).
+enum class RootMotion : unsigned char {
+  // The root travels at a smoothed speed (the pivoting root's floor offset
+  // averaged over one step, twice) with the pelvis's own offsets from the
+  // keys, and both legs are solved by two-bone IK so each ankle is where the
+  // pivoting walk put it: the stance foot stays planted, the swing foot keeps
+  // its path. The final hold lasts one step (the root settles).
+  Smooth,
+  // Document 001's method: the root is pushed so the stance foot's pivot
+  // stays put (the root lunges and stalls twice per step); no IK.
+  Pivot,
+};
+
 struct WalkOptions {
   double fps = 0;              // output rate; 0 = the walk's own rate
+  RootMotion root = RootMotion::Smooth;
+  // Smooth root: a leg may straighten to this fraction of its length (hip to
+  // ankle); beyond, the ankle target is pulled in smoothly (soft limit: the
+  // knee never locks or hyper-extends; the foot may then slide).
+  double soft_reach = 0.98;
   double lookahead_steps = 1.0;  // heading lead along the path, in step lengths
   bool stop = true;            // end in the standing pose at the path's end
   int max_steps = 100000;      // safety limit
@@ -72,6 +90,20 @@ struct WalkResult {
   double max_path_deviation = 0;   // largest root distance from the path, metres
   double turning = 0;              // net heading change, radians (+ = to the left)
   double turning_abs = 0;          // sum of |heading changes| between steps, radians
+  RootMotion root = RootMotion::Smooth;  // how the root travelled
+  Ground ground;                         // the ground walked on (the path's)
+  // Smooth root only. A foot out of its leg's reach (WalkOptions::soft_reach)
+  // first rolls on the floor - about the ball when it trails the hip (heel
+  // up), about the heel when it leads (toes up) - which keeps it planted:
+  // the largest roll, radians; where rolling is not enough the pelvis drops,
+  // smoothly (the largest drop, metres). What remains out of reach is pulled
+  // in by the soft limit (the foot may slide): the largest hip-to-ankle
+  // distance asked of a leg, as a fraction of its length, and the frames
+  // where it exceeded the soft reach (soft_reach, or the keys' own if straighter).
+  double foot_roll_max = 0;
+  double pelvis_drop_max = 0;
+  double leg_reach_max = 0;
+  int reach_limited_frames = 0;
 };
 
 // Straight-walk advance per step of the cycle (metres); the walk's stride.

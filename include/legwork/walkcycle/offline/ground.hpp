@@ -1,0 +1,46 @@
+#pragma once
+// Uneven ground for walks along paths (issue 14, item 3): a slope (a ramp
+// along a direction) or a height field (a grid of heights, bilinear), given
+// in the path JSON's "ground" field. Heights in metres above y = 0; x, z as
+// the path's. Offline code: parsing throws legwork::Error naming the field.
+//
+//   "ground": {"slope": {"origin": [x, z], "direction": [dx, dz], "grade": 0.1, "length": 4}}
+//     height = grade * (distance along direction from origin, clamped to [0, length])
+//     (length optional: no top; grade = rise per metre, |grade| <= 0.3)
+//   "ground": {"heightfield": {"origin": [x, z], "cell": 0.5, "heights": [[h, h, ...], ...]}}
+//     heights[row][column] at (origin.x + column * cell, origin.z + row * cell), bilinear
+//     between, the edge values beyond; neighbouring heights may differ by at most 0.3 * cell
+//
+// Steps and stairs (a height that jumps) are not supported: the feet follow
+// the ground under them, which needs a ground without edges.
+#include <legwork/core/types.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace legwork::walkcycle {
+
+struct Ground {
+  enum class Kind : unsigned char { Flat, Slope, HeightField };
+  Kind kind = Kind::Flat;
+  Vec3 origin = Vec3::Zero();      // slope: where the ramp starts; height field: the grid's first point (y ignored)
+  Vec3 direction = Vec3::UnitZ();  // slope: uphill for a positive grade (unit, horizontal)
+  double grade = 0;                // slope: rise per metre
+  double length = 1e9;             // slope: metres of ramp, flat beyond
+  double cell = 1;                 // height field: grid spacing, metres
+  int columns = 0, rows = 0;       // height field: grid size (x, z)
+  std::vector<double> heights;     // height field: row-major, rows * columns
+
+  bool flat() const { return kind == Kind::Flat; }
+  // Ground height under the floor point (x, z), metres.
+  double height(double x, double z) const;
+  double height(const Vec3& p) const { return height(p.x(), p.z()); }
+  // "flat", "slope 10.0 % over 4.00 m", "height field 8 x 12, 0.50 m cells, 0.000-0.300 m".
+  std::string describe() const;
+};
+
+// The "ground" object of a path file (its JSON text); `source` names it in errors.
+Ground parse_ground_json(std::string_view text, std::string_view source);
+
+}  // namespace legwork::walkcycle

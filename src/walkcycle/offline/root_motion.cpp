@@ -1,0 +1,328 @@
+// Smooth root motion with the feet held by leg IK (see root_motion.hpp).
+#include "root_motion.hpp"
+
+#include <legwork/core/fk.hpp>
+#include <legwork/core/rotation.hpp>
+#include <legwork/ik/two_bone.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace legwork::walkcycle {
+
+namespace {
+
+// The series as a function of real frame x: linear between frames, straight
+// lines at the end velocities beyond the ends.
+struct Extended {
+  std::span<const Vec3> q;
+  Vec3 v_first = Vec3::Zero(), v_last = Vec3::Zero();
+  Extended(std::span<const Vec3> series, double width, bool rest_at_end) : q(series) {
+    const double last = static_cast<double>(q.size()) - 1;
+    const double w = std::min(width, last);
+    if (w > 0) {
+      v_first = (at(w) - q.front()) / w;
+      if (!rest_at_end) v_last = (q.back() - at(last - w)) / w;
+    }
+  }
+  Vec3 at(double x) const {
+    const double last = static_cast<double>(q.size()) - 1;
+    if (x <= 0) return q.front() + x * v_first;
+    if (x >= last) return q.back() + (x - last) * v_last;
+    const auto i = static_cast<std::size_t>(x);
+    const double u = x - static_cast<double>(i);
+    return (1 - u) * q[i] + u * q[i + 1];
+  }
+  // Exact integral over [a, b] (trapezoids between whole frames).
+  Vec3 integral(double a, double b) const {
+    Vec3 sum = Vec3::Zero();
+    double x = a;
+    Vec3 fx = at(a);
+    while (x < b) {
+      const double next = std::min(b, std::floor(x) + 1.0);
+      const Vec3 fn = at(next);
+      sum += 0.5 * (next - x) * (fx + fn);
+      x = next;
+      fx = fn;
+    }
+    return sum;
+  }
+};
+
+struct LegIk {
+  ik::TwoBoneChain chain;
+  double length = 0;  // thigh + shin, metres
+};
+
+LegIk leg_of(const Skeleton& s, bool left, std::span<const Transform> g) {
+  LegIk leg{left ? ik::left_leg(s) : ik::right_leg(s), 0.0};
+  auto pos = [&](int j) { return g[static_cast<std::size_t>(j)].translation; };
+  leg.length = (pos(leg.chain.mid) - pos(leg.chain.root)).norm() + (pos(leg.chain.end) - pos(leg.chain.mid)).norm();
+  return leg;
+}
+
+// Where the leg can put the ankle: the target pulled towards the hip so the
+// leg never straightens fully. Up to `soft` of its length the target is kept;
+// beyond, the distance approaches the full length exponentially (the knee
+// straightens smoothly instead of snapping). Returns the distance asked for,
+// as a fraction of the leg's length.
+double soften_reach(const Vec3& hip, const LegIk& leg, double soft, Vec3& target) {
+  const Vec3 d = target - hip;
+  const double dist = d.norm(), start = soft * leg.length, room = leg.length - start;
+  if (dist > start && room > 0) {
+    const double reached = start + room * (1.0 - std::exp(-(dist - start) / room));
+    target = hip + d * (reached / dist);
+  }
+  return leg.length > 0 ? dist / leg.length : 0.0;
+}
+
+// A foot whose ankle is out of the leg's reach rolls on the floor instead of
+// dragging: the stance foot about its ball once it pivots on the ball (the
+// heel rises; while it pivots on the heel it does not roll: rolling would
+// move the ball it is about to pivot on); the other foot about its ball when
+// it trails the hip (the heel rises, as at toe-off), about its heel when it
+// leads (the toes rise, as at heel strike). The rolling point stays where it
+// was; the smallest roll (at most 60 degrees either way) that brings the
+// ankle back to `reach` of the hip, or if none does the one that brings it
+// closest. `ankle` is updated in place. Returns the angle, radians.
+//
+// Rolling by a about the side axis k through the pivot P takes the ankle to
+// P + R(a) v (v = ankle - P), whose squared distance from the hip H is
+// C + A cos a + B sin a = C + M cos(a - phi) with u = P - H,
+// A = 2 u.v_perp, B = 2 u.(k x v), C = |u|^2 + |v|^2 + 2 u.v_par: solved in
+// closed form.
+double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Vec3& forward, const Pivot* stance,
+                 Transform& ankle) {
+  const Vec3 to_ankle = ankle.translation - hip;
+  if (!(to_ankle.norm() > reach) || (stance && *stance == Pivot::Heel)) return 0.0;
+  const bool on_ball = stance || to_ankle.dot(forward) < 0;
+  const Vec3 pivot = ankle.apply(on_ball ? foot.ball_local : foot.heel_local);
+  const Vec3 k = Vec3::UnitY().cross(forward).normalized();  // the foot's side axis
+  const Vec3 u = pivot - hip, v = ankle.translation - pivot;
+  const Vec3 v_par = k.dot(v) * k, v_perp = v - v_par;
+  const double A = 2 * u.dot(v_perp), B = 2 * u.dot(k.cross(v)), C = u.squaredNorm() + v.squaredNorm() + 2 * u.dot(v_par);
+  const double M = std::hypot(A, B), phi = std::atan2(B, A), limit = deg2rad(60.0);
+  auto wrap = [](double a) { return std::remainder(a, 2 * kPi); };
+  auto f = [&](double a) { return C + M * std::cos(a - phi); };
+  double angle = 0;
+  const double c = M > 1e-15 ? (reach * reach - C) / M : -2.0;
+  if (c >= -1.0) {  // within reach on the arc of angles around phi + pi; the nearest edge of it
+    const double a1 = wrap(phi + std::acos(std::min(c, 1.0))), a2 = wrap(phi - std::acos(std::min(c, 1.0)));
+    angle = std::abs(a1) < std::abs(a2) ? a1 : a2;
+  }
+  if (c < -1.0 || std::abs(angle) > limit) {  // out of reach: the closest within the limits
+    angle = std::clamp(wrap(phi + kPi), -limit, limit);
+    if (std::abs(wrap(phi + kPi)) > limit) angle = f(limit) < f(-limit) ? limit : -limit;
+  }
+  const Quat q(Eigen::AngleAxisd(angle, k));
+  ankle.translation = pivot + q * v;
+  ankle.rotation = (q * ankle.rotation).normalized();
+  return angle;
+}
+
+// The foot of the flat plan put on the ground: placed on `anchor` (the point
+// it pivots on; the heel for a free foot) raised by the ground height under
+// it, and turned rigidly towards the line between its heel and ball each
+// raised by the ground under them (`full`) - fully while the foot is flat,
+// not at all once heel and ball differ in height by 5 cm or more (a foot on
+// its heel or ball touches the ground at one point only; its toes still
+// follow the ground, see solve). A rigid foot turned on a slope moves its
+// other point sideways by the turn times their height difference, which is
+// what makes the switch from heel to ball slip; fading the turn out keeps
+// that near a millimetre on a 12 % grade. Returns the turn applied.
+Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_ball, Transform& ankle, Quat& full) {
+  full = Quat::Identity();
+  if (ground.flat()) return full;
+  const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
+  const Vec3 up = Vec3::UnitY();
+  const double flat = std::clamp(1.0 - std::abs(ball.y() - heel.y()) / 0.05, 0.0, 1.0);
+  full = Quat::FromTwoVectors(ball - heel, (ball + ground.height(ball) * up) - (heel + ground.height(heel) * up));
+  const Quat q = Quat::Identity().slerp(flat, full);
+  const Vec3 a = anchor_ball ? ball : heel;
+  ankle.translation = a + ground.height(a) * up + q * (ankle.translation - a);
+  ankle.rotation = (q * ankle.rotation).normalized();
+  return q;
+}
+
+// The toe's model transform after the leg's IK moved the ankle (the IK
+// updates the chain only; full FK if the toe does not hang from the ankle).
+void update_toe(const Skeleton& s, const FootPivots& foot, ConstPoseRef pose, std::span<Transform> g) {
+  if (foot.toe < 0) return;
+  const auto t = static_cast<std::size_t>(foot.toe);
+  if (s.parents[t] != foot.ankle) return forward_kinematics(s, pose, g);
+  g[t] = g[static_cast<std::size_t>(foot.ankle)] * Transform{pose.rotations[t], pose.translations[t]};
+}
+
+// How far the foot's lowest point (heel, ball, toe tip) is below the ground,
+// metres (0 if none is); `g` holds the pose's FK.
+double depth_below(const Ground& ground, const FootPivots& foot, const Skeleton& s, std::span<const Transform> g) {
+  const Transform& a = g[static_cast<std::size_t>(foot.ankle)];
+  auto below = [&](const Vec3& p) { return ground.height(p) - p.y(); };
+  double d = std::max(below(a.apply(foot.heel_local)), below(a.apply(foot.ball_local)));
+  if (foot.toe >= 0) d = std::max(d, below(end_site_position(s, g, foot.toe)));
+  return std::max(0.0, d);
+}
+
+}  // namespace
+
+std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool rest_at_end) {
+  std::vector<Vec3> out(q.begin(), q.end());
+  if (q.size() < 2 || !(width > 0)) return out;
+  const Extended e(q, width, rest_at_end);
+  for (std::size_t f = 0; f < q.size(); ++f) {
+    const double x = static_cast<double>(f);
+    out[f] = e.integral(x - 0.5 * width, x + 0.5 * width) / width;
+  }
+  return out;
+}
+
+namespace {
+
+// One frame of the smooth root: the pivoting pose (in `pose`) moved by
+// `shift` (horizontal, plus a pelvis drop in y), each foot rolled if out of
+// reach, both legs solved. Returns the pelvis drop that would bring every
+// ankle within reach without the soft limit (0 if none is needed).
+struct FrameSolver {
+  const CycleModel& m;
+  const Ground& ground;
+  const WalkOptions& opt;
+  std::vector<Transform> before, g;  // FK of the plan's pose, of the moved pose
+  LegIk legs[2];
+  FrameSolver(const CycleModel& model, const Ground& gr, const WalkOptions& o, const Motion& motion)
+      : m(model), ground(gr), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()) {
+    forward_kinematics(motion.skeleton, motion.frame(0), before);
+    legs[0] = leg_of(motion.skeleton, false, before);
+    legs[1] = leg_of(motion.skeleton, true, before);
+  }
+  // A frame of the plan: the first pass (r = nullptr) measures the drop
+  // needed and leaves `pose` alone; the second moves and solves it.
+  double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r);
+};
+
+// Pelvis drop that brings `hip` within `reach` of `target`.
+double drop_to_reach(const Vec3& hip, const Vec3& target, double reach) {
+  const double side = horizontal(target - hip).norm(), above = hip.y() - target.y();
+  if (side >= reach) return std::max(0.0, above);
+  return std::max(0.0, above - std::sqrt(reach * reach - side * side));
+}
+
+double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r) {
+  const Skeleton& s = m.skeleton;
+  forward_kinematics(s, pose, before);
+  if (r) pose.translations[0] += shift;
+  for (std::size_t j = 0; j < g.size(); ++j) g[j] = {before[j].rotation, before[j].translation + shift};  // (FK of the moved pose)
+  bool limited = false;
+  double drop = 0;
+  const Vec3 forward = yaw_rotation(heading) * Vec3::UnitZ();
+  for (int side = 0; side < 2; ++side) {
+    const LegIk& leg = legs[side];
+    const FootPivots& foot = m.foot(side == 1);
+    const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
+    Transform ankle = before[static_cast<std::size_t>(leg.chain.end)];
+    // As straight as the keys had it, or soft_reach, whichever is more.
+    const double keyed = (ankle.translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
+    const double soft = std::max(opt.soft_reach, keyed);
+    const bool stance = label.left_stance == (side == 1);
+    Quat slope;  // the ground's turn under the foot (its toes follow it)
+    fit_to_ground(ground, foot, stance && label.pivot == Pivot::Ball, ankle, slope);
+    const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &label.pivot : nullptr, ankle);
+    drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
+    ik::TwoBoneTarget t;
+    t.position = ankle.translation;
+    t.rotation = ankle.rotation;
+    t.rotation_weight = 1.0;
+    // The knee points where it did, carried along with the pelvis.
+    t.hint = before[static_cast<std::size_t>(leg.chain.mid)].translation + shift;
+    const double reach = soften_reach(hip, leg, soft, t.position);
+    if (!r) continue;
+    auto solve_leg = [&] {
+      ik::solve_two_bone(s, leg.chain, t, pose, g);
+      // A rolled foot's toes keep their world rotation (flat on the floor); on
+      // uneven ground they turn with the ground under the foot.
+      if ((roll != 0.0 || !ground.flat()) && foot.toe >= 0)
+        pose.rotations[static_cast<std::size_t>(foot.toe)] =
+            (t.rotation.conjugate() * slope * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
+      update_toe(s, foot, pose, g);
+    };
+    solve_leg();
+    // A foot point below the ground (the plan goes without the floor lift,
+    // and its blend into the standing pose can dip) lifts the foot straight
+    // up: no slip, no penetration.
+    const double below = depth_below(ground, foot, s, g);
+    if (below > 0) {
+      t.position.y() += below;
+      solve_leg();
+    }
+    r->foot_roll_max = std::max(r->foot_roll_max, std::abs(roll));
+    r->leg_reach_max = std::max(r->leg_reach_max, reach);
+    limited = limited || reach > soft + 1e-6;
+  }
+  if (r) r->reach_limited_frames += limited;
+  return drop;
+}
+
+// Largest value within `half_width` frames of each frame.
+std::vector<double> running_max(const std::vector<double>& v, int half_width) {
+  std::vector<double> out(v.size(), 0.0);
+  const int n = static_cast<int>(v.size());
+  for (int f = 0; f < n; ++f)
+    for (int k = std::max(0, f - half_width); k <= std::min(n - 1, f + half_width); ++k)
+      out[static_cast<std::size_t>(f)] = std::max(out[static_cast<std::size_t>(f)], v[static_cast<std::size_t>(k)]);
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+// The pelvis's rise over uneven ground: the mean ground height under the two
+// ankles of the plan, averaged over one step twice (as the root's travel).
+std::vector<Vec3> ground_lift(const Ground& ground, const Motion& motion, double step_frames, bool rest_at_end) {
+  const int n = motion.frame_count();
+  std::vector<Vec3> lift(static_cast<std::size_t>(n), Vec3::Zero());
+  if (ground.flat()) return lift;
+  const Skeleton& s = motion.skeleton;
+  const int feet[2] = {s.roles[Role::LeftAnkle], s.roles[Role::RightAnkle]};
+  std::vector<Transform> g(static_cast<std::size_t>(s.joint_count()));
+  for (int f = 0; f < n; ++f) {
+    forward_kinematics(s, motion.frame(f), g);
+    double h = 0;
+    for (int j : feet) h += 0.5 * ground.height(g[static_cast<std::size_t>(j)].translation);
+    lift[static_cast<std::size_t>(f)] = Vec3(0, h, 0);
+  }
+  return window_average(window_average(lift, step_frames, rest_at_end), step_frames, rest_at_end);
+}
+
+}  // namespace
+
+void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<const Vec3> floor_offset, double step_frames,
+                        const WalkOptions& opt, WalkResult& r) {
+  Motion& motion = r.motion;
+  const int n = motion.frame_count();
+  if (n < 2 || static_cast<int>(floor_offset.size()) != n) return;
+  const std::vector<Vec3> smooth =
+      window_average(window_average(floor_offset, step_frames, opt.stop), step_frames, opt.stop);
+  const std::vector<Vec3> lift = ground_lift(ground, motion, step_frames, opt.stop);
+  std::vector<Vec3> shift(static_cast<std::size_t>(n));
+  for (std::size_t f = 0; f < shift.size(); ++f) shift[f] = horizontal(smooth[f] - floor_offset[f]) + lift[f];
+  FrameSolver solver(m, ground, opt, motion);
+  // First pass: where the legs, rolled, still cannot reach, the pelvis must
+  // drop; the drop is spread smoothly (running maximum over a quarter step,
+  // averaged over as much: never less than needed).
+  std::vector<double> drop(static_cast<std::size_t>(n));
+  for (int f = 0; f < n; ++f)
+    drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)],
+                                                     r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)], nullptr);
+  const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / 4)));
+  const std::vector<double> envelope = running_max(drop, quarter);
+  std::vector<Vec3> lowered(static_cast<std::size_t>(n));
+  for (std::size_t f = 0; f < lowered.size(); ++f) lowered[f] = Vec3(0, -envelope[f], 0);
+  lowered = window_average(lowered, 2.0 * quarter, true);
+  for (int f = 0; f < n; ++f) {
+    const Vec3 d = shift[static_cast<std::size_t>(f)] + lowered[static_cast<std::size_t>(f)];
+    r.pelvis_drop_max = std::max(r.pelvis_drop_max, -lowered[static_cast<std::size_t>(f)].y());
+    solver.solve(motion.frame(f), d, r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)], &r);
+  }
+}
+
+}  // namespace legwork::walkcycle
