@@ -177,6 +177,10 @@ std::vector<int> joint_order(const tinygltf::Model& model, const std::vector<int
   std::vector<int> roots;
   for (std::size_t j = 0; j < joints.size(); ++j)
     (joint_parent[j] < 0 ? roots : kids[static_cast<std::size_t>(joint_parent[j])]).push_back(static_cast<int>(j));
+  // Siblings in node order (the order the hierarchy was authored in), not skin order.
+  const auto by_node = [&](int a, int b) { return joints[static_cast<std::size_t>(a)] < joints[static_cast<std::size_t>(b)]; };
+  for (auto& k : kids) std::sort(k.begin(), k.end(), by_node);
+  std::sort(roots.begin(), roots.end(), by_node);
   auto subtree = [&](int root) {
     std::vector<int> order, stack{root};
     while (!stack.empty()) {
