@@ -28,7 +28,7 @@ if command -v ffmpeg >/dev/null 2>&1; then
   "$LEGWORK" accent run --db "$out/sample.lwdb" --input "$held_out" --drop-first \
     --out "$out/07_02_accentuated.glb" --video "$out/07_02_side_by_side.mp4" --compare-ik
 fi
-"$(dirname "$LEGWORK")/../../bench/accent_speed" --db "$out/sample.lwdb" --input "$held_out" --drop-first --json "$out/bench.json"
+"$(dirname "${LEGWORK_BIN:-$LEGWORK}")/../../bench/accent_speed" --db "$out/sample.lwdb" --input "$held_out" --drop-first --json "$out/bench.json"
 rm -f "$out/sample.lwdb"  # a build product, not a result (rebuilt in a second)
 
 cat > "$out/README.txt" <<'TXT'

@@ -252,4 +252,18 @@ void render_video(const Motion& m, const VideoOptions& opt, const std::string& p
   render_video_side_by_side({&m}, {}, opt, path);
 }
 
+void write_video_still(const std::string& video, const std::string& png, double seconds) {
+  const std::string ffmpeg = find_ffmpeg();
+  // -ss after -i decodes up to the time, so a time past a short video's end
+  // gives no frame: try the asked time, then the first frame.
+  for (double t : {seconds, 0.0}) {
+    std::error_code ec;
+    std::filesystem::remove(png, ec);
+    const std::string cmd = shell_quote(ffmpeg) + " -y -loglevel error -i " + shell_quote(video) + " -ss " +
+                            detail::format_number(t, 3) + " -frames:v 1 -update 1 " + shell_quote(png) + " </dev/null";
+    if (std::system(cmd.c_str()) == 0 && std::filesystem::exists(png, ec) && std::filesystem::file_size(png, ec) > 0) return;
+  }
+  throw Error("ffmpeg could not take a still of '" + video + "' for '" + png + "'");
+}
+
 }  // namespace legwork::render

@@ -179,4 +179,9 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions,
                                const std::vector<std::string>& labels, const VideoOptions& opt,
                                const std::string& path);
 
+// A still of `video` at `seconds` (clamped into the video by ffmpeg) as PNG,
+// for web pages' poster frames. Throws legwork::Error if ffmpeg is missing or
+// cannot read the video.
+void write_video_still(const std::string& video, const std::string& png, double seconds = 0.5);
+
 }  // namespace legwork::render
