@@ -53,8 +53,9 @@ std::vector<std::pair<std::string, std::string>> read_captions(const fs::path& d
   std::ifstream in(dir / "README.txt");
   std::string line;
   while (std::getline(in, line)) {
+    // The name is a file or folder name: no spaces (a sentence with a colon is not a caption).
     auto colon = line.find(": ");
-    if (colon != std::string::npos && colon > 0) out.emplace_back(line.substr(0, colon), line.substr(colon + 2));
+    if (colon != std::string::npos && colon > 0 && line.find(' ') > colon) out.emplace_back(line.substr(0, colon), line.substr(colon + 2));
   }
   return out;
 }
@@ -288,12 +289,14 @@ std::vector<Section> sections_of(const fs::path& root) {
   return out;
 }
 
-// The root README.txt's lines without a colon: the page's introduction.
+// The root README.txt's lines that are not "name: caption": the page's introduction.
 std::string root_intro(const fs::path& root) {
   std::ifstream in(root / "README.txt");
   std::string line, out;
-  while (std::getline(in, line))
-    if (!line.empty() && line.find(": ") == std::string::npos) out += html_escape(line) + " ";
+  while (std::getline(in, line)) {
+    const auto colon = line.find(": ");
+    if (!line.empty() && (colon == std::string::npos || line.find(' ') < colon)) out += html_escape(line) + " ";
+  }
   return out;
 }
 

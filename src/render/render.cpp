@@ -197,7 +197,7 @@ void render_trajectory(const Motion& m, int joint, const std::vector<int>& marke
   const auto& name = m.skeleton.names[static_cast<std::size_t>(joint)];
   std::vector<Transform> model(static_cast<std::size_t>(m.joint_count()));
   Curve path_curve;
-  path_curve.color = {0.10, 0.55, 0.30};
+  path_curve.color = kTraceColor;
   path_curve.width = 2.0;
   for (int f = first; f <= last; ++f) {
     forward_kinematics(m.skeleton, m.frame(f), model);

@@ -122,7 +122,7 @@ Scene frame_scene_of(const Track& t, double time, const VideoOptions& opt, Pose&
     Curve done;
     const auto upto = static_cast<std::size_t>(std::clamp(time * m.fps, 0.0, double(m.frame_count() - 1))) + 1;
     done.points.assign(t.trace.begin(), t.trace.begin() + static_cast<std::ptrdiff_t>(upto));
-    done.color = {0.10, 0.55, 0.30};
+    done.color = kTraceColor;
     done.width = 2.0;
     done.label = m.skeleton.names[static_cast<std::size_t>(opt.trace_joint)];
     s.curves.push_back(std::move(all));

@@ -21,7 +21,7 @@ fs::path make_results() {
                         "data/info.json", "accent/body.bvh", "wip/eval/t1.png", "wip/eval/t2.png", "wip/report.md", "zoo/x.csv"})
     io::write_text_file((root / f).string(), "x");
   io::write_text_file((root / "README.txt").string(),
-                      "Intro line.\ndata/: Data - the clips\nwip/: Walking in place - legs\naccent/: Accentuation - bodies\n");
+                      "Intro line: a sentence.\ndata/: Data - the clips\nwip/: Walking in place - legs\naccent/: Accentuation - bodies\n");
   io::write_text_file((root / "data/README.txt").string(),
                       "walk.mp4: the walk as video\nsheet.png: a contact sheet\nsheet.svg: the same as SVG\nwalk.glb: glTF\n");
   io::write_text_file((root / "wip/README.txt").string(), "eval/: one plot per trial\n");
@@ -46,7 +46,7 @@ TEST(Gallery, SectionsFollowTheStoryThenTheRest) {
   EXPECT_LT(at(html, "<h2 id=\"data\">Data</h2>"), at(html, "<h2 id=\"wip\">Walking in place</h2>"));
   EXPECT_LT(at(html, "<h2 id=\"wip\">"), at(html, "<h2 id=\"accent\">Accentuation</h2>"));
   EXPECT_LT(at(html, "<h2 id=\"accent\">"), at(html, "<h2 id=\"zoo\">zoo</h2>"));  // not in the README: last
-  at(html, "<p class=\"intro\">Intro line. </p>");
+  at(html, "<p class=\"intro\">Intro line: a sentence. </p>");
   at(html, "<p class=\"intro\">the clips</p>");
 }
 

@@ -27,10 +27,13 @@ std::string view_name(View v);
 
 using Rgb = std::array<double, 3>;  // 0..1
 
-// Bone colours: the character's left side, right side (centre bones use the
-// figure's own colour). Chosen to stay distinguishable for colour-blind viewers.
+// The colour convention of every picture and chart: the character's left
+// side blue, its right side orange (centre bones use the figure's own
+// colour), traced paths green. Chosen to stay distinguishable for
+// colour-blind viewers; no other mark uses the left or right colour.
 inline constexpr Rgb kLeftColor{0.12, 0.40, 0.85};
 inline constexpr Rgb kRightColor{0.90, 0.33, 0.05};
+inline constexpr Rgb kTraceColor{0.10, 0.55, 0.30};
 
 // Camera axes in model space: unit vectors for picture right, picture up and
 // towards the viewer (depth grows towards the viewer).
@@ -67,7 +70,7 @@ Figure make_figure(const Skeleton& skel, ConstPoseRef pose, double alpha = 1.0,
 // points drawn as dots (key frames), `mark_labels` optional text per mark.
 struct Curve {
   std::vector<Vec3> points;
-  Rgb color{0.85, 0.3, 0.1};
+  Rgb color = kTraceColor;
   double width = 1.5;
   std::vector<int> marks;
   std::vector<std::string> mark_labels;
