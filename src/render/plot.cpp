@@ -351,7 +351,8 @@ void plot_bars(const BarChart& chart, const std::string& path) {
   const double legend_top = chart.title.empty() ? 8 : 36;
   const double title_h = legend_top + legend_rows(m.cr, items, left, legend_top, w, false) + 8;
   const double notes_h = chart.notes.empty() ? 0 : 10 + 16.0 * static_cast<double>(chart.notes.size());
-  const double h = chart.height - 48 - (chart.title.empty() ? 10 : 38);  // the bars' height as asked
+  // The canvas is as high as asked unless that leaves the bars under 120 px.
+  const double h = std::max(120.0, chart.height - title_h - 48 - notes_h);
   const int height = static_cast<int>(std::ceil(title_h + h + 48 + notes_h));
   detail::Canvas canvas(path, width, height);
   cairo_t* cr = canvas.cr();
