@@ -358,7 +358,7 @@ void draw_scene(cairo_t* cr, const Scene& scene, const Framing& fr) {
   draw_curves(cr, scene, fr);
   for (const auto& f : scene.figures) draw_label(cr, f, fr, l);
   double title_w = 0;
-  if (!scene.title.empty()) title_w = text(cr, 10, 19, scene.title, 14, Align::Left, kInk, 1.0, true);
+  if (!scene.title.empty()) title_w = title(cr, 10, 19, scene.title, 14, fr.width - 20);
   draw_scale_bar(cr, fr, title_w);
   cairo_restore(cr);
 }

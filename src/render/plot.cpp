@@ -267,7 +267,7 @@ void plot_lines(const LinePlot& plot, const std::string& path) {
   const double right = 18, extra = legend_w > 0 ? legend_w + 14 : 0;  // the canvas grows by the legend column
   detail::Canvas canvas(path, plot.width + static_cast<int>(std::ceil(extra)), height);
   cairo_t* cr = canvas.cr();
-  if (!plot.title.empty()) text(cr, 12, 24, plot.title, 16, Align::Left, kInk, 1.0, true);
+  if (!plot.title.empty()) detail::title(cr, 12, 24, plot.title, 16, plot.width + extra - 24);
   for (int i = 0; i < n; ++i) {
     const double top = title_h + 20 + i * (plot.panel_height + panel_gap);
     draw_panel(cr, plot.panels[static_cast<std::size_t>(i)], xr, left, top, plot.width - left - right,
@@ -356,7 +356,7 @@ void plot_bars(const BarChart& chart, const std::string& path) {
   const int height = static_cast<int>(std::ceil(title_h + h + 48 + notes_h));
   detail::Canvas canvas(path, width, height);
   cairo_t* cr = canvas.cr();
-  if (!chart.title.empty()) text(cr, 12, 24, chart.title, 16, Align::Left, kInk, 1.0, true);
+  if (!chart.title.empty()) detail::title(cr, 12, 24, chart.title, 16, width - 24);
   legend_rows(cr, items, left, legend_top, w, true);
   auto Y = [&](double y) { return title_h + h - (y - yr.lo) / (yr.hi - yr.lo) * h; };
   const int yd = decimals_for(yr.step);

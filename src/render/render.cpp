@@ -45,7 +45,7 @@ void render_panels(const std::vector<Panel>& panels, int cols, const std::string
   for (int h : row_h) height += h;
   Canvas canvas(path, width, height);
   cairo_t* cr = canvas.cr();
-  if (!title.empty()) detail::text(cr, 10, 24, title, 17, Align::Left, {0.1, 0.1, 0.1}, 1.0, true);
+  if (!title.empty()) detail::title(cr, 10, 24, title, 17, width - 20);
   int y = title_h;
   for (int r = 0; r < rows; ++r) {
     int x = 0;

@@ -235,7 +235,7 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
         cairo_stroke(cr);
       }
     }
-    if (!opt.title.empty()) detail::text(cr, 10, 21, opt.title, 15, Align::Left, {0.1, 0.1, 0.1}, 1.0, true);
+    if (!opt.title.empty()) detail::title(cr, 10, 21, opt.title, 15, W - 20);
     const Motion& m0 = *motions[0];
     const int src = std::min(m0.frame_count() - 1, static_cast<int>(std::lround(time * m0.fps)));
     char counter[96];
