@@ -623,6 +623,7 @@ std::string write_comparison_video(const EvalResult& r, const std::string& dir, 
   const Motion truth = trim(s.truth, 0, last), engine = trim(s.accent, 0, last), ik = trim(s.ik, 0, last);
   render::VideoOptions opt;
   opt.camera.view = render::View::ThreeQuarter;
+  opt.follow = true;  // bodies fill their panels
   opt.camera.width = 1080;
   opt.camera.height = 480;
   opt.title = "held-out " + s.trial + " (" + s.fold + ")";

@@ -208,8 +208,74 @@ struct Segment {
   double depth;
 };
 
+// A few tracked devices (no legs: e.g. a headset and two controllers)
+// rather than a body: drawn as markers, not as bones.
+bool is_device_set(const Skeleton& skel) {
+  return !skel.roles.has(Role::LeftHip) && !skel.roles.has(Role::RightHip) && skel.joint_count() <= 8;
+}
+
+// Devices as markers: the head as a ring through the head joint and its tip,
+// every other device as a dot in its side's colour with a stub towards its
+// tip (a controller's pointing direction), thin dashed lines from the head.
+void draw_devices(cairo_t* cr, const Figure& f, const Framing& fr) {
+  const Skeleton& skel = *f.skeleton;
+  const int n = std::min<int>(skel.joint_count(), static_cast<int>(f.positions.size()));
+  const auto sides = joint_sides(skel);
+  const double w = bone_width(fr);
+  const int head = skel.roles[Role::Head];
+  const bool tips = f.end_sites.size() == f.positions.size();
+  cairo_save(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  for (int j = 0; j < n && head >= 0 && head < n; ++j) {
+    const Vec3 &a = f.positions[static_cast<std::size_t>(head)], &b = f.positions[static_cast<std::size_t>(j)];
+    if (j == head || !a.allFinite() || !b.allFinite()) continue;
+    const double dash[] = {4, 4};
+    cairo_set_dash(cr, dash, 2, 0);
+    move_to(cr, fr.to_pixel(a));
+    line_to(cr, fr.to_pixel(b));
+    set_color(cr, {0.6, 0.6, 0.65});
+    cairo_set_line_width(cr, 1.2);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0);
+  }
+  for (int j = 0; j < n; ++j) {
+    const auto ju = static_cast<std::size_t>(j);
+    const Vec3& p = f.positions[ju];
+    if (!p.allFinite()) continue;
+    const Rgb c = sides[ju] == Side::Left ? kLeftColor : sides[ju] == Side::Right ? kRightColor : f.color;
+    const bool tip = tips && ju < skel.has_end_site.size() && skel.has_end_site[ju] && f.end_sites[ju].allFinite();
+    const auto q = fr.to_pixel(p);
+    if (j == head) {
+      const auto t = tip ? fr.to_pixel(f.end_sites[ju]) : q;
+      const double r = std::max(0.6 * (t - q).norm(), 0.07 / fr.metres_per_pixel);
+      cairo_arc(cr, (q.x() + t.x()) / 2, (q.y() + t.y()) / 2, r, 0, 2 * kPi);
+      set_color(cr, {1, 1, 1});
+      cairo_fill_preserve(cr);
+      set_color(cr, c);
+      cairo_set_line_width(cr, std::max(1.5, w * 0.8));
+      cairo_stroke(cr);
+      continue;
+    }
+    if (tip) {
+      move_to(cr, q);
+      line_to(cr, fr.to_pixel(f.end_sites[ju]));
+      set_color(cr, c);
+      cairo_set_line_width(cr, w * 1.6);
+      cairo_stroke(cr);
+    }
+    cairo_arc(cr, q.x(), q.y(), w * 1.8, 0, 2 * kPi);
+    set_color(cr, c);
+    cairo_fill_preserve(cr);
+    set_color(cr, {1, 1, 1});
+    cairo_set_line_width(cr, 1.2);
+    cairo_stroke(cr);
+  }
+  cairo_restore(cr);
+}
+
 void draw_figure(cairo_t* cr, const Figure& f, const Framing& fr) {
   if (!f.skeleton) return;
+  if (is_device_set(*f.skeleton)) return draw_devices(cr, f, fr);
   const Skeleton& skel = *f.skeleton;
   const int n = std::min<int>(skel.joint_count(), static_cast<int>(f.positions.size()));
   const auto sides = joint_sides(skel);

@@ -134,31 +134,19 @@ Scene frame_scene_of(const Track& t, double time, const VideoOptions& opt, Pose&
 
 }  // namespace
 
-void render_video_side_by_side(const std::vector<const Motion*>& motions, const std::vector<std::string>& labels,
-                               const VideoOptions& opt, const std::string& path) {
-  const int W = opt.camera.width, H = opt.camera.height;
-  if (motions.empty()) throw Error("video '" + path + "': no motions to draw");
-  if (W <= 0 || H <= 0 || W % 2 || H % 2)
-    throw Error("video '" + path + "': size " + std::to_string(W) + "x" + std::to_string(H) +
-                " must be positive and even (H.264 with yuv420p needs even sizes)");
-  if (!(opt.fps > 0 && opt.fps <= 240)) throw Error("video '" + path + "': fps must be in (0, 240]");
-  for (const Motion* m : motions) {
-    if (!m || m->frame_count() == 0) throw Error("video '" + path + "': a motion has no frames");
-    if (opt.trace_joint >= m->joint_count())
-      throw Error("video '" + path + "': trace joint " + std::to_string(opt.trace_joint) + " is outside 0.." +
-                  std::to_string(m->joint_count() - 1));
-  }
-  const std::string ffmpeg = find_ffmpeg();  // fail before drawing anything
-  (void)ffmpeg;
+namespace {
 
+// The root's place on the floor (x, 0, z) in a pose: what a following camera tracks.
+Vec3 floor_point(const Vec3& root) { return Vec3(root.x(), 0, root.z()); }
+
+// One panel per motion with a fixed framing from every frame's joints (and
+// the trace) and one common scale, so the bodies compare at equal size; with
+// opt.follow, from the joints relative to the root's floor point, so the
+// camera can follow each body and the bodies fill their panels.
+std::vector<Track> panel_tracks(const std::vector<const Motion*>& motions, const std::vector<std::string>& labels,
+                                const VideoOptions& opt, int panel_w, int panel_h, bool titled) {
   static const Rgb kPanelColors[] = {{0.15, 0.15, 0.2}, {0.45, 0.15, 0.55}, {0.1, 0.45, 0.45}, {0.5, 0.35, 0.1}};
   const int n = static_cast<int>(motions.size());
-  const int top = opt.title.empty() ? 0 : 30;  // frame-wide title strip
-  const int panel_w = W / n, panel_h = H - top;
-  const bool titled = n > 1 || !labels.empty();
-
-  // Fixed framing per panel from every frame's joints (and the trace), one
-  // common scale so the bodies compare at equal size.
   std::vector<Track> tracks(static_cast<std::size_t>(n));
   double mpp = 0;
   std::vector<Scene> extent(static_cast<std::size_t>(n));
@@ -177,10 +165,11 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
     std::vector<Transform> model(nj);
     for (int f = 0; f < m.frame_count(); ++f) {
       forward_kinematics(m.skeleton, m.frame(f), model);
+      const Vec3 shift = opt.follow ? floor_point(model[0].translation) : Vec3::Zero();
       for (std::size_t j = 0; j < nj; ++j) {
-        everything.points.push_back(model[j].translation);
+        everything.points.push_back(model[j].translation - shift);
         if (j < m.skeleton.has_end_site.size() && m.skeleton.has_end_site[j])
-          everything.points.push_back(end_site_position(m.skeleton, model, static_cast<int>(j)));
+          everything.points.push_back(end_site_position(m.skeleton, model, static_cast<int>(j)) - shift);
       }
       if (opt.trace_joint >= 0) t.trace.push_back(model[static_cast<std::size_t>(opt.trace_joint)].translation);
     }
@@ -201,6 +190,33 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
     fr = frame_scene(extent[static_cast<std::size_t>(i)], cam);
     if (vlo <= vhi && !cam.fixed_bounds) fr.centre_plane.y() = (vlo + vhi) / 2;
   }
+  return tracks;
+}
+
+}  // namespace
+
+void render_video_side_by_side(const std::vector<const Motion*>& motions, const std::vector<std::string>& labels,
+                               const VideoOptions& opt, const std::string& path) {
+  const int W = opt.camera.width, H = opt.camera.height;
+  if (motions.empty()) throw Error("video '" + path + "': no motions to draw");
+  if (W <= 0 || H <= 0 || W % 2 || H % 2)
+    throw Error("video '" + path + "': size " + std::to_string(W) + "x" + std::to_string(H) +
+                " must be positive and even (H.264 with yuv420p needs even sizes)");
+  if (!(opt.fps > 0 && opt.fps <= 240)) throw Error("video '" + path + "': fps must be in (0, 240]");
+  for (const Motion* m : motions) {
+    if (!m || m->frame_count() == 0) throw Error("video '" + path + "': a motion has no frames");
+    if (opt.trace_joint >= m->joint_count())
+      throw Error("video '" + path + "': trace joint " + std::to_string(opt.trace_joint) + " is outside 0.." +
+                  std::to_string(m->joint_count() - 1));
+  }
+  const std::string ffmpeg = find_ffmpeg();  // fail before drawing anything
+  (void)ffmpeg;
+
+  const int n = static_cast<int>(motions.size());
+  const int top = opt.title.empty() ? 0 : 30;  // frame-wide title strip
+  const int panel_w = W / n;
+  const bool titled = n > 1 || !labels.empty();
+  const std::vector<Track> tracks = panel_tracks(motions, labels, opt, panel_w, H - top, titled);
 
   double duration = 0;
   for (const Motion* m : motions) duration = std::max(duration, m->duration());
@@ -223,9 +239,11 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
     for (int i = 0; i < n; ++i) {
       const auto& t = tracks[static_cast<std::size_t>(i)];
       const Scene s = frame_scene_of(t, time, opt, poses[static_cast<std::size_t>(i)], titled);
+      Framing fr = t.framing;
+      if (opt.follow) fr.centre_plane += project(fr.view, floor_point(poses[static_cast<std::size_t>(i)].translations[0]));
       cairo_save(cr);
       cairo_translate(cr, i * panel_w, top);
-      detail::draw_scene(cr, s, t.framing);
+      detail::draw_scene(cr, s, fr);
       cairo_restore(cr);
       if (i > 0) {
         cairo_set_source_rgb(cr, 0.8, 0.8, 0.82);

@@ -173,6 +173,10 @@ struct VideoOptions {
   double fps = 30.0;    // output rate; the motion is resampled
   int trace_joint = -1;
   std::string title;
+  // The camera follows each body over the floor (side-by-side videos), so the
+  // body fills its panel; the floor grid moves under it. Off: one framing
+  // over the whole clip's path.
+  bool follow = false;
 };
 void render_video(const Motion& m, const VideoOptions& opt, const std::string& path);
 
