@@ -173,7 +173,7 @@ void render_walk_top(const Motion& walk, const std::vector<Vec3>* path, const st
   // A few translucent figures along the walk.
   const int every = std::max(1, walk.frame_count() / 8);
   for (int f = 0; f < walk.frame_count(); f += every)
-    s.figures.push_back(make_figure(walk.skeleton, walk.frame(f), 0.25));
+    s.figures.push_back(make_figure(walk.skeleton, walk.frame(f), 0.45));
   s.title = title;
   Camera cam;
   cam.view = View::Top;
