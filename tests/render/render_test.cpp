@@ -30,6 +30,12 @@ const Motion& walk() {
 
 std::string out(const std::string& name) { return (out_dir() / name).string(); }
 
+// Renders `s` to out(name) and decodes it.
+Image rendered(const Scene& s, const Camera& cam, const std::string& name) {
+  render_scene(s, cam, out(name));
+  return Image(out(name));
+}
+
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;
@@ -174,9 +180,7 @@ TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
   s.floor = false;
   s.figures.push_back(make_figure(skel, Pose(skel)));
   const Camera cam = camera(View::Front, 400, 400);
-  const auto file = out("front_rest.png");
-  render_scene(s, cam, file);
-  Image img(file);
+  const Image img = rendered(s, cam, "front_rest.png");
   ASSERT_TRUE(img.ok());
   const int w = img.width();
   auto count = [&](const Rgb& c, bool right_half) {
@@ -335,9 +339,7 @@ TEST(RenderScene, TrackedDevicesAreMarkersNotBones) {
   Scene scene;
   scene.figures.push_back(make_figure(s, Pose(s)));
   const Camera cam = camera(View::Front, 300, 300);
-  const auto file = out("devices.png");
-  render_scene(scene, cam, file);
-  Image img(file);
+  const Image img = rendered(scene, cam, "devices.png");
   ASSERT_TRUE(img.ok());
   const Framing fr = frame_scene(scene, cam);
   const auto& p = scene.figures[0].positions;
@@ -363,9 +365,7 @@ TEST(RenderScene, TracedPathsNeverUseTheSideColours) {
   c.mark_labels = {"C", "P"};
   c.label = "LeftHand";
   s.curves.push_back(c);
-  const auto file = out("trace_colour.png");
-  render_scene(s, camera(View::Front, 300, 300), file);
-  Image img(file);
+  const Image img = rendered(s, camera(View::Front, 300, 300), "trace_colour.png");
   ASSERT_TRUE(img.ok());
   EXPECT_GT(img.count([](int, int, const auto& px) { return near_color(px, kTraceColor); }), 100);
   EXPECT_EQ(img.count([](int, int, const auto& px) { return near_color(px, kRightColor, 0.15); }), 0);
