@@ -12,5 +12,9 @@ for a in "$@"; do
   esac
   line+=" $a"
 done
-echo "$line" >> "${OUT:?OUT is the demo output folder}/commands.txt"
+log="${OUT:?OUT is the demo output folder}/commands.txt"
+# The first line names the results folder as the commands write it, so the
+# gallery matches each result to the command naming it exactly.
+[ -s "$log" ] || echo "# results: ${OUT//$root\//}" > "$log"
+echo "$line" >> "$log"
 exec "${LEGWORK_BIN:?LEGWORK_BIN is the legwork CLI}" "$@"

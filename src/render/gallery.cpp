@@ -84,8 +84,10 @@ class Commands {
   explicit Commands(const fs::path& root) {
     std::ifstream in(root / "commands.txt");
     std::string line;
-    while (std::getline(in, line))
+    while (std::getline(in, line)) {
+      if (line.rfind("# results: ", 0) == 0) results_ = line.substr(11) + "/";
       if (!line.empty() && line[0] != '#') lines_.push_back(line);
+    }
   }
 
   std::string made(const std::string& rel) const {
@@ -107,20 +109,30 @@ class Commands {
   }
   // 2: a path suffix of `word` is `rel`; 1: a path suffix of `word` that
   // keeps a folder is a stem or folder of `rel`.
-  static int match(const std::string& word, const std::string& rel) {
+  // With the results folder known ("# results: demo-out"), only the part of
+  // a word after it is compared.
+  int match(const std::string& word, const std::string& rel) const {
     std::vector<std::string> tails{word};
-    for (auto k = word.find('/'); k != std::string::npos; k = word.find('/', k + 1)) tails.push_back(word.substr(k + 1));
+    if (!results_.empty()) {
+      if (word.rfind(results_, 0) != 0) return 0;
+      tails = {word.substr(results_.size())};
+    }
+    for (auto k = word.find('/'); results_.empty() && k != std::string::npos; k = word.find('/', k + 1)) tails.push_back(word.substr(k + 1));
     int score = 0;
+    const bool path = word.find('/') != std::string::npos;  // not a subcommand such as "eval"
     for (const auto& tail : tails) {
       if (tail == rel) return 2;
-      if (!tail.empty() && (tail.find('/') != std::string::npos || rel.find('/') == std::string::npos) &&
-          rel.size() > tail.size() && rel.compare(0, tail.size(), tail) == 0 &&
-          std::string_view("_./").find(rel[tail.size()]) != std::string_view::npos)
-        score = 1;
+      if (path && !tail.empty() && rel.size() > tail.size() && rel.compare(0, tail.size(), tail) == 0) {
+        const char next = rel[tail.size()];
+        // A stem keeps its folder ("walkcycle/normal" + "_arc..."); a folder may be a section ("eval" + "/...").
+        if (next == '/' || (std::string_view("_.").find(next) != std::string_view::npos && tail.find('/') != std::string::npos))
+          score = 1;
+      }
     }
     return score;
   }
   std::vector<std::string> lines_;
+  std::string results_;  // "demo-out/", or empty: any leading folders
 };
 
 struct Item {
@@ -165,16 +177,34 @@ std::vector<Item> folder_items(const fs::path& dir) {
   return items;
 }
 
-std::string command_html(const std::string& command) {
-  return command.empty() ? "" : "<code class=\"cmd\">$ " + html_escape(command) + "</code>";
+// Width / height of a PNG from its header (0 if unreadable).
+double png_aspect(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  unsigned char h[24] = {};
+  if (!in.read(reinterpret_cast<char*>(h), sizeof h) || h[1] != 'P' || h[2] != 'N' || h[3] != 'G') return 0;
+  auto be = [&](int at) { return (h[at] << 24) | (h[at + 1] << 16) | (h[at + 2] << 8) | h[at + 3]; };
+  return be(20) > 0 ? static_cast<double>(be(16)) / be(20) : 0;
+}
+
+// The command under an item; a command already shown in this folder is named
+// by the first file it made instead of repeated. `shown` maps command -> that file.
+std::string command_html(const std::string& command, const fs::path& file, const fs::path& base,
+                         std::map<std::string, fs::path>& shown) {
+  if (command.empty()) return "";
+  if (auto it = shown.find(command); it != shown.end())
+    return "<code class=\"cmd\">$ the command of <a href=\"" + url_of(fs::relative(it->second, base).generic_string()) + "\">" +
+           html_escape(it->second.filename().string()) + "</a></code>";
+  shown.emplace(command, file);
+  return "<code class=\"cmd\">$ " + html_escape(command) + "</code>";
 }
 
 // One grid tile (picture or video); `base` is the page's folder.
-std::string tile_html(const fs::path& root, const fs::path& base, const Item& it, const Commands& commands) {
+std::string tile_html(const fs::path& root, const fs::path& base, const Item& it, const Commands& commands,
+                      std::map<std::string, fs::path>& shown) {
   const std::string href = url_of(fs::relative(it.file, base).generic_string());
   const std::string name = it.file.filename().string();
   std::ostringstream os;
-  os << "<figure>";
+  os << (it.picture && it.file.extension() == ".png" && png_aspect(it.file) > 2.2 ? "<figure class=\"wide\">" : "<figure>");
   if (it.video) {
     fs::path poster = it.file;
     poster.replace_extension(".poster.png");
@@ -190,18 +220,19 @@ std::string tile_html(const fs::path& root, const fs::path& base, const Item& it
   if (!it.svg_twin.empty())
     os << " <a class=\"fmt\" href=\"" << url_of(fs::relative(it.svg_twin, base).generic_string()) << "\">SVG</a>";
   if (!it.caption.empty()) os << "<br>" << html_escape(it.caption);
-  os << command_html(commands.made(fs::relative(it.file, root).generic_string())) << "</figcaption></figure>\n";
+  os << command_html(commands.made(fs::relative(it.file, root).generic_string()), it.file, base, shown) << "</figcaption></figure>\n";
   return os.str();
 }
 
-std::string file_row_html(const fs::path& root, const fs::path& base, const Item& it, const Commands& commands) {
+std::string file_row_html(const fs::path& root, const fs::path& base, const Item& it, const Commands& commands,
+                          std::map<std::string, fs::path>& shown) {
   std::error_code ec;
   const auto bytes = fs::file_size(it.file, ec);
   std::ostringstream os;
   os << "<li><a href=\"" << url_of(fs::relative(it.file, base).generic_string()) << "\">" << html_escape(it.file.filename().string())
      << "</a> <span class=\"size\">" << (ec ? "" : size_text(bytes)) << "</span>";
   if (!it.caption.empty()) os << " &mdash; " << html_escape(it.caption);
-  os << command_html(commands.made(fs::relative(it.file, root).generic_string())) << "</li>\n";
+  os << command_html(commands.made(fs::relative(it.file, root).generic_string()), it.file, base, shown) << "</li>\n";
   return os.str();
 }
 
@@ -234,8 +265,11 @@ std::string folder_body(const fs::path& root, const fs::path& dir, const fs::pat
                         bool link_sub_folders = true) {
   const auto items = folder_items(dir);
   std::ostringstream grid, list;
-  for (const auto& it : items) (it.picture || it.video ? grid : list) << (it.picture || it.video ? tile_html(root, base, it, commands)
-                                                                                              : file_row_html(root, base, it, commands));
+  std::map<std::string, fs::path> shown;
+  for (const auto& it : items)
+    if (it.picture || it.video) grid << tile_html(root, base, it, commands, shown);
+  for (const auto& it : items)
+    if (!it.picture && !it.video) list << file_row_html(root, base, it, commands, shown);
   const auto captions = read_captions(dir);
   for (const auto& sub : link_sub_folders ? sub_folders(dir) : std::vector<fs::path>{}) {
     const std::string summary = folder_summary(sub);
@@ -259,7 +293,7 @@ std::string page_head(const std::string& title) {
          "body{font-family:system-ui,sans-serif;margin:1.5em auto;max-width:1560px;padding:0 1em;color:#222;line-height:1.4}"
          "h2{border-bottom:1px solid #ccc;margin-top:2em}nav a{margin-right:1em}.intro{color:#444;max-width:60em}"
          ".grid{display:grid;grid-template-columns:repeat(auto-fill,minmax(360px,1fr));gap:1.2em}"
-         "figure{margin:0}img,video{width:100%;height:auto;border:1px solid #ddd;background:#fff}"
+         "figure{margin:0}figure.wide{grid-column:span 2}img,video{width:100%;height:auto;border:1px solid #ddd;background:#fff}"
          "figcaption{font-size:.9em}.name{font-weight:600}.fmt{font-size:.85em;margin-left:.4em}"
          "code.cmd{display:block;font-size:.8em;color:#555;background:#f4f4f4;padding:.2em .4em;margin-top:.2em;"
          "white-space:pre-wrap;word-break:break-all}"

@@ -18,7 +18,7 @@ fs::path make_results() {
   fs::remove_all(root);
   for (const char* d : {"accent", "data", "wip/eval", "zoo"}) fs::create_directories(root / d);
   for (const char* f : {"data/sheet.png", "data/sheet.svg", "data/arc.svg", "data/walk.mp4", "data/walk.poster.png", "data/walk.glb",
-                        "data/info.json", "accent/body.bvh", "wip/eval/t1.png", "wip/eval/t2.png", "wip/report.md", "zoo/x.csv"})
+                        "data/info.json", "data/arc.csv", "accent/body.bvh", "wip/eval/t1.png", "wip/eval/t2.png", "wip/report.md", "zoo/x.csv"})
     io::write_text_file((root / f).string(), "x");
   io::write_text_file((root / "README.txt").string(),
                       "Intro line: a sentence.\ndata/: Data - the clips\nwip/: Walking in place - legs\naccent/: Accentuation - bodies\n");
@@ -29,7 +29,8 @@ fs::path make_results() {
                       "legwork render data/cmu/a.bvh --out demo-out/data/sheet.png\n"
                       "legwork render data/cmu/a.bvh --out /abs/demo-out/data/walk.mp4\n"
                       "legwork wip eval --out demo-out/wip/eval\n"
-                      "legwork walkcycle --arc-out demo-out/data/arc\n");
+                      "legwork walkcycle --arc-out demo-out/data/arc\n"
+                      "legwork eval accent --quick --out demo-out/accent\n");
   return root;
 }
 
@@ -72,6 +73,10 @@ TEST(Gallery, EachFileShowsTheCommandThatMadeIt) {
   at(html, "$ legwork render data/cmu/a.bvh --out /abs/demo-out/data/walk.mp4");
   const auto arc = at(html, "src=\"data/arc.svg\"");
   EXPECT_EQ(html.find("$ legwork walkcycle --arc-out demo-out/data/arc"), html.find("$ legwork", arc)) << "stem match";
+  // A section folder given as the output; "eval" (a subcommand, not a path) names no folder.
+  EXPECT_GT(at(html, "$ legwork eval accent --quick --out demo-out/accent"), at(html, ">body.bvh</a>"));
+  // A command shown once in a folder is named by its first file after that.
+  at(html, "$ the command of <a href=\"data/arc.svg\">arc.svg</a>");
   // A file no command names gets none.
   const auto glb = at(html, ">walk.glb</a>");
   EXPECT_EQ(html.substr(glb, html.find("</li>", glb) - glb).find("$ legwork"), std::string::npos);
@@ -87,4 +92,20 @@ TEST(Gallery, NestedFoldersGetTheirOwnPage) {
   at(pages[1].html, "<img src=\"t1.png\"");
   at(pages[1].html, "<a href=\"../../index.html\">");
   at(pages[1].html, "$ legwork wip eval --out demo-out/wip/eval");  // a folder output
+}
+
+TEST(Gallery, TheResultsFolderLineMakesMatchesExact) {
+  // "# results: demo-out" (written by scripts/demo-log.sh): a later command
+  // writing demo-out/wip/accent must not claim accent/body.bvh, as the
+  // any-leading-folders fallback would.
+  const auto root = make_results();
+  const std::string log = "legwork accent run --out demo-out/accent\nlegwork wip run --out demo-out/wip/accent\n";
+  io::write_text_file((root / "commands.txt").string(), log);
+  const std::string loose = render::gallery_html(root.string(), "t");
+  const auto row = at(loose, ">body.bvh</a>");
+  EXPECT_EQ(loose.find("$ legwork", row), loose.find("$ legwork wip run", row)) << "fallback: the later command wins";
+  io::write_text_file((root / "commands.txt").string(), "# results: demo-out\n" + log);
+  const std::string exact = render::gallery_html(root.string(), "t");
+  const auto row2 = at(exact, ">body.bvh</a>");
+  EXPECT_EQ(exact.find("$ legwork", row2), exact.find("$ legwork accent run --out demo-out/accent", row2));
 }
