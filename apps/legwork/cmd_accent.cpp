@@ -1,41 +1,21 @@
 // legwork accent build / run / bench: full-body accentuation from headset + controllers.
 #include "command.hpp"
-#include "motion_input.hpp"
 
-#include <legwork/accent/accent.hpp>
 #include <legwork/accent/offline/builder.hpp>
-#include <legwork/accent/offline/run.hpp>
 #include <legwork/accent/offline/report.hpp>
-#include <legwork/eval/session.hpp>
-#include <legwork/eval/run.hpp>
-#include <legwork/accent/offline/retarget.hpp>
-#include <legwork/core/interpolate.hpp>
-#include <legwork/core/measure.hpp>
-#include <legwork/io/text.hpp>
-#include <legwork/io/tracker_csv.hpp>
+#include <legwork/eval/accent_job.hpp>
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
-#include <filesystem>
 
 namespace legwork::cli {
 namespace {
 
 using namespace legwork::accent;
-using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-SearchMode parse_mode(const std::string& m) {
-  if (m == "fast") return SearchMode::Fast;
-  if (m == "exact") return SearchMode::Exact;
-  if (m == "brute") return SearchMode::BruteForce;
-  throw Error("--mode '" + m + "': expected fast, exact or brute");
-}
-const char* mode_name(SearchMode m) { return m == SearchMode::Fast ? "fast" : m == SearchMode::Exact ? "exact" : "brute"; }
 
 // ---------------------------------------------------------------- build
 
@@ -51,7 +31,7 @@ void register_build(CLI::App& parent) {
                                     "Example: legwork accent build --data ../shared/data/cmu --classes boxing,running --out box_run.lwdb");
   auto a = std::make_shared<BuildArgs>();
   cmd->add_option("--data", a->data, "folder laid out like data/cmu (MANIFEST.tsv, bvh/<class>/*.bvh)")->required();
-  cmd->add_option("--out", a->out, "database file to write (.lwdb)")->required();
+  output_file(cmd->add_option("--out", a->out, "database file to write (.lwdb)"))->required();
   cmd->add_option("--classes", a->classes, "comma-separated classes (default: every class present)");
   cmd->add_option("--exclude", a->exclude, "trial files to leave out (e.g. a held-out trial), by manifest path or name");
   cmd->add_option("--fps", a->cfg.fps, "tracker rate the trials are resampled to (Hz)")->check(CLI::PositiveNumber);
@@ -61,7 +41,7 @@ void register_build(CLI::App& parent) {
   cmd->add_option("--speed-range", a->cfg.speed_range, "largest relative speed change of the re-timed copies")->check(CLI::Range(0.0, 0.9));
   cmd->add_flag("--mirror", a->cfg.mirror, "add left/right mirrored copies of every trial");
   cmd->add_option("--weights", a->weights, "feature group weights position,velocity,acceleration (default 1,1,0.5)");
-  cmd->add_option("--json", a->json_path, "write the build report (per-trial verdicts) as JSON");
+  output_file(cmd->add_option("--json", a->json_path, "write the build report (per-trial verdicts) as JSON"));
   cmd->callback([a] {
     require_extension("--out", a->out, {".lwdb"});
     if (!a->weights.empty()) {
@@ -70,7 +50,7 @@ void register_build(CLI::App& parent) {
       for (std::size_t i = 0; i < 3; ++i) a->cfg.group_weight[i] = std::stod(w[i]);
     }
     const auto t0 = Clock::now();
-    auto trials = load_trials(a->data, split_commas(a->classes), a->exclude, progress_bar("reading "));
+    auto trials = load_trials(a->data, split_commas(a->classes), a->exclude, progress_bar("reading"));
     if (trials.empty()) throw Error("no trials selected in '" + a->data + "'");
     const double read_s = seconds_since(t0);
     BuildReport report;
@@ -100,14 +80,7 @@ void register_build(CLI::App& parent) {
 
 // ---------------------------------------------------------------- run
 
-struct RunArgs {
-  std::string db, out, video, json_path, classes, mode = "fast", target, save_session;
-  MotionInput input;
-  bool compare_ik = false, no_align = false, no_smooth = false, no_limits = false;
-  int k = Settings{}.k_left, k_left = -1, k_right = -1;
-  double threshold = 6.0, height = 0, exaggerate = 1.0, hand_ik = Settings{}.hand_ik, max_tilt = Settings{}.max_head_tilt_deg;
-  double smooth_halflife = Settings{}.smooth_halflife;
-};
+
 
 void register_run(CLI::App& parent) {
   auto* cmd = parent.add_subcommand(
@@ -116,14 +89,16 @@ void register_run(CLI::App& parent) {
       "ground truth for the video) or a headset CSV (time, head xyz + quaternion, hands xyz).\n"
       "Example: legwork accent run --db box_run.lwdb --input data/cmu/bvh/walking/07_02.bvh --drop-first --out walk.glb "
       "--video walk.mp4 --compare-ik");
-  auto a = std::make_shared<RunArgs>();
+  auto a = std::make_shared<eval::AccentJob>();
   cmd->add_option("--db", a->db, "database built by 'legwork accent build'")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--input", a->input.path, "session: .bvh trial or .csv headset recording")->required()->check(CLI::ExistingFile);
-  a->input.add_options(cmd, false);
-  cmd->add_option("--out", a->out, "result: .glb or .bvh")->required();
-  cmd->add_option("--video", a->video, "side-by-side MP4: input, accentuated body (and IK baseline, ground truth)");
+  cmd->add_option("--input", a->input, "session: .bvh trial or .csv headset recording")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--scale", a->input_options.scale, "BVH input: file units -> metres (0 = detect)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--drop-first", a->input_options.drop_first, "BVH input: drop frame 0 (the CMU T-pose)");
+  cmd->add_flag("--lenient", a->input_options.lenient, "BVH input: accept more motion lines than 'Frames:' declares");
+  output_file(cmd->add_option("--out", a->out, "result: .glb or .bvh"))->required();
+  output_file(cmd->add_option("--video", a->video, "side-by-side MP4: input, accentuated body (and IK baseline, ground truth)"));
   cmd->add_flag("--compare-ik", a->compare_ik, "add the IK baseline (the VRIK-style full-body IK of legwork::ik) to the video and the JSON");
-  cmd->add_option("--json", a->json_path, "per-frame match statistics and summary as JSON");
+  output_file(cmd->add_option("--json", a->json_path, "per-frame match statistics and summary as JSON"));
   cmd->add_option("--mode", a->mode, "search: fast (KD-tree, approximate), exact (KD-tree) or brute");
   cmd->add_option("--k", a->k, "matches per hand (the paper used 5)")->capture_default_str()->check(CLI::Range(1, kMaxK));
   cmd->add_option("--k-left", a->k_left, "matches for the left hand (default --k)")->check(CLI::Range(0, kMaxK));
@@ -147,91 +122,8 @@ void register_run(CLI::App& parent) {
   cmd->add_option("--max-head-tilt", a->max_tilt, "reject candidates whose head tilt differs from the headset's by more than this (degrees, 0 = off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");
-  cmd->add_option("--save-session", a->save_session, "also write the input as a headset session CSV (the format --input reads)");
-  cmd->callback([a] {
-    require_extension("--out", a->out, {".glb", ".bvh"});
-    if (!a->video.empty()) require_extension("--video", a->video, {".mp4"});
-    const auto t0 = Clock::now();
-    const Database db = load_database(a->db);
-    const double load_s = seconds_since(t0);
-    Settings cfg;
-    cfg.search = parse_mode(a->mode);
-    cfg.k_left = a->k_left >= 0 ? a->k_left : a->k;
-    cfg.k_right = a->k_right >= 0 ? a->k_right : a->k;
-    cfg.threshold = a->threshold;
-    cfg.align = !a->no_align;
-    cfg.smooth = !a->no_smooth;
-    cfg.smooth_halflife = a->smooth_halflife;
-    cfg.joint_limits = !a->no_limits;
-    cfg.exaggeration = a->exaggerate;
-    cfg.classes = split_commas(a->classes);
-    cfg.hand_ik = a->hand_ik;
-    cfg.max_head_tilt_deg = a->max_tilt;
-    const double fps = db.feature_space().fps;
-    std::vector<TrackerFrame> frames;
-    Motion truth;
-    const auto in_ext = io::extension_of(a->input.path);
-    if (in_ext == ".bvh") {
-      truth = resample(a->input.load().motion, fps);
-      frames = tracker_frames_from_motion(truth);
-      cfg.user_height = a->height > 0 ? a->height : measure_body(truth.skeleton).standing_height;
-    } else if (in_ext == ".csv") {
-      frames = io::frames_from_table(io::read_tracker_csv(a->input.path), a->input.path,
-                                     {Device::Head, Device::LeftHand, Device::RightHand});
-      cfg.user_height = a->height;
-    } else {
-      throw Error("--input '" + a->input.path + "' must be a .bvh trial or a .csv headset session");
-    }
-    if (frames.empty()) throw Error("--input '" + a->input.path + "' has no samples");
-    if (!a->save_session.empty()) {
-      io::write_tracker_csv(a->save_session, io::table_from_frames(frames));
-      announce("headset session", a->save_session);
-    }
-    AccentRun run = accentuate(make_model(db, cfg), frames, fps);
-    const eval::SessionFigures fig = eval::session_figures(run);
-    std::printf("database: %s (%d windows, loaded in %.1f ms)\n", a->db.c_str(), db.window_count(), load_s * 1e3);
-    std::printf("frames: %d at %.4g Hz; %.0f frames/s in update() (%s search); mean match weight %.2f\n", run.output.frame_count(), fps,
-                fig.frames_per_second, mode_name(cfg.search), fig.mean_match_weight);
-    for (const auto& [s, n] : fig.statuses) std::printf("  %-14s %d frames\n", s.c_str(), n);
-    Motion result = run.output;
-    if (!a->target.empty()) {
-      Motion tgt = io::load_bvh(a->target, io::BvhReadOptions{});
-      require_roles(tgt.skeleton, a->target);
-      tgt.skeleton.scale(cfg.user_height > 0 ? cfg.user_height / std::max(measure_body(tgt.skeleton).standing_height, 1e-6) : 1.0);
-      result = retarget_motion_at_head(run.output, tgt.skeleton);
-    }
-    write_motion(a->out, result, "accentuated motion", "motion");
-    Motion ik;
-    if (a->compare_ik) ik = eval::run_ik_baseline(truth.skeleton.names.empty() ? run.output.skeleton : truth.skeleton, frames, fps);
-    json j;
-    j["input"] = a->input.path;
-    j["database"] = a->db;
-    j["frames"] = run.output.frame_count();
-    j["fps"] = fps;
-    j["frames_per_second"] = fig.frames_per_second;
-    j["load_ms"] = load_s * 1e3;
-    j["statuses"] = fig.statuses;
-    if (!truth.skeleton.names.empty()) {
-      std::printf("vs ground truth:\n");
-      j["accent_error"] = eval::truth_error(run.output, truth);
-      std::printf("%s", eval::describe_truth_error("accent", j["accent_error"]).c_str());
-      if (a->compare_ik) {
-        j["ik_error"] = eval::truth_error(ik, truth);
-        std::printf("%s", eval::describe_truth_error("IK baseline", j["ik_error"]).c_str());
-      }
-    }
-    if (!a->json_path.empty()) {
-      j["per_frame"] = eval::session_per_frame(run);
-      io::write_text_file(a->json_path, j.dump(1) + "\n");
-      announce("run report", a->json_path);
-    }
-    if (!a->video.empty()) {
-      eval::render_session_video(frames, fps, run.output, a->compare_ik ? &ik : nullptr,
-                                 truth.skeleton.names.empty() ? nullptr : &truth,
-                                 "legwork accent: " + std::filesystem::path(a->input.path).filename().string(), a->video);
-      announce("video", a->video);
-    }
-  });
+  output_file(cmd->add_option("--save-session", a->save_session, "also write the input as a headset session CSV (the format --input reads)"));
+  cmd->callback([a] { eval::run_accent_job(*a); });
 }
 
 void register_accent(CLI::App& app) {

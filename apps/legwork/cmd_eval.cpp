@@ -10,8 +10,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
-#include <mutex>
-#include <regex>
 
 namespace legwork::cli {
 namespace {
@@ -26,34 +24,6 @@ struct EvalArgs {
   double threshold = -1, hand_ik = -1;
   bool mirror = false, exact = false;
 };
-
-// A progress line on stderr: rewritten in place on a terminal, one line each otherwise.
-std::function<void(const std::string&)> progress_printer() {
-  const bool tty = isatty(fileno(stderr));
-  auto last = std::make_shared<std::string>();
-  return [tty, last](const std::string& line) {
-    if (tty) {
-      // A bar for the fold phase: "[#####.....] 12/163 folds ...".
-      static const std::regex folds(R"((\d+)/(\d+) folds)");
-      std::smatch m;
-      std::string bar;
-      if (std::regex_search(line, m, folds)) {
-        const double f = std::stod(m[1].str()) / std::max(1.0, std::stod(m[2].str()));
-        const int n = static_cast<int>(f * 20.0 + 0.5);
-        bar = "[" + std::string(static_cast<std::size_t>(n), '#') + std::string(static_cast<std::size_t>(20 - n), '.') + "] ";
-      }
-      std::fprintf(stderr, "\r[eval] %s%s\x1b[K", bar.c_str(), line.c_str());
-    } else {
-      // Only fold lines and the last line of each loading/preparing phase ("N/N").
-      static const std::regex done_phase(R"((\d+)/\1\b)");
-      const bool fold = line.find(" folds ") != std::string::npos;
-      const bool phase_end = std::regex_search(line, done_phase);
-      if (fold || phase_end) std::fprintf(stderr, "[eval] %s\n", line.c_str());
-    }
-    std::fflush(stderr);
-    *last = line;
-  };
-}
 
 void register_eval(CLI::App& app) {
   auto* group = app.add_subcommand("eval", "Evaluate methods against motion-capture ground truth.");
@@ -124,7 +94,7 @@ void register_eval(CLI::App& app) {
     if (a->threshold >= 0) opt.config.threshold = a->threshold;
     if (a->hand_ik >= 0) opt.config.hand_ik = a->hand_ik;
     if (a->exact) opt.config.search = accent::SearchMode::Exact;
-    opt.progress = progress_printer();
+    opt.progress = io::status_printer("[eval] ");
 
     const eval::EvalResult res = eval::run_evaluation(data, test.get(), opt);
     if (isatty(fileno(stderr))) std::fprintf(stderr, "\n");

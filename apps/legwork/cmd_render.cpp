@@ -1,7 +1,6 @@
 // legwork render: pictures (contact sheets, single frames, joint paths) and
 // videos of a motion file.
 #include "command.hpp"
-#include "motion_input.hpp"
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
@@ -50,7 +49,7 @@ void run_render(const RenderArgs& a) {
   const Motion& m = file.motion;
   if (m.frame_count() == 0) throw Error("'" + a.in.path + "' has no frames");
   auto [first, last] = a.frames.empty() ? std::pair<int, int>{0, m.frame_count() - 1}
-                                        : parse_frame_range(a.frames, m.frame_count());
+                                        : io::parse_frame_range(a.frames, m.frame_count());
   const int trace = a.trace.empty() ? -1 : find_trace_joint(m.skeleton, a.trace);
   const std::string clip = std::filesystem::path(a.in.path).stem().string();
   if (a.footprints && (trace < 0 || ext == ".mp4"))
@@ -138,7 +137,7 @@ void register_render(CLI::App& app) {
       "  legwork render data/cmu/bvh/walking/07_01.bvh --out walk.mp4 --view three-quarter --trace LeftFoot");
   auto a = std::make_shared<RenderArgs>();
   a->in.add_options(cmd);
-  cmd->add_option("--out,-o", a->out, "output: .png or .svg (picture) or .mp4 (video)")->required();
+  output_file(cmd->add_option("--out,-o", a->out, "output: .png or .svg (picture) or .mp4 (video)"))->required();
   cmd->add_option("--view", a->view,
                   "side (forward to the right), front (facing you: the character's left on your right), "
                   "three-quarter, top. Default: side; contact sheets show front and side rows unless given");

@@ -1,41 +1,37 @@
 #pragma once
 // Subcommand registry: each cmd_*.cpp adds its subcommands to the app with
-// LEGWORK_COMMAND(fn, order), so modules never edit main.cpp.
+// LEGWORK_COMMAND(fn, order), so modules never edit main.cpp. Commands parse
+// options, call library functions and print; the work is in the libraries.
 #include <CLI/CLI.hpp>
 
-#include <legwork/core/motion.hpp>
-#include <legwork/core/types.hpp>
-
-#include <functional>
-#include <string>
-#include <utility>
-#include <vector>
+#include <legwork/io/motion_file.hpp>
+#include <legwork/io/progress.hpp>
+#include <legwork/io/text.hpp>
 
 namespace legwork::cli {
 
 using Registrar = void (*)(CLI::App&);
 int add_command(Registrar r, int order);
 
-// Parses "A:B" (inclusive, either side optional) into [first, last] clamped to [0, frames-1].
-std::pair<int, int> parse_frame_range(const std::string& spec, int frames);
+using io::announce;
+using io::require_extension;
+using io::split_commas;
 
-// Prints "wrote PATH" consistently.
-void announce(const std::string& what, const std::string& path);
+// Marks an option as an output file: its folder is made (or refused) by
+// io::prepare_output, the same way in every command.
+CLI::Option* output_file(CLI::Option* option);
 
-// "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
-std::vector<std::string> split_commas(const std::string& s);
+// Progress of long work on stderr: a live bar on a terminal, whole lines in logs.
+inline io::ProgressPrinter progress_bar(const std::string& what) { return io::progress_printer(what); }
 
-// Throws "OPTION 'PATH' must end in A or B" unless PATH ends in one of `exts` (".png", ...).
-void require_extension(const std::string& option, const std::string& path, const std::vector<std::string>& exts);
-
-// Creates the folder `path` will be written into.
-void ensure_parent(const std::string& path);
-
-// Writes a motion as .bvh or .glb (by extension; `name` = the glTF animation name) and announces it.
-void write_motion(const std::string& path, const Motion& m, const std::string& what, const std::string& name);
-
-// A one-line progress bar on stderr: "what [####......] done/total item".
-std::function<void(int, int, const std::string&)> progress_bar(const std::string& what);
+// Options every command that reads a motion shares: the positional IN (if
+// `positional`), --scale, --drop-first, --lenient.
+struct MotionInput {
+  std::string path;
+  io::MotionReadOptions options;
+  void add_options(CLI::App* cmd, bool positional = true, const std::string& name = "input");
+  io::BvhFile load() const { return io::read_motion(path, options); }
+};
 
 }  // namespace legwork::cli
 

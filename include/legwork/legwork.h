@@ -127,7 +127,13 @@ LW_API void lw_frames_free(lw_frame* frames);
 
 typedef struct lw_model lw_model;
 
-typedef enum lw_method { LW_METHOD_ACCENT = 0, LW_METHOD_IK = 1, LW_METHOD_WIP = 2, LW_METHOD_WALKER = 3 } lw_method;
+typedef enum lw_method {
+  LW_METHOD_ACCENT = 0,
+  LW_METHOD_IK = 1,
+  LW_METHOD_WIP = 2,
+  LW_METHOD_WALKER = 3,
+  LW_METHOD_COMBINED = 4
+} lw_method;
 
 typedef struct lw_accent_settings {
   const char* classes;   /* comma-separated activity classes; NULL or "" = all */
@@ -151,6 +157,15 @@ LW_API lw_status lw_model_create_wip(const lw_skeleton* skeleton, lw_model** out
 /* A walk-cycle walker from a key-pose JSON file (skeleton found next to it);
  * steered frame by frame by the head device's yaw. */
 LW_API lw_status lw_model_create_walker(const char* keys_json_path, lw_model** out);
+
+/* One avatar, two sources (legwork::combined): the upper body from head and
+ * hands by accentuation over `db` (settings `s`, NULL = defaults), or, with
+ * db NULL, by full-body IK on `skeleton` (copied); the leg joints (hips down)
+ * from walking-in-place on the feet devices, faded over 0.3 s when both feet
+ * are found or lost. lw_avatar_set_floor applies to its legs. The database
+ * must outlive the model. */
+LW_API lw_status lw_model_create_combined(const lw_database* db, const lw_accent_settings* s, const lw_skeleton* skeleton,
+                                          lw_model** out);
 
 LW_API void lw_model_destroy(lw_model* m);
 LW_API lw_method lw_model_method(const lw_model* m);

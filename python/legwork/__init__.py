@@ -9,6 +9,7 @@ Submodules mirror the C++ modules one to one:
     legwork.ik         the full-body IK avatar (VRIK-style baseline)
     legwork.wip        walking-in-place legs
     legwork.walkcycle  walk cycles from key poses; the frame-by-frame walker
+    legwork.combined   one avatar: accentuated (or IK) upper body, walking-in-place legs
     legwork.eval       MPJPE, MPJVE, jitter, foot skating, step F1
 
 Units: metres, seconds, radians unless a name says otherwise; legwork's frame is right-handed,
@@ -18,6 +19,6 @@ arguments (shape, dtype, contiguity, NaN) raise ValueError naming the argument.
 """
 from . import _legwork
 from ._legwork import Error
-from . import core, io, accent, ik, wip, walkcycle, eval  # noqa: F401  (eval: the module, as in C++)
+from . import core, io, accent, ik, wip, walkcycle, combined, eval  # noqa: F401  (eval: the module, as in C++)
 
-__all__ = ["Error", "core", "io", "accent", "ik", "wip", "walkcycle", "eval"]
+__all__ = ["Error", "core", "io", "accent", "ik", "wip", "walkcycle", "combined", "eval"]

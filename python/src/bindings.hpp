@@ -89,5 +89,6 @@ void bind_eval(pb::module_& m);
 void bind_ik(pb::module_& m);
 void bind_wip(pb::module_& m);
 void bind_walkcycle(pb::module_& m);
+void bind_combined(pb::module_& m);
 
 }  // namespace legwork::py

@@ -108,7 +108,7 @@ void bind_steps(pb::module_& m) {
       },
       "detected"_a, "truth"_a, "t_begin"_a, "t_end"_a,
         "Step precision/recall/F1 and latencies: swings of the same foot whose intervals overlap are matched one to\n"
-        "one; swings outside [t_begin, t_end] seconds are ignored. truth: legwork.wip.true_swings(motion).");
+        "one; swings outside [t_begin, t_end] seconds are ignored. truth: legwork.wip.foot_swings(motion).");
 }
 
 }  // namespace

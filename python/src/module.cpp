@@ -104,6 +104,7 @@ PYBIND11_MODULE(_legwork, m) {
       {"wip", "Walking-in-place legs on the per-frame contract.", &lp::bind_wip},
       {"walkcycle", "Walk cycles from key poses; the frame-by-frame walker.", &lp::bind_walkcycle},
       {"accent", "Accentuation: full body from a headset and two controllers.", &lp::bind_accent},
+      {"combined", "One avatar, two sources: accentuated (or IK) upper body, walking-in-place legs.", &lp::bind_combined},
       {"eval", "Evaluation metrics: MPJPE, MPJVE, jitter, foot skating, step detection F1.", &lp::bind_eval},
   };
   for (const Submodule& sub : submodules) {

@@ -1,7 +1,7 @@
 // legwork.wip: walking-in-place legs on the per-frame contract.
 #include "bindings.hpp"
 
-#include <legwork/wip/offline/truth.hpp>
+#include <legwork/core/contacts.hpp>
 #include <legwork/wip/wip.hpp>
 
 namespace legwork::py {
@@ -95,8 +95,8 @@ void bind_wip(pb::module_& m) {
       .def_readonly("strike", &SwingEvent::strike)
       .def_readonly("apex", &SwingEvent::apex);
   m.def(
-      "true_swings", [](const Motion& mo) { return true_swings(mo); }, "motion"_a,
-      "Ground-truth swings of a walking motion (toe off to first contact; default TruthOptions).");
+      "foot_swings", [](const Motion& mo) { return foot_swings(mo); }, "motion"_a,
+      "Ground-truth swings of a walking motion (toe off to first contact; default ContactOptions).");
 }
 
 }  // namespace legwork::py

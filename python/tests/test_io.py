@@ -14,8 +14,10 @@ def test_read_bvh_matches_cli_info(cli):
     skel = motion.skeleton
     assert motion.frame_count == info["frames"]
     assert skel.joint_count == info["joints"]
-    assert motion.fps == info["fps"]
-    assert motion.duration == pytest.approx(info["duration_s"], rel=1e-12)
+    # info rounds for people (120.0, not 120.00048000192); frame_time_s is exact.
+    assert motion.fps == pytest.approx(info["fps"], abs=5e-4)
+    assert 1.0 / motion.fps == pytest.approx(info["frame_time_s"], rel=1e-12)
+    assert motion.duration == pytest.approx(info["duration_s"], abs=5e-5)
     assert report["scale"] == info["scale_to_metres"]
     assert report["scale_reason"] == info["scale_reason"]
     assert report["repaired_zero_frames"] == info["repaired_zero_frames"]
@@ -27,7 +29,7 @@ def test_read_bvh_matches_cli_info(cli):
     assert {role: names[j] for role, j in skel.roles.items()} == info["roles"]
     body = legwork.core.measure_body(skel)
     for key in ("standing_height", "hip_height", "leg_length", "arm_length"):
-        assert body[key] == info[key + "_m"]
+        assert body[key] == pytest.approx(info[key + "_m"], abs=5e-5)  # rounded to 0.1 mm
 
 
 def test_arrays_have_documented_shapes_and_units():

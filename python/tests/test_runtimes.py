@@ -22,7 +22,7 @@ def drive(module, model, frames, info=None):
     return core.Motion(model.skeleton(), 90.0, np.ascontiguousarray(rot), np.ascontiguousarray(trans)), status
 
 
-@pytest.mark.parametrize("module", [ik, wip, walkcycle, legwork.accent])
+@pytest.mark.parametrize("module", [ik, wip, walkcycle, legwork.accent, legwork.combined])
 def test_every_runtime_has_the_contract_names(module):
     for name in ("Settings", "Model", "make_model", "State", "reset", "update", "Info"):
         assert hasattr(module, name), f"{module.__name__}.{name}"
@@ -132,10 +132,35 @@ def test_step_f1_equals_cli_wip_eval(cli, tmp_path):
             info = wip.Info()
             if wip.update(model, frame, state, pose, info) != core.UpdateStatus.Rejected:
                 infos.append(info)
-        score = legwork.eval.score_steps(legwork.eval.detected_swings(infos), wip.true_swings(motion), 0.5,
+        score = legwork.eval.score_steps(legwork.eval.detected_swings(infos), wip.foot_swings(motion), 0.5,
                                          motion.duration - 0.1)
         cli_steps = trial["lenient_overlap"]  # overlap score; strict_200ms is the headline
         assert (score.true_steps, score.detected, score.matched) == (
             cli_steps["true_steps"], cli_steps["detected"], cli_steps["matched"]), trial["trial"]
         assert score.f1 == pytest.approx(cli_steps["f1"], rel=1e-12)
         assert score.off_latency_ms == pytest.approx(cli_steps["foot_off_latency_ms"], rel=1e-12)
+
+
+def test_combined_legs_come_from_wip_and_the_upper_body_from_ik():
+    walk = legwork.io.read_bvh(str(TRIAL), drop_first=True)
+    frames = core.tracker_frames_from_motion(walk, 30.0)
+    settings = legwork.combined.Settings()
+    settings.wip.signal.rate = 30.0
+    model = legwork.combined.make_model(walk.skeleton, settings)
+    assert not model.accentuated
+    out, status = drive(legwork.combined, model, frames)
+    ik_out, _ = drive(ik, ik.make_model(walk.skeleton), frames)
+    legs = set(model.leg_joints)
+    upper = [j for j in range(walk.skeleton.joint_count) if j not in legs]
+    assert np.array_equal(out.rotations[:, upper], ik_out.rotations[:, upper])  # the upper body is the IK avatar's
+    assert not np.allclose(out.rotations[:, sorted(legs)], ik_out.rotations[:, sorted(legs)])  # the legs are not
+    assert status.count(core.UpdateStatus.Ok) > len(frames) // 2
+
+
+def test_combined_with_a_database(db):
+    settings = legwork.combined.Settings()
+    settings.accent.user_height = 1.7
+    model = legwork.combined.make_model(db, settings)
+    assert model.accentuated
+    state = legwork.combined.State(model)
+    assert state.legs_weight == 0.0

@@ -28,11 +28,21 @@ if command -v ffmpeg >/dev/null 2>&1; then
   "$LEGWORK" accent run --db "$out/sample.lwdb" --input "$held_out" --drop-first \
     --out "$out/07_02_accentuated.glb" --video "$out/07_02_side_by_side.mp4" --compare-ik
 fi
+# One avatar, two sources: upper body from head + hands, legs from walking-in-place on the ankles,
+# scored on the held-out walk beside the upper-body methods alone (IK, accentuation).
+mkdir -p "$out/held_out" "$out/combined"
+ln -sf "$held_out" "$out/held_out/07_02.bvh"
+video_opt=()
+command -v ffmpeg >/dev/null 2>&1 && video_opt=(--video "$out/07_02_combined.mp4")
+"$LEGWORK" eval combined --data "$out/held_out" --db "$out/sample.lwdb" --out "$out/combined" "${video_opt[@]}"
+rm -rf "$out/held_out"
 "$(dirname "${LEGWORK_BIN:-$LEGWORK}")/../../bench/accent_speed" --db "$out/sample.lwdb" --input "$held_out" --drop-first --json "$out/bench.json"
 rm -f "$out/sample.lwdb"  # a build product, not a result (rebuilt in a second)
 
 cat > "$out/README.txt" <<'TXT'
 07_02_side_by_side.mp4: held-out CMU walk 07_02 - input (head and wrists only), accentuated full body, IK baseline, ground truth
+07_02_combined.mp4: one avatar, two sources on the held-out walk: the capture, accentuation alone, the combined avatar (accentuated upper body + walking-in-place legs from the ankles), the same with an IK upper body, and the IK avatar alone (legwork eval combined --video)
+combined/report.md: their errors against the capture and foot skating (legwork eval combined)
 07_02_accentuated.glb: the accentuated body as glTF 2.0 (database skeleton scaled to the walker's height)
 07_02_accentuated_sheet.png: every 20th accentuated pose, front and side views
 07_02_exaggerated_sheet.png: the same walk with the input hands exaggerated 1.4x about the head (style control)

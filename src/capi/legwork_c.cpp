@@ -5,6 +5,7 @@
 #include <legwork/legwork.h>
 
 #include <legwork/accent/accent.hpp>
+#include <legwork/combined/combined.hpp>
 #include <legwork/core/engine.hpp>
 #include <legwork/core/fk.hpp>
 #include <legwork/core/tracker.hpp>
@@ -138,7 +139,7 @@ struct lw_database {
 
 struct lw_model {
   lw_method method = LW_METHOD_ACCENT;
-  std::variant<accent::Model, ik::Model, wip::Model, walkcycle::Model> model;
+  std::variant<accent::Model, ik::Model, wip::Model, walkcycle::Model, combined::Model> model;
   lw_skeleton skeleton;  // the output skeleton
 };
 
@@ -147,11 +148,12 @@ accent::State state_of(const accent::Model& m) { return accent::State(m); }
 ik::State state_of(const ik::Model& m) { return ik::State(m); }
 wip::State state_of(const wip::Model& m) { return wip::State(m); }
 walkcycle::State state_of(const walkcycle::Model& m) { return walkcycle::State(m); }
+combined::State state_of(const combined::Model& m) { return combined::State(m); }
 }  // namespace
 
 struct lw_avatar {
   const lw_model* model = nullptr;
-  std::variant<accent::State, ik::State, wip::State, walkcycle::State> state;
+  std::variant<accent::State, ik::State, wip::State, walkcycle::State, combined::State> state;
   Pose pose;
   std::vector<Transform> world;  // scratch for lw_avatar_pose
 };
@@ -275,33 +277,56 @@ void lw_accent_settings_default(lw_accent_settings* s) {
   *s = lw_accent_settings{nullptr, d.k_left, d.exaggeration, d.user_height, d.hand_ik, d.smooth_halflife};
 }
 
+}  // extern "C"
+
+namespace {
+// lw_accent_settings -> accent::Settings; an empty string when valid, else the reason.
+std::string accent_settings(const lw_accent_settings* s, accent::Settings& cfg) {
+  if (!s) return "";
+  if (s->k < 1 || s->k > accent::kMaxK) return "k must be 1.." + std::to_string(accent::kMaxK) + ", got " + std::to_string(s->k);
+  cfg.k_left = cfg.k_right = s->k;
+  cfg.exaggeration = s->exaggeration;
+  cfg.user_height = s->user_height;
+  cfg.hand_ik = s->hand_ik;
+  cfg.smooth_halflife = s->smooth_halflife;
+  if (s->classes) {
+    std::string cur;
+    for (const char* c = s->classes;; ++c) {
+      if (*c == ',' || *c == 0) {
+        if (!cur.empty()) cfg.classes.push_back(cur);
+        cur.clear();
+        if (*c == 0) break;
+      } else {
+        cur += *c;
+      }
+    }
+  }
+  return "";
+}
+}  // namespace
+
+extern "C" {
+
 lw_status lw_model_create_accent(const lw_database* db, const lw_accent_settings* s, lw_model** out) {
   if (!db || !out) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_accent: database and out must not be NULL");
   *out = nullptr;
   return guarded("lw_model_create_accent", [&] {
     accent::Settings cfg;
-    if (s) {
-      if (s->k < 1 || s->k > accent::kMaxK)
-        return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_accent: k must be 1.." + std::to_string(accent::kMaxK) + ", got " + std::to_string(s->k));
-      cfg.k_left = cfg.k_right = s->k;
-      cfg.exaggeration = s->exaggeration;
-      cfg.user_height = s->user_height;
-      cfg.hand_ik = s->hand_ik;
-      cfg.smooth_halflife = s->smooth_halflife;
-      if (s->classes) {
-        std::string cur;
-        for (const char* c = s->classes;; ++c) {
-          if (*c == ',' || *c == 0) {
-            if (!cur.empty()) cfg.classes.push_back(cur);
-            cur.clear();
-            if (*c == 0) break;
-          } else {
-            cur += *c;
-          }
-        }
-      }
-    }
+    if (const std::string why = accent_settings(s, cfg); !why.empty())
+      return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_accent: " + why);
     return store_model(LW_METHOD_ACCENT, accent::make_model(db->db, cfg), out);
+  });
+}
+
+lw_status lw_model_create_combined(const lw_database* db, const lw_accent_settings* s, const lw_skeleton* skeleton, lw_model** out) {
+  if ((!db && !skeleton) || !out)
+    return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_combined: give a database or a skeleton, and out (not NULL)");
+  *out = nullptr;
+  return guarded("lw_model_create_combined", [&] {
+    combined::Settings cfg;
+    if (const std::string why = accent_settings(s, cfg.accent); !why.empty())
+      return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_combined: " + why);
+    return store_model(LW_METHOD_COMBINED, db ? combined::make_model(db->db, cfg) : combined::make_model(skeleton->skeleton, cfg), out);
   });
 }
 
@@ -368,6 +393,7 @@ lw_status lw_avatar_reset(lw_avatar* a) {
         if constexpr (std::is_same_v<S, accent::State>) accent::reset(std::get<accent::Model>(a->model->model), state);
         else if constexpr (std::is_same_v<S, ik::State>) ik::reset(std::get<ik::Model>(a->model->model), state);
         else if constexpr (std::is_same_v<S, wip::State>) wip::reset(std::get<wip::Model>(a->model->model), state);
+        else if constexpr (std::is_same_v<S, combined::State>) combined::reset(std::get<combined::Model>(a->model->model), state);
         else walkcycle::reset(std::get<walkcycle::Model>(a->model->model), state);
       },
       a->state);
@@ -377,7 +403,8 @@ lw_status lw_avatar_reset(lw_avatar* a) {
 lw_status lw_avatar_set_floor(lw_avatar* a, double left, double right) {
   if (!a) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_avatar_set_floor: avatar must not be NULL");
   auto* s = std::get_if<wip::State>(&a->state);
-  if (!s) return fail(LW_ERROR_UNSUPPORTED, "lw_avatar_set_floor: only walking-in-place avatars have a floor");
+  if (auto* c = std::get_if<combined::State>(&a->state)) s = &c->wip;
+  if (!s) return fail(LW_ERROR_UNSUPPORTED, "lw_avatar_set_floor: only walking-in-place and combined avatars have a floor");
   if (!std::isfinite(left) || !std::isfinite(right)) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_avatar_set_floor: floor heights must be finite");
   wip::set_floor(*s, left, right);
   return LW_OK;
@@ -395,6 +422,8 @@ lw_status lw_avatar_update(lw_avatar* a, const lw_frame* frame) {
           return ik::update(std::get<ik::Model>(a->model->model), in, state, a->pose.ref());
         else if constexpr (std::is_same_v<S, wip::State>)
           return wip::update(std::get<wip::Model>(a->model->model), in, state, a->pose.ref());
+        else if constexpr (std::is_same_v<S, combined::State>)
+          return combined::update(std::get<combined::Model>(a->model->model), in, state, a->pose.ref());
         else
           return walkcycle::update(std::get<walkcycle::Model>(a->model->model), in, state, a->pose.ref());
       },

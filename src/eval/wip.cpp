@@ -1,6 +1,8 @@
 // Walking-in-place evaluation: detected vs true swings, depth agreement,
 // the key-frame baseline, and the `legwork wip eval` report.
 #include <legwork/eval/wip.hpp>
+
+#include <legwork/io/progress.hpp>
 #include <legwork/core/stats.hpp>
 
 #include <legwork/core/fk.hpp>
@@ -166,10 +168,10 @@ StrictScore combine(std::span<const StrictScore> scores) {
   return c;
 }
 
-std::vector<StillSegment> still_segments(const Motion& m, const std::string& name, const wip::TruthOptions& truth,
+std::vector<StillSegment> still_segments(const Motion& m, const std::string& name, const ContactOptions& truth,
                                          std::span<const SwingEvent> detected, double min_duration, double t_begin,
                                          double t_end) {
-  const auto contact = wip::true_contacts(m, truth);
+  const auto contact = foot_contacts(m, truth);
   std::vector<StillSegment> out;
   const int n = m.frame_count();
   for (int f = 0; f < n;) {
@@ -254,7 +256,7 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
   const double rate = opt.settings.signal.rate;
   const wip::Model model = wip::make_model(trial.skeleton, opt.settings);
   e.leg_length = model.leg_length();
-  e.truth = wip::true_swings(trial, opt.truth);
+  e.truth = foot_swings(trial, opt.truth);
   wip::RunOptions ro;
   ro.calibrate = false;  // real walking has no still period: rolling floor
   ro.keep_poses = false;
@@ -740,18 +742,17 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
   fixed.settings.gait.adaptive = false;
   Totals t;
   int index = 0;
+  const auto progress = io::progress_printer("legwork wip eval: trial");
   for (const auto& file : run.files) {
     const std::string name = fs::path(file).stem().string();
-    char progress[128];
-    std::snprintf(progress, sizeof progress, "\r[%d/%zu] %-12s", index + 1, run.files.size(), name.c_str());
-    if (run.log) run.log(progress);
+    if (run.log) progress(index + 1, static_cast<int>(run.files.size()), name);
     WipTrialEval e, ef;
     try {
       const Motion m = load_trial(file, run);
       e = evaluate_wip_trial(m, name, cycle, run.options, index);
       ef = evaluate_wip_trial(m, name, cycle, fixed, index);
     } catch (const Error& err) {
-      if (run.log) run.log("\nlegwork wip eval: skipping " + file + ": " + err.what() + "\n");
+      if (run.log) run.log("legwork wip eval: skipping " + file + ": " + err.what() + "\n");
       ++t.failed;
       ++index;
       continue;

@@ -5,6 +5,8 @@
 #include <legwork/core/types.hpp>
 
 #include <algorithm>
+#include <charconv>
+#include <cstdio>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -120,6 +122,71 @@ std::string printable_text(std::string_view s, std::size_t max) {
     if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
   if (s.size() > max) out += "...";
   return out;
+}
+
+}  // namespace legwork::io
+
+namespace legwork::io {
+
+void announce(const std::string& what, const std::string& path) { std::printf("wrote %s: %s\n", what.c_str(), path.c_str()); }
+
+std::vector<std::string> split_commas(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const std::size_t end = std::min(s.find(',', start), s.size());
+    if (end > start) out.push_back(s.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+void require_extension(const std::string& option, const std::string& path, const std::vector<std::string>& exts) {
+  const std::string ext = extension_of(path);
+  if (std::find(exts.begin(), exts.end(), ext) != exts.end()) return;
+  std::string list;
+  for (std::size_t i = 0; i < exts.size(); ++i) list += (i == 0 ? "" : i + 1 == exts.size() ? " or " : ", ") + exts[i];
+  throw Error(option + " '" + path + "' must end in " + list);
+}
+
+std::pair<int, int> parse_frame_range(const std::string& spec, int frames, const std::string& option) {
+  const auto parse = [&](std::string_view s, int dflt) {
+    if (s.empty()) return dflt;
+    int v = 0;
+    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || p != s.data() + s.size())
+      throw Error(option + " '" + spec + "': expected A:B with whole numbers");
+    return v < 0 ? v + frames : v;  // -1 = last frame
+  };
+  const std::string_view sv(spec);
+  const auto colon = spec.find(':');
+  int a = 0, b = frames - 1;
+  if (colon == std::string::npos) {
+    a = b = parse(sv, 0);
+  } else {
+    a = parse(sv.substr(0, colon), 0);
+    b = parse(sv.substr(colon + 1), frames - 1);
+  }
+  if (a < 0 || b >= frames || a > b)
+    throw Error(option + " '" + spec + "' is outside the clip's frames 0:" + std::to_string(frames - 1));
+  return {a, b};
+}
+
+std::string prepare_output(const std::string& path, const std::string& option) {
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::path(path).parent_path();
+  std::error_code ec;
+  if (parent.empty() || fs::is_directory(parent, ec)) return path;
+  if (fs::exists(parent, ec))
+    throw Error(option + " '" + path + "': '" + parent.string() + "' is a file, not a folder");
+  const fs::path rel = fs::absolute(parent, ec).lexically_normal().lexically_relative(fs::current_path(ec));
+  const bool inside = !rel.empty() && *rel.begin() != "..";
+  if (!inside)
+    throw Error(option + " '" + path + "': folder '" + parent.string() +
+                "' does not exist and is outside the working folder; create it first");
+  fs::create_directories(parent, ec);
+  if (ec) throw Error(option + " '" + path + "': cannot create folder '" + parent.string() + "' (" + ec.message() + ")");
+  return path;
 }
 
 }  // namespace legwork::io

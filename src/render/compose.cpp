@@ -1,7 +1,10 @@
 // Composed pictures and videos (see compose.hpp).
 #include <legwork/render/compose.hpp>
 
+#include <legwork/core/contacts.hpp>
 #include <legwork/core/fk.hpp>
+#include <legwork/core/interpolate.hpp>
+#include <legwork/io/progress.hpp>
 
 #include <unistd.h>
 
@@ -17,40 +20,32 @@ namespace fs = std::filesystem;
 
 std::vector<Footprint> detect_footprints(const Motion& m, int first, int last) {
   std::vector<Footprint> out;
+  const auto& roles = m.skeleton.roles;
+  if (!roles.has(Role::LeftAnkle) || !roles.has(Role::RightAnkle) || last < first) return out;
+  const auto contacts = foot_contacts(trim(m, first, last));  // the one detector (core/contacts.hpp)
   const auto pos = joint_positions(m);
   const auto nj = static_cast<std::size_t>(m.joint_count());
   auto at = [&](int f, int j) { return pos[static_cast<std::size_t>(f) * nj + static_cast<std::size_t>(j)]; };
-  for (bool left : {true, false}) {
-    const int ankle = m.skeleton.roles[left ? Role::LeftAnkle : Role::RightAnkle];
-    const int toe = m.skeleton.roles[left ? Role::LeftToe : Role::RightToe];
-    if (ankle < 0) continue;
-    double low = 1e300;
-    for (int f = first; f <= last; ++f) low = std::min(low, at(f, ankle).y());
-    const int min_run = std::max(2, static_cast<int>(0.1 * m.fps));
-    int run_start = -1;
-    for (int f = first; f <= last + 1; ++f) {
-      bool contact = false;
-      if (f <= last) {
-        const int g = f < last ? f + 1 : f - 1;
-        const Vec3 d = at(g, ankle) - at(f, ankle);
-        const double speed = std::hypot(d.x(), d.z()) * m.fps;
-        contact = at(f, ankle).y() < low + 0.05 && speed < 0.5;
+  const int min_run = std::max(2, static_cast<int>(0.1 * m.fps));
+  for (int foot = 0; foot < 2; ++foot) {
+    const int ankle = roles[foot == 0 ? Role::LeftAnkle : Role::RightAnkle];
+    const int toe = roles[foot == 0 ? Role::LeftToe : Role::RightToe];
+    const auto& down = contacts[static_cast<std::size_t>(foot)];
+    for (int f = first; f <= last;) {
+      if (!down[static_cast<std::size_t>(f - first)]) { ++f; continue; }
+      int e = f;
+      Vec3 a = Vec3::Zero(), dir = Vec3::Zero();
+      for (; e <= last && down[static_cast<std::size_t>(e - first)]; ++e) {
+        a += at(e, ankle);
+        if (toe >= 0) dir += at(e, toe) - at(e, ankle);
       }
-      if (contact && run_start < 0) run_start = f;
-      if (!contact && run_start >= 0) {
-        if (f - run_start >= min_run) {
-          Vec3 a = Vec3::Zero(), dir = Vec3::Zero();
-          for (int k = run_start; k < f; ++k) {
-            a += at(k, ankle);
-            if (toe >= 0) dir += at(k, toe) - at(k, ankle);
-          }
-          a /= f - run_start;
-          const double heading = toe >= 0 ? std::atan2(dir.x(), dir.z()) : 0.0;
-          // The sole's origin sits ~3 cm ahead of the ankle, on the floor.
-          out.push_back({Vec3(a.x() + 0.03 * std::sin(heading), 0.0, a.z() + 0.03 * std::cos(heading)), heading, left});
-        }
-        run_start = -1;
+      if (e - f >= min_run) {
+        a /= e - f;
+        const double heading = toe >= 0 ? std::atan2(dir.x(), dir.z()) : 0.0;
+        // The sole's origin sits ~3 cm ahead of the ankle, on the floor.
+        out.push_back({Vec3(a.x() + 0.03 * std::sin(heading), 0.0, a.z() + 0.03 * std::cos(heading)), heading, foot == 0});
       }
+      f = e;
     }
   }
   return out;
@@ -125,6 +120,7 @@ void render_slide_video(const Skeleton& skel, const SlideVideo& v, const std::st
   cam.bounds_max = Vec3(0.5, 2.0, last_key * v.spacing + 0.7);
   const int frames = static_cast<int>(std::lround(v.duration * 4));  // quarter-frame steps, slowed down
   Pose pose(skel);
+  const auto progress = io::progress_printer("sliding video: frame");
   for (int f = 0; f <= frames; ++f) {
     const double t = v.duration * f / frames;
     int k = 0;
@@ -139,8 +135,7 @@ void render_slide_video(const Skeleton& skel, const SlideVideo& v, const std::st
     s.title = title;
     char name[32];
     std::snprintf(name, sizeof name, "f%05d.png", f);
-    std::fprintf(stderr, "\rsliding video: frame %d/%d", f + 1, frames + 1);
-    if (f == frames) std::fprintf(stderr, "\n");
+    progress(f + 1, frames + 1, "");
     render_scene(s, cam, (dir / name).string());
   }
   const std::string cmd = "ffmpeg -loglevel error -y -framerate 24 -i '" + (dir / "f%05d.png").string() +

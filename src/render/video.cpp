@@ -3,6 +3,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/io/progress.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -233,6 +234,7 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
   std::vector<Pose> poses;
   for (const Motion* m : motions) poses.emplace_back(m->skeleton);
   cairo_t* cr = canvas.cr();
+  const auto progress = io::progress_printer("video " + path + ": frame");
   for (int k = 0; k < frames; ++k) {
     const double time = k / opt.fps;
     canvas.clear();
@@ -260,9 +262,8 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
     std::snprintf(counter, sizeof counter, "t = %.2f s   frame %d / %d", time, src, m0.frame_count() - 1);
     detail::text(cr, W - 10, H - 10, counter, 12, Align::Right, {0.25, 0.25, 0.3});
     pipe.write_frame(canvas.surface());
-    if (k % 30 == 0 || k == frames - 1) std::fprintf(stderr, "\rvideo %s: frame %d/%d", path.c_str(), k + 1, frames);
+    progress(k + 1, frames, "");
   }
-  std::fprintf(stderr, "\n");
   pipe.close();
 }
 

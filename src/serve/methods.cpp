@@ -3,6 +3,7 @@
 
 #include <legwork/accent/accent.hpp>
 #include <legwork/accent/database.hpp>
+#include <legwork/combined/combined.hpp>
 #include <legwork/core/measure.hpp>
 #include <legwork/ik/full_body.hpp>
 #include <legwork/wip/wip.hpp>
@@ -113,43 +114,31 @@ std::unique_ptr<Method> runtime_method(const Resources& res, const MethodOptions
   return std::make_unique<RuntimeMethod<Runtime>>(Runtime::model(res, opt));
 }
 
-// The combined avatar: upper body from accent (ik without a database), legs
-// from walking-in-place when the ankles are tracked. Both run on the same
-// avatar skeleton; the leg joints' local rotations (hips down) come from wip.
-class CombinedMethod final : public Method {
- public:
-  CombinedMethod(std::unique_ptr<Method> upper, std::unique_ptr<Method> legs)
-      : upper_(std::move(upper)), legs_(std::move(legs)), legs_pose_(legs_->skeleton()) {
-    const Skeleton& skel = upper_->skeleton();
-    if (skel.joint_count() != legs_->skeleton().joint_count())
-      throw Error("combined: upper-body and leg skeletons differ");
-    for (int j = 0; j < skel.joint_count(); ++j)
-      for (Role hip : {Role::LeftHip, Role::RightHip})
-        if (skel.roles.has(hip) && skel.is_ancestor(skel.roles[hip], j)) leg_joints_.push_back(j);
+// The combined avatar (legwork::combined): upper body from accent (ik without
+// a database), legs from walking-in-place, faded over blend_time.
+struct CombinedRuntime {
+  using Model = combined::Model;
+  using State = combined::State;
+  using Info = combined::Info;
+  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) {
+    return combined::update(m, f, s, o, i);
   }
-
-  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
-    const UpdateStatus up = upper_->update(f, out, info);
-    if (up == UpdateStatus::Rejected) return up;
-    MethodInfo legs_info;
-    const UpdateStatus lg = legs_->update(f, legs_pose_.ref(), legs_info);
-    const bool feet = usable(f.foot(kLeft)) && usable(f.foot(kRight));
-    if (lg != UpdateStatus::Rejected && feet)
-      for (int j : leg_joints_) out.rotations[static_cast<std::size_t>(j)] = legs_pose_.rotations[static_cast<std::size_t>(j)];
-    for (int i = 0; i < legs_info.count && i < 2; ++i) {  // walking, speed
-      const auto& it = legs_info.items[static_cast<std::size_t>(i)];
-      info.add(it.key, it.number);
-    }
-    info.add("legs", feet ? "wip" : "upper");
-    if (up == UpdateStatus::Restarted) return up;
-    return up == UpdateStatus::Degraded || !feet ? UpdateStatus::Degraded : UpdateStatus::Ok;
+  static void describe(const Info& i, MethodInfo& out) {
+    out.add("walking", i.walking ? 1.0 : 0.0);
+    out.add("speed", i.speed);
+    out.add("distance", i.distance);
+    out.add("heading", i.heading);
+    out.add("legs", i.feet_tracked ? "wip" : "upper");
+    out.add("legs_weight", i.legs_weight);
   }
-  const Skeleton& skeleton() const override { return upper_->skeleton(); }
-
- private:
-  std::unique_ptr<Method> upper_, legs_;
-  Pose legs_pose_;
-  std::vector<int> leg_joints_;
+  static Model model(const Resources& res, const MethodOptions& opt) {
+    combined::Settings c;
+    if (!res.db) return combined::make_model(avatar_skeleton(res, opt.user_height), c);
+    c.accent.classes = opt.classes;
+    c.accent.exaggeration = opt.exaggeration;
+    c.accent.user_height = opt.user_height;
+    return combined::make_model(*res.db, c);
+  }
 };
 
 }  // namespace
@@ -186,9 +175,7 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("user_height " + std::to_string(opt.user_height) + " m is outside [0.5, 2.5] (0 = the avatar's own)");
   if (opt.method == "ik") return runtime_method<IkRuntime>(res, opt);
   if (opt.method == "wip") return runtime_method<WipRuntime>(res, opt);
-  if (opt.method == "combined")
-    return std::make_unique<CombinedMethod>(res.db ? runtime_method<AccentRuntime>(res, opt) : runtime_method<IkRuntime>(res, opt),
-                                            runtime_method<WipRuntime>(res, opt));
+  if (opt.method == "combined") return runtime_method<CombinedRuntime>(res, opt);
   return runtime_method<AccentRuntime>(res, opt);
 }
 

@@ -4,6 +4,7 @@
 
 #include <legwork/accent/accent.hpp>
 #include <legwork/accent/offline/builder.hpp>
+#include <legwork/combined/combined.hpp>
 #include <legwork/ik/full_body.hpp>
 #include <legwork/io/bvh.hpp>
 
@@ -89,6 +90,49 @@ TEST(CApi, AccentAvatarEqualsTheCppApiBitForBit) {
     }
     ASSERT_EQ(root[1], pose.translations[0].y());
   }
+  lw_avatar_destroy(avatar);
+  lw_model_destroy(model);
+  lw_database_destroy(db);
+}
+
+TEST(CApi, CombinedAvatarEqualsTheCppApiBitForBit) {
+  lw_database* db = nullptr;
+  ASSERT_EQ(lw_database_load(database_file().c_str(), &db), LW_OK) << lw_last_error();
+  Frames f;
+  ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/07_02.bvh").c_str(), 90.0, 1, &f.data, &f.count), LW_OK) << lw_last_error();
+  lw_accent_settings s;
+  lw_accent_settings_default(&s);
+  s.user_height = 1.7;
+  lw_model* model = nullptr;
+  ASSERT_EQ(lw_model_create_combined(db, &s, nullptr, &model), LW_OK) << lw_last_error();
+  EXPECT_EQ(lw_model_method(model), LW_METHOD_COMBINED);
+  lw_avatar* avatar = nullptr;
+  ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
+  ASSERT_EQ(lw_avatar_set_floor(avatar, f.data[0].devices[LW_LEFT_FOOT].position[1], f.data[0].devices[LW_RIGHT_FOOT].position[1]), LW_OK)
+      << lw_last_error();
+
+  const accent::Database cdb = accent::load_database(database_file());
+  combined::Settings cs;
+  cs.accent.user_height = 1.7;
+  const combined::Model cm = combined::make_model(cdb, cs);
+  combined::State st(cm);
+  wip::set_floor(st.wip, f.data[0].devices[LW_LEFT_FOOT].position[1], f.data[0].devices[LW_RIGHT_FOOT].position[1]);
+  Pose pose(cm.skeleton());
+  const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(model));
+  std::vector<double> rot(4 * static_cast<std::size_t>(n));
+  const io::BvhReadOptions o{.drop_first_frame = true};
+  const auto frames = tracker_frames_from_motion(io::load_bvh(sample("cmu/bvh/walking/07_02.bvh"), o), 90.0);
+  for (int32_t i = 0; i < f.count; ++i) {
+    const lw_status a = lw_avatar_update(avatar, &f.data[i]);
+    const UpdateStatus b = combined::update(cm, frames[static_cast<std::size_t>(i)], st, pose.ref());
+    ASSERT_EQ(std::string(lw_status_name(a)), status_name(b));
+    ASSERT_EQ(lw_avatar_pose(avatar, rot.data(), nullptr, nullptr, n), LW_OK);
+    for (int j = 0; j < n; ++j) ASSERT_EQ(rot[4 * static_cast<std::size_t>(j) + 1], pose.rotations[static_cast<std::size_t>(j)].x());
+  }
+  EXPECT_EQ(st.legs_weight, 1.0) << "the trial's ankles drive the legs";
+  lw_model* none = nullptr;
+  EXPECT_EQ(lw_model_create_combined(nullptr, nullptr, nullptr, &none), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_STREQ(lw_last_error(), "lw_model_create_combined: give a database or a skeleton, and out (not NULL)");
   lw_avatar_destroy(avatar);
   lw_model_destroy(model);
   lw_database_destroy(db);

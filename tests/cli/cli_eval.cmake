@@ -16,3 +16,14 @@ legwork_cli_fail(eval_bad_manifest eval accent --data ${PROJECT_SOURCE_DIR}/data
 legwork_cli_test(eval_cross_dataset eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu
                  --manifest ${CMAKE_CURRENT_LIST_DIR}/eval_database.tsv --test ${PROJECT_SOURCE_DIR}/data/cmu
                  --test-manifest ${CMAKE_CURRENT_LIST_DIR}/eval_test.tsv --max-seconds 10 --out ${O}/eval-cross-dataset)
+
+# One avatar, two sources on two sample walks: the table names every method.
+add_test(NAME cli.eval_combined COMMAND legwork eval combined --data ${D}/walking --limit 2)
+set_tests_properties(cli.eval_combined PROPERTIES PASS_REGULAR_EXPRESSION
+  "2 trials at 30 Hz \\(0 skipped\\)\n.*\\| IK avatar alone \\| [0-9.]+ \\|.*\\| combined: IK upper body \\+ walking-in-place legs \\| [0-9.]+ \\|")
+legwork_cli_error(eval_combined_not_a_folder "error: --data '${D}/walking/07_01.bvh' is not a directory"
+                  eval combined --data ${D}/walking/07_01.bvh)
+legwork_cli_test(eval_prints_help eval)
+set_tests_properties(cli.eval_prints_help PROPERTIES PASS_REGULAR_EXPRESSION "Evaluate methods against motion-capture ground truth.*accent.*combined")
+add_test(NAME cli.bare_legwork_prints_help COMMAND legwork)
+set_tests_properties(cli.bare_legwork_prints_help PROPERTIES PASS_REGULAR_EXPRESSION "Usage: legwork \\[OPTIONS\\] \\[SUBCOMMAND\\].*walkcycle")

@@ -30,8 +30,15 @@ legwork_cli_error(info_frame_time_1e300 "error: ${IOD}/frame_time_1e300.bvh:187:
 # Resampling is bounded before any work (was: a 2.4 GB file using 6.9 GB).
 legwork_cli_error(convert_rate_too_high "error: --rate 1e\\+06 Hz is above the limit of 1000 Hz"
                   convert ${D}/walking/07_01.bvh ${O}/x.bvh --rate 1000000)
-legwork_cli_error(convert_missing_output_folder "error: ${O}/no-such-dir/x.bvh: cannot write file \\(No such file or directory\\)"
+# Output folders: made when under the working folder, refused (never made) outside it.
+legwork_cli_error(convert_missing_output_folder
+                  "error: output '${O}/no-such-dir/x.bvh': folder '${O}/no-such-dir' does not exist and is outside the working folder; create it first"
                   convert ${D}/walking/07_01.bvh ${O}/no-such-dir/x.bvh)
+file(MAKE_DIRECTORY ${O}/workdir)
+add_test(NAME cli.convert_makes_output_folder_in_working_folder
+         COMMAND legwork convert ${D}/walking/07_01.bvh made/here/x.bvh --frames 1:10 WORKING_DIRECTORY ${O}/workdir)
+set_tests_properties(cli.convert_makes_output_folder_in_working_folder PROPERTIES
+                     PASS_REGULAR_EXPRESSION "10 frames at 120 Hz, 31 joints\nwrote motion: made/here/x.bvh")
 # A std::filesystem error reaches the user as "<path>: <reason>", not
 # "filesystem error: cannot create directories: Not a directory [...]".
 legwork_cli_error(filesystem_error_is_mapped "error: [^\n]*MANIFEST.tsv/report: Not a directory\n"

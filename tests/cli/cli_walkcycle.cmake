@@ -16,7 +16,7 @@ legwork_cli_test(walkcycle_extract walkcycle extract ${D}/walking/16_15.bvh --ou
 legwork_cli_error(walkcycle_no_keys "error: walkcycle: --keys walk.json is required" walkcycle --straight 3 --out ${O}/x.bvh)
 legwork_cli_error(walkcycle_bad_joint "error: --shift: unknown joint 'NoSuchJoint'"
                    walkcycle --keys ${W}/normal.json --shift NoSuchJoint=1 --out ${O}/x.bvh)
-legwork_cli_error(walkcycle_bad_ext "error: output '[^']*x.txt' must end in .bvh or .glb" walkcycle --keys ${W}/normal.json --out ${O}/x.txt)
+legwork_cli_error(walkcycle_bad_ext "error: --out '[^']*x.txt' must end in .bvh or .glb" walkcycle --keys ${W}/normal.json --out ${O}/x.txt)
 legwork_cli_error(walkcycle_bad_path "error: --svg-path: svg path: flattened points: point 1 repeats point 0"
                    walkcycle --keys ${W}/normal.json --svg-path "M 0 0 L 0 0" --out ${O}/x.bvh)
 legwork_cli_error(walkcycle_not_json "error: [^ ]*walking/07_01.bvh: not valid JSON" walkcycle --keys ${D}/walking/07_01.bvh --out ${O}/x.bvh)

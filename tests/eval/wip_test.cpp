@@ -123,9 +123,9 @@ TEST(StrictScore, NoStepsIsNotAZeroScore) {
 // over a second; the learned stance height finds each step.
 TEST(TrueContacts, LearnedStanceHeightFindsStepsWhereTheFixedMarginSeesOneLongSwing) {
   const Motion m = load("cmu/bvh/walking/07_12.bvh");
-  wip::TruthOptions fixed;
+  ContactOptions fixed;
   fixed.learned = false;
-  const auto old_swings = wip::true_swings(m, fixed), swings = wip::true_swings(m);
+  const auto old_swings = foot_swings(m, fixed), swings = foot_swings(m);
   for (int foot : {kLeft, kRight}) {
     std::vector<SwingEvent> o, n;
     for (const auto& s : old_swings)
@@ -155,7 +155,7 @@ TEST(TrueContacts, StillSegmentsAreWhereBothFeetRest) {
   io::BvhReadOptions opt;
   opt.drop_first_frame = true;
   const Motion m = io::load_bvh((testdata::shared_cmu() / "bvh" / "walking" / "105_02.bvh").string(), opt);
-  const auto swings = wip::true_swings(m);
+  const auto swings = foot_swings(m);
   const auto still = still_segments(m, "105_02", {}, swings, 1.0, 0.5, m.duration() - 0.1);
   ASSERT_FALSE(still.empty());
   for (const auto& g : still) {

@@ -94,3 +94,74 @@ TEST(Text, PrintableTextHidesControlBytes) {
   EXPECT_EQ(io::printable_text(std::string("a\0b\xff", 4)), "a?b?");
   EXPECT_EQ(io::printable_text("abcdef", 3), "abc...");
 }
+
+TEST(TextHelpers, SplitCommasDropsEmptyItems) {
+  EXPECT_EQ(io::split_commas("a,b,,c,"), (std::vector<std::string>{"a", "b", "c"}));
+  EXPECT_TRUE(io::split_commas("").empty());
+}
+
+TEST(TextHelpers, FrameRangesCountFromEitherEnd) {
+  EXPECT_EQ(io::parse_frame_range("1:", 10), std::make_pair(1, 9));
+  EXPECT_EQ(io::parse_frame_range(":-2", 10), std::make_pair(0, 8));
+  EXPECT_EQ(io::parse_frame_range("4", 10), std::make_pair(4, 4));
+  try {
+    io::parse_frame_range("3:x", 10, "--strip");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "--strip '3:x': expected A:B with whole numbers");
+  }
+  try {
+    io::parse_frame_range("8:12", 10);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "--frames '8:12' is outside the clip's frames 0:9");
+  }
+}
+
+TEST(TextHelpers, RequireExtensionListsTheChoices) {
+  EXPECT_NO_THROW(io::require_extension("--out", "a/b.PNG", {".png", ".svg"}));
+  try {
+    io::require_extension("--out", "b.gif", {".png", ".svg", ".mp4"});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "--out 'b.gif' must end in .png, .svg or .mp4");
+  }
+}
+
+TEST(TextHelpers, OutputFoldersAreMadeOnlyUnderTheWorkingFolder) {
+  namespace fs = std::filesystem;
+  const fs::path work = temp_dir() / "work";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const fs::path before = fs::current_path();
+  fs::current_path(work);
+  EXPECT_EQ(io::prepare_output("new/deeper/out.png", "--out"), "new/deeper/out.png");
+  EXPECT_TRUE(fs::is_directory(work / "new" / "deeper"));
+  std::string outside;
+  try {
+    io::prepare_output("../elsewhere-legwork-test/out.png", "--plot");
+  } catch (const Error& e) {
+    outside = e.what();
+  }
+  std::string absolute;
+  try {
+    io::prepare_output("/nonexistent-legwork-test/out.png", "--out");
+  } catch (const Error& e) {
+    absolute = e.what();
+  }
+  write_bytes("work/afile", "x");
+  std::string file_parent;
+  try {
+    io::prepare_output("afile/out.png", "--out");
+  } catch (const Error& e) {
+    file_parent = e.what();
+  }
+  fs::current_path(before);
+  EXPECT_EQ(outside, "--plot '../elsewhere-legwork-test/out.png': folder '../elsewhere-legwork-test' does not exist and is "
+                     "outside the working folder; create it first");
+  EXPECT_FALSE(fs::exists(temp_dir() / "elsewhere-legwork-test"));
+  EXPECT_EQ(absolute, "--out '/nonexistent-legwork-test/out.png': folder '/nonexistent-legwork-test' does not exist and is "
+                      "outside the working folder; create it first");
+  EXPECT_FALSE(fs::exists("/nonexistent-legwork-test"));
+  EXPECT_EQ(file_parent, "--out 'afile/out.png': 'afile' is a file, not a folder");
+}

@@ -6,7 +6,7 @@
 // report.md, summary.png, one PNG per trial). Allocates, throws legwork::Error.
 #include <legwork/core/motion.hpp>
 #include <legwork/wip/offline/synthetic.hpp>
-#include <legwork/wip/offline/truth.hpp>
+#include <legwork/core/contacts.hpp>
 #include <legwork/wip/wip.hpp>
 
 #include <cmath>
@@ -18,7 +18,7 @@
 
 namespace legwork::eval {
 
-using wip::SwingEvent;
+using legwork::SwingEvent;
 
 // Swings seen by the gait machines (foot-off to foot-strike events).
 std::vector<SwingEvent> detected_swings(std::span<const wip::Info> frames);
@@ -66,7 +66,7 @@ struct StillSegment {
 };
 // Still stretches of at least `min_duration` s within [t_begin, t_end], from
 // the true contacts of both feet; false steps counted from `detected`.
-std::vector<StillSegment> still_segments(const Motion& m, const std::string& name, const wip::TruthOptions& truth,
+std::vector<StillSegment> still_segments(const Motion& m, const std::string& name, const ContactOptions& truth,
                                          std::span<const SwingEvent> detected, double min_duration, double t_begin,
                                          double t_end);
 
@@ -90,7 +90,7 @@ struct Agreement {
 
 struct WipEvalOptions {
   wip::Settings settings;      // the method's settings (signal.rate = tracker rate)
-  wip::TruthOptions truth;
+  ContactOptions truth;
   double noise = 0.015;        // Kinect-like jitter for the noisy run, m
   double drop_rate = 0.02;     // dropped samples in the noisy run
   std::uint64_t seed = 1;      // noise seed (mixed with the trial index)

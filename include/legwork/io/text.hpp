@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace legwork::io {
 
@@ -29,5 +31,26 @@ bool is_valid_utf8(std::string_view s);
 // `s` cut to `max` bytes with control and non-ASCII bytes shown as '?', for
 // messages that quote file content.
 std::string printable_text(std::string_view s, std::size_t max = 200);
+
+// Prints "wrote WHAT: PATH" on stdout, the one line every tool uses for a file it wrote.
+void announce(const std::string& what, const std::string& path);
+
+// "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
+std::vector<std::string> split_commas(const std::string& s);
+
+// Throws "OPTION 'PATH' must end in A or B" unless PATH ends in one of `exts` (".png", ...).
+void require_extension(const std::string& option, const std::string& path, const std::vector<std::string>& exts);
+
+// "A:B" (inclusive, either side optional, negative counts from the end, a
+// single number = one frame) -> [first, last] within [0, frames-1]; throws
+// naming `option` and the clip's range otherwise.
+std::pair<int, int> parse_frame_range(const std::string& spec, int frames, const std::string& option = "--frames");
+
+// Makes the folder an output file goes into, the same way for every command:
+// a missing folder is created when it lies under the working folder; outside
+// it (an absolute path elsewhere, "..") it must exist already, and the error
+// says so ("OPTION 'PATH': folder '/x' does not exist; create it first").
+// Returns `path`.
+std::string prepare_output(const std::string& path, const std::string& option = "output");
 
 }  // namespace legwork::io

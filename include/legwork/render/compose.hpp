@@ -11,10 +11,10 @@
 
 namespace legwork::render {
 
-// Rough footprints for pictures: runs of frames (>= 0.1 s) where an ankle is
-// within 5 cm of its lowest height and moves slower than 0.5 m/s horizontally.
-// One print per run at the run's mean ankle position, turned along ankle->toe.
-// A visual aid only; gait modules have their own contact detection.
+// Footprints for pictures: runs of frames (>= 0.1 s) where a foot is in
+// contact by foot_contacts (core/contacts.hpp, the detector every module
+// uses), one print per run at the run's mean ankle position, turned along
+// ankle->toe. Empty when the skeleton has no ankles.
 std::vector<Footprint> detect_footprints(const Motion& m, int first, int last);
 
 // Frames first..last sampled every `every` frames (or ~6 evenly when every <= 0), last included.

@@ -1,3 +1,4 @@
+#include <legwork/core/contacts.hpp>
 #include <legwork/core/series.hpp>
 #include <legwork/core/stats.hpp>
 #include <legwork/core/rotation.hpp>
@@ -51,40 +52,6 @@ KeyPose key_from_pose(const Pose& p) {
 
 }  // namespace
 
-std::vector<int> foot_strikes(const Motion& clip, bool left, double floor_window_s) {
-  const Skeleton& s = clip.skeleton;
-  const int ankle = s.roles[left ? Role::LeftAnkle : Role::RightAnkle];
-  if (ankle < 0) throw Error("extract: the clip's skeleton has no ankles");
-  const int n = clip.frame_count();
-  const int J = clip.joint_count();
-  const auto pos = joint_positions(clip);
-  auto P = [&](int f, int j) -> const Vec3& { return pos[static_cast<std::size_t>(f * J + j)]; };
-  std::vector<double> y(static_cast<std::size_t>(n)), h(static_cast<std::size_t>(n)), speed(static_cast<std::size_t>(n));
-  for (int f = 0; f < n; ++f) y[static_cast<std::size_t>(f)] = P(f, ankle).y();
-  // The capture floor drifts within a trial, and each ankle sits at its own
-  // height in stance: a rolling minimum of this ankle, not one floor height.
-  const auto floor = rolling_min(y, std::max(1, static_cast<int>(floor_window_s * clip.fps)));
-  for (int f = 0; f < n; ++f) {
-    h[static_cast<std::size_t>(f)] = y[static_cast<std::size_t>(f)] - floor[static_cast<std::size_t>(f)];
-    const int a = std::max(0, f - 2), b = std::min(n - 1, f + 2);
-    const Vec3 d = P(b, ankle) - P(a, ankle);
-    speed[static_cast<std::size_t>(f)] = b > a ? std::hypot(d.x(), d.z()) * clip.fps / (b - a) : 0.0;
-  }
-  const double lift = percentile(h, 0.95);
-  const double fast = percentile(speed, 0.95);
-  std::vector<int> strikes;
-  bool swinging = false;
-  for (int f = 0; f < n; ++f) {
-    const double hf = h[static_cast<std::size_t>(f)];
-    if (hf > 0.4 * lift) swinging = true;
-    else if (swinging && hf < 0.25 * lift && speed[static_cast<std::size_t>(f)] < 0.5 * fast) {
-      strikes.push_back(f);
-      swinging = false;
-    }
-  }
-  return strikes;
-}
-
 namespace {
 
 // Joint positions of every frame of a clip (model space), by frame and joint.
@@ -99,8 +66,8 @@ void find_steps(const Motion& clip, const ClipPositions& P, const ExtractOptions
   const Skeleton& s = clip.skeleton;
   const int la = s.roles[Role::LeftAnkle], ra = s.roles[Role::RightAnkle];
   std::vector<std::pair<int, bool>> strikes;
-  for (int f : foot_strikes(clip, true, opt.floor_window_s)) strikes.emplace_back(f, true);
-  for (int f : foot_strikes(clip, false, opt.floor_window_s)) strikes.emplace_back(f, false);
+  for (int f : foot_strikes(clip, 0, opt.contacts)) strikes.emplace_back(f, true);
+  for (int f : foot_strikes(clip, 1, opt.contacts)) strikes.emplace_back(f, false);
   std::sort(strikes.begin(), strikes.end());
 
   for (std::size_t i = 0; i + 1 < strikes.size(); ++i) {
@@ -194,47 +161,19 @@ void average_keys(const Motion& clip, const ClipPositions& P, const ExtractOptio
 
 }
 
-// Height of joint j above its own rolling floor, per frame. Frames where the
-// whole body jumps away and back (a glitch: some CMU files hold an all-zero
-// frame, root at the origin) are left out of the floor and count as lifted.
-std::vector<double> height_above_floor(const Motion& clip, const ClipPositions& P, int j, double window_s) {
-  const int n = clip.frame_count();
-  std::vector<double> y(static_cast<std::size_t>(n));
-  auto jump = [&](int a, int b) { return b >= 0 && b < n && (P(a, 0) - P(b, 0)).norm() > 0.5; };
-  for (int f = 0; f < n; ++f)
-    y[static_cast<std::size_t>(f)] = (jump(f, f - 1) && (f + 1 >= n || jump(f, f + 1))) || (f == 0 && jump(0, 1))
-                                         ? std::numeric_limits<double>::infinity()
-                                         : P(f, j).y();
-  const auto floor = rolling_min(y, std::max(1, static_cast<int>(window_s * clip.fps)));
-  for (int f = 0; f < n; ++f) y[static_cast<std::size_t>(f)] -= floor[static_cast<std::size_t>(f)];
-  return y;
-}
-
 // A walk always has a foot on the floor (double support, no flight); a run
 // or a hop has frames with both feet in the air. A foot is down while its
 // ankle or its toe is within 15 % of that joint's typical lift (95th
 // percentile) of its rolling floor. Measured over the steady steps; on the
 // shared CMU clips walks measure 0-7 %, runs 15-51 % (a run that stops
 // suddenly, 16_57: 7 %).
-void measure_flight(const Motion& clip, const ClipPositions& P, const ExtractOptions& opt, Extraction& ex) {
-  const Skeleton& s = clip.skeleton;
-  std::vector<std::pair<std::vector<double>, double>> h[2];  // heights, "down" threshold
-  for (int side = 0; side < 2; ++side)
-    for (Role r : side ? std::array{Role::LeftAnkle, Role::LeftToe} : std::array{Role::RightAnkle, Role::RightToe})
-      if (s.roles.has(r)) {
-        auto hj = height_above_floor(clip, P, s.roles[r], opt.floor_window_s);
-        const double limit = 0.15 * percentile(hj, 0.95);
-        h[side].emplace_back(std::move(hj), limit);
-      }
-  auto down = [&](int side, int f) {
-    for (const auto& [hj, limit] : h[side])
-      if (hj[static_cast<std::size_t>(f)] < limit) return true;
-    return false;
-  };
+void measure_flight(const Motion& clip, const ExtractOptions& opt, Extraction& ex) {
+  const auto down = foot_contacts(clip, opt.contacts);
   int frames = 0, flight = 0;
   for (const auto& e : ex.steps) {
     if (!e.used) continue;
-    for (int f = e.contact; f < e.next_contact; ++f, ++frames) flight += !down(0, f) && !down(1, f);
+    for (int f = e.contact; f < e.next_contact; ++f, ++frames)
+      flight += !down[0][static_cast<std::size_t>(f)] && !down[1][static_cast<std::size_t>(f)];
   }
   ex.flight_fraction = frames ? static_cast<double>(flight) / frames : 0.0;
 }
@@ -286,7 +225,7 @@ Extraction extract_walk(const Motion& clip, const ExtractOptions& opt) {
   Extraction ex;
   find_steps(clip, P, opt, ex);
   mark_steady(clip, ex);
-  measure_flight(clip, P, opt, ex);
+  measure_flight(clip, opt, ex);
   if (ex.flight_fraction > opt.max_flight_fraction) {
     char pct[64];
     std::snprintf(pct, sizeof pct, "%.0f %%", ex.flight_fraction * 100);

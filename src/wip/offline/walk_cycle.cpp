@@ -3,7 +3,7 @@
 #include <legwork/core/interpolate.hpp>
 #include <legwork/core/measure.hpp>
 #include <legwork/core/rotation.hpp>
-#include <legwork/wip/offline/truth.hpp>
+#include <legwork/core/contacts.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 namespace legwork::wip {
 
 Motion extract_walk_cycle(const Motion& trial) {
-  const auto swings = true_swings(trial);
+  const auto swings = foot_swings(trial);
   // Consecutive left foot-strikes: candidate cycles; take the one nearest the
   // middle of the trial with a plausible duration.
   std::vector<double> strikes;

@@ -12,6 +12,7 @@
 // It also re-synthesises the cycle from the extracted keys and compares it
 // with the clip's own mean cycle (joint positions relative to the pelvis,
 // heading removed), so the loss of going down to four keys is known.
+#include <legwork/core/contacts.hpp>
 #include <legwork/walkcycle/keys.hpp>
 
 #include <string>
@@ -28,7 +29,7 @@ struct StepEvents {
 struct ExtractOptions {
   int frames_per_cycle = 0;  // 0: the clip's mean cycle at `fps`, rounded to even
   double fps = 24.0;
-  double floor_window_s = 0.75;  // rolling floor (per ankle) half-width, seconds
+  ContactOptions contacts = {.floor_window = 0.75};  // foot contacts (core/contacts.hpp): strikes, flight
   double max_flight_fraction = 0.1;  // both feet off the floor longer: not a walk (run, hop) -> warning
   bool refuse_non_walks = false;     // throw instead of warning
 };
@@ -55,10 +56,5 @@ Extraction extract_walk(const Motion& clip, const ExtractOptions& opt = {});
 // timing from their spacing, the next contact assumed one key interval after
 // up. Mirrored if the right foot is in front at contact.
 WalkKeys keys_from_frames(const Motion& clip, const std::vector<int>& frames, int frames_per_cycle, double fps);
-
-// Strike frames of one foot (exposed for tests): ankle within 25 % of its
-// typical lift above its rolling minimum and slower than half its typical swing
-// speed, after having been lifted above 40 % of the typical lift.
-std::vector<int> foot_strikes(const Motion& clip, bool left, double floor_window_s = 0.75);
 
 }  // namespace legwork::walkcycle

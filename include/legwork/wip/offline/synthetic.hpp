@@ -2,19 +2,13 @@
 // Synthetic in-place stepping (Kinect-like ankle tracks with ground truth)
 // and seeded tracker corruption, as TrackerFrames (feet only).
 // Offline: allocates, throws legwork::Error.
+#include <legwork/core/contacts.hpp>
 #include <legwork/core/tracker.hpp>
 
 #include <cstdint>
 #include <vector>
 
 namespace legwork::wip {
-
-// A true or synthetic swing of one foot: foot-off and foot-strike times.
-struct SwingEvent {
-  int foot = kLeft;
-  double off = 0, strike = 0;  // seconds
-  double apex = 0;             // peak lift, metres
-};
 
 // Synthetic in-place stepping, Kinect-like. Deterministic for a given seed.
 struct SyntheticOptions {

@@ -1,4 +1,4 @@
-#include <legwork/wip/offline/truth.hpp>
+#include <legwork/core/contacts.hpp>
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/series.hpp>
@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace legwork::wip {
+namespace legwork {
 namespace {
 
 struct JointTrack {
@@ -31,7 +31,7 @@ JointTrack track(const Motion& m, const std::vector<Vec3>& pos, int j) {
 }
 
 // The former detector: within height_tol of a rolling floor and slow.
-std::vector<char> contact_fixed(const JointTrack (&parts)[2], double fps, const TruthOptions& p) {
+std::vector<char> contact_fixed(const JointTrack (&parts)[2], double fps, const ContactOptions& p) {
   const std::size_t n = parts[0].y.size();
   const int w = std::max(1, static_cast<int>(std::lround(p.floor_window * fps)));
   std::vector<char> contact(n, 0);
@@ -60,7 +60,7 @@ std::vector<double> resting_floor(const JointTrack& t, int w, double speed_tol) 
 }
 
 // Per-joint stance height and lift range learned from the trial, with hysteresis.
-std::vector<char> contact_learned(const JointTrack (&parts)[2], double fps, const TruthOptions& p) {
+std::vector<char> contact_learned(const JointTrack (&parts)[2], double fps, const ContactOptions& p) {
   const std::size_t n = parts[0].y.size();
   const int w = std::max(1, static_cast<int>(std::lround(p.floor_window * fps)));
   std::vector<double> above[2];
@@ -101,10 +101,10 @@ void fill_short_stances(std::vector<char>& contact, int min_stance) {
 
 }  // namespace
 
-std::array<std::vector<char>, 2> true_contacts(const Motion& m, const TruthOptions& p) {
+std::array<std::vector<char>, 2> foot_contacts(const Motion& m, const ContactOptions& p) {
   const auto& r = m.skeleton.roles;
   if (!r.has(Role::LeftAnkle) || !r.has(Role::RightAnkle))
-    throw Error("true gait events need ankle joints (roles LeftAnkle/RightAnkle)");
+    throw Error("foot contacts need ankle joints (roles left_ankle/right_ankle)");
   const int n = m.frame_count();
   std::array<std::vector<char>, 2> out;
   if (n < 3) {
@@ -125,8 +125,8 @@ std::array<std::vector<char>, 2> true_contacts(const Motion& m, const TruthOptio
   return out;
 }
 
-std::vector<SwingEvent> true_swings(const Motion& m, const TruthOptions& p) {
-  const auto contacts = true_contacts(m, p);
+std::vector<SwingEvent> foot_swings(const Motion& m, const ContactOptions& p) {
+  const auto contacts = foot_contacts(m, p);
   const int n = m.frame_count();
   if (n < 3) return {};
   const auto& r = m.skeleton.roles;
@@ -152,4 +152,25 @@ std::vector<SwingEvent> true_swings(const Motion& m, const TruthOptions& p) {
   return out;
 }
 
-}  // namespace legwork::wip
+}  // namespace legwork
+
+namespace legwork {
+
+std::vector<int> foot_strikes(const Motion& m, int foot, const ContactOptions& p) {
+  if (foot != 0 && foot != 1) throw Error("foot_strikes: foot must be 0 (left) or 1 (right)");
+  const std::vector<char> contact = foot_contacts(m, p)[static_cast<std::size_t>(foot)];
+  const int n = static_cast<int>(contact.size());
+  const int min_swing = static_cast<int>(std::lround(p.min_swing * m.fps));
+  std::vector<int> out;
+  // A swing already under way at the clip's start still ends in a true strike.
+  for (int f = 0; f < n;) {
+    if (contact[static_cast<std::size_t>(f)]) { ++f; continue; }
+    int e = f;
+    while (e < n && !contact[static_cast<std::size_t>(e)]) ++e;
+    if (e < n && (f == 0 || e - f >= min_swing)) out.push_back(e);
+    f = e;
+  }
+  return out;
+}
+
+}  // namespace legwork

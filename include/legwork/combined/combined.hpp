@@ -1,0 +1,90 @@
+#pragma once
+// One avatar, two sources (runtime): the upper body from the headset and the
+// two controllers (accentuation over a database, or the full-body IK avatar
+// without one) and the legs from walking-in-place on the ankle or foot
+// trackers, on one skeleton. The leg joints (hips down) fade between the two
+// over `blend_time` when the feet are found or lost, so the legs never pop;
+// the pelvis and everything above it is the upper-body method's. Where the
+// avatar walks to is the application's: Info gives walking-in-place's speed,
+// heading and distance.
+//
+//   const combined::Model model = combined::make_model(db, settings);   // offline, may throw
+//   combined::State state(model);                                        // per avatar
+//   Pose pose(model.skeleton());
+//   combined::update(model, frame, state, pose.ref(), &info);           // every frame
+#include <legwork/accent/accent.hpp>
+#include <legwork/core/motion.hpp>
+#include <legwork/core/tracker.hpp>
+#include <legwork/ik/full_body.hpp>
+#include <legwork/wip/wip.hpp>
+
+#include <optional>
+#include <vector>
+
+namespace legwork::combined {
+
+struct Settings {
+  double blend_time = 0.3;  // s for the legs to fade fully between the two sources (> 0)
+  accent::Settings accent;  // the upper body with a database
+  ik::Settings ik;          // the upper body without one
+  wip::Settings wip;        // the legs
+};
+
+class Model {
+ public:
+  // The output skeleton (the upper-body method's; the legs run on the same).
+  const Skeleton& skeleton() const { return accent_ ? accent_->skeleton() : ik_->skeleton(); }
+  const Settings& settings() const { return settings_; }
+  bool accentuated() const { return accent_.has_value(); }
+  const accent::Model* accent() const { return accent_ ? &*accent_ : nullptr; }
+  const ik::Model* ik() const { return ik_ ? &*ik_ : nullptr; }
+  const wip::Model& wip() const { return *wip_; }
+  // Joints driven by the legs source: every joint below a hip, hips included.
+  const std::vector<int>& leg_joints() const { return leg_joints_; }
+
+ private:
+  friend Model make_model(const accent::Database&, const Settings&);
+  friend Model make_model(const Skeleton&, const Settings&);
+  void finish();
+  Settings settings_;
+  std::optional<accent::Model> accent_;
+  std::optional<ik::Model> ik_;
+  std::optional<wip::Model> wip_;
+  std::vector<int> leg_joints_;
+};
+
+// Upper body by accentuation over `db` (which must outlive the model), at
+// settings.accent.user_height. Throws legwork::Error (from either method, or
+// for blend_time <= 0 or a skeleton without hips).
+Model make_model(const accent::Database& db, const Settings& settings = {});
+// Upper body by the full-body IK avatar on `skeleton`.
+Model make_model(const Skeleton& skeleton, const Settings& settings = {});
+
+struct State {
+  explicit State(const Model& model);
+  FrameClock clock;
+  std::optional<accent::State> accent;
+  std::optional<ik::State> ik;
+  wip::State wip;
+  double legs_weight = 0;  // 0 = the upper method's own legs, 1 = walking-in-place's
+  Pose legs;               // scratch: walking-in-place's pose (no meaning between frames)
+};
+void reset(const Model& model, State& state);
+
+struct Info {
+  UpdateStatus upper = UpdateStatus::Ok;  // the upper-body method's status
+  UpdateStatus legs = UpdateStatus::Ok;   // walking-in-place's status
+  bool feet_tracked = false;              // both feet usable in this frame
+  double legs_weight = 0;                 // share of walking-in-place in the leg joints
+  bool walking = false;
+  double speed = 0, distance = 0, heading = 0;  // walking-in-place: m/s, m, radians (0 = +z)
+  accent::MatchStatus match = accent::MatchStatus::Matched;  // with a database
+};
+
+// One frame: head and hands drive the upper body, the feet the legs. `out`
+// must have the model skeleton's joint count (else Rejected). Rejected frames
+// (non-finite or backward time) leave state and `out` untouched; no
+// allocation, exceptions or I/O.
+UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
+
+}  // namespace legwork::combined

@@ -1,0 +1,32 @@
+#pragma once
+// The walking-in-place tool (`legwork wip`, `legwork wip eval`) as library
+// calls: every option in one struct, the run (tracker input -> legs, CSV,
+// phase plot, key-frame baseline) and the evaluation over a folder of walking
+// trials. Prints its figures and the files it writes to stdout (progress to
+// stderr) as the command line does; throws legwork::Error naming the option.
+#include <legwork/wip/offline/input.hpp>
+#include <legwork/wip/wip.hpp>
+
+#include <string>
+
+namespace legwork::eval {
+
+// Everything `legwork wip` / `legwork wip eval` is asked for.
+struct WipJob {
+  std::string input, avatar, out, csv, plot, baseline, clip, tracker_out, strip;
+  bool synthetic = false, keep_first = false, no_adaptive = false, raw_height = false;
+  std::string calibrate = "auto", speed_model = "step";
+  double rate = 30, cutoff = 4, h1 = 0.1, v1 = 0.2, v2 = 0.6, stop_time = 1.5, max_speed = 3.5, step_length = 0.6;
+  wip::SyntheticOptions syn;
+  std::string data, eval_out, truth = "learned";  // eval
+  double noise = 0.015, drop_rate = 0.02;
+  unsigned long long seed = 1;
+  int limit = 0;
+};
+
+// The method's settings from the job's options at tracker rate `rate` (Hz).
+wip::Settings wip_settings(const WipJob& job, double rate);
+void run_wip_job(const WipJob& job);
+void run_wip_eval_job(const WipJob& job);
+
+}  // namespace legwork::eval

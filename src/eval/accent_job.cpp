@@ -1,0 +1,123 @@
+#include <legwork/eval/accent_job.hpp>
+
+#include <legwork/accent/offline/retarget.hpp>
+#include <legwork/accent/offline/run.hpp>
+#include <legwork/core/interpolate.hpp>
+#include <legwork/core/measure.hpp>
+#include <legwork/eval/run.hpp>
+#include <legwork/eval/session.hpp>
+#include <legwork/io/text.hpp>
+#include <legwork/io/tracker_csv.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+namespace legwork::eval {
+
+using namespace legwork::accent;
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+SearchMode parse_search_mode(const std::string& m) {
+  if (m == "fast") return SearchMode::Fast;
+  if (m == "exact") return SearchMode::Exact;
+  if (m == "brute") return SearchMode::BruteForce;
+  throw Error("--mode '" + m + "': expected fast, exact or brute");
+}
+namespace {
+const char* mode_name(SearchMode m) { return m == SearchMode::Fast ? "fast" : m == SearchMode::Exact ? "exact" : "brute"; }
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+void run_accent_job(const AccentJob& a) {
+  io::require_extension("--out", a.out, {".glb", ".bvh"});
+  if (!a.video.empty()) io::require_extension("--video", a.video, {".mp4"});
+  const auto t0 = Clock::now();
+  const Database db = load_database(a.db);
+  const double load_s = seconds_since(t0);
+  Settings cfg;
+  cfg.search = parse_search_mode(a.mode);
+  cfg.k_left = a.k_left >= 0 ? a.k_left : a.k;
+  cfg.k_right = a.k_right >= 0 ? a.k_right : a.k;
+  cfg.threshold = a.threshold;
+  cfg.align = !a.no_align;
+  cfg.smooth = !a.no_smooth;
+  cfg.smooth_halflife = a.smooth_halflife;
+  cfg.joint_limits = !a.no_limits;
+  cfg.exaggeration = a.exaggerate;
+  cfg.classes = io::split_commas(a.classes);
+  cfg.hand_ik = a.hand_ik;
+  cfg.max_head_tilt_deg = a.max_tilt;
+  const double fps = db.feature_space().fps;
+  std::vector<TrackerFrame> frames;
+  Motion truth;
+  const auto in_ext = io::extension_of(a.input);
+  if (in_ext == ".bvh") {
+    truth = resample(io::read_motion(a.input, a.input_options).motion, fps);
+    frames = tracker_frames_from_motion(truth);
+    cfg.user_height = a.height > 0 ? a.height : measure_body(truth.skeleton).standing_height;
+  } else if (in_ext == ".csv") {
+    frames = io::frames_from_table(io::read_tracker_csv(a.input), a.input,
+                                   {Device::Head, Device::LeftHand, Device::RightHand});
+    cfg.user_height = a.height;
+  } else {
+    throw Error("--input '" + a.input + "' must be a .bvh trial or a .csv headset session");
+  }
+  if (frames.empty()) throw Error("--input '" + a.input + "' has no samples");
+  if (!a.save_session.empty()) {
+    io::write_tracker_csv(a.save_session, io::table_from_frames(frames));
+    io::announce("headset session", a.save_session);
+  }
+  AccentRun run = accentuate(make_model(db, cfg), frames, fps);
+  const SessionFigures fig = session_figures(run);
+  std::printf("database: %s (%d windows, loaded in %.1f ms)\n", a.db.c_str(), db.window_count(), load_s * 1e3);
+  std::printf("frames: %d at %.4g Hz; %.0f frames/s in update() (%s search); mean match weight %.2f\n", run.output.frame_count(), fps,
+              fig.frames_per_second, mode_name(cfg.search), fig.mean_match_weight);
+  for (const auto& [s, n] : fig.statuses) std::printf("  %-14s %d frames\n", s.c_str(), n);
+  Motion result = run.output;
+  if (!a.target.empty()) {
+    Motion tgt = io::load_bvh(a.target, io::BvhReadOptions{});
+    require_roles(tgt.skeleton, a.target);
+    tgt.skeleton.scale(cfg.user_height > 0 ? cfg.user_height / std::max(measure_body(tgt.skeleton).standing_height, 1e-6) : 1.0);
+    result = retarget_motion_at_head(run.output, tgt.skeleton);
+  }
+  io::write_motion(a.out, result, "motion", "--out");
+  io::announce("accentuated motion", a.out);
+  Motion ik;
+  if (a.compare_ik) ik = run_ik_baseline(truth.skeleton.names.empty() ? run.output.skeleton : truth.skeleton, frames, fps);
+  json j;
+  j["input"] = a.input;
+  j["database"] = a.db;
+  j["frames"] = run.output.frame_count();
+  j["fps"] = fps;
+  j["frames_per_second"] = fig.frames_per_second;
+  j["load_ms"] = load_s * 1e3;
+  j["statuses"] = fig.statuses;
+  if (!truth.skeleton.names.empty()) {
+    std::printf("vs ground truth:\n");
+    j["accent_error"] = truth_error(run.output, truth);
+    std::printf("%s", describe_truth_error("accent", j["accent_error"]).c_str());
+    if (a.compare_ik) {
+      j["ik_error"] = truth_error(ik, truth);
+      std::printf("%s", describe_truth_error("IK baseline", j["ik_error"]).c_str());
+    }
+  }
+  if (!a.json_path.empty()) {
+    j["per_frame"] = session_per_frame(run);
+    io::write_text_file(a.json_path, j.dump(1) + "\n");
+    io::announce("run report", a.json_path);
+  }
+  if (!a.video.empty()) {
+    render_session_video(frames, fps, run.output, a.compare_ik ? &ik : nullptr,
+                               truth.skeleton.names.empty() ? nullptr : &truth,
+                               "legwork accent: " + std::filesystem::path(a.input).filename().string(), a.video);
+    io::announce("video", a.video);
+  }
+}
+
+}  // namespace legwork::eval

@@ -1,0 +1,171 @@
+#include <legwork/eval/wip_job.hpp>
+
+#include <legwork/eval/wip.hpp>
+#include <legwork/io/bvh.hpp>
+#include <legwork/io/data_files.hpp>
+#include <legwork/io/gltf.hpp>
+#include <legwork/io/text.hpp>
+#include <legwork/io/tracker_csv.hpp>
+#include <legwork/wip/offline/input.hpp>
+#include <legwork/wip/offline/run.hpp>
+#include <legwork/wip/offline/walk_cycle.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace legwork::eval {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace legwork::wip;
+
+Motion load_bvh_motion(const std::string& path, bool keep_first) {
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = !keep_first;
+  auto f = io::read_bvh(path, opt);
+  for (const auto& w : f.report.warnings) std::cerr << "legwork: " << path << ": " << w << "\n";
+  return std::move(f.motion);
+}
+
+
+
+}  // namespace
+
+wip::Settings wip_settings(const WipJob& a, double rate) {
+  Settings p;
+  p.signal.rate = rate;
+  p.signal.cutoff = a.cutoff;
+  p.gait.h1 = a.h1;
+  p.gait.v1 = a.v1;
+  p.gait.v2 = a.v2;
+  p.gait.adaptive = !a.no_adaptive;
+  p.mapping.normalise_height = !a.raw_height;
+  p.mapping.stop_time = a.stop_time;
+  p.mapping.max_speed = a.max_speed;
+  p.mapping.step_length = a.step_length;
+  if (a.speed_model == "step") p.mapping.speed_model = SpeedModel::StepSpeed;
+  else if (a.speed_model == "frequency") p.mapping.speed_model = SpeedModel::StepFrequency;
+  else throw Error("--speed-model '" + a.speed_model + "': expected 'step' (Bruno et al.) or 'frequency' (GUD-WIP)");
+  if (!(rate > 0) || !(a.cutoff > 0) || a.cutoff >= rate / 2)
+    throw Error("--cutoff " + std::to_string(a.cutoff) + " Hz must be between 0 and half the sample rate (" +
+                std::to_string(rate) + " Hz)");
+  return p;
+}
+
+namespace {
+
+TrackerInput load_input(const WipJob& a) {
+  if (a.synthetic == !a.input.empty()) throw Error("give exactly one of --input FILE (.csv or .bvh) and --synthetic");
+  if (a.synthetic) {
+    SyntheticOptions o = a.syn;
+    o.rate = a.rate;
+    return tracker_input_synthetic(o);
+  }
+  const std::string ext = io::extension_of(a.input);
+  if (ext == ".csv") return tracker_input_from_csv(a.input);
+  if (ext == ".bvh") return tracker_input_from_motion(load_bvh_motion(a.input, a.keep_first), a.input, a.rate);
+  throw Error("--input '" + a.input + "' must be a tracker .csv or a .bvh motion");
+}
+
+void check_run_options(const WipJob& a) {
+  if (a.out.empty()) throw Error("--out FILE (.glb or .bvh) is required");
+  const std::string ext = io::extension_of(a.out);
+  if (ext != ".glb" && ext != ".bvh") throw Error("--out '" + a.out + "' must end in .glb or .bvh");
+  if (!a.baseline.empty() && a.baseline != "keyframe") throw Error("--baseline '" + a.baseline + "': the only baseline is 'keyframe'");
+  if (a.calibrate != "on" && a.calibrate != "off" && a.calibrate != "auto")
+    throw Error("--calibrate '" + a.calibrate + "': expected auto, on or off");
+  if (!a.plot.empty() && io::extension_of(a.plot) != ".png") throw Error("--plot '" + a.plot + "' must end in .png");
+}
+
+}  // namespace
+
+void run_wip_job(const WipJob& a) {
+  check_run_options(a);
+  const std::string avatar_path = a.avatar.empty() ? io::sample_walk_file("--avatar") : a.avatar;
+  const Motion avatar_file = load_bvh_motion(avatar_path, a.keep_first);
+  const TrackerInput in = load_input(a);
+  const Settings settings = wip_settings(a, in.rate);
+  const Model model = [&] {
+    try {
+      return make_model(avatar_file.skeleton, settings);
+    } catch (const Error& e) {
+      throw Error("--avatar " + avatar_path + ": " + e.what());
+    }
+  }();
+  std::cerr << "legwork wip: " << in.what << "\n";
+  std::fprintf(stderr, "legwork wip: avatar %s, leg %.3f m, step length S %.3f m\n", avatar_path.c_str(),
+               model.leg_length(), model.shape().S);
+  RunOptions ro;
+  ro.calibrate = a.calibrate == "on" || (a.calibrate == "auto" && in.still_start);
+  Run run;
+  try {
+    run = run_wip(model, in.frames, ro);
+  } catch (const Error& e) {
+    throw Error(std::string(e.what()) + " [--calibrate off uses a rolling floor instead]");
+  }
+  if (run.frames.empty()) throw Error("--input: no tracker frame had a usable time");
+  std::cerr << "legwork wip: " << (ro.calibrate ? run.calibration.message : "no calibration: rolling floor estimate") << "\n";
+  Motion out = run.motion;
+  BaselineRun base;
+  if (!a.baseline.empty() || !a.plot.empty()) {
+    const std::string clip_path = a.clip.empty() ? io::sample_walk_file("--clip") : a.clip;
+    const Motion cycle = extract_walk_cycle(load_bvh_motion(clip_path, false));
+    try {
+      base = run_keyframe_baseline(model, cycle, run.frames, in.rate, a.baseline.empty() ? nullptr : &out);
+    } catch (const Error& e) {
+      throw Error("--baseline keyframe: clip " + clip_path + ": " + e.what() + "; pass --clip with a BVH on the avatar's skeleton");
+    }
+    if (!a.baseline.empty()) std::cerr << "legwork wip: output is the key-frame baseline (clip " << clip_path << ")\n";
+  }
+  if (io::extension_of(a.out) == ".glb") {
+    io::GltfOptions g;
+    g.animation_name = a.baseline.empty() ? "walking_in_place" : "keyframe_baseline";
+    io::write_glb(a.out, out, g);
+  } else {
+    io::write_bvh(a.out, out);
+  }
+  std::printf("%s", describe_wip_run(run.frames, in.rate, in.truth).c_str());
+  io::announce(a.baseline.empty() ? "legs" : "key-frame baseline", a.out);
+  if (!a.csv.empty()) io::write_text_file(a.csv, format_info_csv(run.frames)), io::announce("frames", a.csv);
+  if (!a.tracker_out.empty())
+    io::write_tracker_csv(a.tracker_out, io::table_from_frames(in.frames)), io::announce("tracker input", a.tracker_out);
+  if (!a.plot.empty()) {
+    plot_wip_phases(a.plot, "walking in place: " + in.what, run.frames, run.motion,
+                          strip_frames(a.strip, run.frames), base.z, settings.gait);
+    io::announce("phase plot", a.plot);
+  }
+}
+
+void run_wip_eval_job(const WipJob& a) {
+  if (a.eval_out.empty()) throw Error("--out DIR is required");
+  WipEvalRun run;
+  const fs::path data = a.data.empty() ? io::walking_data(&run.note) : fs::path(a.data);
+  if (!fs::is_directory(data)) throw Error("--data '" + data.string() + "' is not a directory");
+  if (fs::exists(a.eval_out) && !fs::is_directory(a.eval_out)) throw Error("--out '" + a.eval_out + "' is not a folder");
+  if (!run.note.empty()) std::cerr << "legwork wip eval: note: " << run.note << "\n";
+  for (const auto& e : fs::directory_iterator(data))
+    if (io::extension_of(e.path().string()) == ".bvh") run.files.push_back(e.path().string());
+  std::sort(run.files.begin(), run.files.end());
+  if (a.limit > 0 && static_cast<int>(run.files.size()) > a.limit) run.files.resize(static_cast<std::size_t>(a.limit));
+  if (run.files.empty()) throw Error("--data '" + data.string() + "' holds no .bvh files");
+  run.data = data.string();
+  run.clip = a.clip.empty() ? io::sample_walk_file("--clip") : a.clip;
+  run.out = a.eval_out;
+  run.options.settings = wip_settings(a, a.rate);
+  run.options.noise = a.noise;
+  run.options.drop_rate = a.drop_rate;
+  run.options.seed = a.seed;
+  run.options.truth.learned = a.truth == "learned";
+  run.log = [](const std::string& s) { std::cerr << s << std::flush; };
+  const auto s = run_wip_evaluation(run);
+  std::printf("%d trials, strict foot-offs +-200 ms: %s\nnoisy F1 %.3f; lenient overlap F1 %.3f (secondary); depth r %.3f / "
+              "RMS %.1f cm\n",
+              s.trials, format_strict(s.strict).c_str(), s.strict_noisy.f1, s.steps.f1, s.depth.correlation,
+              100 * s.depth.rms);
+  for (const auto& f : s.written) io::announce("report", f);
+}
+
+}  // namespace legwork::eval
