@@ -22,7 +22,7 @@ void register_gallery(CLI::App& app) {
   auto dir = std::make_shared<std::string>();
   auto title = std::make_shared<std::string>("legwork results");
   cmd->add_option("dir", *dir, "folder of results")->required()->check(CLI::ExistingDirectory);
-  cmd->add_option("--title", *title, "page title");
+  cmd->add_option("--title", *title, "page title")->capture_default_str();
   cmd->callback([dir, title] {
     std::vector<std::string> problems;
     render::write_video_posters(*dir, &problems);
