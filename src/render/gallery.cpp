@@ -151,7 +151,11 @@ std::vector<Item> folder_items(const fs::path& dir) {
   for (const auto& e : fs::directory_iterator(dir))
     if (e.is_regular_file() && !is_gallery_file(e.path()) && shown.count(extension_of(e.path().string()))) files.push_back(e.path());
   std::sort(files.begin(), files.end());
-  const auto captions = read_captions(dir);
+  auto captions = read_captions(dir);
+  // The parent folder's README may caption files in here: "combined/report.md: ...".
+  const std::string prefix = dir.filename().string() + "/";
+  for (const auto& [name, text] : read_captions(dir.parent_path()))
+    if (name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0) captions.emplace_back(name.substr(prefix.size()), text);
   std::map<std::string, std::size_t> rank;
   for (std::size_t i = 0; i < captions.size(); ++i) rank.emplace(captions[i].first, i);
   auto rank_of = [&](const fs::path& f) {

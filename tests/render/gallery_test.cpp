@@ -24,7 +24,7 @@ fs::path make_results() {
                       "Intro line: a sentence.\ndata/: Data - the clips\nwip/: Walking in place - legs\naccent/: Accentuation - bodies\n");
   io::write_text_file((root / "data/README.txt").string(),
                       "walk.mp4: the walk as video\nsheet.png: a contact sheet\nsheet.svg: the same as SVG\nwalk.glb: glTF\n");
-  io::write_text_file((root / "wip/README.txt").string(), "eval/: one plot per trial\n");
+  io::write_text_file((root / "wip/README.txt").string(), "eval/: one plot per trial\neval/t2.png: the second trial\n");
   io::write_text_file((root / "commands.txt").string(),
                       "legwork render data/cmu/a.bvh --out demo-out/data/sheet.png\n"
                       "legwork render data/cmu/a.bvh --out /abs/demo-out/data/walk.mp4\n"
@@ -90,6 +90,8 @@ TEST(Gallery, NestedFoldersGetTheirOwnPage) {
   at(pages[0].html, "<a href=\"wip/eval/index.html\">eval/</a> <span class=\"size\">2 pictures &mdash; own page</span> &mdash; one plot per trial");
   EXPECT_EQ(pages[0].html.find("t1.png"), std::string::npos) << "per-trial plots on the main page";
   at(pages[1].html, "<img src=\"t1.png\"");
+  // Captioned from the parent's README ("eval/t2.png: ..."), and first (README order).
+  EXPECT_LT(at(pages[1].html, "the second trial"), at(pages[1].html, "<img src=\"t1.png\""));
   at(pages[1].html, "<a href=\"../../index.html\">");
   at(pages[1].html, "$ legwork wip eval --out demo-out/wip/eval");  // a folder output
 }
