@@ -4,6 +4,7 @@
 #include <legwork/io/text.hpp>
 #include <legwork/render/gallery.hpp>
 
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 
@@ -12,17 +13,24 @@ namespace {
 
 void register_gallery(CLI::App& app) {
   auto* cmd = app.add_subcommand("gallery",
-                                 "Write DIR/index.html showing every picture, video and result file under DIR\n"
-                                 "(one section per sub-folder; captions from each folder's README.txt 'file: caption' lines).\n"
+                                 "Write DIR/index.html showing every picture, video and result file under DIR:\n"
+                                 "one section per sub-folder (in the order of DIR/README.txt's 'folder/: Heading - intro'\n"
+                                 "lines), captions from each folder's README.txt 'file: caption' lines, the command that\n"
+                                 "made each file from DIR/commands.txt, video posters (ffmpeg), and a page of its own\n"
+                                 "for every folder inside a section.\n"
                                  "Example: legwork gallery demo-out");
   auto dir = std::make_shared<std::string>();
   auto title = std::make_shared<std::string>("legwork results");
   cmd->add_option("dir", *dir, "folder of results")->required()->check(CLI::ExistingDirectory);
-  cmd->add_option("--title", *title, "page title");
+  cmd->add_option("--title", *title, "page title")->capture_default_str();
   cmd->callback([dir, title] {
-    const auto out = (std::filesystem::path(*dir) / "index.html").string();
-    io::write_text_file(out, render::gallery_html(*dir, *title));
-    announce("gallery", out);
+    std::vector<std::string> problems;
+    render::write_video_posters(*dir, &problems);
+    for (const auto& p : problems) std::fprintf(stderr, "gallery: no poster frame: %s\n", p.c_str());
+    const auto pages = render::gallery_pages(*dir, *title);
+    for (const auto& page : pages) io::write_text_file((std::filesystem::path(*dir) / page.path).string(), page.html);
+    announce("gallery", (std::filesystem::path(*dir) / "index.html").string() +
+                            (pages.size() > 1 ? " (+" + std::to_string(pages.size() - 1) + " sub-pages)" : ""));
   });
 }
 

@@ -80,7 +80,7 @@ fi
     echo "${w}_arc_LeftHand.svg: the same arc as SVG"
     echo "${w}_arc_LeftToeBase.png: '$w' left toe arc over the cycle (the animators' figure-eight check)"
     echo "${w}_arc_LeftToeBase.svg: the same toe arc as SVG"
-    echo "${w}_top.png: '$w' walking a 90-degree turn, from above: path (grey), root (blue), footprints"
+    echo "${w}_top.png: '$w' walking a 90-degree turn, from above: path (grey), root (green), footprints (left blue, right orange)"
     echo "${w}_path.mp4: '$w' walking the 90-degree turn without foot slip (smooth root, legs by IK), left toe traced"
     echo "${w}_slide.mp4: '$w' model sliding through its translucent key poses"
     echo "${w}_cycle.glb: '$w' in-place loop (glTF)"

@@ -36,7 +36,7 @@ video_opt=()
 command -v ffmpeg >/dev/null 2>&1 && video_opt=(--video "$out/07_02_combined.mp4")
 "$LEGWORK" eval combined --data "$out/held_out" --db "$out/sample.lwdb" --out "$out/combined" "${video_opt[@]}"
 rm -rf "$out/held_out"
-"$(dirname "$LEGWORK")/../../bench/accent_speed" --db "$out/sample.lwdb" --input "$held_out" --drop-first --json "$out/bench.json"
+"$(dirname "${LEGWORK_BIN:-$LEGWORK}")/../../bench/accent_speed" --db "$out/sample.lwdb" --input "$held_out" --drop-first --json "$out/bench.json"
 rm -f "$out/sample.lwdb"  # a build product, not a result (rebuilt in a second)
 
 cat > "$out/README.txt" <<'TXT'

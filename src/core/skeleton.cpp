@@ -21,10 +21,16 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-// Name without a namespace prefix such as "mixamorig:".
+// Name without a namespace prefix such as "mixamorig:" (or three.js's
+// "mixamorig" with the colon removed from node names: "mixamorigHips").
 std::string_view strip_namespace(std::string_view name) {
   auto colon = name.rfind(':');
-  return colon == std::string_view::npos ? name : name.substr(colon + 1);
+  if (colon != std::string_view::npos) return name.substr(colon + 1);
+  constexpr std::string_view kMixamo = "mixamorig";
+  if (name.size() > kMixamo.size() && name.substr(0, kMixamo.size()) == kMixamo &&
+      std::isupper(static_cast<unsigned char>(name[kMixamo.size()])))
+    return name.substr(kMixamo.size());
+  return name;
 }
 
 enum class Side { Centre, Left, Right };

@@ -481,6 +481,27 @@ render::BarChart cm_chart(const std::string& title) {
   return c;
 }
 
+// Series colours of the evaluation charts: a hue per method (accent teal, IK
+// purple; never the body's left blue / right orange), darker for
+// cross-subject than cross-trial, greyed for the document's figures.
+render::Rgb method_color(const std::string& method, const std::string& protocol, bool document) {
+  const bool ik = method == "ik";
+  const bool subject = protocol == "cross_subject";
+  render::Rgb c = ik ? (subject ? render::Rgb{0.42, 0.24, 0.60} : render::Rgb{0.68, 0.56, 0.82})
+                     : (subject ? render::Rgb{0.00, 0.47, 0.50} : render::Rgb{0.40, 0.74, 0.76});
+  if (protocol == "cross_dataset") c = ik ? render::Rgb{0.82, 0.76, 0.90} : render::Rgb{0.68, 0.88, 0.88};
+  if (document)
+    for (double& x : c) x = 0.45 * x + 0.55 * 0.62;  // towards grey
+  return c;
+}
+
+// "accent engine, cross-subject" for a method and protocol key.
+std::string series_name(const std::string& method, const std::string& protocol) {
+  std::string p = protocol;
+  std::replace(p.begin(), p.end(), '_', '-');
+  return std::string(method == "ik" ? "IK baseline" : "accent engine") + ", " + p;
+}
+
 // Figure 4 A: per body part, this run's methods beside the document's figures.
 render::BarChart body_parts_chart(const json& r) {
   render::BarChart c = cm_chart("Mean joint error per body part (cm)");
@@ -494,15 +515,17 @@ render::BarChart body_parts_chart(const json& r) {
     for (const char* m : {"accent", "ik"}) {
       if (!r.contains(p) || !r[p].contains(m)) continue;
       render::BarSeries s;
-      s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
+      s.name = series_name(m, p);
+      s.color = method_color(m, p, false);
       for (const auto& [k, label] : parts) s.values.push_back(value_of(r, p, m, k));
       c.series.push_back(s);
     }
-  for (const auto& [p, m, name] : {std::tuple{"cross_subject", "accent", "document accent cross_subject"},
-                                   std::tuple{"cross_trial", "accent", "document accent cross_trial"},
-                                   std::tuple{"cross_subject", "ik", "document IK"}}) {
+  for (const auto& [p, m, name] : {std::tuple{"cross_subject", "accent", "document: accent, cross-subject"},
+                                   std::tuple{"cross_trial", "accent", "document: accent, cross-trial"},
+                                   std::tuple{"cross_subject", "ik", "document: IK baseline"}}) {
     render::BarSeries s;
     s.name = name;
+    s.color = method_color(m, p, true);
     const json& pp = r["paper"][p][m];
     for (const auto& [k, label] : parts) s.values.push_back(pp.contains(k) ? pp[k].get<double>() : kNaN);
     c.series.push_back(s);
@@ -523,7 +546,8 @@ render::BarChart classes_chart(const json& r) {
     for (const char* m : {"accent", "ik"}) {
       if (!r.contains(p) || !r[p].contains(m)) continue;
       render::BarSeries s;
-      s.name = std::string(m == std::string("ik") ? "IK" : "accent") + " " + p;
+      s.name = series_name(m, p);
+      s.color = method_color(m, p, false);
       for (const auto& cls : c.groups) {
         const json& cj = r[p][m]["classes"];
         s.values.push_back(cj.contains(cls) ? get(cj[cls], "full_body_cm") : kNaN);
@@ -540,10 +564,20 @@ render::BarChart ablation_chart(const json& r) {
   std::vector<std::string> order{"nn", "nn_align", "paper", "spring", "spring_k", "accent"};
   for (const auto& [k, v] : ab.items())
     if (std::find(order.begin(), order.end(), k) == order.end()) order.push_back(k);
-  render::BarSeries ours{"this run", {}}, doc{"document", {}};
+  render::BarSeries ours{"this run", {}, method_color("accent", "cross_subject", false)},
+      doc{"document", {}, method_color("accent", "cross_subject", true)};
+  // Short names under the bars, explained in the notes below the chart.
+  const std::map<std::string, std::string> shorts{{"nn", "NN only"},        {"nn_align", "+ alignment"}, {"paper", "+ EWMA"},
+                                                  {"spring", "+ spring"},    {"spring_k", "+ spring, k"}, {"accent", "engine"}};
+  std::map<std::string, std::string> labels;
+  if (r.contains("meta") && r["meta"].contains("variants"))
+    for (const auto& v : r["meta"]["variants"]) labels[v.value("key", "")] = v.value("label", "");
+  labels.emplace("accent", "the full engine: + spring smoothing, engine k and hand IK");
   for (const auto& k : order) {
     if (!ab.contains(k)) continue;
-    c.groups.push_back(k);
+    const std::string name = shorts.count(k) ? shorts.at(k) : k;
+    c.groups.push_back(name);
+    if (!labels[k].empty()) c.notes.push_back(name + " (" + k + "): " + labels[k]);
     ours.values.push_back(get(ab[k], "full_body_cm"));
     doc.values.push_back(r["paper"]["ablation"].contains(k) ? r["paper"]["ablation"][k].get<double>() : kNaN);
   }
@@ -589,6 +623,7 @@ std::string write_comparison_video(const EvalResult& r, const std::string& dir, 
   const Motion truth = trim(s.truth, 0, last), engine = trim(s.accent, 0, last), ik = trim(s.ik, 0, last);
   render::VideoOptions opt;
   opt.camera.view = render::View::ThreeQuarter;
+  opt.follow = true;  // bodies fill their panels
   opt.camera.width = 1080;
   opt.camera.height = 480;
   opt.title = "held-out " + s.trial + " (" + s.fold + ")";

@@ -61,6 +61,7 @@ void render_session_video(std::span<const TrackerFrame> frames, double fps, cons
   render::VideoOptions vo;
   vo.fps = 30;
   vo.camera.view = render::View::ThreeQuarter;
+  vo.follow = true;  // bodies fill their panels
   vo.camera.width = 280 * static_cast<int>(panels.size());
   vo.camera.height = 420;
   vo.title = title;

@@ -59,6 +59,21 @@ class BufferBuilder {
     return static_cast<int>(model_.accessors.size()) - 1;
   }
 
+  // A buffer view of raw bytes with no accessor (legwork's exact copy),
+  // aligned to 8 bytes for doubles.
+  int add_view(const void* data, std::size_t bytes) {
+    auto& buf = model_.buffers[0].data;
+    while (buf.size() % 8 != 0) buf.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buf.size();
+    view.byteLength = bytes;
+    const auto* p = static_cast<const unsigned char*>(data);
+    buf.insert(buf.end(), p, p + bytes);
+    model_.bufferViews.push_back(view);
+    return static_cast<int>(model_.bufferViews.size()) - 1;
+  }
+
   // Float accessor with min/max per component (required for POSITION and animation inputs).
   int add_floats(const std::vector<float>& data, int type, int components, int target = 0, bool bounds = false) {
     const std::size_t count = data.size() / static_cast<std::size_t>(components);
@@ -257,6 +272,28 @@ void add_animation(tinygltf::Model& model, BufferBuilder& buffers, const Motion&
   model.animations.push_back(anim);
 }
 
+// The exact frame rate and, optionally, the motion in doubles (glTF stores
+// floats): animation.extras.legwork = {frame_rate, frames, joints,
+// exact_view}, the view holding per frame and joint tx ty tz qx qy qz qw.
+void add_exact_copy(tinygltf::Model& model, BufferBuilder& buffers, const Motion& m, bool exact) {
+  tinygltf::Value::Object info;
+  info["frame_rate"] = tinygltf::Value(m.fps);
+  info["frames"] = tinygltf::Value(m.frame_count());
+  info["joints"] = tinygltf::Value(m.joint_count());
+  if (exact) {
+    std::vector<double> values;
+    values.reserve(static_cast<std::size_t>(m.frame_count()) * static_cast<std::size_t>(m.joint_count()) * 7);
+    const auto tr = m.all_translations();
+    const auto rot = m.all_rotations();
+    for (std::size_t i = 0; i < tr.size(); ++i)
+      values.insert(values.end(), {tr[i].x(), tr[i].y(), tr[i].z(), rot[i].x(), rot[i].y(), rot[i].z(), rot[i].w()});
+    info["exact_view"] = tinygltf::Value(buffers.add_view(values.data(), values.size() * sizeof(double)));
+  }
+  tinygltf::Value::Object extras;
+  extras["legwork"] = tinygltf::Value(std::move(info));
+  model.animations.back().extras = tinygltf::Value(std::move(extras));
+}
+
 tinygltf::Model build_model(const Motion& m, const GltfOptions& opt) {
   const Skeleton& s = m.skeleton;
   tinygltf::Model model;
@@ -275,84 +312,9 @@ tinygltf::Model build_model(const Motion& m, const GltfOptions& opt) {
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   add_animation(model, buffers, m, opt.animation_name);
+  add_exact_copy(model, buffers, m, opt.exact_copy);
   model.buffers[0].name = "data";
   return model;
-}
-
-// Float elements of an accessor (any stride), checked against the expected
-// shape. Every size comes from the file, so the accessor must fit its buffer
-// view and the view its buffer, with arithmetic that cannot wrap (tinygltf
-// does not check `count`: 2^62 + 1 elements must not become a small vector).
-std::vector<float> read_floats(const tinygltf::Model& model, int accessor, int type, const std::string& path,
-                               const char* what) {
-  if (accessor < 0 || static_cast<std::size_t>(accessor) >= model.accessors.size())
-    throw Error(path + ": " + what + " refers to a missing accessor");
-  const auto& acc = model.accessors[static_cast<std::size_t>(accessor)];
-  if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || acc.type != type || acc.bufferView < 0 ||
-      static_cast<std::size_t>(acc.bufferView) >= model.bufferViews.size())
-    throw Error(path + ": " + what + " is not a float accessor of the expected type");
-  const auto& view = model.bufferViews[static_cast<std::size_t>(acc.bufferView)];
-  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
-    throw Error(path + ": " + what + " refers to a missing buffer");
-  const auto& buf = model.buffers[static_cast<std::size_t>(view.buffer)].data;
-  const auto comps = static_cast<std::size_t>(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type)));
-  const int stride_int = acc.ByteStride(view);
-  const std::size_t element = comps * sizeof(float);
-  const auto fail = [&] {
-    throw Error(path + ": " + what + " (" + std::to_string(acc.count) + " elements) reaches past the end of its buffer");
-  };
-  if (stride_int <= 0) fail();
-  const auto stride = static_cast<std::size_t>(stride_int);
-  // The view lies in the buffer, the accessor's first element in the view.
-  if (view.byteOffset > buf.size() || view.byteLength > buf.size() - view.byteOffset) fail();
-  if (acc.count == 0) return {};
-  if (acc.byteOffset > view.byteLength || element > view.byteLength - acc.byteOffset) fail();
-  // Last element: byteOffset + (count - 1) * stride + element <= byteLength, without overflow.
-  if (acc.count - 1 > (view.byteLength - acc.byteOffset - element) / stride) fail();
-  const std::size_t start = view.byteOffset + acc.byteOffset;
-  std::vector<float> out(acc.count * comps);  // count * element <= buffer bytes: no overflow
-  for (std::size_t i = 0; i < acc.count; ++i)
-    std::memcpy(&out[i * comps], buf.data() + start + i * stride, element);
-  return out;
-}
-
-// Index of the key segment [k, k+1] holding t and the blend factor in it.
-// Times are floats: compare in float, so a t just below the last key that
-// rounds up to it never makes upper_bound return end(). `times` is strictly
-// increasing (read_glb checks it).
-std::pair<std::size_t, double> locate(const std::vector<float>& times, double t) {
-  const auto tf = static_cast<float>(t);
-  if (times.size() < 2 || !(tf > times.front())) return {0, 0.0};
-  if (tf >= times.back()) return {times.size() - 1, 0.0};
-  const auto it = std::upper_bound(times.begin(), times.end(), tf);  // in (begin, end)
-  const std::size_t k = static_cast<std::size_t>(it - times.begin()) - 1;
-  const double span = static_cast<double>(times[k + 1]) - times[k];
-  return {k, span > 0 ? std::clamp((t - times[k]) / span, 0.0, 1.0) : 0.0};
-}
-
-// Key times must be finite, non-negative and strictly increasing (glTF 2.0, 3.11).
-void check_key_times(const std::vector<float>& times, const std::string& path, const std::string& joint) {
-  for (std::size_t i = 0; i < times.size(); ++i) {
-    if (!std::isfinite(times[i]) || times[i] < 0)
-      throw Error(path + ": animation key time " + std::to_string(i) + " of '" + joint + "' is not a finite time >= 0");
-    if (i > 0 && !(times[i] > times[i - 1]))
-      throw Error(path + ": animation key times of '" + joint + "' are not strictly increasing (key " +
-                  std::to_string(i) + ")");
-  }
-}
-
-// glb files are self-contained: never let a crafted buffer URI read another
-// file (/dev/zero, /etc/...) on the reader's machine. tinygltf asks whether
-// the file exists first, so that answer ("File not found") is what refuses.
-bool refuse_external_file(std::vector<unsigned char>*, std::string* err, const std::string& file, void*) {
-  if (err) *err += "external file '" + file + "' refused: legwork reads only self-contained .glb files\n";
-  return false;
-}
-bool no_file_exists(const std::string&, void*) { return false; }
-std::string same_path(const std::string& p, void*) { return p; }
-bool refuse_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-  if (err) *err += "writing files is disabled\n";
-  return false;
 }
 
 }  // namespace
@@ -367,156 +329,5 @@ void write_glb(const std::string& path, const Motion& m, const GltfOptions& opt)
     throw Error(path + ": cannot encode the glTF binary");
   write_text_file(path, bytes.str());
 }
-
-namespace {
-
-// Deeper nesting than this is not a body (the BVH reader's limit too).
-constexpr int kMaxGlbDepth = 256;
-
-// Skeleton of the first skin: joints in depth-first order with a single root.
-Skeleton read_skin_skeleton(const tinygltf::Model& model, const std::string& path, std::map<int, int>& joint_of_node) {
-  if (model.skins.empty()) throw Error(path + ": no skin (legwork reads skeletons from the first skin)");
-  const auto& joints = model.skins[0].joints;
-  if (joints.empty()) throw Error(path + ": skin 0 has no joints");
-  const auto node_count = static_cast<int>(model.nodes.size());
-  for (int node : joints)
-    if (node < 0 || node >= node_count) throw Error(path + ": skin joint refers to missing node " + std::to_string(node));
-  for (const auto& node : model.nodes)
-    for (int c : node.children)
-      if (c < 0 || c >= node_count) throw Error(path + ": node '" + node.name + "' has a missing child " + std::to_string(c));
-  for (std::size_t j = 0; j < joints.size(); ++j)
-    if (!joint_of_node.emplace(joints[j], static_cast<int>(j)).second)
-      throw Error(path + ": skin lists node " + std::to_string(joints[j]) + " twice");
-
-  Skeleton skel;
-  std::vector<int> parent(joints.size(), -1);
-  for (std::size_t j = 0; j < joints.size(); ++j)
-    for (int c : model.nodes[static_cast<std::size_t>(joints[j])].children)
-      if (auto it = joint_of_node.find(c); it != joint_of_node.end()) parent[static_cast<std::size_t>(it->second)] = static_cast<int>(j);
-  auto vec3_of = [&](const std::vector<double>& v, const std::string& name) {
-    if (v.size() != 3) return Vec3::Zero().eval();
-    const Vec3 out(v[0], v[1], v[2]);
-    if (!out.allFinite() || out.cwiseAbs().maxCoeff() > 1e6)
-      throw Error(path + ": node '" + name + "' has a translation that is not finite or beyond 1000 km");
-    return out;
-  };
-  std::vector<int> depth(joints.size(), 0);
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    const auto& node = model.nodes[static_cast<std::size_t>(joints[j])];
-    if (parent[j] >= static_cast<int>(j) || (j > 0 && parent[j] < 0))
-      throw Error(path + ": skin joints are not in depth-first order with a single root (joint '" + node.name + "')");
-    if (j > 0 && (depth[j] = depth[static_cast<std::size_t>(parent[j])] + 1) > kMaxGlbDepth)
-      throw Error(path + ": joint '" + node.name + "' is nested more than " + std::to_string(kMaxGlbDepth) + " deep");
-    skel.add_joint(node.name, parent[j], vec3_of(node.translation, node.name));
-    // A non-joint leaf child is the End Site written by write_glb.
-    for (int c : node.children)
-      if (!joint_of_node.count(c) && model.nodes[static_cast<std::size_t>(c)].mesh < 0) {
-        const auto& end = model.nodes[static_cast<std::size_t>(c)];
-        skel.end_sites[j] = vec3_of(end.translation, end.name);
-        skel.has_end_site[j] = 1;
-      }
-  }
-  resolve_roles(skel);
-  return skel;
-}
-
-struct Track {
-  std::vector<float> times, values;
-};
-
-// Translation and rotation keys per joint of the first animation; returns the
-// last key time. Joints without a channel keep their node TRS.
-double read_tracks(const tinygltf::Model& model, const Skeleton& skel, const std::map<int, int>& joint_of_node,
-                   const std::string& path, std::vector<Track>& tr, std::vector<Track>& rot) {
-  tr.assign(static_cast<std::size_t>(skel.joint_count()), {});
-  rot.assign(static_cast<std::size_t>(skel.joint_count()), {});
-  double duration = 0;
-  if (model.animations.empty()) return duration;
-  const auto& anim = model.animations[0];
-  for (const auto& ch : anim.channels) {
-    auto it = joint_of_node.find(ch.target_node);
-    if (it == joint_of_node.end() || ch.sampler < 0 || static_cast<std::size_t>(ch.sampler) >= anim.samplers.size()) continue;
-    const auto& sampler = anim.samplers[static_cast<std::size_t>(ch.sampler)];
-    const bool is_tr = ch.target_path == "translation";
-    if (!is_tr && ch.target_path != "rotation") continue;
-    const std::string& joint = skel.names[static_cast<std::size_t>(it->second)];
-    Track& t = (is_tr ? tr : rot)[static_cast<std::size_t>(it->second)];
-    t.times = read_floats(model, sampler.input, TINYGLTF_TYPE_SCALAR, path, "animation input");
-    t.values = read_floats(model, sampler.output, is_tr ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, path, "animation output");
-    if (t.values.size() != t.times.size() * (is_tr ? 3u : 4u))
-      throw Error(path + ": animation channel of '" + joint +
-                  "' has a different number of times and values (only LINEAR/STEP samplers are read)");
-    check_key_times(t.times, path, joint);
-    for (float v : t.values)
-      if (!std::isfinite(v) || std::abs(v) > 1e6f)
-        throw Error(path + ": animation channel of '" + joint + "' has a value that is not finite or beyond 1e6");
-    if (!t.times.empty()) duration = std::max(duration, static_cast<double>(t.times.back()));
-  }
-  return duration;
-}
-
-// Pose of every joint at `time` from its keys (LINEAR).
-void sample_tracks(const tinygltf::Model& model, const std::vector<Track>& tr, const std::vector<Track>& rot,
-                   double time, PoseRef pose) {
-  const auto& joints = model.skins[0].joints;
-  for (std::size_t ju = 0; ju < tr.size(); ++ju) {
-    if (!tr[ju].times.empty()) {
-      auto [k, a] = locate(tr[ju].times, time);
-      const std::size_t k1 = std::min(k + 1, tr[ju].times.size() - 1);
-      const float* v0 = &tr[ju].values[3 * k];
-      const float* v1 = &tr[ju].values[3 * k1];
-      for (int c = 0; c < 3; ++c) pose.translations[ju][c] = (1 - a) * v0[c] + a * v1[c];
-    }
-    if (!rot[ju].times.empty()) {
-      auto [k, a] = locate(rot[ju].times, time);
-      const std::size_t k1 = std::min(k + 1, rot[ju].times.size() - 1);
-      const float* v0 = &rot[ju].values[4 * k];
-      const float* v1 = &rot[ju].values[4 * k1];
-      Quat q0(v0[3], v0[0], v0[1], v0[2]), q1(v1[3], v1[0], v1[1], v1[2]);
-      // A zero quaternion has no direction: identity rather than NaN.
-      if (!(q0.norm() > 1e-12)) q0 = Quat::Identity();
-      if (!(q1.norm() > 1e-12)) q1 = Quat::Identity();
-      pose.rotations[ju] = q0.normalized().slerp(a, q1.normalized());
-    } else {
-      const auto& r = model.nodes[static_cast<std::size_t>(joints[ju])].rotation;
-      if (r.size() == 4) {
-        const Quat q(r[3], r[0], r[1], r[2]);
-        pose.rotations[ju] = q.coeffs().allFinite() && q.norm() > 1e-12 ? q.normalized() : Quat::Identity();
-      }
-    }
-  }
-}
-
-}  // namespace
-
-Motion parse_glb(std::string_view bytes, const std::string& path, double fps) {
-  if (!(fps > 0) || !(fps <= kMaxGlbFps)) throw Error("read_glb: fps must be in (0, " + std::to_string(kMaxGlbFps) + "]");
-  tinygltf::Model model;
-  tinygltf::TinyGLTF gltf;
-  gltf.SetFsCallbacks({&no_file_exists, &same_path, &refuse_external_file, &refuse_write, nullptr});
-  std::string err, warn;
-  if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw Error(path + ": larger than 4 GB");
-  if (!gltf.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                 static_cast<unsigned int>(bytes.size()), "")) {
-    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    throw Error(path + ": cannot read glTF binary: " + printable_text(err));
-  }
-  std::map<int, int> joint_of_node;
-  const Skeleton skel = read_skin_skeleton(model, path, joint_of_node);
-  std::vector<Track> tr, rot;
-  const double duration = read_tracks(model, skel, joint_of_node, path, tr, rot);
-  // The sample count comes from the file: bound it before allocating.
-  const double samples = std::floor(duration * fps + 1e-3) + 1;
-  if (samples * skel.joint_count() > kMaxGlbJointPoses)
-    throw Error(path + ": the animation lasts " + std::to_string(duration) + " s: at " + std::to_string(fps) +
-                " fps x " + std::to_string(skel.joint_count()) + " joints that is more than legwork reads (" +
-                std::to_string(static_cast<long long>(kMaxGlbJointPoses)) + " joint poses)");
-  const int frames = static_cast<int>(samples);
-  Motion m(skel, fps, frames);
-  for (int f = 0; f < frames; ++f) sample_tracks(model, tr, rot, f / fps, m.frame(f));
-  return m;
-}
-
-Motion read_glb(const std::string& path, double fps) { return parse_glb(read_binary_file(path), path, fps); }
 
 }  // namespace legwork::io

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 
 namespace legwork::render::detail {
@@ -102,6 +103,46 @@ double text(cairo_t* cr, double x, double y, const std::string& s, double size, 
   cairo_show_text(cr, s.c_str());
   cairo_new_path(cr);
   return w;
+}
+
+std::string title_text(const std::string& s) {
+  static const char* kExtensions[] = {".bvh", ".csv", ".glb", ".json", ".png", ".svg", ".mp4", ".lwdb", ".tsv", ".md"};
+  std::string out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const std::size_t end = std::min(s.find(' ', i), s.size());
+    std::string word = s.substr(i, end - i);
+    // Leading and trailing punctuation stay: "(", "'", ",", ")".
+    const std::size_t a = word.find_first_not_of("('\"");
+    const std::size_t b = word.find_last_not_of(")',:\"");
+    if (a != std::string::npos && b != std::string::npos && b > a) {
+      const std::string core = word.substr(a, b - a + 1);
+      const auto slash = core.rfind('/');
+      bool file = false;
+      for (const char* ext : kExtensions)
+        file = file || (core.size() > std::strlen(ext) && core.compare(core.size() - std::strlen(ext), std::strlen(ext), ext) == 0);
+      if (slash != std::string::npos && slash + 1 < core.size() && file) word = word.substr(0, a) + core.substr(slash + 1) + word.substr(b + 1);
+    }
+    out += word;
+    if (end < s.size()) out += ' ';
+    i = end + 1;
+  }
+  return out;
+}
+
+double title(cairo_t* cr, double x, double y, const std::string& s, double size, double max_width) {
+  std::string t = title_text(s);
+  double sz = size;
+  while (sz > 11 && text_width(cr, t, sz, true) > max_width) sz -= 0.5;
+  if (text_width(cr, t, sz, true) > max_width) {
+    while (t.size() > 1 && text_width(cr, t + "...", sz, true) > max_width) {
+      t.pop_back();
+      while (!t.empty() && (static_cast<unsigned char>(t.back()) & 0xC0) == 0x80) t.pop_back();  // whole UTF-8 characters
+      if (!t.empty() && (static_cast<unsigned char>(t.back()) & 0x80)) t.pop_back();
+    }
+    t += "...";
+  }
+  return text(cr, x, y, t, sz, Align::Left, {0.1, 0.1, 0.1}, 1.0, true);
 }
 
 double nice_step(double span, int target_count) {

@@ -46,6 +46,12 @@ enum class Align { Left, Centre, Right };
 double text(cairo_t* cr, double x, double y, const std::string& s, double size, Align align = Align::Left,
             const Rgb& color = {0.1, 0.1, 0.1}, double alpha = 1.0, bool bold = false);
 double text_width(cairo_t* cr, const std::string& s, double size, bool bold = false);
+// A title as a reader wants it: file paths shortened to their file names
+// ("/work/data/cmu/bvh/walking/16_15.bvh" -> "16_15.bvh").
+std::string title_text(const std::string& s);
+// Draws a bold title at (x, y) within `max_width`: paths shortened, the size
+// reduced (down to 11 px) and, if still too wide, the end cut with "...".
+double title(cairo_t* cr, double x, double y, const std::string& s, double size, double max_width);
 void set_color(cairo_t* cr, const Rgb& c, double alpha = 1.0);
 // A "nice" step (1, 2, 2.5 or 5 x 10^k) close to span / target_count.
 double nice_step(double span, int target_count);

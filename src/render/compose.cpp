@@ -130,7 +130,6 @@ void render_slide_video(const Skeleton& skel, const SlideVideo& v, const std::st
     v.sample(t, pose.ref());
     Scene s = base;
     s.figures.push_back(make_figure(skel, placed(pose, slot), 1.0));
-    s.figures.back().color = {0.1, 0.35, 0.8};
     char title[64];
     std::snprintf(title, sizeof title, "sliding through the key poses - frame %.2f", t);
     s.title = title;
@@ -162,14 +161,14 @@ void render_walk_top(const Motion& walk, const std::vector<Vec3>* path, const st
     Vec3 p = walk.frame(f).translations[0];
     root.points.push_back(Vec3(p.x(), 0, p.z()));
   }
-  root.color = {0.1, 0.35, 0.8};
+  root.color = kTraceColor;
   root.label = "root";
   s.curves.push_back(root);
   s.footprints = footprints;
   // A few translucent figures along the walk.
   const int every = std::max(1, walk.frame_count() / 8);
   for (int f = 0; f < walk.frame_count(); f += every)
-    s.figures.push_back(make_figure(walk.skeleton, walk.frame(f), 0.25));
+    s.figures.push_back(make_figure(walk.skeleton, walk.frame(f), 0.45));
   s.title = title;
   Camera cam;
   cam.view = View::Top;

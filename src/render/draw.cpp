@@ -105,29 +105,62 @@ struct Box {
   bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
 };
 
-// A small label next to point q, at the first of eight spots around it that
-// does not overlap labels already placed.
-void place_label(cairo_t* cr, const Eigen::Vector2d& q, const std::string& s, const Rgb& color, std::vector<Box>& placed) {
-  const double w = text_width(cr, s, 11), h = 11;
-  const double dx[] = {6, 6, -6 - w, -6 - w, -w / 2, -w / 2, 14, -14 - w};
-  const double dy[] = {-6, 6 + h, -6, 6 + h, -10, 12 + h, 4, 4};
-  std::size_t k = 0;
-  for (; k < 8; ++k) {
-    const Box b{q.x() + dx[k], q.y() + dy[k] - h, q.x() + dx[k] + w, q.y() + dy[k]};
-    bool clash = false;
-    for (const auto& o : placed) clash = clash || b.overlaps(o);
-    if (!clash) break;
+// A label next to point q at the first free spot (not over labels, dots or
+// feet already placed): eight spots around it, then the same eight twice and
+// three times as far with a thin leader line back to the point.
+void place_label(cairo_t* cr, const Eigen::Vector2d& q, const std::string& s, const Rgb& color, std::vector<Box>& placed,
+                 double size = 11, bool bold = false) {
+  const double w = text_width(cr, s, size, bold), h = size;
+  const double dx[] = {6, 6, -6 - w, -6 - w, -w / 2, -w / 2, 8, -8 - w};
+  const double dy[] = {-6, 6 + h, -6, 6 + h, -8, 10 + h, h / 2, h / 2};
+  auto box_at = [&](int k, double r) {
+    const double cx = dx[k] + w / 2, cy = dy[k] - h / 2;  // spot centre relative to q
+    const double x = q.x() + cx * r - w / 2, y = q.y() + cy * r + h / 2;
+    return Box{x, y - h, x + w, y};
+  };
+  Box chosen = box_at(0, 1);
+  double radius = 1;
+  bool found = false;
+  for (double r : {1.0, 2.2, 3.4}) {
+    for (int k = 0; k < 8 && !found; ++k) {
+      const Box b = box_at(k, r);
+      bool clash = false;
+      for (const auto& o : placed) clash = clash || b.overlaps(o);
+      if (!clash) chosen = b, radius = r, found = true;
+    }
+    if (found) break;
   }
-  if (k == 8) k = 0;
-  placed.push_back({q.x() + dx[k], q.y() + dy[k] - h, q.x() + dx[k] + w, q.y() + dy[k]});
-  text(cr, q.x() + dx[k], q.y() + dy[k], s, 11, Align::Left, color);
+  placed.push_back(chosen);
+  if (radius > 1) {  // leader line from the point to the label's nearest edge
+    const Eigen::Vector2d c((chosen.x0 + chosen.x1) / 2, (chosen.y0 + chosen.y1) / 2);
+    const Eigen::Vector2d d = c - q;
+    // The segment leaves the label's box (padded by 2 px) at 1 - s of the way.
+    const double s_exit = std::min((0.5 * w + 2) / std::max(std::abs(d.x()), 1e-9), (0.5 * h + 2) / std::max(std::abs(d.y()), 1e-9));
+    const double t = std::clamp(1.0 - s_exit, 0.0, 1.0);
+    cairo_save(cr);
+    cairo_move_to(cr, q.x(), q.y());
+    cairo_line_to(cr, q.x() + d.x() * t, q.y() + d.y() * t);
+    set_color(cr, color, 0.7);
+    cairo_set_line_width(cr, 0.8);
+    cairo_stroke(cr);
+    cairo_restore(cr);
+  }
+  text(cr, chosen.x0, chosen.y1, s, size, Align::Left, color, 1.0, bold);
 }
 
+// Curves with their marked points, then every label: mark labels beside
+// their dots and a curve's name beside its end, none over a dot or another label.
 void draw_curves(cairo_t* cr, const Scene& scene, const Framing& fr) {
   std::vector<Box> placed;
   cairo_save(cr);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  auto mark_point = [&](const Curve& c, std::size_t m, Eigen::Vector2d& q) {
+    const int i = c.marks[m];
+    if (i < 0 || i >= static_cast<int>(c.points.size()) || !c.points[static_cast<std::size_t>(i)].allFinite()) return false;
+    q = fr.to_pixel(c.points[static_cast<std::size_t>(i)]);
+    return true;
+  };
   for (const auto& c : scene.curves) {
     if (c.points.empty()) continue;
     bool pen = false;
@@ -146,25 +179,25 @@ void draw_curves(cairo_t* cr, const Scene& scene, const Framing& fr) {
     cairo_set_line_width(cr, c.width);
     cairo_stroke(cr);
     for (std::size_t m = 0; m < c.marks.size(); ++m) {
-      const int i = c.marks[m];
-      if (i < 0 || i >= static_cast<int>(c.points.size()) || !c.points[static_cast<std::size_t>(i)].allFinite()) continue;
-      const auto q = fr.to_pixel(c.points[static_cast<std::size_t>(i)]);
-      cairo_arc(cr, q.x(), q.y(), c.width + 2.5, 0, 2 * kPi);
+      Eigen::Vector2d q;
+      if (!mark_point(c, m, q)) continue;
+      const double r = c.width + 2.5;
+      cairo_arc(cr, q.x(), q.y(), r, 0, 2 * kPi);
       set_color(cr, c.color);
       cairo_fill_preserve(cr);
       set_color(cr, {1, 1, 1});
       cairo_set_line_width(cr, 1.0);
       cairo_stroke(cr);
-      if (m < c.mark_labels.size()) place_label(cr, q, c.mark_labels[m], c.color, placed);
+      placed.push_back({q.x() - r, q.y() - r, q.x() + r, q.y() + r});
     }
-    if (!c.label.empty() && c.points.back().allFinite()) {
-      // At the curve's end, inside the panel (to the left of the end if needed).
-      const auto q = fr.to_pixel(c.points.back());
-      const double w = text_width(cr, c.label, 12, true);
-      const bool fits_right = q.x() + 8 + w < fr.width - 4;
-      text(cr, fits_right ? q.x() + 8 : q.x() - 8, q.y() + 16, c.label, 12, fits_right ? Align::Left : Align::Right,
-           c.color, 1.0, true);
+  }
+  for (const auto& c : scene.curves) {
+    for (std::size_t m = 0; m < c.marks.size() && m < c.mark_labels.size(); ++m) {
+      Eigen::Vector2d q;
+      if (mark_point(c, m, q)) place_label(cr, q, c.mark_labels[m], c.color, placed);
     }
+    if (!c.label.empty() && !c.points.empty() && c.points.back().allFinite())
+      place_label(cr, fr.to_pixel(c.points.back()), c.label, c.color, placed, 12, true);
   }
   cairo_restore(cr);
 }
@@ -175,8 +208,74 @@ struct Segment {
   double depth;
 };
 
+// A few tracked devices (no legs: e.g. a headset and two controllers)
+// rather than a body: drawn as markers, not as bones.
+bool is_device_set(const Skeleton& skel) {
+  return !skel.roles.has(Role::LeftHip) && !skel.roles.has(Role::RightHip) && skel.joint_count() <= 8;
+}
+
+// Devices as markers: the head as a ring through the head joint and its tip,
+// every other device as a dot in its side's colour with a stub towards its
+// tip (a controller's pointing direction), thin dashed lines from the head.
+void draw_devices(cairo_t* cr, const Figure& f, const Framing& fr) {
+  const Skeleton& skel = *f.skeleton;
+  const int n = std::min<int>(skel.joint_count(), static_cast<int>(f.positions.size()));
+  const auto sides = joint_sides(skel);
+  const double w = bone_width(fr);
+  const int head = skel.roles[Role::Head];
+  const bool tips = f.end_sites.size() == f.positions.size();
+  cairo_save(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  for (int j = 0; j < n && head >= 0 && head < n; ++j) {
+    const Vec3 &a = f.positions[static_cast<std::size_t>(head)], &b = f.positions[static_cast<std::size_t>(j)];
+    if (j == head || !a.allFinite() || !b.allFinite()) continue;
+    const double dash[] = {4, 4};
+    cairo_set_dash(cr, dash, 2, 0);
+    move_to(cr, fr.to_pixel(a));
+    line_to(cr, fr.to_pixel(b));
+    set_color(cr, {0.6, 0.6, 0.65});
+    cairo_set_line_width(cr, 1.2);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0);
+  }
+  for (int j = 0; j < n; ++j) {
+    const auto ju = static_cast<std::size_t>(j);
+    const Vec3& p = f.positions[ju];
+    if (!p.allFinite()) continue;
+    const Rgb c = sides[ju] == Side::Left ? kLeftColor : sides[ju] == Side::Right ? kRightColor : f.color;
+    const bool tip = tips && ju < skel.has_end_site.size() && skel.has_end_site[ju] && f.end_sites[ju].allFinite();
+    const auto q = fr.to_pixel(p);
+    if (j == head) {
+      const auto t = tip ? fr.to_pixel(f.end_sites[ju]) : q;
+      const double r = std::max(0.6 * (t - q).norm(), 0.07 / fr.metres_per_pixel);
+      cairo_arc(cr, (q.x() + t.x()) / 2, (q.y() + t.y()) / 2, r, 0, 2 * kPi);
+      set_color(cr, {1, 1, 1});
+      cairo_fill_preserve(cr);
+      set_color(cr, c);
+      cairo_set_line_width(cr, std::max(1.5, w * 0.8));
+      cairo_stroke(cr);
+      continue;
+    }
+    if (tip) {
+      move_to(cr, q);
+      line_to(cr, fr.to_pixel(f.end_sites[ju]));
+      set_color(cr, c);
+      cairo_set_line_width(cr, w * 1.6);
+      cairo_stroke(cr);
+    }
+    cairo_arc(cr, q.x(), q.y(), w * 1.8, 0, 2 * kPi);
+    set_color(cr, c);
+    cairo_fill_preserve(cr);
+    set_color(cr, {1, 1, 1});
+    cairo_set_line_width(cr, 1.2);
+    cairo_stroke(cr);
+  }
+  cairo_restore(cr);
+}
+
 void draw_figure(cairo_t* cr, const Figure& f, const Framing& fr) {
   if (!f.skeleton) return;
+  if (is_device_set(*f.skeleton)) return draw_devices(cr, f, fr);
   const Skeleton& skel = *f.skeleton;
   const int n = std::min<int>(skel.joint_count(), static_cast<int>(f.positions.size()));
   const auto sides = joint_sides(skel);
@@ -205,15 +304,23 @@ void draw_figure(cairo_t* cr, const Figure& f, const Framing& fr) {
   std::stable_sort(segs.begin(), segs.end(), [](const Segment& x, const Segment& y) { return x.depth < y.depth; });
 
   const double w = bone_width(fr);
+  // Depth cue (not from above): near bones wider and full colour, far bones
+  // thinner and paler, over the figure's own depth range.
+  double near = -1e300, far = 1e300;
+  for (const auto& sg : segs) near = std::max(near, sg.depth), far = std::min(far, sg.depth);
+  const bool cue = fr.view != View::Top && near - far > 0.05;
   // With alpha, draw into a group so overlapping bones do not darken.
   cairo_save(cr);
   if (f.alpha < 1.0) cairo_push_group(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-  cairo_set_line_width(cr, w);
-  for (const auto& s : segs) {
-    move_to(cr, fr.to_pixel(s.a));
-    line_to(cr, fr.to_pixel(s.b));
-    set_color(cr, s.color);
+  for (const auto& sg : segs) {
+    const double t = cue ? (sg.depth - far) / (near - far) : 1.0;  // 0 far .. 1 near
+    move_to(cr, fr.to_pixel(sg.a));
+    line_to(cr, fr.to_pixel(sg.b));
+    const double pale = 0.45 * (1 - t);
+    set_color(cr, {sg.color[0] + (1 - sg.color[0]) * pale, sg.color[1] + (1 - sg.color[1]) * pale,
+                   sg.color[2] + (1 - sg.color[2]) * pale});
+    cairo_set_line_width(cr, cue ? w * (0.7 + 0.6 * t) : w);
     cairo_stroke(cr);
   }
   // Head: a circle through the head joint and its tip, so the figure reads as a person.
@@ -317,7 +424,7 @@ void draw_scene(cairo_t* cr, const Scene& scene, const Framing& fr) {
   draw_curves(cr, scene, fr);
   for (const auto& f : scene.figures) draw_label(cr, f, fr, l);
   double title_w = 0;
-  if (!scene.title.empty()) title_w = text(cr, 10, 19, scene.title, 14, Align::Left, kInk, 1.0, true);
+  if (!scene.title.empty()) title_w = title(cr, 10, 19, scene.title, 14, fr.width - 20);
   draw_scale_bar(cr, fr, title_w);
   cairo_restore(cr);
 }

@@ -13,10 +13,10 @@ using detail::Align;
 using detail::text;
 
 Rgb palette_color(int i) {
-  // Tableau 10, reordered so the first two match the body's left/right hues.
-  static const Rgb kPalette[] = {{0.12, 0.40, 0.85}, {0.90, 0.33, 0.05}, {0.17, 0.63, 0.17}, {0.58, 0.40, 0.74},
-                                 {0.55, 0.34, 0.29}, {0.89, 0.47, 0.76}, {0.50, 0.50, 0.50}, {0.74, 0.74, 0.13},
-                                 {0.09, 0.75, 0.81}, {0.84, 0.15, 0.16}};
+  // Tableau 10 without its blue and orange: those are the body's left and
+  // right (kLeftColor, kRightColor), set explicitly by series that mean a side.
+  static const Rgb kPalette[] = {{0.00, 0.47, 0.50}, {0.58, 0.40, 0.74}, {0.55, 0.34, 0.29}, {0.89, 0.47, 0.76},
+                                 {0.50, 0.50, 0.50}, {0.74, 0.74, 0.13}, {0.84, 0.15, 0.16}, {0.09, 0.75, 0.81}};
   const int n = static_cast<int>(std::size(kPalette));
   return kPalette[((i % n) + n) % n];
 }
@@ -114,11 +114,7 @@ void draw_legend_at(cairo_t* cr, const std::vector<LegendItem>& items, double x0
   cairo_restore(cr);
 }
 
-// Legend in the plot rectangle's top-right corner.
-void draw_legend(cairo_t* cr, const std::vector<LegendItem>& items, double right, double top) {
-  if (items.empty()) return;
-  draw_legend_at(cr, items, right - legend_size(cr, items).first - 6, top + 6);
-}
+std::vector<LegendItem> panel_legend(const PlotPanel& p);
 
 void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, double top, double w, double h,
                 bool x_ticks, const std::string& x_label) {
@@ -165,11 +161,11 @@ void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, d
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0);
     if (!r.label.empty()) {
-      const double tw = detail::text_width(cr, r.label, 10);
-      cairo_rectangle(cr, left + 6, Y(r.y) - 15, tw + 6, 12);
+      const double tw = detail::text_width(cr, r.label, 11);
+      cairo_rectangle(cr, left + 6, Y(r.y) - 16, tw + 6, 13);
       cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
       cairo_fill(cr);
-      text(cr, left + 9, Y(r.y) - 5, r.label, 10, Align::Left, r.color);
+      text(cr, left + 9, Y(r.y) - 5, r.label, 11, Align::Left, r.color);
     }
   }
   // Curves.
@@ -218,34 +214,23 @@ void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, d
   text(cr, left, top - 7, p.title, 12, Align::Left, kInk, 1.0, true);
   cairo_restore(cr);
 
-  if (p.legend) {
-    std::vector<LegendItem> items;
-    for (std::size_t si = 0; si < p.series.size(); ++si)
-      if (!p.series[si].name.empty())
-        items.push_back({p.series[si].name, p.series[si].color.value_or(palette_color(static_cast<int>(si))), false,
-                         p.series[si].dashed});
-    std::set<std::string> seen;
-    for (const auto& b : p.bands)
-      if (!b.label.empty() && seen.insert(b.label).second) items.push_back({b.label, b.color, true, false});
-    if (!items.empty()) {
-      // The corner whose legend box would hide the fewest data points.
-      const auto [bw, bh] = legend_size(cr, items);
-      const double xs[] = {left + w - bw - 6, left + 6}, ys[] = {top + 6, top + h - bh - 6};
-      double best_x = xs[0], best_y = ys[0];
-      long best = -1;
-      for (double by : ys)
-        for (double bx : xs) {
-          long hidden = 0;
-          for (const auto& s : p.series)
-            for (std::size_t i = 0; i < s.x.size(); ++i) {
-              const double px = X(s.x[i]), py = Y(s.y[i]);
-              hidden += px >= bx && px <= bx + bw && py >= by && py <= by + bh;
-            }
-          if (best < 0 || hidden < best) best = hidden, best_x = bx, best_y = by;
-        }
-      draw_legend_at(cr, items, best_x, best_y);
-    }
+  if (const auto items = panel_legend(p); !items.empty()) {
+    // Outside the data: in the margin right of the panel (plot_lines reserves it).
+    draw_legend_at(cr, items, left + w + 10, top);
   }
+}
+
+// A panel's legend entries: named series, then one entry per band label.
+std::vector<LegendItem> panel_legend(const PlotPanel& p) {
+  std::vector<LegendItem> items;
+  if (!p.legend) return items;
+  for (std::size_t si = 0; si < p.series.size(); ++si)
+    if (!p.series[si].name.empty())
+      items.push_back({p.series[si].name, p.series[si].color.value_or(palette_color(static_cast<int>(si))), false, p.series[si].dashed});
+  std::set<std::string> seen;
+  for (const auto& b : p.bands)
+    if (!b.label.empty() && seen.insert(b.label).second) items.push_back({b.label, b.color, true, false});
+  return items;
 }
 
 }  // namespace
@@ -266,12 +251,23 @@ void plot_lines(const LinePlot& plot, const std::string& path) {
   if (std::isfinite(plot.x_max)) xhi = plot.x_max;
   Range xr = nice_range(xlo, xhi, std::max(4, plot.width / 110), false);
 
-  const double title_h = plot.title.empty() ? 8 : 36, panel_gap = 30, bottom = 50, left = 78, right = 18;
+  const double title_h = plot.title.empty() ? 8 : 36, panel_gap = 30, bottom = 50, left = 78;
   const int n = static_cast<int>(plot.panels.size());
   const int height = static_cast<int>(title_h + n * (plot.panel_height + panel_gap) + bottom - panel_gap + 20);
-  detail::Canvas canvas(path, plot.width, height);
+  // The right margin holds the widest panel legend (measured on a scratch surface).
+  double legend_w = 0;
+  {
+    cairo_surface_t* scratch = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
+    cairo_t* m = cairo_create(scratch);
+    for (const auto& p : plot.panels)
+      if (const auto items = panel_legend(p); !items.empty()) legend_w = std::max(legend_w, legend_size(m, items).first);
+    cairo_destroy(m);
+    cairo_surface_destroy(scratch);
+  }
+  const double right = 18, extra = legend_w > 0 ? legend_w + 14 : 0;  // the canvas grows by the legend column
+  detail::Canvas canvas(path, plot.width + static_cast<int>(std::ceil(extra)), height);
   cairo_t* cr = canvas.cr();
-  if (!plot.title.empty()) text(cr, 12, 24, plot.title, 16, Align::Left, kInk, 1.0, true);
+  if (!plot.title.empty()) detail::title(cr, 12, 24, plot.title, 16, plot.width + extra - 24);
   for (int i = 0; i < n; ++i) {
     const double top = title_h + 20 + i * (plot.panel_height + panel_gap);
     draw_panel(cr, plot.panels[static_cast<std::size_t>(i)], xr, left, top, plot.width - left - right,
@@ -279,6 +275,58 @@ void plot_lines(const LinePlot& plot, const std::string& path) {
   }
   canvas.finish();
 }
+
+namespace {
+
+// A scratch cairo context for measuring text before the canvas size is known.
+struct Measure {
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
+  cairo_t* cr = cairo_create(surface);
+  ~Measure() {
+    cairo_destroy(cr);
+    cairo_surface_destroy(surface);
+  }
+};
+
+constexpr double kValueSize = 11;  // value labels, legend and notes: never smaller
+
+std::vector<LegendItem> bar_legend(const BarChart& chart) {
+  std::vector<LegendItem> items;
+  for (std::size_t s = 0; s < chart.series.size(); ++s)
+    if (!chart.series[s].name.empty())
+      items.push_back({chart.series[s].name, chart.series[s].color.value_or(palette_color(static_cast<int>(s))), true, false, 1.0});
+  return items;
+}
+
+// Legend entries in rows across `width` from (x0, y0): returns the height used.
+double legend_rows(cairo_t* cr, const std::vector<LegendItem>& items, double x0, double y0, double width, bool draw) {
+  double x = x0, y = y0;
+  for (const auto& it : items) {
+    const double iw = detail::text_width(cr, it.label, kValueSize) + 42;
+    if (x > x0 && x + iw > x0 + width) x = x0, y += 18;
+    if (draw) {
+      cairo_rectangle(cr, x, y + 3, 20, 10);
+      detail::set_color(cr, it.color);
+      cairo_fill(cr);
+      text(cr, x + 26, y + 12, it.label, kValueSize, Align::Left, kInk);
+    }
+    x += iw;
+  }
+  return items.empty() ? 0 : y - y0 + 20;
+}
+
+// The canvas width that gives every bar room for its value label.
+int bar_chart_width(const BarChart& chart, cairo_t* cr, double margins) {
+  double label_w = detail::text_width(cr, "n/a", kValueSize);
+  for (const auto& s : chart.series)
+    for (double v : s.values)
+      if (std::isfinite(v)) label_w = std::max(label_w, detail::text_width(cr, detail::format_number(v, chart.value_decimals), kValueSize));
+  const double bars = static_cast<double>(chart.groups.size() * chart.series.size());
+  const double needed = margins + (chart.show_values ? (label_w + 4) * bars / 0.78 : 0);
+  return std::max(chart.width, static_cast<int>(std::ceil(needed)));
+}
+
+}  // namespace
 
 void plot_bars(const BarChart& chart, const std::string& path) {
   detail::format_of(path);
@@ -294,11 +342,22 @@ void plot_bars(const BarChart& chart, const std::string& path) {
   if (hi - lo < 1e-12) hi = lo + 1;
   const Range yr = nice_range(lo - (lo < 0 ? 0.08 * (hi - lo) : 0), hi + 0.08 * (hi - lo), 5, true);
 
-  const double title_h = chart.title.empty() ? 10 : 38, left = 78, right = 18, bottom = 48;
-  const double w = chart.width - left - right, h = chart.height - title_h - bottom;
-  detail::Canvas canvas(path, chart.width, chart.height);
+  const double left = 78, right = 18;
+  const auto items = bar_legend(chart);
+  Measure m;
+  const int width = bar_chart_width(chart, m.cr, left + right);
+  const double w = width - left - right;
+  // Title, then the legend in rows above the bars (never over them), bars, group labels, notes.
+  const double legend_top = chart.title.empty() ? 8 : 36;
+  const double title_h = legend_top + legend_rows(m.cr, items, left, legend_top, w, false) + 8;
+  const double notes_h = chart.notes.empty() ? 0 : 10 + 16.0 * static_cast<double>(chart.notes.size());
+  // The canvas is as high as asked unless that leaves the bars under 120 px.
+  const double h = std::max(120.0, chart.height - title_h - 48 - notes_h);
+  const int height = static_cast<int>(std::ceil(title_h + h + 48 + notes_h));
+  detail::Canvas canvas(path, width, height);
   cairo_t* cr = canvas.cr();
-  if (!chart.title.empty()) text(cr, 12, 24, chart.title, 16, Align::Left, kInk, 1.0, true);
+  if (!chart.title.empty()) detail::title(cr, 12, 24, chart.title, 16, width - 24);
+  legend_rows(cr, items, left, legend_top, w, true);
   auto Y = [&](double y) { return title_h + h - (y - yr.lo) / (yr.hi - yr.lo) * h; };
   const int yd = decimals_for(yr.step);
   cairo_set_line_width(cr, 1);
@@ -312,24 +371,21 @@ void plot_bars(const BarChart& chart, const std::string& path) {
   const auto groups = static_cast<double>(chart.groups.size());
   const auto per = static_cast<double>(chart.series.size());
   const double group_w = w / groups, bar_w = group_w * 0.78 / per;
-  const double label_size = std::min(12.0, std::max(7.0, bar_w / 3.2));
   for (std::size_t g = 0; g < chart.groups.size(); ++g) {
     const double gx = left + group_w * static_cast<double>(g) + group_w * 0.11;
     for (std::size_t s = 0; s < chart.series.size(); ++s) {
       const double v = chart.series[s].values[g];
       const double x = gx + bar_w * static_cast<double>(s);
-      const Rgb c = chart.series[s].color.value_or(palette_color(static_cast<int>(s)));
       if (!std::isfinite(v)) {
-        text(cr, x + bar_w / 2, Y(0) - 4, "n/a", label_size, Align::Centre, kAxis);
+        text(cr, x + bar_w / 2, Y(0) - 4, "n/a", kValueSize, Align::Centre, kAxis);
         continue;
       }
       cairo_rectangle(cr, x + 1, std::min(Y(v), Y(0)), bar_w - 2, std::abs(Y(v) - Y(0)));
-      detail::set_color(cr, c);
+      detail::set_color(cr, chart.series[s].color.value_or(palette_color(static_cast<int>(s))));
       cairo_fill(cr);
-      if (chart.show_values) {
-        const double ty = v >= 0 ? Y(v) - 4 : Y(v) + label_size + 3;
-        text(cr, x + bar_w / 2, ty, detail::format_number(v, chart.value_decimals), label_size, Align::Centre, kInk);
-      }
+      if (chart.show_values)
+        text(cr, x + bar_w / 2, v >= 0 ? Y(v) - 4 : Y(v) + kValueSize + 3, detail::format_number(v, chart.value_decimals), kValueSize,
+             Align::Centre, kInk);
     }
     text(cr, left + group_w * (static_cast<double>(g) + 0.5), title_h + h + 18, chart.groups[g], 12, Align::Centre, kInk);
   }
@@ -341,12 +397,8 @@ void plot_bars(const BarChart& chart, const std::string& path) {
   cairo_rectangle(cr, std::round(left) + 0.5, std::round(title_h) + 0.5, std::round(w), std::round(h));
   cairo_stroke(cr);
   y_axis_label(cr, left - 52, title_h + h / 2, chart.y_label);
-  std::vector<LegendItem> items;
-  for (std::size_t s = 0; s < chart.series.size(); ++s)
-    if (!chart.series[s].name.empty())
-      items.push_back({chart.series[s].name, chart.series[s].color.value_or(palette_color(static_cast<int>(s))), true, false,
-                       1.0});
-  draw_legend(cr, items, left + w, title_h);
+  for (std::size_t i = 0; i < chart.notes.size(); ++i)
+    text(cr, 12, title_h + h + 48 + 16.0 * static_cast<double>(i), chart.notes[i], kValueSize, Align::Left, kAxis);
   canvas.finish();
 }
 

@@ -45,7 +45,7 @@ void render_panels(const std::vector<Panel>& panels, int cols, const std::string
   for (int h : row_h) height += h;
   Canvas canvas(path, width, height);
   cairo_t* cr = canvas.cr();
-  if (!title.empty()) detail::text(cr, 10, 24, title, 17, Align::Left, {0.1, 0.1, 0.1}, 1.0, true);
+  if (!title.empty()) detail::title(cr, 10, 24, title, 17, width - 20);
   int y = title_h;
   for (int r = 0; r < rows; ++r) {
     int x = 0;
@@ -197,7 +197,7 @@ void render_trajectory(const Motion& m, int joint, const std::vector<int>& marke
   const auto& name = m.skeleton.names[static_cast<std::size_t>(joint)];
   std::vector<Transform> model(static_cast<std::size_t>(m.joint_count()));
   Curve path_curve;
-  path_curve.color = {0.10, 0.55, 0.30};
+  path_curve.color = kTraceColor;
   path_curve.width = 2.0;
   for (int f = first; f <= last; ++f) {
     forward_kinematics(m.skeleton, m.frame(f), model);

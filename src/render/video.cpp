@@ -123,7 +123,7 @@ Scene frame_scene_of(const Track& t, double time, const VideoOptions& opt, Pose&
     Curve done;
     const auto upto = static_cast<std::size_t>(std::clamp(time * m.fps, 0.0, double(m.frame_count() - 1))) + 1;
     done.points.assign(t.trace.begin(), t.trace.begin() + static_cast<std::ptrdiff_t>(upto));
-    done.color = {0.10, 0.55, 0.30};
+    done.color = kTraceColor;
     done.width = 2.0;
     done.label = m.skeleton.names[static_cast<std::size_t>(opt.trace_joint)];
     s.curves.push_back(std::move(all));
@@ -131,6 +131,67 @@ Scene frame_scene_of(const Track& t, double time, const VideoOptions& opt, Pose&
   }
   if (with_title) s.title = t.label;
   return s;
+}
+
+}  // namespace
+
+namespace {
+
+// The root's place on the floor (x, 0, z) in a pose: what a following camera tracks.
+Vec3 floor_point(const Vec3& root) { return Vec3(root.x(), 0, root.z()); }
+
+// One panel per motion with a fixed framing from every frame's joints (and
+// the trace) and one common scale, so the bodies compare at equal size; with
+// opt.follow, from the joints relative to the root's floor point, so the
+// camera can follow each body and the bodies fill their panels.
+std::vector<Track> panel_tracks(const std::vector<const Motion*>& motions, const std::vector<std::string>& labels,
+                                const VideoOptions& opt, int panel_w, int panel_h, bool titled) {
+  static const Rgb kPanelColors[] = {{0.15, 0.15, 0.2}, {0.45, 0.15, 0.55}, {0.1, 0.45, 0.45}, {0.5, 0.35, 0.1}};
+  const int n = static_cast<int>(motions.size());
+  std::vector<Track> tracks(static_cast<std::size_t>(n));
+  double mpp = 0;
+  std::vector<Scene> extent(static_cast<std::size_t>(n));
+  Camera cam = opt.camera;
+  cam.width = panel_w;
+  cam.height = panel_h;
+  for (int i = 0; i < n; ++i) {
+    auto& t = tracks[static_cast<std::size_t>(i)];
+    t.motion = motions[static_cast<std::size_t>(i)];
+    t.label = static_cast<std::size_t>(i) < labels.size() ? labels[static_cast<std::size_t>(i)] : "";
+    t.color = kPanelColors[i % 4];
+    const Motion& m = *t.motion;
+    const auto nj = static_cast<std::size_t>(m.joint_count());
+    Scene& s = extent[static_cast<std::size_t>(i)];
+    Curve everything;
+    std::vector<Transform> model(nj);
+    for (int f = 0; f < m.frame_count(); ++f) {
+      forward_kinematics(m.skeleton, m.frame(f), model);
+      const Vec3 shift = opt.follow ? floor_point(model[0].translation) : Vec3::Zero();
+      for (std::size_t j = 0; j < nj; ++j) {
+        everything.points.push_back(model[j].translation - shift);
+        if (j < m.skeleton.has_end_site.size() && m.skeleton.has_end_site[j])
+          everything.points.push_back(end_site_position(m.skeleton, model, static_cast<int>(j)) - shift);
+      }
+      if (opt.trace_joint >= 0) t.trace.push_back(model[static_cast<std::size_t>(opt.trace_joint)].translation);
+    }
+    s.curves.push_back(std::move(everything));
+    if (titled) s.title = t.label.empty() ? " " : t.label;
+    if (opt.camera.metres_per_pixel <= 0) mpp = std::max(mpp, frame_scene(s, cam).metres_per_pixel);
+  }
+  if (opt.camera.metres_per_pixel > 0) mpp = opt.camera.metres_per_pixel;
+  cam.metres_per_pixel = mpp;
+  // Shared vertical centre, so the floors line up across panels.
+  double vlo = 1e300, vhi = -1e300;
+  for (const auto& s : extent) {
+    Eigen::Vector2d lo, hi;
+    if (detail::plane_bounds(s, cam.view, lo, hi)) vlo = std::min(vlo, lo.y()), vhi = std::max(vhi, hi.y());
+  }
+  for (int i = 0; i < n; ++i) {
+    auto& fr = tracks[static_cast<std::size_t>(i)].framing;
+    fr = frame_scene(extent[static_cast<std::size_t>(i)], cam);
+    if (vlo <= vhi && !cam.fixed_bounds) fr.centre_plane.y() = (vlo + vhi) / 2;
+  }
+  return tracks;
 }
 
 }  // namespace
@@ -152,56 +213,11 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
   const std::string ffmpeg = find_ffmpeg();  // fail before drawing anything
   (void)ffmpeg;
 
-  static const Rgb kPanelColors[] = {{0.15, 0.15, 0.2}, {0.45, 0.15, 0.55}, {0.1, 0.45, 0.45}, {0.5, 0.35, 0.1}};
   const int n = static_cast<int>(motions.size());
   const int top = opt.title.empty() ? 0 : 30;  // frame-wide title strip
-  const int panel_w = W / n, panel_h = H - top;
+  const int panel_w = W / n;
   const bool titled = n > 1 || !labels.empty();
-
-  // Fixed framing per panel from every frame's joints (and the trace), one
-  // common scale so the bodies compare at equal size.
-  std::vector<Track> tracks(static_cast<std::size_t>(n));
-  double mpp = 0;
-  std::vector<Scene> extent(static_cast<std::size_t>(n));
-  Camera cam = opt.camera;
-  cam.width = panel_w;
-  cam.height = panel_h;
-  for (int i = 0; i < n; ++i) {
-    auto& t = tracks[static_cast<std::size_t>(i)];
-    t.motion = motions[static_cast<std::size_t>(i)];
-    t.label = static_cast<std::size_t>(i) < labels.size() ? labels[static_cast<std::size_t>(i)] : "";
-    t.color = kPanelColors[i % 4];
-    const Motion& m = *t.motion;
-    const auto nj = static_cast<std::size_t>(m.joint_count());
-    Scene& s = extent[static_cast<std::size_t>(i)];
-    Curve everything;
-    std::vector<Transform> model(nj);
-    for (int f = 0; f < m.frame_count(); ++f) {
-      forward_kinematics(m.skeleton, m.frame(f), model);
-      for (std::size_t j = 0; j < nj; ++j) {
-        everything.points.push_back(model[j].translation);
-        if (j < m.skeleton.has_end_site.size() && m.skeleton.has_end_site[j])
-          everything.points.push_back(end_site_position(m.skeleton, model, static_cast<int>(j)));
-      }
-      if (opt.trace_joint >= 0) t.trace.push_back(model[static_cast<std::size_t>(opt.trace_joint)].translation);
-    }
-    s.curves.push_back(std::move(everything));
-    if (titled) s.title = t.label.empty() ? " " : t.label;
-    if (opt.camera.metres_per_pixel <= 0) mpp = std::max(mpp, frame_scene(s, cam).metres_per_pixel);
-  }
-  if (opt.camera.metres_per_pixel > 0) mpp = opt.camera.metres_per_pixel;
-  cam.metres_per_pixel = mpp;
-  // Shared vertical centre, so the floors line up across panels.
-  double vlo = 1e300, vhi = -1e300;
-  for (const auto& s : extent) {
-    Eigen::Vector2d lo, hi;
-    if (detail::plane_bounds(s, cam.view, lo, hi)) vlo = std::min(vlo, lo.y()), vhi = std::max(vhi, hi.y());
-  }
-  for (int i = 0; i < n; ++i) {
-    auto& fr = tracks[static_cast<std::size_t>(i)].framing;
-    fr = frame_scene(extent[static_cast<std::size_t>(i)], cam);
-    if (vlo <= vhi && !cam.fixed_bounds) fr.centre_plane.y() = (vlo + vhi) / 2;
-  }
+  const std::vector<Track> tracks = panel_tracks(motions, labels, opt, panel_w, H - top, titled);
 
   double duration = 0;
   for (const Motion* m : motions) duration = std::max(duration, m->duration());
@@ -225,9 +241,11 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
     for (int i = 0; i < n; ++i) {
       const auto& t = tracks[static_cast<std::size_t>(i)];
       const Scene s = frame_scene_of(t, time, opt, poses[static_cast<std::size_t>(i)], titled);
+      Framing fr = t.framing;
+      if (opt.follow) fr.centre_plane += project(fr.view, floor_point(poses[static_cast<std::size_t>(i)].translations[0]));
       cairo_save(cr);
       cairo_translate(cr, i * panel_w, top);
-      detail::draw_scene(cr, s, t.framing);
+      detail::draw_scene(cr, s, fr);
       cairo_restore(cr);
       if (i > 0) {
         cairo_set_source_rgb(cr, 0.8, 0.8, 0.82);
@@ -237,7 +255,7 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
         cairo_stroke(cr);
       }
     }
-    if (!opt.title.empty()) detail::text(cr, 10, 21, opt.title, 15, Align::Left, {0.1, 0.1, 0.1}, 1.0, true);
+    if (!opt.title.empty()) detail::title(cr, 10, 21, opt.title, 15, W - 20);
     const Motion& m0 = *motions[0];
     const int src = std::min(m0.frame_count() - 1, static_cast<int>(std::lround(time * m0.fps)));
     char counter[96];
@@ -251,6 +269,20 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
 
 void render_video(const Motion& m, const VideoOptions& opt, const std::string& path) {
   render_video_side_by_side({&m}, {}, opt, path);
+}
+
+void write_video_still(const std::string& video, const std::string& png, double seconds) {
+  const std::string ffmpeg = find_ffmpeg();
+  // -ss after -i decodes up to the time, so a time past a short video's end
+  // gives no frame: try the asked time, then the first frame.
+  for (double t : {seconds, 0.0}) {
+    std::error_code ec;
+    std::filesystem::remove(png, ec);
+    const std::string cmd = shell_quote(ffmpeg) + " -y -loglevel error -i " + shell_quote(video) + " -ss " +
+                            detail::format_number(t, 3) + " -frames:v 1 -update 1 " + shell_quote(png) + " </dev/null";
+    if (std::system(cmd.c_str()) == 0 && std::filesystem::exists(png, ec) && std::filesystem::file_size(png, ec) > 0) return;
+  }
+  throw Error("ffmpeg could not take a still of '" + video + "' for '" + png + "'");
 }
 
 }  // namespace legwork::render

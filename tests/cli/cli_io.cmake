@@ -44,3 +44,17 @@ set_tests_properties(cli.convert_makes_output_folder_in_working_folder PROPERTIE
 legwork_cli_error(filesystem_error_is_mapped "error: [^\n]*MANIFEST.tsv/report: Not a directory\n"
                   eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --classes walking --quick
                   --out ${PROJECT_SOURCE_DIR}/data/cmu/MANIFEST.tsv/report)
+
+# A GLB converts back with the clip's own frames and rate (was: 35 frames at
+# 30 Hz from a 138-frame 120 Hz clip), at 120 and 60 Hz.
+foreach(clip walking/07_01:317:120 swimming/79_02:301:60)
+  string(REPLACE ":" ";" parts ${clip})
+  list(GET parts 0 trial)
+  list(GET parts 1 frames)
+  list(GET parts 2 hz)
+  get_filename_component(stem ${trial} NAME)
+  legwork_cli_test(convert_${stem}_to_glb convert ${D}/${trial}.bvh ${O}/${stem}_all.glb)
+  add_test(NAME cli.convert_${stem}_glb_back COMMAND legwork convert ${O}/${stem}_all.glb ${O}/${stem}_back.bvh)
+  set_tests_properties(cli.convert_${stem}_glb_back PROPERTIES DEPENDS cli.convert_${stem}_to_glb
+                       PASS_REGULAR_EXPRESSION "${frames} frames at ${hz} Hz, 31 joints")
+endforeach()

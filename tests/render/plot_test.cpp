@@ -121,6 +121,36 @@ TEST(PlotBars, BarHeightsFollowValues) {
   EXPECT_NEAR(static_cast<double>(right) / left, 3.0, 0.35);
 }
 
+TEST(PlotLines, LegendStaysOutsideTheData) {
+  // Curves near the top and bottom edges across the whole x range: a legend
+  // in any corner of the panel would hide part of one (it used to).
+  PlotPanel panel;
+  panel.series.push_back({"top", {0, 10}, {0.9, 0.9}, Rgb{0.2, 0.6, 0.2}});
+  panel.series.push_back({"bottom", {0, 10}, {0.1, 0.1}, Rgb{0.6, 0.2, 0.6}});
+  for (auto& se : panel.series) se.width = 3;  // solid pixels of the exact colour
+  panel.y_min = 0;
+  panel.y_max = 1;
+  LinePlot p;
+  p.width = 600;
+  p.panels = {panel};
+  const auto file = (out_dir() / "plot_legend_outside.png").string();
+  plot_lines(p, file);
+  Image img(file);
+  ASSERT_TRUE(img.ok());
+  EXPECT_GT(img.width(), p.width) << "the legend column widens the canvas";
+  // Every pixel column of the data area (x = 78 .. width - 18) shows both curves.
+  int missing = 0;
+  for (int x = 82; x < p.width - 22; ++x) {
+    bool top = false, bottom = false;
+    for (int y = 0; y < img.height(); ++y) {
+      top = top || near_color(img.at(x, y), {0.2, 0.6, 0.2}, 0.05);
+      bottom = bottom || near_color(img.at(x, y), {0.6, 0.2, 0.6}, 0.05);
+    }
+    missing += !top || !bottom;
+  }
+  EXPECT_EQ(missing, 0) << "pixel columns where a curve is hidden";
+}
+
 TEST(Plot, BadInputIsAClearError) {
   LinePlot p;
   EXPECT_THROW(plot_lines(p, (out_dir() / "empty.png").string()), Error);

@@ -30,6 +30,12 @@ const Motion& walk() {
 
 std::string out(const std::string& name) { return (out_dir() / name).string(); }
 
+// Renders `s` to out(name) and decodes it.
+Image rendered(const Scene& s, const Camera& cam, const std::string& name) {
+  render_scene(s, cam, out(name));
+  return Image(out(name));
+}
+
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;
@@ -174,9 +180,7 @@ TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
   s.floor = false;
   s.figures.push_back(make_figure(skel, Pose(skel)));
   const Camera cam = camera(View::Front, 400, 400);
-  const auto file = out("front_rest.png");
-  render_scene(s, cam, file);
-  Image img(file);
+  const Image img = rendered(s, cam, "front_rest.png");
   ASSERT_TRUE(img.ok());
   const int w = img.width();
   auto count = [&](const Rgb& c, bool right_half) {
@@ -320,4 +324,50 @@ TEST(RenderPanels, GridOfViewsHasEveryPanelDrawn) {
     EXPECT_GT(n, 80) << "panel " << q;
   }
   EXPECT_THROW(render_panels({}, 2, file), Error);
+}
+
+TEST(RenderScene, TrackedDevicesAreMarkersNotBones) {
+  // A headset and two controllers (the accentuation video's input): no bone
+  // from the head to a hand in the side colours, a marker at each hand.
+  Skeleton s;
+  s.add_joint("Head", -1, Vec3(0, 1.6, 0));
+  s.add_joint("LeftHand", 0, Vec3(0.3, -0.6, 0));
+  s.add_joint("RightHand", 0, Vec3(-0.3, -0.6, 0));
+  s.end_sites = {Vec3(0, 0.12, 0), Vec3(0, 0, 0.08), Vec3(0, 0, 0.08)};
+  s.has_end_site = {1, 1, 1};
+  resolve_roles(s);
+  Scene scene;
+  scene.figures.push_back(make_figure(s, Pose(s)));
+  const Camera cam = camera(View::Front, 300, 300);
+  const Image img = rendered(scene, cam, "devices.png");
+  ASSERT_TRUE(img.ok());
+  const Framing fr = frame_scene(scene, cam);
+  const auto& p = scene.figures[0].positions;
+  for (int hand : {1, 2}) {
+    const Rgb side = hand == 1 ? kLeftColor : kRightColor;
+    const auto at = fr.to_pixel(p[static_cast<std::size_t>(hand)]);
+    EXPECT_TRUE(near_color(img.at(static_cast<int>(at.x()), static_cast<int>(at.y())), side)) << "no marker at hand " << hand;
+    const auto mid = fr.to_pixel((p[0] + p[static_cast<std::size_t>(hand)]) / 2);
+    int coloured = 0;
+    for (int dx = -3; dx <= 3; ++dx)
+      coloured += near_color(img.at(static_cast<int>(mid.x()) + dx, static_cast<int>(mid.y())), side, 0.15);
+    EXPECT_EQ(coloured, 0) << "a side-coloured bone between the head and hand " << hand;
+  }
+}
+
+TEST(RenderScene, TracedPathsNeverUseTheSideColours) {
+  // The convention: left blue, right orange, paths green. A left joint's arc
+  // was drawn orange (the default curve colour) in the walk-cycle arcs.
+  Scene s;
+  Curve c;
+  for (int i = 0; i <= 20; ++i) c.points.emplace_back(0.3 * std::cos(i * 0.3), 1 + 0.3 * std::sin(i * 0.3), 0);
+  c.marks = {0, 10};
+  c.mark_labels = {"C", "P"};
+  c.label = "LeftHand";
+  s.curves.push_back(c);
+  const Image img = rendered(s, camera(View::Front, 300, 300), "trace_colour.png");
+  ASSERT_TRUE(img.ok());
+  EXPECT_GT(img.count([](int, int, const auto& px) { return near_color(px, kTraceColor); }), 100);
+  EXPECT_EQ(img.count([](int, int, const auto& px) { return near_color(px, kRightColor, 0.15); }), 0);
+  EXPECT_EQ(img.count([](int, int, const auto& px) { return near_color(px, kLeftColor, 0.15); }), 0);
 }

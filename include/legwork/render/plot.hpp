@@ -23,8 +23,9 @@
 
 namespace legwork::render {
 
-// The default colour of the i-th curve or bar series (a 10-colour palette
-// that prints and reads well; wraps around).
+// The default colour of the i-th curve or bar series (an 8-colour palette
+// that prints and reads well, without the body's left blue and right orange,
+// which series meaning a side set themselves; wraps around).
 Rgb palette_color(int i);
 
 // One named curve: y over x (same length). Non-finite y values break the line.
@@ -106,9 +107,11 @@ struct BarChart {
   std::string y_label;
   std::vector<std::string> groups;  // category labels along x
   std::vector<BarSeries> series;
-  int width = 800, height = 420;  // pixels
-  bool show_values = true;        // value printed on each bar
+  int width = 800, height = 420;  // pixels; widened so that value labels fit their bars
+  bool show_values = true;        // value printed on each bar (11 px)
   int value_decimals = 2;
+  // Lines printed under the chart, e.g. what each group's short name means.
+  std::vector<std::string> notes;
 };
 void plot_bars(const BarChart& chart, const std::string& path);
 

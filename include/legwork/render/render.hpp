@@ -27,10 +27,13 @@ std::string view_name(View v);
 
 using Rgb = std::array<double, 3>;  // 0..1
 
-// Bone colours: the character's left side, right side (centre bones use the
-// figure's own colour). Chosen to stay distinguishable for colour-blind viewers.
+// The colour convention of every picture and chart: the character's left
+// side blue, its right side orange (centre bones use the figure's own
+// colour), traced paths green. Chosen to stay distinguishable for
+// colour-blind viewers; no other mark uses the left or right colour.
 inline constexpr Rgb kLeftColor{0.12, 0.40, 0.85};
 inline constexpr Rgb kRightColor{0.90, 0.33, 0.05};
+inline constexpr Rgb kTraceColor{0.10, 0.55, 0.30};
 
 // Camera axes in model space: unit vectors for picture right, picture up and
 // towards the viewer (depth grows towards the viewer).
@@ -67,7 +70,7 @@ Figure make_figure(const Skeleton& skel, ConstPoseRef pose, double alpha = 1.0,
 // points drawn as dots (key frames), `mark_labels` optional text per mark.
 struct Curve {
   std::vector<Vec3> points;
-  Rgb color{0.85, 0.3, 0.1};
+  Rgb color = kTraceColor;
   double width = 1.5;
   std::vector<int> marks;
   std::vector<std::string> mark_labels;
@@ -170,6 +173,10 @@ struct VideoOptions {
   double fps = 30.0;    // output rate; the motion is resampled
   int trace_joint = -1;
   std::string title;
+  // The camera follows each body over the floor (side-by-side videos), so the
+  // body fills its panel; the floor grid moves under it. Off: one framing
+  // over the whole clip's path.
+  bool follow = false;
 };
 void render_video(const Motion& m, const VideoOptions& opt, const std::string& path);
 
@@ -178,5 +185,10 @@ void render_video(const Motion& m, const VideoOptions& opt, const std::string& p
 void render_video_side_by_side(const std::vector<const Motion*>& motions,
                                const std::vector<std::string>& labels, const VideoOptions& opt,
                                const std::string& path);
+
+// A still of `video` at `seconds` (clamped into the video by ffmpeg) as PNG,
+// for web pages' poster frames. Throws legwork::Error if ffmpeg is missing or
+// cannot read the video.
+void write_video_still(const std::string& video, const std::string& png, double seconds = 0.5);
 
 }  // namespace legwork::render

@@ -42,10 +42,18 @@ AccentRun accentuate_motion(const Database& db, Settings settings, const Motion&
 }
 
 Motion input_markers(std::span<const TrackerFrame> frames, double fps) {
+  // Drawn as a head (circle through the head and its tip) and two
+  // controllers (a short stub forward from each hand, in the side colours).
   Skeleton s;
   s.add_joint("Head", -1, Vec3::Zero());
   s.add_joint("LeftHand", 0, Vec3(0.2, -0.5, 0));
   s.add_joint("RightHand", 0, Vec3(-0.2, -0.5, 0));
+  s.end_sites[0] = Vec3(0, 0.12, 0);
+  for (std::size_t j = 0; j < 3; ++j) {
+    if (j > 0) s.end_sites[j] = Vec3(0, 0, 0.08);
+    s.has_end_site[j] = 1;
+  }
+  resolve_roles(s);
   Motion m(s, fps, static_cast<int>(frames.size()));
   Vec3 head = Vec3::Zero(), hand[2] = {Vec3(0.2, -0.5, 0), Vec3(-0.2, -0.5, 0)};
   for (std::size_t f = 0; f < frames.size(); ++f) {
