@@ -29,7 +29,7 @@ CLI::Option* output_file(CLI::Option* option) {
 }
 
 void MotionInput::add_options(CLI::App* cmd, bool positional, const std::string& name) {
-  if (positional) cmd->add_option(name, path, "motion file to read: .bvh, or a .glb written by legwork")->required()->check(CLI::ExistingFile);
+  if (positional) cmd->add_option(name, path, "motion file to read: .bvh, or a .glb (legwork's or another tool's skinned glTF whose rig resolves to roles)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--scale", options.scale, "file units -> metres (0 = detect from the rest-pose height; CMU = 0.056444)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--drop-first", options.drop_first, "drop frame 0 (the synthetic T-pose of CMU files)");

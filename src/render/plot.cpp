@@ -116,59 +116,65 @@ void draw_legend_at(cairo_t* cr, const std::vector<LegendItem>& items, double x0
 
 std::vector<LegendItem> panel_legend(const PlotPanel& p);
 
-void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, double top, double w, double h,
-                bool x_ticks, const std::string& x_label) {
-  // y range from the data unless fixed.
+// A panel's drawing area and its value -> pixel mappings.
+struct PanelFrame {
+  Range xr, yr;
+  double left = 0, top = 0, w = 0, h = 0;
+  double X(double x) const { return left + (x - xr.lo) / (xr.hi - xr.lo) * w; }
+  double Y(double y) const { return top + h - (y - yr.lo) / (yr.hi - yr.lo) * h; }
+};
+
+// y range from the data in the x range (and the reference lines) unless fixed.
+Range panel_y_range(const PlotPanel& p, const Range& xr) {
   double ylo = INFINITY, yhi = -INFINITY;
   for (const auto& s : p.series)
     for (std::size_t i = 0; i < s.y.size(); ++i)
       if (std::isfinite(s.y[i]) && s.x[i] >= xr.lo && s.x[i] <= xr.hi) ylo = std::min(ylo, s.y[i]), yhi = std::max(yhi, s.y[i]);
   for (const auto& r : p.ref_lines) ylo = std::min(ylo, r.y), yhi = std::max(yhi, r.y);
   const bool fixed = std::isfinite(p.y_min) && std::isfinite(p.y_max);
-  const Range yr = fixed ? nice_range(p.y_min, p.y_max, 5, false) : nice_range(ylo, yhi, 5, true);
-  auto X = [&](double x) { return left + (x - xr.lo) / (xr.hi - xr.lo) * w; };
-  auto Y = [&](double y) { return top + h - (y - yr.lo) / (yr.hi - yr.lo) * h; };
+  return fixed ? nice_range(p.y_min, p.y_max, 5, false) : nice_range(ylo, yhi, 5, true);
+}
 
-  cairo_save(cr);
-  // Bands under everything.
-  cairo_rectangle(cr, left, top, w, h);
-  cairo_clip(cr);
+void draw_bands_and_grid(cairo_t* cr, const PlotPanel& p, const PanelFrame& f) {
   for (const auto& b : p.bands) {
-    cairo_rectangle(cr, X(std::min(b.x0, b.x1)), top, std::abs(X(b.x1) - X(b.x0)), h);
+    cairo_rectangle(cr, f.X(std::min(b.x0, b.x1)), f.top, std::abs(f.X(b.x1) - f.X(b.x0)), f.h);
     detail::set_color(cr, b.color, b.alpha);
     cairo_fill(cr);
   }
-  // Grid.
   cairo_set_line_width(cr, 1);
   detail::set_color(cr, kGridLine);
-  for (double y = std::ceil(yr.lo / yr.step - 1e-9) * yr.step; y <= yr.hi + 1e-9 * yr.step; y += yr.step) {
-    cairo_move_to(cr, left, std::round(Y(y)) + 0.5);
-    cairo_line_to(cr, left + w, std::round(Y(y)) + 0.5);
+  for (double y = std::ceil(f.yr.lo / f.yr.step - 1e-9) * f.yr.step; y <= f.yr.hi + 1e-9 * f.yr.step; y += f.yr.step) {
+    cairo_move_to(cr, f.left, std::round(f.Y(y)) + 0.5);
+    cairo_line_to(cr, f.left + f.w, std::round(f.Y(y)) + 0.5);
   }
-  for (double x = std::ceil(xr.lo / xr.step - 1e-9) * xr.step; x <= xr.hi + 1e-9 * xr.step; x += xr.step) {
-    cairo_move_to(cr, std::round(X(x)) + 0.5, top);
-    cairo_line_to(cr, std::round(X(x)) + 0.5, top + h);
+  for (double x = std::ceil(f.xr.lo / f.xr.step - 1e-9) * f.xr.step; x <= f.xr.hi + 1e-9 * f.xr.step; x += f.xr.step) {
+    cairo_move_to(cr, std::round(f.X(x)) + 0.5, f.top);
+    cairo_line_to(cr, std::round(f.X(x)) + 0.5, f.top + f.h);
   }
   cairo_stroke(cr);
-  // Reference lines.
+}
+
+void draw_reference_lines(cairo_t* cr, const PlotPanel& p, const PanelFrame& f) {
   for (const auto& r : p.ref_lines) {
     const double dash[] = {6, 4};
     cairo_set_dash(cr, dash, 2, 0);
-    cairo_move_to(cr, left, Y(r.y));
-    cairo_line_to(cr, left + w, Y(r.y));
+    cairo_move_to(cr, f.left, f.Y(r.y));
+    cairo_line_to(cr, f.left + f.w, f.Y(r.y));
     detail::set_color(cr, r.color);
     cairo_set_line_width(cr, 1.2);
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0);
     if (!r.label.empty()) {
       const double tw = detail::text_width(cr, r.label, 11);
-      cairo_rectangle(cr, left + 6, Y(r.y) - 16, tw + 6, 13);
+      cairo_rectangle(cr, f.left + 6, f.Y(r.y) - 16, tw + 6, 13);
       cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
       cairo_fill(cr);
-      text(cr, left + 9, Y(r.y) - 5, r.label, 11, Align::Left, r.color);
+      text(cr, f.left + 9, f.Y(r.y) - 5, r.label, 11, Align::Left, r.color);
     }
   }
-  // Curves.
+}
+
+void draw_curves(cairo_t* cr, const PlotPanel& p, const PanelFrame& f) {
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   for (std::size_t si = 0; si < p.series.size(); ++si) {
     const auto& s = p.series[si];
@@ -179,9 +185,9 @@ void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, d
         continue;
       }
       if (pen)
-        cairo_line_to(cr, X(s.x[i]), Y(s.y[i]));
+        cairo_line_to(cr, f.X(s.x[i]), f.Y(s.y[i]));
       else
-        cairo_move_to(cr, X(s.x[i]), Y(s.y[i]));
+        cairo_move_to(cr, f.X(s.x[i]), f.Y(s.y[i]));
       pen = true;
     }
     detail::set_color(cr, s.color.value_or(palette_color(static_cast<int>(si))));
@@ -193,27 +199,40 @@ void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, d
     cairo_stroke(cr);
     cairo_set_dash(cr, nullptr, 0, 0);
   }
-  cairo_restore(cr);
+}
 
-  // Frame and ticks.
-  cairo_save(cr);
+// Frame, tick labels, axis labels and the panel title.
+void draw_axes(cairo_t* cr, const PlotPanel& p, const PanelFrame& f, bool x_ticks, const std::string& x_label) {
   detail::set_color(cr, kAxis);
   cairo_set_line_width(cr, 1);
-  cairo_rectangle(cr, std::round(left) + 0.5, std::round(top) + 0.5, std::round(w), std::round(h));
+  cairo_rectangle(cr, std::round(f.left) + 0.5, std::round(f.top) + 0.5, std::round(f.w), std::round(f.h));
   cairo_stroke(cr);
-  const int yd = decimals_for(yr.step), xd = decimals_for(xr.step);
-  for (double y = std::ceil(yr.lo / yr.step - 1e-9) * yr.step; y <= yr.hi + 1e-9 * yr.step; y += yr.step)
-    text(cr, left - 6, Y(y) + 4, detail::format_number(y, yd), 11, Align::Right, kAxis);
+  const int yd = decimals_for(f.yr.step), xd = decimals_for(f.xr.step);
+  for (double y = std::ceil(f.yr.lo / f.yr.step - 1e-9) * f.yr.step; y <= f.yr.hi + 1e-9 * f.yr.step; y += f.yr.step)
+    text(cr, f.left - 6, f.Y(y) + 4, detail::format_number(y, yd), 11, Align::Right, kAxis);
   if (x_ticks) {
-    for (double x = std::ceil(xr.lo / xr.step - 1e-9) * xr.step; x <= xr.hi + 1e-9 * xr.step; x += xr.step)
-      text(cr, X(x), top + h + 16, detail::format_number(x, xd), 11, Align::Centre, kAxis);
-    text(cr, left + w / 2, top + h + 34, x_label, 12, Align::Centre, kInk);
+    for (double x = std::ceil(f.xr.lo / f.xr.step - 1e-9) * f.xr.step; x <= f.xr.hi + 1e-9 * f.xr.step; x += f.xr.step)
+      text(cr, f.X(x), f.top + f.h + 16, detail::format_number(x, xd), 11, Align::Centre, kAxis);
+    text(cr, f.left + f.w / 2, f.top + f.h + 34, x_label, 12, Align::Centre, kInk);
   }
   // Rotated y label, centred on the panel.
-  y_axis_label(cr, left - 48, top + h / 2, p.y_label);
-  text(cr, left, top - 7, p.title, 12, Align::Left, kInk, 1.0, true);
-  cairo_restore(cr);
+  y_axis_label(cr, f.left - 48, f.top + f.h / 2, p.y_label);
+  text(cr, f.left, f.top - 7, p.title, 12, Align::Left, kInk, 1.0, true);
+}
 
+void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, double top, double w, double h,
+                bool x_ticks, const std::string& x_label) {
+  const PanelFrame f{xr, panel_y_range(p, xr), left, top, w, h};
+  cairo_save(cr);
+  cairo_rectangle(cr, left, top, w, h);  // bands, grid and curves stay inside the panel
+  cairo_clip(cr);
+  draw_bands_and_grid(cr, p, f);
+  draw_reference_lines(cr, p, f);
+  draw_curves(cr, p, f);
+  cairo_restore(cr);
+  cairo_save(cr);
+  draw_axes(cr, p, f, x_ticks, x_label);
+  cairo_restore(cr);
   if (const auto items = panel_legend(p); !items.empty()) {
     // Outside the data: in the margin right of the panel (plot_lines reserves it).
     draw_legend_at(cr, items, left + w + 10, top);
