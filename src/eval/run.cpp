@@ -2,6 +2,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/core/stats.hpp>
 #include <legwork/ik/full_body.hpp>
 #include <legwork/io/bvh.hpp>
 
@@ -145,6 +146,10 @@ void measure_speed(EvalResult& res, const std::vector<accent::PreparedTrial>& pr
   double a = 1e30, k = 1e30;
   for (int pass = 0; pass < 3; ++pass) {
     accent::AccentRun run = accent::accentuate_motion(db, opt.config, tt.motion);
+    if (run.seconds < a) {
+      const std::vector<double> us(run.frame_seconds.begin(), run.frame_seconds.end());
+      res.speed.accent_p99_us = 1e6 * percentile(us, 0.99);
+    }
     a = std::min(a, run.seconds);
     double s = 0;
     Motion ik = run_ik_baseline(tt.motion, &s);
