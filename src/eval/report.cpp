@@ -325,6 +325,8 @@ json report_json(const EvalResult& r) {
                         {"threshold", v.config.threshold},
                         {"align", v.config.align},
                         {"smooth", v.config.smooth},
+                        {"foot_lock", v.config.foot_lock},
+                        {"foot_lock_follow_seconds", v.config.foot_lock_follow_seconds},
                         {"search", v.config.search == accent::SearchMode::Fast    ? "fast"
                                    : v.config.search == accent::SearchMode::Exact ? "exact"
                                                                                   : "brute_force"}});

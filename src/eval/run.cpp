@@ -219,6 +219,8 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
   add("exact_search", "exact k-NN search", [](Variant& x) { x.config.search = accent::SearchMode::Exact; });
   add("no_hand_ik", "hands not pinned (hand_ik = 0)", [](Variant& x) { x.config.hand_ik = 0.0; });
   add("ewma_only", "EWMA smoothing only (no spring)", [](Variant& x) { x.config.smooth_halflife = 0; });
+  add("no_foot_lock", "no foot locking", [](Variant& x) { x.config.foot_lock = false; });
+  add("foot_lock_held", "feet held still while planted (no creep)", [](Variant& x) { x.config.foot_lock_follow_seconds = 0; });
   return v;
 }
 
