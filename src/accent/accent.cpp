@@ -65,6 +65,10 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: foot contact thresholds need 0 <= contact_off <= contact_on <= 1");
   if (!std::isfinite(cfg.foot_release_seconds) || cfg.foot_release_seconds < 0)
     throw Error("accent: foot_release_seconds must be >= 0");
+  if (!(cfg.ik_blend_min >= 0 && cfg.ik_blend_min <= cfg.ik_blend_max && cfg.ik_blend_max <= 1))
+    throw Error("accent: IK blend shares need 0 <= ik_blend_min <= ik_blend_max <= 1");
+  if (!(cfg.ik_blend_near < cfg.ik_blend_far) || !std::isfinite(cfg.ik_blend_far) || !(cfg.ik_blend_seconds >= 0))
+    throw Error("accent: IK blend needs ik_blend_near < ik_blend_far and ik_blend_seconds >= 0");
 }
 
 std::vector<unsigned char> make_class_mask(const Database& db, const std::vector<std::string>& classes) {
@@ -156,6 +160,13 @@ Model make_model(const Database& db, const Settings& settings) {
     for (std::size_t f = 0; f < 2; ++f)
       m.leg_length_[f] = (at(m.leg_[f].mid) - at(m.leg_[f].root)).norm() + (at(m.leg_[f].end) - at(m.leg_[f].mid)).norm();
   }
+  if (settings.ik_blend_max > 0) {
+    try {
+      m.ik_ = std::make_shared<const ik::Model>(ik::make_model(skel));
+    } catch (const Error&) {
+      m.ik_ = nullptr;  // a skeleton the IK cannot take: synthesis alone
+    }
+  }
   return m;
 }
 
@@ -174,6 +185,10 @@ State::State(const Model& model) {
   spring_vel.assign(n, Vec3::Zero());
   model_rot.resize(n);
   model_space.resize(n);
+  if (model.ik_model()) {
+    ik.emplace(*model.ik_model());
+    ik_pose = model.neutral();
+  }
   reset(model, *this);
 }
 
@@ -188,6 +203,10 @@ void reset(const Model& model, State& s) {
   s.match_weight = 0;
   s.foot = {};
   s.contact = {0, 0};
+  if (s.ik) ik::reset(*model.ik_model(), *s.ik);
+  s.have_ik_distance = false;
+  s.ik_distance = 0;
+  s.ik_share = 0;
 }
 
 std::size_t State::bytes() const {
@@ -519,6 +538,34 @@ void finish_pose(const Model& model, State& st, const Quat& head_rotation, const
   if (ik_weight > 1e-6) reach_hands(model, st, head_rotation, head_position, ik_weight, out);
 }
 
+// Confidence blend toward the IK body (Settings::ik_blend_*): the IK avatar
+// solves the same frame; its share grows with the smoothed match distance.
+// The hands are pinned again after the blend; st.model_space holds the
+// result's world transforms on return.
+void blend_ik(const Model& model, const TrackerFrame& in, State& st, double dt, double hand_weight, PoseRef out) {
+  const Settings& cfg = model.settings();
+  if (ik::update(*model.ik_model(), in, *st.ik, st.ik_pose.ref()) == UpdateStatus::Rejected) return;
+  const double typical = model.database().typical_distance();
+  double d = 0;  // mean over the hands of the best match distance; "far" for a hand without match
+  for (std::size_t h = 0; h < 2; ++h)
+    d += 0.5 * (st.match_count[h] > 0 ? st.matches[h][0].distance / typical : cfg.ik_blend_far);
+  if (!st.have_ik_distance) st.ik_distance = d;
+  else if (cfg.ik_blend_seconds > 0) st.ik_distance += (1.0 - std::exp(-dt / cfg.ik_blend_seconds)) * (d - st.ik_distance);
+  else st.ik_distance = d;
+  st.have_ik_distance = true;
+  const double x = std::clamp((st.ik_distance - cfg.ik_blend_near) / (cfg.ik_blend_far - cfg.ik_blend_near), 0.0, 1.0);
+  // The IK body stands upright: none of it for a user lying down (fading out as the head tilts 60..80 degrees).
+  const double up = (st.last_head_rot * Vec3::UnitY()).y();
+  const double u = std::clamp((up - 0.174) / (0.5 - 0.174), 0.0, 1.0);
+  st.ik_share = (cfg.ik_blend_min + (cfg.ik_blend_max - cfg.ik_blend_min) * x * x * (3 - 2 * x)) * u * u * (3 - 2 * u);
+  if (st.ik_share <= 0) return;
+  for (std::size_t j = 0; j < out.rotations.size(); ++j)
+    out.rotations[j] = slerp(out.rotations[j], st.ik_pose.rotations[j], st.ik_share);
+  out.translations[0] += st.ik_share * (st.ik_pose.translations[0] - out.translations[0]);
+  forward_kinematics(model.skeleton(), out, st.model_space);
+  if (hand_weight > 1e-6) reach_hands(model, st, st.last_head_rot, st.last_head, hand_weight, out);
+}
+
 // Devices: hold the last good data of anything unusable. Returns true if any was lost.
 bool take_devices(const Model& model, const TrackerFrame& in, State& st) {
   (void)model;
@@ -605,6 +652,7 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
                                           : slerp(st.smoothed.rotations[j], st.direct.rotations[j], st.fallback);
   if (cfg.smooth && cfg.smooth_halflife > 0 && !cfg.direct_only) spring_filter(model, st, dt, out);
   finish_pose(model, st, st.last_head_rot, st.last_head, std::max(cfg.hand_ik, st.fallback), out);
+  if (st.ik && !cfg.direct_only) blend_ik(model, in, st, dt, std::max(cfg.hand_ik, st.fallback), out);
   if (cfg.foot_lock && model.can_lock_feet() && !cfg.direct_only) lock_feet(model, st, dt, out);
   // Never hand out a broken pose: fall back to the neutral one.
   if (!pose_finite(out)) {
@@ -627,6 +675,7 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
       info->contact[f] = static_cast<float>(st.contact[f]);
       info->foot_locked[f] = st.foot[f].locked;
     }
+    info->ik_share = st.ik_share;
     const double typical = model.database().typical_distance();
     for (int h = 0; h < 2; ++h)
       info->best_distance[static_cast<std::size_t>(h)] = st.match_count[static_cast<std::size_t>(h)]

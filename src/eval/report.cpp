@@ -327,6 +327,8 @@ json report_json(const EvalResult& r) {
                         {"smooth", v.config.smooth},
                         {"foot_lock", v.config.foot_lock},
                         {"foot_lock_follow_seconds", v.config.foot_lock_follow_seconds},
+                        {"ik_blend_min", v.config.ik_blend_min},
+                        {"ik_blend_max", v.config.ik_blend_max},
                         {"search", v.config.search == accent::SearchMode::Fast    ? "fast"
                                    : v.config.search == accent::SearchMode::Exact ? "exact"
                                                                                   : "brute_force"}});

@@ -220,6 +220,7 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
   add("no_hand_ik", "hands not pinned (hand_ik = 0)", [](Variant& x) { x.config.hand_ik = 0.0; });
   add("ewma_only", "EWMA smoothing only (no spring)", [](Variant& x) { x.config.smooth_halflife = 0; });
   add("no_foot_lock", "no foot locking", [](Variant& x) { x.config.foot_lock = false; });
+  add("no_ik_blend", "no confidence blend toward the IK body", [](Variant& x) { x.config.ik_blend_min = x.config.ik_blend_max = 0; });
   add("foot_lock_held", "feet held still while planted (no creep)", [](Variant& x) { x.config.foot_lock_follow_seconds = 0; });
   return v;
 }

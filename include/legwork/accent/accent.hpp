@@ -30,10 +30,13 @@
 #include <legwork/accent/database.hpp>
 #include <legwork/accent/search.hpp>
 #include <legwork/core/tracker.hpp>
+#include <legwork/ik/full_body.hpp>
 #include <legwork/ik/two_bone.hpp>
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -83,6 +86,16 @@ struct Settings {
   double foot_lock_follow_seconds = 0.15;
   double contact_on = 0.6, contact_off = 0.4;
   double foot_release_seconds = 0.15;
+  // Confidence blend toward the full-body IK body (legwork::ik on the same
+  // skeleton, run beside the synthesis): share of the IK pose in the output =
+  // ik_blend_min, rising smoothly to ik_blend_max as the match distance
+  // (best distance of the two hands, in typical distances, smoothed over
+  // ik_blend_seconds) goes from ik_blend_near to ik_blend_far, i.e. where the
+  // database does not cover the user; none of it while the headset is tilted
+  // more than 80 degrees from upright (fading from 60) (the IK body stands). 0 / 0 = off.
+  double ik_blend_min = 0.1, ik_blend_max = 1.0;
+  double ik_blend_near = 1.5, ik_blend_far = 3.0;
+  double ik_blend_seconds = 0.5;
 };
 
 // How the frame's pose was made (Info::match).
@@ -103,6 +116,7 @@ struct Info {
   std::array<float, 2> best_distance{0, 0};  // in typical-distance units
   std::array<float, 2> contact{0, 0};        // blended foot contact of the candidates (left, right), 0..1
   std::array<bool, 2> foot_locked{false, false};
+  double ik_share = 0;  // share of the IK body in the output (0..1)
 };
 
 // Everything derived from the database and the settings; immutable.
@@ -128,6 +142,9 @@ class Model {
   const ik::TwoBoneChain& leg(int foot) const { return leg_[static_cast<std::size_t>(foot)]; }
   double leg_length(int foot) const { return leg_length_[static_cast<std::size_t>(foot)]; }
   bool can_lock_feet() const { return can_lock_feet_; }
+  // The full-body IK model on skeleton() (null when that skeleton cannot take
+  // one, or the IK blend is off).
+  const ik::Model* ik_model() const { return ik_.get(); }
   // Model bytes (shared by every avatar of this model).
   std::size_t bytes() const;
 
@@ -144,6 +161,7 @@ class Model {
   std::array<ik::TwoBoneChain, 2> leg_{};
   std::array<double, 2> leg_length_{0, 0};
   bool can_lock_feet_ = false;
+  std::shared_ptr<const ik::Model> ik_;
 };
 
 // Throws legwork::Error for an unknown class (listing the database's), k out
@@ -187,6 +205,12 @@ struct State {
   };
   std::array<FootLock, 2> foot{};
   std::array<double, 2> contact{0, 0};  // this frame's blended candidate contact
+  // The IK body (Settings::ik_blend_*): its avatar, pose and blend state.
+  std::optional<ik::State> ik;
+  Pose ik_pose;
+  double ik_distance = 0;  // smoothed match distance, typical distances
+  bool have_ik_distance = false;
+  double ik_share = 0;
   Pose smoothed;                // EWMA output
   std::vector<Quat> spring_rot; // spring filter: filtered local rotations...
   std::vector<Vec3> spring_vel; // ...and their angular velocities
