@@ -563,6 +563,10 @@ void blend_ik(const Model& model, const TrackerFrame& in, State& st, double dt, 
     out.rotations[j] = slerp(out.rotations[j], st.ik_pose.rotations[j], st.ik_share);
   out.translations[0] += st.ik_share * (st.ik_pose.translations[0] - out.translations[0]);
   forward_kinematics(model.skeleton(), out, st.model_space);
+  // The head joint back exactly at the headset.
+  const Vec3 shift = st.last_head - st.model_space[static_cast<std::size_t>(model.skeleton().roles[Role::Head])].translation;
+  out.translations[0] += shift;
+  for (auto& t : st.model_space) t.translation += shift;
   if (hand_weight > 1e-6) reach_hands(model, st, st.last_head_rot, st.last_head, hand_weight, out);
 }
 

@@ -178,11 +178,14 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
     v.push_back(std::move(x));
   };
   // The document's steps run on the document's settings (k = 5, EWMA only,
-  // hands not pinned), so they compare with its 16.5 -> 13.2 -> 11.4 cm.
+  // hands not pinned, no foot locking, no IK blend), so they compare with its
+  // 16.5 -> 13.2 -> 11.4 cm.
   const auto paper = [](Variant& x) {
     x.config.k_left = x.config.k_right = 5;
     x.config.smooth_halflife = 0;
     x.config.hand_ik = 0;
+    x.config.foot_lock = false;
+    x.config.ik_blend_min = x.config.ik_blend_max = 0;
   };
   add("nn", "NN only (document's settings, no alignment, no smoothing)", [&](Variant& x) {
     paper(x);

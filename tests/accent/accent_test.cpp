@@ -159,6 +159,27 @@ TEST_F(HeldOut, PlantedFeetStayPutAndSlideLess) {
   EXPECT_LT(c, a);
 }
 
+// The IK blend follows coverage: a walk matched against boxing only is far
+// from everything and takes more of the IK body than matched against walking;
+// with the blend off the share is 0.
+TEST_F(HeldOut, IkShareGrowsWhereTheDatabaseDoesNotCoverTheUser) {
+  auto mean_share = [&](Settings s) {
+    const AccentRun run = accentuate_motion(*db_, s, *input_);
+    double sum = 0;
+    for (const auto& i : run.info) sum += i.ik_share;
+    return sum / static_cast<double>(run.info.size());
+  };
+  Settings walking, boxing, off;
+  walking.classes = {"walking"};
+  boxing.classes = {"boxing"};
+  off.ik_blend_min = off.ik_blend_max = 0;
+  const double near = mean_share(walking), far = mean_share(boxing);
+  std::printf("[ figures  ] mean IK share: %.2f matched against walking, %.2f against boxing\n", near, far);
+  EXPECT_GE(near, walking.ik_blend_min - 1e-9);
+  EXPECT_GT(far, near + 0.1);
+  EXPECT_EQ(mean_share(off), 0.0);
+}
+
 // Exaggeration is a style control: with the hands on the controllers (hand
 // IK) the avatar's hands still move away from the head by the factor.
 TEST_F(HeldOut, ExaggerationWidensTheHandsUnderHandIk) {
