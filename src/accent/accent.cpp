@@ -225,6 +225,9 @@ std::span<const Match> last_matches(const State& s, int hand) {
 namespace {
 
 using Sample = State::Sample;
+
+// Smoothstep on [0, 1]: zero slope at both ends.
+double smooth01(double x) { return x * x * (3 - 2 * x); }
 constexpr int kRing = State::kRing;
 
 // The live feature window of one hand at the database rate, interpolated from
@@ -422,10 +425,10 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     const ik::TwoBoneChain& chain = model.leg(f);
     const Transform& ankle = st.model_space[static_cast<std::size_t>(chain.end)];
     const double c = st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback);
-    bool contact = c > (lock.locked ? cfg.contact_off : cfg.contact_on);
+    const bool contact = c > (lock.locked ? cfg.contact_off : cfg.contact_on);
     if (contact && !lock.locked) {
       // Touch down where the foot is shown now (mid-release: between the old lock and the synthesized foot).
-      const double w = lock.weight * lock.weight * (3 - 2 * lock.weight);
+      const double w = smooth01(lock.weight);
       lock.position = ankle.translation + w * (lock.position - ankle.translation);
       lock.rotation = ankle.rotation.slerp(w, lock.rotation).normalized();
       lock.locked = true;
@@ -446,7 +449,7 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     ik::TwoBoneTarget target;
     target.position = lock.position;
     target.rotation = lock.rotation;
-    target.position_weight = target.rotation_weight = lock.weight * lock.weight * (3 - 2 * lock.weight);
+    target.position_weight = target.rotation_weight = smooth01(lock.weight);
     target.hint_weight = 0;  // keep the synthesized knee's bend plane
     ik::solve_two_bone(model.skeleton(), chain, target, out, st.model_space);
   }
@@ -557,7 +560,7 @@ void blend_ik(const Model& model, const TrackerFrame& in, State& st, double dt, 
   // The IK body stands upright: none of it for a user lying down (fading out as the head tilts 60..80 degrees).
   const double up = (st.last_head_rot * Vec3::UnitY()).y();
   const double u = std::clamp((up - 0.174) / (0.5 - 0.174), 0.0, 1.0);
-  st.ik_share = (cfg.ik_blend_min + (cfg.ik_blend_max - cfg.ik_blend_min) * x * x * (3 - 2 * x)) * u * u * (3 - 2 * u);
+  st.ik_share = (cfg.ik_blend_min + (cfg.ik_blend_max - cfg.ik_blend_min) * smooth01(x)) * smooth01(u);
   if (st.ik_share <= 0) return;
   for (std::size_t j = 0; j < out.rotations.size(); ++j)
     out.rotations[j] = slerp(out.rotations[j], st.ik_pose.rotations[j], st.ik_share);
