@@ -53,7 +53,7 @@ const char* mode_name(SearchMode m) { return m == SearchMode::Fast ? "fast" : m 
 struct BenchArgs {
   std::string db, json_path, data, classes;
   std::string input;
-  bool drop_first = false;
+  bool drop_first = false, no_foot_lock = false, no_ik_blend = false;
   double scale = 0;
   int repeat = 3, k = Settings{}.k_left, max_checks = Settings{}.fast_max_checks;
   float eps = 5.0f;
@@ -99,6 +99,8 @@ int run(int argc, char** argv) {
   cmd->add_option("--classes", a->classes, "classes for the timed build (default: all)");
   cmd->add_option("--max-checks", a->max_checks, "fast-mode budget of candidates per search (0 = unlimited)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--json", a->json_path, "write the figures as JSON");
+  cmd->add_flag("--no-foot-lock", a->no_foot_lock, "time the engine without foot locking");
+  cmd->add_flag("--no-ik-blend", a->no_ik_blend, "time the engine without the IK blend");
   CLI11_PARSE(app, argc, argv);
   {
     json j;
@@ -148,6 +150,8 @@ int run(int argc, char** argv) {
       cfg.fast_max_checks = a->max_checks;
       cfg.k_left = cfg.k_right = a->k;
       cfg.user_height = measure_body(truth.skeleton).standing_height;
+      cfg.foot_lock = !a->no_foot_lock;
+      if (a->no_ik_blend) cfg.ik_blend_min = cfg.ik_blend_max = 0;
       std::vector<double> lat;
       lat.reserve(frames.size() * static_cast<std::size_t>(a->repeat));
       double total = 0, cpu = 0;

@@ -87,7 +87,18 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("fallback_seconds", &Settings::fallback_seconds, "seconds")
       .def_readwrite("hand_ik", &Settings::hand_ik, "0..1: wrists pulled onto the controllers")
       .def_readwrite("direct_only", &Settings::direct_only)
-      .def_readwrite("max_head_tilt_deg", &Settings::max_head_tilt_deg, "degrees; 0 = off");
+      .def_readwrite("max_head_tilt_deg", &Settings::max_head_tilt_deg, "degrees; 0 = off")
+      .def_readwrite("foot_lock", &Settings::foot_lock, "hold planted feet (database contacts) by two-bone leg IK")
+      .def_readwrite("contact_on", &Settings::contact_on, "blended contact above which a foot locks (0..1)")
+      .def_readwrite("contact_off", &Settings::contact_off, "blended contact below which it lets go (0..1)")
+      .def_readwrite("foot_release_seconds", &Settings::foot_release_seconds, "seconds to blend out of a lock")
+      .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
+                     "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
+      .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")
+      .def_readwrite("ik_blend_max", &Settings::ik_blend_max, "share of the IK body at far matches (0..1); 0 = off")
+      .def_readwrite("ik_blend_near", &Settings::ik_blend_near, "match distance (typical distances) where the rise starts")
+      .def_readwrite("ik_blend_far", &Settings::ik_blend_far, "match distance (typical distances) where it ends")
+      .def_readwrite("ik_blend_seconds", &Settings::ik_blend_seconds, "smoothing of the match distance, seconds");
   pb::enum_<MatchStatus>(m, "MatchStatus")
       .value("Matched", MatchStatus::Matched)
       .value("Partial", MatchStatus::Partial)
@@ -100,7 +111,10 @@ void bind_settings(pb::module_& m) {
       .def_readonly("match_weight", &Info::match_weight, "global match weight (0..1)")
       .def_readonly("fallback", &Info::fallback, "share of the direct mapping (0..1)")
       .def_readonly("matches", &Info::matches, "matches per hand [left, right]")
-      .def_readonly("best_distance", &Info::best_distance, "best distance per hand, typical-distance units");
+      .def_readonly("best_distance", &Info::best_distance, "best distance per hand, typical-distance units")
+      .def_readonly("contact", &Info::contact, "blended foot contact of the candidates [left, right] (0..1)")
+      .def_readonly("foot_locked", &Info::foot_locked, "whether each foot is locked [left, right]")
+      .def_readonly("ik_share", &Info::ik_share, "share of the IK body in the output (0..1)");
 }
 
 pb::dict run_dict(AccentRun run) {

@@ -61,6 +61,14 @@ void check_settings(const Database& db, const Settings& cfg) {
   if (!std::isfinite(cfg.fallback_seconds) || cfg.fallback_seconds < 0)
     throw Error("accent: fallback_seconds must be >= 0");
   if (!std::isfinite(cfg.hand_ik) || cfg.hand_ik < 0 || cfg.hand_ik > 1) throw Error("accent: hand_ik must be in [0, 1]");
+  if (!(cfg.contact_off >= 0 && cfg.contact_off <= cfg.contact_on && cfg.contact_on <= 1))
+    throw Error("accent: foot contact thresholds need 0 <= contact_off <= contact_on <= 1");
+  if (!std::isfinite(cfg.foot_release_seconds) || cfg.foot_release_seconds < 0)
+    throw Error("accent: foot_release_seconds must be >= 0");
+  if (!(cfg.ik_blend_min >= 0 && cfg.ik_blend_min <= cfg.ik_blend_max && cfg.ik_blend_max <= 1))
+    throw Error("accent: IK blend shares need 0 <= ik_blend_min <= ik_blend_max <= 1");
+  if (!(cfg.ik_blend_near < cfg.ik_blend_far) || !std::isfinite(cfg.ik_blend_far) || !(cfg.ik_blend_seconds >= 0))
+    throw Error("accent: IK blend needs ik_blend_near < ik_blend_far and ik_blend_seconds >= 0");
 }
 
 std::vector<unsigned char> make_class_mask(const Database& db, const std::vector<std::string>& classes) {
@@ -141,6 +149,24 @@ Model make_model(const Database& db, const Settings& settings) {
   mark(Role::RightClavicle, Role::RightShoulder, Model::RightArm);
   m.limit_ = make_limits(skel);
   m.neutral_ = make_neutral(skel);
+  m.can_lock_feet_ = true;
+  for (Role need : {Role::LeftHip, Role::LeftKnee, Role::LeftAnkle, Role::RightHip, Role::RightKnee, Role::RightAnkle})
+    m.can_lock_feet_ = m.can_lock_feet_ && r.has(need);
+  if (m.can_lock_feet_) {
+    m.leg_ = {ik::left_leg(skel), ik::right_leg(skel)};
+    std::vector<Vec3> rest(static_cast<std::size_t>(n));
+    forward_positions(skel, Pose(skel), rest);
+    auto at = [&](int j) { return rest[static_cast<std::size_t>(j)]; };
+    for (std::size_t f = 0; f < 2; ++f)
+      m.leg_length_[f] = (at(m.leg_[f].mid) - at(m.leg_[f].root)).norm() + (at(m.leg_[f].end) - at(m.leg_[f].mid)).norm();
+  }
+  if (settings.ik_blend_max > 0) {
+    try {
+      m.ik_ = std::make_shared<const ik::Model>(ik::make_model(skel));
+    } catch (const Error&) {
+      m.ik_ = nullptr;  // a skeleton the IK cannot take: synthesis alone
+    }
+  }
   return m;
 }
 
@@ -159,6 +185,10 @@ State::State(const Model& model) {
   spring_vel.assign(n, Vec3::Zero());
   model_rot.resize(n);
   model_space.resize(n);
+  if (model.ik_model()) {
+    ik.emplace(*model.ik_model());
+    ik_pose = model.neutral();
+  }
   reset(model, *this);
 }
 
@@ -171,6 +201,12 @@ void reset(const Model& model, State& s) {
   s.fallback = 0;
   s.match_count = {0, 0};
   s.match_weight = 0;
+  s.foot = {};
+  s.contact = {0, 0};
+  if (s.ik) ik::reset(*model.ik_model(), *s.ik);
+  s.have_ik_distance = false;
+  s.ik_distance = 0;
+  s.ik_share = 0;
 }
 
 std::size_t State::bytes() const {
@@ -189,6 +225,9 @@ std::span<const Match> last_matches(const State& s, int hand) {
 namespace {
 
 using Sample = State::Sample;
+
+// Smoothstep on [0, 1]: zero slope at both ends.
+double smooth01(double x) { return x * x * (3 - 2 * x); }
 constexpr int kRing = State::kRing;
 
 // The live feature window of one hand at the database rate, interpolated from
@@ -340,6 +379,24 @@ void blend_matches(const Model& model, State& st) {
   st.match_weight = std::clamp(weight_total / n, 0.0, 1.0);
 }
 
+// The candidates' foot contacts, blended with the weights of the body joints
+// (both hands' matches, half each when both matched).
+void blend_contacts(const Model& model, State& st) {
+  const Database& db = model.database();
+  const int nl = st.match_count[0], nr = st.match_count[1];
+  const double share[2] = {nl ? (nr ? 0.5 : 1.0) : 0.0, nr ? (nl ? 0.5 : 1.0) : 0.0};
+  st.contact = {0, 0};
+  for (int h = 0; h < 2; ++h) {
+    const auto hu = static_cast<std::size_t>(h);
+    for (int i = 0; i < st.match_count[hu]; ++i) {
+      const auto iu = static_cast<std::size_t>(i);
+      const auto c = db.contact(static_cast<int>(db.source(st.matches[hu][iu].window).pose));
+      for (std::size_t f = 0; f < 2; ++f)
+        if (c[f]) st.contact[f] += share[h] * st.weight[hu][iu];
+    }
+  }
+}
+
 // Gather, gate, align and blend the candidates of both hands into st.synth.
 bool blend_candidates(const Model& model, State& st, double threshold) {
   HandWindow w[2];
@@ -354,7 +411,48 @@ bool blend_candidates(const Model& model, State& st, double threshold) {
   }
   if (st.match_count[0] == 0 && st.match_count[1] == 0) return false;
   blend_matches(model, st);
+  blend_contacts(model, st);
   return true;
+}
+
+// Foot locking (Settings::foot_lock): on the placed pose (st.model_space
+// holds its world transforms), hold each planted ankle where it touched down.
+void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
+  const Settings& cfg = model.settings();
+  const double fade = cfg.foot_release_seconds > 0 ? dt / cfg.foot_release_seconds : 1.0;
+  for (int f = 0; f < 2; ++f) {
+    State::FootLock& lock = st.foot[static_cast<std::size_t>(f)];
+    const ik::TwoBoneChain& chain = model.leg(f);
+    const Transform& ankle = st.model_space[static_cast<std::size_t>(chain.end)];
+    const double c = st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback);
+    const bool contact = c > (lock.locked ? cfg.contact_off : cfg.contact_on);
+    if (contact && !lock.locked) {
+      // Touch down where the foot is shown now (mid-release: between the old lock and the synthesized foot).
+      const double w = smooth01(lock.weight);
+      lock.position = ankle.translation + w * (lock.position - ankle.translation);
+      lock.rotation = ankle.rotation.slerp(w, lock.rotation).normalized();
+      lock.locked = true;
+    }
+    if (!contact) lock.locked = false;
+    if (lock.locked) {
+      // A planted foot creeps toward the synthesized one (0 = held still) ...
+      if (cfg.foot_lock_follow_seconds > 0)
+        lock.position += (1.0 - std::exp(-dt / cfg.foot_lock_follow_seconds)) * (ankle.translation - lock.position);
+      // ... and never further from the hip than the leg reaches (pulled along the leg: mostly up, like a heel rising).
+      const Vec3 hip = st.model_space[static_cast<std::size_t>(chain.root)].translation;
+      const Vec3 d = lock.position - hip;
+      const double reach = 0.995 * model.leg_length(f);
+      if (d.norm() > reach) lock.position = hip + d * (reach / d.norm());
+    }
+    lock.weight = lock.locked ? 1.0 : std::max(0.0, lock.weight - fade);
+    if (lock.weight <= 0) continue;
+    ik::TwoBoneTarget target;
+    target.position = lock.position;
+    target.rotation = lock.rotation;
+    target.position_weight = target.rotation_weight = smooth01(lock.weight);
+    target.hint_weight = 0;  // keep the synthesized knee's bend plane
+    ik::solve_two_bone(model.skeleton(), chain, target, out, st.model_space);
+  }
 }
 
 void make_direct_pose(const Model& model, State& st) {
@@ -443,6 +541,38 @@ void finish_pose(const Model& model, State& st, const Quat& head_rotation, const
   if (ik_weight > 1e-6) reach_hands(model, st, head_rotation, head_position, ik_weight, out);
 }
 
+// Confidence blend toward the IK body (Settings::ik_blend_*): the IK avatar
+// solves the same frame; its share grows with the smoothed match distance.
+// The hands are pinned again after the blend; st.model_space holds the
+// result's world transforms on return.
+void blend_ik(const Model& model, const TrackerFrame& in, State& st, double dt, double hand_weight, PoseRef out) {
+  const Settings& cfg = model.settings();
+  if (ik::update(*model.ik_model(), in, *st.ik, st.ik_pose.ref()) == UpdateStatus::Rejected) return;
+  const double typical = model.database().typical_distance();
+  double d = 0;  // mean over the hands of the best match distance; "far" for a hand without match
+  for (std::size_t h = 0; h < 2; ++h)
+    d += 0.5 * (st.match_count[h] > 0 ? st.matches[h][0].distance / typical : cfg.ik_blend_far);
+  if (!st.have_ik_distance) st.ik_distance = d;
+  else if (cfg.ik_blend_seconds > 0) st.ik_distance += (1.0 - std::exp(-dt / cfg.ik_blend_seconds)) * (d - st.ik_distance);
+  else st.ik_distance = d;
+  st.have_ik_distance = true;
+  const double x = std::clamp((st.ik_distance - cfg.ik_blend_near) / (cfg.ik_blend_far - cfg.ik_blend_near), 0.0, 1.0);
+  // The IK body stands upright: none of it for a user lying down (fading out as the head tilts 60..80 degrees).
+  const double up = (st.last_head_rot * Vec3::UnitY()).y();
+  const double u = std::clamp((up - 0.174) / (0.5 - 0.174), 0.0, 1.0);
+  st.ik_share = (cfg.ik_blend_min + (cfg.ik_blend_max - cfg.ik_blend_min) * smooth01(x)) * smooth01(u);
+  if (st.ik_share <= 0) return;
+  for (std::size_t j = 0; j < out.rotations.size(); ++j)
+    out.rotations[j] = slerp(out.rotations[j], st.ik_pose.rotations[j], st.ik_share);
+  out.translations[0] += st.ik_share * (st.ik_pose.translations[0] - out.translations[0]);
+  forward_kinematics(model.skeleton(), out, st.model_space);
+  // The head joint back exactly at the headset.
+  const Vec3 shift = st.last_head - st.model_space[static_cast<std::size_t>(model.skeleton().roles[Role::Head])].translation;
+  out.translations[0] += shift;
+  for (auto& t : st.model_space) t.translation += shift;
+  if (hand_weight > 1e-6) reach_hands(model, st, st.last_head_rot, st.last_head, hand_weight, out);
+}
+
 // Devices: hold the last good data of anything unusable. Returns true if any was lost.
 bool take_devices(const Model& model, const TrackerFrame& in, State& st) {
   (void)model;
@@ -505,7 +635,10 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
 
   const double threshold = cfg.threshold > 0 ? cfg.threshold * model.database().typical_distance() : 0.0;
   const bool matched = st.have_head && !cfg.direct_only && blend_candidates(model, st, threshold);
-  if (!matched) st.match_count = {0, 0};
+  if (!matched) {
+    st.match_count = {0, 0};
+    st.contact = {0, 0};
+  }
   if (matched) {
     const double w = cfg.smooth && st.have_smoothed ? std::max(st.match_weight, cfg.min_smoothing_weight) : 1.0;
     for (std::size_t j = 0; j < nj; ++j)
@@ -526,6 +659,8 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
                                           : slerp(st.smoothed.rotations[j], st.direct.rotations[j], st.fallback);
   if (cfg.smooth && cfg.smooth_halflife > 0 && !cfg.direct_only) spring_filter(model, st, dt, out);
   finish_pose(model, st, st.last_head_rot, st.last_head, std::max(cfg.hand_ik, st.fallback), out);
+  if (st.ik && !cfg.direct_only) blend_ik(model, in, st, dt, std::max(cfg.hand_ik, st.fallback), out);
+  if (cfg.foot_lock && model.can_lock_feet() && !cfg.direct_only) lock_feet(model, st, dt, out);
   // Never hand out a broken pose: fall back to the neutral one.
   if (!pose_finite(out)) {
     const Pose& neutral = model.neutral();
@@ -543,6 +678,11 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
     info->match_weight = st.match_weight;
     info->fallback = st.fallback;
     info->matches = st.match_count;
+    for (std::size_t f = 0; f < 2; ++f) {
+      info->contact[f] = static_cast<float>(st.contact[f]);
+      info->foot_locked[f] = st.foot[f].locked;
+    }
+    info->ik_share = st.ik_share;
     const double typical = model.database().typical_distance();
     for (int h = 0; h < 2; ++h)
       info->best_distance[static_cast<std::size_t>(h)] = st.match_count[static_cast<std::size_t>(h)]

@@ -158,6 +158,7 @@ void open_block(Database::Impl& d, const std::string& source, bool verify) {
   d.sources = section<WindowSource>(d, h.source_offset, h.window_count, source, "sources");
   d.poses = section<float>(d, h.pose_offset, std::uint64_t{h.pose_count} * h.joint_count * 4, source, "poses");
   d.head_up = section<float>(d, h.head_up_offset, std::uint64_t{h.pose_count} * 3, source, "head up axes");
+  d.contacts = section<std::uint8_t>(d, h.contact_offset, std::uint64_t{h.pose_count} * 2, source, "foot contacts");
   for (std::uint32_t w = 0; w < h.window_count; ++w)
     if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count)
       fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
@@ -195,6 +196,8 @@ void validate_contents(const Database::Impl& d, const std::string& source, bool 
     }
   for (std::uint32_t p = 0; p < 3 * d.header.pose_count; ++p)
     if (!std::isfinite(d.head_up[p])) fail(source, "head axis of pose " + std::to_string(p / 3) + " is not finite");
+  for (std::uint32_t p = 0; p < 2 * d.header.pose_count; ++p)
+    if (d.contacts[p] > 1) fail(source, "foot contact of pose " + std::to_string(p / 2) + " is neither 0 nor 1");
   for (int hand = 0; hand < 2; ++hand)
     for (std::uint32_t w = 0; w < d.header.window_count; ++w)
       for (float v : d.features[hand][w])
@@ -254,6 +257,7 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   h.source_offset = place(nw * sizeof(WindowSource));
   h.pose_offset = place(p.poses.size() * sizeof(float));
   h.head_up_offset = place(p.head_up.size() * sizeof(float));
+  h.contact_offset = place(p.contacts.size());
   h.file_bytes = at;
   std::vector<std::byte> block(at);
   auto put = [&block](std::size_t off, const void* src, std::size_t bytes) {
@@ -265,6 +269,7 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   put(h.source_offset, p.sources.data(), nw * sizeof(WindowSource));
   put(h.pose_offset, p.poses.data(), p.poses.size() * sizeof(float));
   put(h.head_up_offset, p.head_up.data(), p.head_up.size() * sizeof(float));
+  put(h.contact_offset, p.contacts.data(), p.contacts.size());
   put(0, &h, sizeof(h));
   h.checksum = block_checksum(block);
   put(0, &h, sizeof(h));
@@ -309,6 +314,10 @@ std::span<const float> Database::pose_rotations(int pose) const {
 Vec3 Database::head_up(int pose) const {
   const float* u = impl_->head_up + static_cast<std::ptrdiff_t>(pose) * 3;
   return {u[0], u[1], u[2]};
+}
+std::array<bool, 2> Database::contact(int pose) const {
+  const std::uint8_t* c = impl_->contacts + static_cast<std::ptrdiff_t>(pose) * 2;
+  return {c[0] != 0, c[1] != 0};
 }
 void Database::pose_rotation(int pose, std::span<Quat> out) const {
   const auto r = pose_rotations(pose);

@@ -34,7 +34,7 @@ struct FileHeader {
   std::uint64_t source_offset;                 // WindowSource[window_count]
   std::uint64_t pose_offset;                   // float[pose_count][joint_count][4]
   std::uint64_t head_up_offset;                // float[pose_count][3]: the head's up axis, model space
-  std::uint64_t reserved;
+  std::uint64_t contact_offset;                // uint8[pose_count][2]: foot in contact (left, right), 0/1
 };
 static_assert(sizeof(FileHeader) == 128);
 
@@ -90,6 +90,7 @@ struct Database::Impl {
   const WindowSource* sources = nullptr;
   const float* poses = nullptr;
   const float* head_up = nullptr;
+  const std::uint8_t* contacts = nullptr;
 
   std::vector<ClassIndex> index;  // per class, empty until build_index()
   ClassIndex all;                 // over every window (sessions that allow every class)
@@ -105,6 +106,7 @@ struct BlockParts {
   std::vector<WindowSource> sources;
   std::vector<float> poses;  // pose_count * joint_count * 4
   std::vector<float> head_up;  // pose_count * 3
+  std::vector<std::uint8_t> contacts;  // pose_count * 2
 };
 std::vector<std::byte> serialize_block(const BlockParts& parts);
 

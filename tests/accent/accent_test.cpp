@@ -3,6 +3,8 @@
 #include <legwork/accent/offline/builder.hpp>
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/core/measure.hpp>
+#include <legwork/wip/offline/truth.hpp>
 
 #include "accent_testing.hpp"
 
@@ -80,6 +82,102 @@ TEST_F(HeldOut, HandsFollowTheInputAndThePoseIsSane) {
     EXPECT_LT(e.right, 0.08);
     EXPECT_GT(matched, run.output.frame_count() * 9 / 10);
   }
+}
+
+// Horizontal slide of each ankle from frame f to f + 1 (metres), per foot.
+std::array<std::vector<double>, 2> ankle_slides(const Motion& m) {
+  std::array<std::vector<double>, 2> out;
+  const auto& r = m.skeleton.roles;
+  std::vector<Vec3> a = joint_positions(m.skeleton, m.frame(0)), b;
+  for (int f = 0; f + 1 < m.frame_count(); ++f) {
+    b = joint_positions(m.skeleton, m.frame(f + 1));
+    for (int foot = 0; foot < 2; ++foot) {
+      const auto j = static_cast<std::size_t>(r[foot == 0 ? Role::LeftAnkle : Role::RightAnkle]);
+      Vec3 d = b[j] - a[j];
+      d.y() = 0;
+      out[static_cast<std::size_t>(foot)].push_back(d.norm());
+    }
+    a = b;
+  }
+  return out;
+}
+
+// Foot locking: a locked ankle stays where it touched down (held still with
+// foot_lock_follow_seconds = 0), and where the capture's own feet are planted
+// the avatar's feet slide less with locking than without.
+TEST_F(HeldOut, PlantedFeetStayPutAndSlideLess) {
+  Settings hard;
+  hard.foot_lock_follow_seconds = 0;
+  const AccentRun held = accentuate_motion(*db_, hard, *input_);
+  const auto slides = ankle_slides(held.output);
+  // Held exactly while the leg reaches (else pulled along the leg, mostly up).
+  Settings sized = hard;
+  sized.user_height = measure_body(input_->skeleton).standing_height;
+  const Model model = make_model(*db_, sized);
+  const auto& r = held.output.skeleton.roles;
+  auto within_reach = [&](int f, int foot) {
+    const auto p = joint_positions(held.output.skeleton, held.output.frame(f));
+    const Vec3 hip = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftHip : Role::RightHip])];
+    const Vec3 ankle = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftAnkle : Role::RightAnkle])];
+    return (ankle - hip).norm() < 0.99 * model.leg_length(foot);
+  };
+  int locked = 0, reachable = 0;
+  for (std::size_t f = 0; f + 1 < held.info.size(); ++f)
+    for (int foot = 0; foot < 2; ++foot) {
+      const auto fu = static_cast<std::size_t>(foot);
+      if (!held.info[f].foot_locked[fu] || !held.info[f + 1].foot_locked[fu]) continue;
+      ++locked;
+      if (!within_reach(static_cast<int>(f), foot) || !within_reach(static_cast<int>(f) + 1, foot)) continue;
+      ++reachable;
+      EXPECT_LT(slides[fu][f], 1e-5) << "frame " << f << " foot " << foot;
+    }
+  std::printf("[ figures  ] locked ankle frame pairs: %d, %d of them within the leg's reach\n", locked, reachable);
+  EXPECT_GT(locked, static_cast<int>(held.info.size()) / 2) << "a walk keeps a foot planted most of the time";
+  EXPECT_GT(reachable, 0);
+
+  Settings off;
+  off.foot_lock = false;
+  const AccentRun free = accentuate_motion(*db_, off, *input_), soft = accentuate_motion(*db_, Settings{}, *input_);
+  const auto planted = wip::true_contacts(*input_);
+  auto slide_where_planted = [&](const Motion& m) {
+    const auto s = ankle_slides(m);
+    double sum = 0;
+    int n = 0;
+    for (std::size_t foot = 0; foot < 2; ++foot)
+      for (std::size_t f = 0; f < s[foot].size(); ++f)
+        if (planted[foot][f] && planted[foot][f + 1]) {
+          sum += s[foot][f];
+          ++n;
+        }
+    return sum / std::max(n, 1);
+  };
+  const double a = slide_where_planted(free.output), b = slide_where_planted(soft.output),
+               c = slide_where_planted(held.output);
+  std::printf("[ figures  ] ankle slide where the capture's foot is planted: %.2f cm/frame unlocked, %.2f default lock, "
+              "%.2f held still\n", 100 * a, 100 * b, 100 * c);
+  EXPECT_LT(b, a);
+  EXPECT_LT(c, a);
+}
+
+// The IK blend follows coverage: a walk matched against boxing only is far
+// from everything and takes more of the IK body than matched against walking;
+// with the blend off the share is 0.
+TEST_F(HeldOut, IkShareGrowsWhereTheDatabaseDoesNotCoverTheUser) {
+  auto mean_share = [&](Settings s) {
+    const AccentRun run = accentuate_motion(*db_, s, *input_);
+    double sum = 0;
+    for (const auto& i : run.info) sum += i.ik_share;
+    return sum / static_cast<double>(run.info.size());
+  };
+  Settings walking, boxing, off;
+  walking.classes = {"walking"};
+  boxing.classes = {"boxing"};
+  off.ik_blend_min = off.ik_blend_max = 0;
+  const double near = mean_share(walking), far = mean_share(boxing);
+  std::printf("[ figures  ] mean IK share: %.2f matched against walking, %.2f against boxing\n", near, far);
+  EXPECT_GE(near, walking.ik_blend_min - 1e-9);
+  EXPECT_GT(far, near + 0.1);
+  EXPECT_EQ(mean_share(off), 0.0);
 }
 
 // Exaggeration is a style control: with the hands on the controllers (hand

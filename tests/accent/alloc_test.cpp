@@ -22,10 +22,15 @@ TEST(AccentAlloc, UpdateIsAllocationFree) {
     for (std::size_t f = 0; f < 10; ++f) acc.update(frames[f]);
     std::vector<TrackerFrame> live(frames.begin() + 10, frames.end());
     for (std::size_t f = 0; f < live.size(); f += 50) live[f].hand(kLeft).valid = false;  // the fallback path too
+    long locked = 0;  // foot locking runs in the counted frames
     const long allocations = legwork::alloc_count::count_allocations([&] {
-      for (const TrackerFrame& t : live) acc.update(t);
+      for (const TrackerFrame& t : live) {
+        const Info info = acc.update(t);
+        locked += info.foot_locked[0] + info.foot_locked[1];
+      }
     });
     EXPECT_EQ(allocations, 0) << "mode " << static_cast<int>(mode);
+    EXPECT_GT(locked, static_cast<long>(live.size()) / 4) << "mode " << static_cast<int>(mode);
   }
 }
 

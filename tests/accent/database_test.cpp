@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <tuple>
 #include <random>
 
 namespace legwork::accent {
@@ -50,6 +52,47 @@ class SampleDb : public ::testing::Test {
 };
 Database* SampleDb::db_ = nullptr;
 BuildReport* SampleDb::report_ = nullptr;
+
+// Foot contacts: a walking capture plants each foot a good part of the time,
+// one foot at a time now and then (the other swings), and a mirrored copy
+// swaps the feet of its original.
+TEST_F(SampleDb, FootContactsAlternateInWalkingAndSwapWhenMirrored) {
+  const int walking = db_->find_class("walking");
+  ASSERT_GE(walking, 0);
+  const auto [first, last] = db_->class_range(walking);
+  std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint8_t>, std::array<bool, 2>> original;
+  int n = 0, left = 0, right = 0, only_left = 0, only_right = 0;
+  for (int w = first; w < last; ++w) {
+    const WindowSource& src = db_->source(w);
+    const auto c = db_->contact(static_cast<int>(src.pose));
+    if (src.mirrored) continue;
+    original[{src.trial, src.frame, src.speed}] = c;
+    ++n;
+    left += c[0];
+    right += c[1];
+    only_left += c[0] && !c[1];
+    only_right += c[1] && !c[0];
+  }
+  ASSERT_GT(n, 100);
+  for (int planted : {left, right}) {
+    EXPECT_GT(planted, n / 3) << "of " << n;
+    EXPECT_LT(planted, n * 9 / 10) << "of " << n;
+  }
+  EXPECT_GT(only_left, n / 10);
+  EXPECT_GT(only_right, n / 10);
+  int mirrored = 0;
+  for (int w = first; w < last; ++w) {
+    const WindowSource& src = db_->source(w);
+    if (!src.mirrored) continue;
+    const auto it = original.find({src.trial, src.frame, src.speed});
+    ASSERT_NE(it, original.end());
+    const auto c = db_->contact(static_cast<int>(src.pose));
+    EXPECT_EQ(c[0], it->second[1]) << "window " << w;
+    EXPECT_EQ(c[1], it->second[0]) << "window " << w;
+    ++mirrored;
+  }
+  EXPECT_EQ(mirrored, n);
+}
 
 TEST_F(SampleDb, ClassesAreContiguousAndEveryWindowHasItsSource) {
   ASSERT_EQ(db_->classes().size(), 5u);  // basketball, boxing, climbing_ladder, running, walking
@@ -158,6 +201,9 @@ TEST_F(SampleDb, BadFilesAreRejectedWithClearMessages) {
   auto version = good;
   version[8] = std::byte{7};  // the version field follows the 8-byte magic
   expect_error(version, "version 7");
+  auto old = good;
+  old[8] = std::byte{1};  // a version 1 file (no foot contacts): rebuild
+  expect_error(old, "format version 1, but this legwork reads version 2; rebuild it with 'legwork accent build'");
   auto magic = good;
   magic[0] = std::byte{'X'};
   expect_error(magic, "not a legwork accent database");

@@ -30,9 +30,13 @@
 #include <legwork/accent/database.hpp>
 #include <legwork/accent/search.hpp>
 #include <legwork/core/tracker.hpp>
+#include <legwork/ik/full_body.hpp>
+#include <legwork/ik/two_bone.hpp>
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -70,6 +74,28 @@ struct Settings {
   // vertical) differs from the headset's by more than this (degrees; 0 = off):
   // keeps e.g. a lying swimmer's body off an upright user.
   double max_head_tilt_deg = 30.0;
+  // Foot locking: the database's per-pose foot contacts, blended over the
+  // matched candidates with their weights, say whether a foot is planted (on
+  // above contact_on, off below contact_off). A planted foot keeps its world
+  // position and orientation while the leg follows by two-bone IK; when the
+  // contact ends the foot blends back to the synthesized pose over
+  // foot_release_seconds. A planted foot the leg cannot reach is pulled along
+  // the leg (mostly up, like a heel rising); with foot_lock_follow_seconds > 0
+  // it also creeps toward the synthesized foot with that time constant.
+  bool foot_lock = true;
+  double foot_lock_follow_seconds = 0.15;
+  double contact_on = 0.6, contact_off = 0.4;
+  double foot_release_seconds = 0.15;
+  // Confidence blend toward the full-body IK body (legwork::ik on the same
+  // skeleton, run beside the synthesis): share of the IK pose in the output =
+  // ik_blend_min, rising smoothly to ik_blend_max as the match distance
+  // (best distance of the two hands, in typical distances, smoothed over
+  // ik_blend_seconds) goes from ik_blend_near to ik_blend_far, i.e. where the
+  // database does not cover the user; none of it while the headset is tilted
+  // more than 80 degrees from upright (fading from 60) (the IK body stands). 0 / 0 = off.
+  double ik_blend_min = 0.1, ik_blend_max = 1.0;
+  double ik_blend_near = 1.5, ik_blend_far = 3.0;
+  double ik_blend_seconds = 0.5;
 };
 
 // How the frame's pose was made (Info::match).
@@ -88,6 +114,9 @@ struct Info {
   double fallback = 0;      // share of the direct mapping in the output (0..1)
   std::array<int, 2> matches{0, 0};
   std::array<float, 2> best_distance{0, 0};  // in typical-distance units
+  std::array<float, 2> contact{0, 0};        // blended foot contact of the candidates (left, right), 0..1
+  std::array<bool, 2> foot_locked{false, false};
+  double ik_share = 0;  // share of the IK body in the output (0..1)
 };
 
 // Everything derived from the database and the settings; immutable.
@@ -108,6 +137,14 @@ class Model {
   Group group(int joint) const { return group_[static_cast<std::size_t>(joint)]; }
   const Limit& limit(int joint) const { return limit_[static_cast<std::size_t>(joint)]; }
   const Pose& neutral() const { return neutral_; }
+  // Leg chains (0 left, 1 right) and their lengths (thigh + shin, metres);
+  // can_lock_feet() is false when the skeleton lacks hip, knee or ankle roles.
+  const ik::TwoBoneChain& leg(int foot) const { return leg_[static_cast<std::size_t>(foot)]; }
+  double leg_length(int foot) const { return leg_length_[static_cast<std::size_t>(foot)]; }
+  bool can_lock_feet() const { return can_lock_feet_; }
+  // The full-body IK model on skeleton() (null when that skeleton cannot take
+  // one, or the IK blend is off).
+  const ik::Model* ik_model() const { return ik_.get(); }
   // Model bytes (shared by every avatar of this model).
   std::size_t bytes() const;
 
@@ -121,6 +158,10 @@ class Model {
   std::vector<Group> group_;
   std::vector<Limit> limit_;
   Pose neutral_;
+  std::array<ik::TwoBoneChain, 2> leg_{};
+  std::array<double, 2> leg_length_{0, 0};
+  bool can_lock_feet_ = false;
+  std::shared_ptr<const ik::Model> ik_;
 };
 
 // Throws legwork::Error for an unknown class (listing the database's), k out
@@ -155,6 +196,21 @@ struct State {
   std::array<std::array<Match, kMaxK>, 2> matches{};
   std::array<int, 2> match_count{0, 0};
   std::array<Feature, 2> live{};
+  // Foot locking (Settings::foot_lock), per foot (0 left, 1 right).
+  struct FootLock {
+    bool locked = false;
+    double weight = 0;      // share of the lock in the output (1 while locked, fading after)
+    Vec3 position = Vec3::Zero();      // world position of the planted ankle
+    Quat rotation = Quat::Identity();  // world rotation of the planted ankle
+  };
+  std::array<FootLock, 2> foot{};
+  std::array<double, 2> contact{0, 0};  // this frame's blended candidate contact
+  // The IK body (Settings::ik_blend_*): its avatar, pose and blend state.
+  std::optional<ik::State> ik;
+  Pose ik_pose;
+  double ik_distance = 0;  // smoothed match distance, typical distances
+  bool have_ik_distance = false;
+  double ik_share = 0;
   Pose smoothed;                // EWMA output
   std::vector<Quat> spring_rot; // spring filter: filtered local rotations...
   std::vector<Vec3> spring_vel; // ...and their angular velocities

@@ -14,6 +14,7 @@
 #include <legwork/accent/features.hpp>
 #include <legwork/core/motion.hpp>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -22,7 +23,8 @@
 
 namespace legwork::accent {
 
-inline constexpr std::uint32_t kFormatVersion = 1;
+// 2: per-pose foot contacts (version 1 files are refused with a "rebuild" message).
+inline constexpr std::uint32_t kFormatVersion = 2;
 
 // Where a window came from (for reports and leave-one-out checks).
 struct WindowSource {
@@ -91,6 +93,10 @@ class Database {
   // The head joint's up axis in the candidate pose (model space, unit): how
   // upright the performer's head was (a swimmer's is near horizontal).
   Vec3 head_up(int pose) const;
+  // Whether the performer's left [0] and right [1] foot was planted on the
+  // floor in the candidate pose (detected from foot height and speed at build
+  // time; never while the head was far from upright, e.g. swimming).
+  std::array<bool, 2> contact(int pose) const;
 
   // Serialized block (what save() writes; in memory or mapped).
   std::span<const std::byte> bytes() const;

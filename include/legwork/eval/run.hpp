@@ -80,6 +80,7 @@ struct SpeedResult {
   std::string trial, fold;
   int frames = 0, database_windows = 0;
   double accent_frames_per_second = 0, ik_frames_per_second = 0;
+  double accent_p99_us = 0;  // 99th percentile of the engine's per-frame update time (fastest pass)
   // That trial's ground truth and both methods' outputs (for a comparison video).
   Motion truth, accent, ik;
 };

@@ -12,6 +12,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/io/catalogue.hpp>
 #include <legwork/io/text.hpp>
+#include <legwork/wip/offline/truth.hpp>
 
 #include <Eigen/Eigenvalues>
 
@@ -70,6 +71,9 @@ Eigen::Matrix<double, kRawDim, kPosDim> raw_feature_matrix(double fps) {
   }
   return W;
 }
+
+// Foot contacts are kept only while the head's up axis is within 45 degrees of vertical.
+constexpr double kContactUpright = 0.7071;
 
 int group_of(int raw_dim) { return raw_dim < kPosDim ? 0 : raw_dim < kPosDim + 3 * (kWindow - 1) ? 1 : 2; }
 
@@ -185,6 +189,7 @@ PreparedTrial prepare_trial(const TrialInput& t, const Skeleton& reference, cons
     return p;
   }
   const auto pos = joint_positions(p.motion);
+  p.contacts = wip::true_contacts(p.motion);
   p.hands[0] = head_relative(p.motion, pos, Role::LeftHand);
   p.hands[1] = head_relative(p.motion, pos, Role::RightHand);
   if (cfg.mirror) {
@@ -192,6 +197,7 @@ PreparedTrial prepare_trial(const TrialInput& t, const Skeleton& reference, cons
     const auto mpos = joint_positions(p.mirrored);
     p.mirrored_hands[0] = head_relative(p.mirrored, mpos, Role::LeftHand);
     p.mirrored_hands[1] = head_relative(p.mirrored, mpos, Role::RightHand);
+    p.mirrored_contacts = wip::true_contacts(p.mirrored);
   }
   p.kept = true;
   return p;
@@ -232,6 +238,7 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
     for (int mir = 0; mir < (cfg.mirror ? 2 : 1); ++mir) {
       const Motion& m = mir ? t->mirrored : t->motion;
       const auto& hands = mir ? t->mirrored_hands : t->hands;
+      const auto& contacts = mir ? t->mirrored_contacts : t->contacts;
       for (int e = kWindow - 1; e < m.frame_count(); e += cfg.hop) {
         const auto pose = static_cast<std::uint32_t>(parts.poses.size() / (static_cast<std::size_t>(nj) * 4));
         const auto fr = m.frame(e);
@@ -245,6 +252,10 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
           head_model = fr.rotations[static_cast<std::size_t>(j)] * head_model;
         const Vec3 up = (head_model * Vec3::UnitY()).normalized();
         parts.head_up.insert(parts.head_up.end(), {static_cast<float>(up.x()), static_cast<float>(up.y()), static_cast<float>(up.z())});
+        // A planted foot only for a performer standing upright (not a swimmer's kick).
+        const bool upright = up.y() > kContactUpright;
+        for (const auto& c : contacts)
+          parts.contacts.push_back(upright && c[static_cast<std::size_t>(e)] ? std::uint8_t{1} : std::uint8_t{0});
         for (std::size_t si = 0; si < speeds.size(); ++si) {
           const double s = speeds[si];
           if (e - (kWindow - 1) * s < -1e-9) continue;

@@ -17,12 +17,15 @@ AccentRun accentuate(const Model& model, std::span<const TrackerFrame> frames, d
   run.output = Motion(model.skeleton(), fps, static_cast<int>(frames.size()));
   run.info.resize(frames.size());
   run.status.resize(frames.size());
+  run.frame_seconds.resize(frames.size());
   Pose pose = model.neutral();
   double seconds = 0;
   for (std::size_t f = 0; f < frames.size(); ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     run.status[f] = update(model, frames[f], state, pose.ref(), &run.info[f]);
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    run.frame_seconds[f] = static_cast<float>(s);
+    seconds += s;
     run.output.set_frame(static_cast<int>(f), pose);
   }
   run.seconds = seconds;

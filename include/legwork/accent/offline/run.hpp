@@ -12,6 +12,7 @@ struct AccentRun {
   std::vector<Info> info;      // per frame
   std::vector<UpdateStatus> status;  // per frame
   double seconds = 0;          // time spent in update() only
+  std::vector<float> frame_seconds;  // per frame: time in update()
 };
 
 // Runs one avatar of `model` over the frames (output labelled at `fps`). A
