@@ -4,7 +4,7 @@
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/core/measure.hpp>
-#include <legwork/wip/offline/truth.hpp>
+#include <legwork/core/contacts.hpp>
 
 #include "accent_testing.hpp"
 
@@ -138,7 +138,7 @@ TEST_F(HeldOut, PlantedFeetStayPutAndSlideLess) {
   Settings off;
   off.foot_lock = false;
   const AccentRun free = accentuate_motion(*db_, off, *input_), soft = accentuate_motion(*db_, Settings{}, *input_);
-  const auto planted = wip::true_contacts(*input_);
+  const auto planted = foot_contacts(*input_);
   auto slide_where_planted = [&](const Motion& m) {
     const auto s = ankle_slides(m);
     double sum = 0;

@@ -12,7 +12,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/io/catalogue.hpp>
 #include <legwork/io/text.hpp>
-#include <legwork/wip/offline/truth.hpp>
+#include <legwork/core/contacts.hpp>
 
 #include <Eigen/Eigenvalues>
 
@@ -189,7 +189,7 @@ PreparedTrial prepare_trial(const TrialInput& t, const Skeleton& reference, cons
     return p;
   }
   const auto pos = joint_positions(p.motion);
-  p.contacts = wip::true_contacts(p.motion);
+  p.contacts = foot_contacts(p.motion);
   p.hands[0] = head_relative(p.motion, pos, Role::LeftHand);
   p.hands[1] = head_relative(p.motion, pos, Role::RightHand);
   if (cfg.mirror) {
@@ -197,103 +197,65 @@ PreparedTrial prepare_trial(const TrialInput& t, const Skeleton& reference, cons
     const auto mpos = joint_positions(p.mirrored);
     p.mirrored_hands[0] = head_relative(p.mirrored, mpos, Role::LeftHand);
     p.mirrored_hands[1] = head_relative(p.mirrored, mpos, Role::RightHand);
-    p.mirrored_contacts = wip::true_contacts(p.mirrored);
+    p.mirrored_contacts = foot_contacts(p.mirrored);
   }
   p.kept = true;
   return p;
 }
 
-Database assemble_database(std::span<const PreparedTrial* const> trials, const Skeleton& reference,
-                           const BuildConfig& cfg, BuildReport* report) {
-  const auto t0 = std::chrono::steady_clock::now();
-  if (cfg.hop < 1) throw Error("accent build: hop must be at least 1 sample");
-  BlockParts parts;
-  parts.meta.skeleton = reference;
-  resolve_roles(parts.meta.skeleton);
-  parts.meta.height = measure_body(parts.meta.skeleton).standing_height;
-  parts.meta.settings = {cfg.fps, cfg.hop, cfg.correlation_threshold, speed_factors(cfg), cfg.mirror};
-  const auto& speeds = parts.meta.settings.speeds;
+namespace {
+
+// Every window of one trial (and of its mirrored copy): its pose, head-up
+// vector, foot contacts, re-timed hand windows and alignment, appended to
+// `parts` and `windows`.
+void add_trial_windows(const PreparedTrial* t, std::uint32_t trial_index, int head_joint, const Skeleton& reference,
+                       const BuildConfig& cfg, BlockParts& parts, std::vector<std::array<PosVec, 2>>& windows) {
   const int nj = reference.joint_count();
-
-  // Kept trials in class order (windows of a class must be contiguous).
-  std::vector<const PreparedTrial*> kept;
-  for (const auto* t : trials)
-    if (t->kept) kept.push_back(t);
-  std::stable_sort(kept.begin(), kept.end(), [](auto* a, auto* b) { return a->info.cls < b->info.cls; });
-
-  std::vector<std::array<PosVec, 2>> windows;
-  std::vector<int> window_counts;
-  const int head_joint = parts.meta.skeleton.roles[Role::Head];
-  if (head_joint < 0) throw Error("accent build: the reference skeleton has no head joint");
-  for (const auto* t : kept) {
-    if (t->motion.joint_count() != nj) throw Error("accent build: trial '" + t->info.file + "' is not on the reference skeleton");
-    if (parts.meta.classes.empty() || parts.meta.classes.back() != t->info.cls) {
-      if (!parts.meta.ranges.empty()) parts.meta.ranges.back().second = static_cast<int>(parts.sources.size());
-      parts.meta.classes.push_back(t->info.cls);
-      parts.meta.ranges.emplace_back(static_cast<int>(parts.sources.size()), 0);
-    }
-    const auto trial_index = static_cast<std::uint32_t>(parts.meta.trials.size());
-    parts.meta.trials.push_back(t->info);
-    const int before = static_cast<int>(parts.sources.size());
-    for (int mir = 0; mir < (cfg.mirror ? 2 : 1); ++mir) {
-      const Motion& m = mir ? t->mirrored : t->motion;
-      const auto& hands = mir ? t->mirrored_hands : t->hands;
-      const auto& contacts = mir ? t->mirrored_contacts : t->contacts;
-      for (int e = kWindow - 1; e < m.frame_count(); e += cfg.hop) {
-        const auto pose = static_cast<std::uint32_t>(parts.poses.size() / (static_cast<std::size_t>(nj) * 4));
-        const auto fr = m.frame(e);
-        for (int j = 0; j < nj; ++j) {
-          const Quat q = fr.rotations[static_cast<std::size_t>(j)].normalized();
-          parts.poses.insert(parts.poses.end(), {static_cast<float>(q.w()), static_cast<float>(q.x()),
-                                                 static_cast<float>(q.y()), static_cast<float>(q.z())});
-        }
-        Quat head_model = Quat::Identity();
-        for (int j = head_joint; j >= 0; j = reference.parents[static_cast<std::size_t>(j)])
-          head_model = fr.rotations[static_cast<std::size_t>(j)] * head_model;
-        const Vec3 up = (head_model * Vec3::UnitY()).normalized();
-        parts.head_up.insert(parts.head_up.end(), {static_cast<float>(up.x()), static_cast<float>(up.y()), static_cast<float>(up.z())});
-        // A planted foot only for a performer standing upright (not a swimmer's kick).
-        const bool upright = up.y() > kContactUpright;
-        for (const auto& c : contacts)
-          parts.contacts.push_back(upright && c[static_cast<std::size_t>(e)] ? std::uint8_t{1} : std::uint8_t{0});
-        for (std::size_t si = 0; si < speeds.size(); ++si) {
-          const double s = speeds[si];
-          if (e - (kWindow - 1) * s < -1e-9) continue;
-          std::array<HandWindow, 2> w;
-          for (int h = 0; h < 2; ++h)
-            for (int i = 0; i < kWindow; ++i)
-              w[static_cast<std::size_t>(h)][static_cast<std::size_t>(i)] =
-                  sample_path(hands[static_cast<std::size_t>(h)], e - (kWindow - 1 - i) * s);
-          windows.push_back({stack(w[0]), stack(w[1])});
-          AlignXZ a;
-          fill_align(w[0], w[1], a);
-          parts.align.push_back(a);
-          parts.sources.push_back({pose, trial_index, static_cast<std::uint32_t>(e), static_cast<std::uint16_t>(parts.meta.classes.size() - 1),
-                                   static_cast<std::uint8_t>(si), static_cast<std::uint8_t>(mir)});
-        }
+  const auto& speeds = parts.meta.settings.speeds;
+  for (int mir = 0; mir < (cfg.mirror ? 2 : 1); ++mir) {
+    const Motion& m = mir ? t->mirrored : t->motion;
+    const auto& hands = mir ? t->mirrored_hands : t->hands;
+    const auto& contacts = mir ? t->mirrored_contacts : t->contacts;
+    for (int e = kWindow - 1; e < m.frame_count(); e += cfg.hop) {
+      const auto pose = static_cast<std::uint32_t>(parts.poses.size() / (static_cast<std::size_t>(nj) * 4));
+      const auto fr = m.frame(e);
+      for (int j = 0; j < nj; ++j) {
+        const Quat q = fr.rotations[static_cast<std::size_t>(j)].normalized();
+        parts.poses.insert(parts.poses.end(), {static_cast<float>(q.w()), static_cast<float>(q.x()),
+                                               static_cast<float>(q.y()), static_cast<float>(q.z())});
+      }
+      Quat head_model = Quat::Identity();
+      for (int j = head_joint; j >= 0; j = reference.parents[static_cast<std::size_t>(j)])
+        head_model = fr.rotations[static_cast<std::size_t>(j)] * head_model;
+      const Vec3 up = (head_model * Vec3::UnitY()).normalized();
+      parts.head_up.insert(parts.head_up.end(), {static_cast<float>(up.x()), static_cast<float>(up.y()), static_cast<float>(up.z())});
+      // A planted foot only for a performer standing upright (not a swimmer's kick).
+      const bool upright = up.y() > kContactUpright;
+      for (const auto& c : contacts)
+        parts.contacts.push_back(upright && c[static_cast<std::size_t>(e)] ? std::uint8_t{1} : std::uint8_t{0});
+      for (std::size_t si = 0; si < speeds.size(); ++si) {
+        const double s = speeds[si];
+        if (e - (kWindow - 1) * s < -1e-9) continue;
+        std::array<HandWindow, 2> w;
+        for (int h = 0; h < 2; ++h)
+          for (int i = 0; i < kWindow; ++i)
+            w[static_cast<std::size_t>(h)][static_cast<std::size_t>(i)] =
+                sample_path(hands[static_cast<std::size_t>(h)], e - (kWindow - 1 - i) * s);
+        windows.push_back({stack(w[0]), stack(w[1])});
+        AlignXZ a;
+        fill_align(w[0], w[1], a);
+        parts.align.push_back(a);
+        parts.sources.push_back({pose, trial_index, static_cast<std::uint32_t>(e), static_cast<std::uint16_t>(parts.meta.classes.size() - 1),
+                                 static_cast<std::uint8_t>(si), static_cast<std::uint8_t>(mir)});
       }
     }
-    window_counts.push_back(static_cast<int>(parts.sources.size()) - before);
   }
-  if (!parts.meta.ranges.empty()) parts.meta.ranges.back().second = static_cast<int>(parts.sources.size());
-  // Per-trial verdicts (also when the build fails, so the CLI can show why).
-  auto fill_verdicts = [&] {
-    if (!report) return;
-    report->trials.clear();
-    for (const auto* t : trials) {
-      TrialVerdict v{t->info.file, t->info.cls, t->kept, t->info.correlation, 0, t->reason};
-      const auto it = std::find(kept.begin(), kept.end(), t);
-      if (it != kept.end()) v.windows = window_counts[static_cast<std::size_t>(it - kept.begin())];
-      report->trials.push_back(v);
-    }
-  };
-  if (windows.empty()) fill_verdicts();
-  if (windows.empty())
-    throw Error("accent build: no windows: every trial was dropped or too short (see the per-trial report; "
-                "lower --correlation or add trials)");
+}
 
-  // Per-dimension normalisation of the raw features, from the mean and
-  // covariance of the stacked positions (raw = W p is linear in them).
+// Per-dimension normalisation of the raw features and the projection onto
+// their principal axes (parts.meta.space), then every window's features.
+void project_features(const std::vector<std::array<PosVec, 2>>& windows, const BuildConfig& cfg, BlockParts& parts) {
+  // From the mean and covariance of the stacked positions (raw = W p is linear in them).
   const auto W = raw_feature_matrix(cfg.fps);
   PosVec mean = PosVec::Zero();
   Eigen::Matrix<double, kPosDim, kPosDim> cov = Eigen::Matrix<double, kPosDim, kPosDim>::Zero();
@@ -334,36 +296,91 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
     }
   }
 
-  // Typical distance: median over sampled original-speed windows of the
-  // distance to the nearest window of another trial (left hand).
-  {
-    std::vector<int> originals;
-    for (std::size_t w = 0; w < parts.sources.size(); ++w)
-      if (parts.sources[w].speed == 0 && !parts.sources[w].mirrored) originals.push_back(static_cast<int>(w));
-    std::mt19937 rng(12345);
-    std::shuffle(originals.begin(), originals.end(), rng);
-    originals.resize(std::min<std::size_t>(originals.size(), static_cast<std::size_t>(std::max(cfg.typical_samples, 1))));
-    std::vector<double> nn;
-    const auto& F = parts.features[0];
-    for (int q : originals) {
-      float best = std::numeric_limits<float>::max();
-      for (std::size_t w = 0; w < F.size(); ++w) {
-        if (parts.sources[w].trial == parts.sources[static_cast<std::size_t>(q)].trial) continue;
-        float s = 0;
-        for (int d = 0; d < kDim; ++d) {
-          const float x = F[w][static_cast<std::size_t>(d)] - F[static_cast<std::size_t>(q)][static_cast<std::size_t>(d)];
-          s += x * x;
-        }
-        best = std::min(best, s);
+}
+
+// Typical distance: median over sampled original-speed windows of the
+// distance to the nearest window of another trial (left hand).
+double typical_distance(const BlockParts& parts, int samples) {
+  std::vector<int> originals;
+  for (std::size_t w = 0; w < parts.sources.size(); ++w)
+    if (parts.sources[w].speed == 0 && !parts.sources[w].mirrored) originals.push_back(static_cast<int>(w));
+  std::mt19937 rng(12345);
+  std::shuffle(originals.begin(), originals.end(), rng);
+  originals.resize(std::min<std::size_t>(originals.size(), static_cast<std::size_t>(std::max(samples, 1))));
+  std::vector<double> nn;
+  const auto& F = parts.features[0];
+  for (int q : originals) {
+    float best = std::numeric_limits<float>::max();
+    for (std::size_t w = 0; w < F.size(); ++w) {
+      if (parts.sources[w].trial == parts.sources[static_cast<std::size_t>(q)].trial) continue;
+      float s = 0;
+      for (int d = 0; d < kDim; ++d) {
+        const float x = F[w][static_cast<std::size_t>(d)] - F[static_cast<std::size_t>(q)][static_cast<std::size_t>(d)];
+        s += x * x;
       }
-      if (best < std::numeric_limits<float>::max()) nn.push_back(std::sqrt(best));
+      best = std::min(best, s);
     }
-    if (!nn.empty()) {
-      parts.meta.typical_distance = std::max(median(nn), 1e-6);
-    } else {
-      parts.meta.typical_distance = 1.0;  // a single trial: no cross-trial distance to measure
-    }
+    if (best < std::numeric_limits<float>::max()) nn.push_back(std::sqrt(best));
   }
+  return nn.empty() ? 1.0  // a single trial: no cross-trial distance to measure
+                    : std::max(median(nn), 1e-6);
+}
+
+}  // namespace
+
+Database assemble_database(std::span<const PreparedTrial* const> trials, const Skeleton& reference,
+                           const BuildConfig& cfg, BuildReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (cfg.hop < 1) throw Error("accent build: hop must be at least 1 sample");
+  BlockParts parts;
+  parts.meta.skeleton = reference;
+  resolve_roles(parts.meta.skeleton);
+  parts.meta.height = measure_body(parts.meta.skeleton).standing_height;
+  parts.meta.settings = {cfg.fps, cfg.hop, cfg.correlation_threshold, speed_factors(cfg), cfg.mirror};
+  const int nj = reference.joint_count();
+
+  // Kept trials in class order (windows of a class must be contiguous).
+  std::vector<const PreparedTrial*> kept;
+  for (const auto* t : trials)
+    if (t->kept) kept.push_back(t);
+  std::stable_sort(kept.begin(), kept.end(), [](auto* a, auto* b) { return a->info.cls < b->info.cls; });
+
+  std::vector<std::array<PosVec, 2>> windows;
+  std::vector<int> window_counts;
+  const int head_joint = parts.meta.skeleton.roles[Role::Head];
+  if (head_joint < 0) throw Error("accent build: the reference skeleton has no head joint");
+  for (const auto* t : kept) {
+    if (t->motion.joint_count() != nj) throw Error("accent build: trial '" + t->info.file + "' is not on the reference skeleton");
+    if (parts.meta.classes.empty() || parts.meta.classes.back() != t->info.cls) {
+      if (!parts.meta.ranges.empty()) parts.meta.ranges.back().second = static_cast<int>(parts.sources.size());
+      parts.meta.classes.push_back(t->info.cls);
+      parts.meta.ranges.emplace_back(static_cast<int>(parts.sources.size()), 0);
+    }
+    const auto trial_index = static_cast<std::uint32_t>(parts.meta.trials.size());
+    parts.meta.trials.push_back(t->info);
+    const int before = static_cast<int>(parts.sources.size());
+    add_trial_windows(t, trial_index, head_joint, reference, cfg, parts, windows);
+    window_counts.push_back(static_cast<int>(parts.sources.size()) - before);
+  }
+  if (!parts.meta.ranges.empty()) parts.meta.ranges.back().second = static_cast<int>(parts.sources.size());
+  // Per-trial verdicts (also when the build fails, so the CLI can show why).
+  auto fill_verdicts = [&] {
+    if (!report) return;
+    report->trials.clear();
+    for (const auto* t : trials) {
+      TrialVerdict v{t->info.file, t->info.cls, t->kept, t->info.correlation, 0, t->reason};
+      const auto it = std::find(kept.begin(), kept.end(), t);
+      if (it != kept.end()) v.windows = window_counts[static_cast<std::size_t>(it - kept.begin())];
+      report->trials.push_back(v);
+    }
+  };
+  if (windows.empty()) fill_verdicts();
+  if (windows.empty())
+    throw Error("accent build: no windows: every trial was dropped or too short (see the per-trial report; "
+                "lower --correlation or add trials)");
+
+  project_features(windows, cfg, parts);
+  parts.meta.typical_distance = typical_distance(parts, cfg.typical_samples);
 
   auto block = serialize_block(parts);
   if (report) {

@@ -76,7 +76,7 @@ struct PreparedTrial {
   std::array<std::vector<Vec3>, 2> hands;           // head-relative, per frame
   Motion mirrored;                   // empty unless BuildConfig::mirror
   std::array<std::vector<Vec3>, 2> mirrored_hands;
-  // Per frame, 1 while the left [0] / right [1] foot is planted (wip::true_contacts
+  // Per frame, 1 while the left [0] / right [1] foot is planted (foot_contacts
   // on foot height and speed), for `motion` and `mirrored`.
   std::array<std::vector<char>, 2> contacts, mirrored_contacts;
 };
