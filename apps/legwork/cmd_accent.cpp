@@ -65,9 +65,8 @@ void register_build(CLI::App& parent) {
   cmd->callback([a] {
     require_extension("--out", a->out, {".lwdb"});
     if (!a->weights.empty()) {
-      const auto w = split_commas(a->weights);
-      if (w.size() != 3) throw Error("--weights '" + a->weights + "': expected three numbers p,v,a");
-      for (std::size_t i = 0; i < 3; ++i) a->cfg.group_weight[i] = std::stod(w[i]);
+      const auto w = io::parse_number_list(a->weights, 3, "--weights", "position,velocity,acceleration weights such as 1,1,0.5");
+      for (std::size_t i = 0; i < 3; ++i) a->cfg.group_weight[i] = w[i];
     }
     const auto t0 = Clock::now();
     auto trials = load_trials(a->data, split_commas(a->classes), a->exclude, progress_bar("reading "));
@@ -188,6 +187,7 @@ void register_run(CLI::App& parent) {
       announce("headset session", a->save_session);
     }
     AccentRun run = accentuate(make_model(db, cfg), frames, fps);
+    for (const auto& w : run.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     const eval::SessionFigures fig = eval::session_figures(run);
     std::printf("database: %s (%d windows, loaded in %.1f ms)\n", a->db.c_str(), db.window_count(), load_s * 1e3);
     std::printf("frames: %d at %.4g Hz; %.0f frames/s in update() (%s search); mean match weight %.2f\n", run.output.frame_count(), fps,
