@@ -11,6 +11,7 @@
 #include <legwork/accent/offline/retarget.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/core/measure.hpp>
+#include <legwork/io/options.hpp>
 #include <legwork/io/text.hpp>
 #include <legwork/io/tracker_csv.hpp>
 

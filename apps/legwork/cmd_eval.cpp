@@ -4,7 +4,7 @@
 #include "command.hpp"
 
 #include <legwork/eval/report.hpp>
-#include <legwork/io/text.hpp>
+#include <legwork/io/options.hpp>
 
 #include <unistd.h>
 

@@ -3,7 +3,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
-#include <legwork/core/measure.hpp>
+#include <legwork/core/limits.hpp>
 #include <legwork/core/rotation.hpp>
 #include <legwork/ik/two_bone.hpp>
 

@@ -3,6 +3,7 @@
 
 #include <legwork/accent/accent.hpp>
 #include <legwork/accent/database.hpp>
+#include <legwork/core/limits.hpp>
 #include <legwork/core/measure.hpp>
 #include <legwork/ik/full_body.hpp>
 #include <legwork/wip/wip.hpp>

@@ -1,5 +1,6 @@
 // File helpers: every failure names the path and says what is wrong, in
 // words a user can act on (never "std::bad_alloc" for a directory).
+#include <legwork/io/options.hpp>
 #include <legwork/io/text.hpp>
 
 #include <legwork/core/types.hpp>

@@ -21,12 +21,6 @@ BodyMeasures measure_body(const Skeleton& skel);
 // = 1/0.45 inch, inches, centimetres, millimetres). `why` says what was chosen.
 double guess_unit_scale(double standing_height_units, std::string* why = nullptr);
 
-// Plausible standing heights of a user (metres) for the runtimes that scale
-// an avatar to one: outside this range a typo or a wrong unit is far more
-// likely than a user (0.1 m made every accentuation frame unmatched).
-inline constexpr double kMinUserHeight = 0.5;
-inline constexpr double kMaxUserHeight = 2.5;
-
 constexpr double kCmuUnitMetres = (1.0 / 0.45) * 2.54 / 100.0;
 
 }  // namespace legwork

@@ -3,7 +3,6 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
-#include <vector>
 
 namespace legwork::io {
 
@@ -27,18 +26,6 @@ std::string extension_of(const std::string& path);
 std::string_view text_body(std::string_view text, std::string_view source);
 // True if `s` is well-formed UTF-8 (no overlong forms, surrogates or values past U+10FFFF).
 bool is_valid_utf8(std::string_view s);
-// Checks, before any work, that `path` can be a folder written into: it is a
-// folder (or does not exist yet) and a folder can be created in the nearest
-// existing folder at or above it (probed, then removed). Throws "<option> '<path>': is a file, not a folder" or
-// "<option> '<path>': cannot write in '<folder>' (<reason>)".
-void require_writable_folder(const std::string& path, std::string_view option);
-
-// Exactly `count` comma-separated finite numbers ("1,1,0.5"; spaces allowed).
-// Throws "<option> '<text>': '<item>' is not a number; expected <form>" (or
-// "expected <count> numbers <form>").
-std::vector<double> parse_number_list(std::string_view text, std::size_t count, std::string_view option,
-                                      std::string_view form);
-
 // `s` cut to `max` bytes with control and non-ASCII bytes shown as '?', for
 // messages that quote file content.
 std::string printable_text(std::string_view s, std::size_t max = 200);
