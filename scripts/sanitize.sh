@@ -46,10 +46,11 @@ if command -v ccache >/dev/null 2>&1; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
 # Warnings are the Release build's job (-Werror there); here only the sanitizers judge.
-# -O1 -g1 (line tables for the reports): a third less compile time than -O2 -g.
+# -O0 -g1 (line tables for the reports): the sanitizers need no optimizer, and GCC compiles
+# legwork 30-33% faster at -O0 than at -O1 (accent.cpp 27.7 vs 39.2 s CPU, protocol.cpp 13.7 vs 20.4 s).
 CXX=$cxx cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O0 -g1 -DNDEBUG" \
   -DLEGWORK_WERROR=OFF -DLEGWORK_BENCH=OFF >/dev/null
 
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1"

@@ -6,6 +6,7 @@
 #include <lo/lo.h>
 
 #include <cmath>
+#include <cstring>
 #include <string_view>
 
 namespace legwork::serve {
@@ -13,16 +14,33 @@ namespace legwork::serve {
 namespace {
 constexpr double kStaleSeconds = 0.5;  // a device not heard from for this long counts as lost
 
-double arg_number(char type, lo_arg* a) { return type == 'f' ? a->f : type == 'd' ? a->d : NAN; }
+// liblo's arguments point into the packet at 4-byte boundaries, but lo_arg
+// (a union with 8-byte members) asks for 8: reading a->f or a->d there is
+// undefined behaviour (UBSan: misaligned member access, found by
+// fuzz/vmc_fuzz.cpp). The bytes are copied out instead.
+double arg_number(char type, const void* a) {
+  if (type == 'f') {
+    float f;
+    std::memcpy(&f, a, sizeof f);
+    return f;
+  }
+  if (type == 'd') {
+    double d;
+    std::memcpy(&d, a, sizeof d);
+    return d;
+  }
+  return NAN;
+}
 
 int on_device(const char* path, const char* types, lo_arg** argv, int argc, lo_message, void* user) {
   if (argc < 8 || types[0] != 's') return 0;
   double v[7];
   for (int i = 0; i < 7; ++i) {
-    v[i] = arg_number(types[i + 1], argv[i + 1]);
+    v[i] = arg_number(types[i + 1], static_cast<const void*>(argv[i + 1]));
     if (!std::isfinite(v[i])) return 0;  // a malformed sample is ignored
   }
-  static_cast<VmcInput*>(user)->on(path, &argv[0]->s, Vec3(v[0], v[1], v[2]), Quat(v[6], v[3], v[4], v[5]));
+  const char* serial = static_cast<const char*>(static_cast<const void*>(argv[0]));
+  static_cast<VmcInput*>(user)->on(path, serial, Vec3(v[0], v[1], v[2]), Quat(v[6], v[3], v[4], v[5]));
   return 0;
 }
 }  // namespace
