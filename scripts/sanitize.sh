@@ -20,7 +20,7 @@ if [ "${1:-}" = "--ci" ]; then ci=1; shift; fi
 #  - a timing test: its client must send faster than twice the server's 120 Hz
 #    limit, which ASan at -O0 on a loaded machine does not;
 #  - BvhSharedData.*: every file of ../shared/data/cmu, 230 s of the 385 s of
-#    test CPU under ASan -O0; the sample files (BvhReader.*) and the BVH fuzz
+#    test time under ASan -O0; the sample files (BvhReader.*) and the BVH fuzz
 #    target run the same reader code.
 ci_targets=(test_core test_io test_capi test_serve)
 ci_exclude='^(Serve\.RateLimitDropsFramesAboveMaxRateWithAnError|BvhSharedData\..*)$'
