@@ -49,7 +49,7 @@ function(legwork_tests name)
   target_link_libraries(test_${name} PRIVATE ${ARG_LIBS} legwork_testdata GTest::gtest_main)
   legwork_warnings(test_${name})
   gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60
-    PROPERTIES ENVIRONMENT "LEGWORK_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+    PROPERTIES ENVIRONMENT "LEGWORK_SOURCE_DIR=${PROJECT_SOURCE_DIR}" LABELS test_${name})
 endfunction()
 
 # legwork_link_modules(TARGET): links every module library that exists (the

@@ -1,15 +1,21 @@
 #!/usr/bin/env bash
-# Runs the libFuzzer targets (BVH, tracker CSV, GLB) built with clang + ASan/UBSan.
-#   scripts/fuzz.sh [SECONDS]     bounded run, SECONDS in total (default 45):
-#                                 40% BVH, 25% tracker CSV, 35% GLB
+# Runs the libFuzzer targets built with clang + ASan/UBSan: BVH, tracker CSV,
+# GLB, walk files (key-pose JSON), floor paths (JSON + SVG), the accent
+# database file, the serve protocol's messages and the VMC (OSC) input.
+#   scripts/fuzz.sh [SECONDS]     bounded run, SECONDS in total (default 45),
+#                                 shared out by the weights in `targets` below
 #   scripts/fuzz.sh --long [RUNS] each target until RUNS executions (default
 #                                 10,000,000), at most LEGWORK_FUZZ_LONG_HOURS
 #                                 hours each (default 6); the corpus persists
 #                                 in build-fuzz/corpus-*/ between runs
-# Each target goes past parsing: BVH into forward kinematics of every frame
-# and the writer; tracker CSV into io::frames_from_table, the frame clock and
-# usable(); GLB into FK and the writer. Seed corpora come from the repo's real
-# files (data/cmu samples, fuzz/corpus/), with a dictionary per target.
+# Each target goes past parsing into the code that consumes the result: BVH
+# and GLB into forward kinematics and the writer; tracker CSV into
+# io::frames_from_table, the frame clock and usable(); walk files into the
+# cycle builder and a walk; paths into arc-length queries and a walk along
+# them; the database into its KD-trees and accent::update(); protocol and VMC
+# frames into a full-body IK avatar (fuzz/*_fuzz.cpp say what each checks).
+# Seed corpora come from the repo's real files (data/, fuzz/corpus/), with a
+# dictionary per target (fuzz/*.dict).
 # Exits non-zero if a fuzzer finds a crash, leak, sanitizer error, timeout or
 # out-of-memory; the reproducer is left in build-fuzz/artifacts/. The last
 # line of each run's stats (executions, exec/s) is printed as "fuzz: ...".
@@ -32,7 +38,10 @@ if command -v ccache >/dev/null 2>&1; then
 fi
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
   -DLEGWORK_FUZZ=ON -DLEGWORK_TESTS=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_WERROR=OFF >/dev/null
-ninja -C "$build" -j"$jobs" bvh_fuzz tracker_csv_fuzz glb_fuzz
+# name:weight(% of the bounded run):max_len; the seeds of each are set up below.
+targets=(bvh:20:16384 tracker_csv:10:8192 glb:15:131072 walk_keys:10:16384 path:10:4096 accent_db:15:262144
+  protocol:10:4096 vmc:10:4096)
+ninja -C "$build" -j"$jobs" $(for t in "${targets[@]}"; do printf '%s_fuzz ' "${t%%:*}"; done)
 mkdir -p "$build/artifacts"
 
 # BVH seeds: each sample trial cut to its hierarchy + 3 motion lines (with
@@ -61,9 +70,28 @@ cp "$root"/tests/wip/data/*.csv "$root"/fuzz/corpus/tracker_csv/* "$csv_seeds/"
 printf 'time,head_x,head_y,head_z,head_qw,head_qx,head_qy,head_qz,left_hand_x,left_hand_y,left_hand_z\n0,0,1.7,0,1,0,0,0,0.3,1,0.1\n0.1,0.01,1.69,0.02,0.7071068,0,0.7071068,0,,,\n0.2,0,1.7,0,1,0,0,0,nan,1,0.1\r\n' \
   >"$csv_seeds/tracker.csv"
 
-# GLB seeds: fuzz/corpus/glb (sample trials written by 'legwork convert', as
-# .glb and split as JSON\0BIN, the form glb_fuzz wraps itself).
-glb_seeds="$root/fuzz/corpus/glb"
+# Walk-file seeds: the repo's walks (data/walks/*.json). Paths, the
+# database, protocol and VMC seeds are committed in fuzz/corpus/<target>/
+# (see fuzz/corpus/README.md); GLB seeds are fuzz/corpus/glb (sample trials
+# written by 'legwork convert', as .glb and split as JSON\0BIN, the form
+# glb_fuzz wraps itself).
+walk_seeds="$build/corpus-walk_keys-seed"
+rm -rf "$walk_seeds"
+mkdir -p "$walk_seeds"
+cp "$root"/data/walks/*.json "$walk_seeds/"
+path_seeds="$build/corpus-path-seed"
+rm -rf "$path_seeds"
+mkdir -p "$path_seeds"
+cp "$root"/data/walks/paths/*.json "$root"/fuzz/corpus/path/* "$path_seeds/"
+seed_dir() {
+  case $1 in
+    bvh) echo "$seeds" ;;
+    tracker_csv) echo "$csv_seeds" ;;
+    walk_keys) echo "$walk_seeds" ;;
+    path) echo "$path_seeds" ;;
+    *) echo "$root/fuzz/corpus/$1" ;;
+  esac
+}
 
 summary=()
 run() {  # name seeds dict max_len seconds|runs
@@ -86,15 +114,11 @@ run() {  # name seeds dict max_len seconds|runs
     exit $rc
   fi
 }
-if [ $long = 1 ]; then
-  run bvh "$seeds" "$root/fuzz/bvh.dict" 16384 "$runs"
-  run tracker_csv "$csv_seeds" "$root/fuzz/tracker_csv.dict" 8192 "$runs"
-  run glb "$glb_seeds" "$root/fuzz/glb.dict" 131072 "$runs"
-else
-  # -max_total_time=0 would mean "forever": every run gets at least a second.
-  share() { local s=$((seconds * $1 / 100)); echo $((s > 0 ? s : 1)); }
-  run bvh "$seeds" "$root/fuzz/bvh.dict" 16384 "$(share 40)"
-  run tracker_csv "$csv_seeds" "$root/fuzz/tracker_csv.dict" 8192 "$(share 25)"
-  run glb "$glb_seeds" "$root/fuzz/glb.dict" 131072 "$(share 35)"
-fi
+# -max_total_time=0 would mean "forever": every run gets at least a second.
+share() { local s=$((seconds * $1 / 100)); echo $((s > 0 ? s : 1)); }
+for t in "${targets[@]}"; do
+  IFS=: read -r name weight max_len <<<"$t"
+  if [ $long = 1 ]; then budget=$runs; else budget=$(share "$weight"); fi
+  run "$name" "$(seed_dir "$name")" "$root/fuzz/$name.dict" "$max_len" "$budget"
+done
 printf '%s\n' "${summary[@]}"

@@ -4,6 +4,7 @@
 #include <legwork/accent/offline/builder.hpp>
 #include <legwork/accent/offline/report.hpp>
 #include <legwork/eval/accent_job.hpp>
+#include <legwork/io/options.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -45,9 +46,8 @@ void register_build(CLI::App& parent) {
   cmd->callback([a] {
     require_extension("--out", a->out, {".lwdb"});
     if (!a->weights.empty()) {
-      const auto w = split_commas(a->weights);
-      if (w.size() != 3) throw Error("--weights '" + a->weights + "': expected three numbers p,v,a");
-      for (std::size_t i = 0; i < 3; ++i) a->cfg.group_weight[i] = std::stod(w[i]);
+      const auto w = io::parse_number_list(a->weights, 3, "--weights", "position,velocity,acceleration weights such as 1,1,0.5");
+      for (std::size_t i = 0; i < 3; ++i) a->cfg.group_weight[i] = w[i];
     }
     const auto t0 = Clock::now();
     auto trials = load_trials(a->data, split_commas(a->classes), a->exclude, progress_bar("reading"));
@@ -124,6 +124,7 @@ void register_run(CLI::App& parent) {
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");
   output_file(cmd->add_option("--save-session", a->save_session, "also write the input as a headset session CSV (the format --input reads)"));
   cmd->callback([a] { eval::run_accent_job(*a); });
+#include <legwork/io/options.hpp>
 }
 
 void register_accent(CLI::App& app) {

@@ -4,6 +4,7 @@
 #include "command.hpp"
 
 #include <legwork/eval/report.hpp>
+#include <legwork/io/options.hpp>
 
 #include <unistd.h>
 
@@ -68,6 +69,7 @@ void register_eval(CLI::App& app) {
   cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");
   cmd->callback([a] {
     if (a->video && a->out.empty()) throw Error("--video needs --out DIR");
+    if (!a->out.empty()) io::require_writable_folder(a->out, "--out");
     const auto classes = split_commas(a->classes);
     eval::Catalogue data = eval::read_catalogue(a->data, a->manifest, classes);
     std::unique_ptr<eval::Catalogue> test;

@@ -3,11 +3,13 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/core/limits.hpp>
 #include <legwork/core/rotation.hpp>
 #include <legwork/ik/two_bone.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace legwork::accent {
 namespace {
@@ -55,7 +57,12 @@ void check_settings(const Database& db, const Settings& cfg) {
   if (cfg.k_left < 0 || cfg.k_right < 0 || cfg.k_left > kMaxK || cfg.k_right > kMaxK)
     throw Error("accent: k must be between 0 and " + std::to_string(kMaxK));
   if (!(cfg.exaggeration > 0) || !std::isfinite(cfg.exaggeration)) throw Error("accent: exaggeration must be positive");
-  if (cfg.user_height < 0 || !std::isfinite(cfg.user_height)) throw Error("accent: user height must be positive");
+  if (!(cfg.user_height == 0 || (cfg.user_height >= kMinUserHeight && cfg.user_height <= kMaxUserHeight))) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg, "accent: user height %g m is outside the plausible range [%g, %g] m (0 = the database skeleton's height)",
+                  cfg.user_height, kMinUserHeight, kMaxUserHeight);
+    throw Error(msg);
+  }
   if (!(cfg.smooth_halflife >= 0) || !std::isfinite(cfg.smooth_halflife))
     throw Error("accent: smoothing half-life must be >= 0 seconds");
   if (!std::isfinite(cfg.fallback_seconds) || cfg.fallback_seconds < 0)

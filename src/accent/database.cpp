@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <string_view>
+#include <type_traits>
 #include <fcntl.h>
 #include <fstream>
 #include <sys/mman.h>
@@ -23,7 +25,6 @@ using json = nlohmann::json;
 std::size_t align64(std::size_t n) { return (n + 63) & ~static_cast<std::size_t>(63); }
 
 json vec3_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
-Vec3 json_vec3(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
 
 json meta_json(const DatabaseMeta& p) {
   json j;
@@ -67,50 +68,140 @@ json meta_json(const DatabaseMeta& p) {
   throw Error("accent database '" + source + "': " + what);
 }
 
-void parse_meta(DatabaseMeta& m, const std::string& text, const std::string& source) {
-  json j;
+// The metadata JSON read field by field: every error names the field
+// ("metadata field 'build.fps': expected a number, found string") and never
+// echoes the JSON library's text (which quotes raw bytes of the file).
+class MetaReader {
+ public:
+  explicit MetaReader(const std::string& source) : source_(source) {}
+  const json& at(const json& obj, const std::string& path, const char* key) const {
+    const std::string field = path.empty() ? key : path + "." + key;
+    if (!obj.is_object()) fail(source_, "metadata field '" + path + "': expected an object, found " + obj.type_name());
+    const auto it = obj.find(key);
+    if (it == obj.end()) fail(source_, "metadata field '" + field + "' is missing; rebuild the database");
+    return *it;
+  }
+  const json& array(const json& obj, const std::string& path, const char* key) const {
+    const json& a = at(obj, path, key);
+    if (!a.is_array())
+      fail(source_, "metadata field '" + (path.empty() ? key : path + "." + key) + "': expected an array, found " + a.type_name());
+    return a;
+  }
+  const json& at(const json& arr, const std::string& path, std::size_t i) const {
+    if (!arr.is_array() || i >= arr.size())
+      fail(source_, "metadata field '" + path + "': expected an array of at least " + std::to_string(i + 1) + " items");
+    return arr[i];
+  }
+  template <class T>
+  T get(const json& obj, const std::string& path, const char* key) const {
+    return as<T>(at(obj, path, key), path.empty() ? key : path + "." + key);
+  }
+  template <class T>
+  T as(const json& v, const std::string& field) const {
+    static_assert(!std::is_integral_v<T> || std::is_same_v<T, bool>, "whole numbers: integer() (a float-to-int cast of 1e300 is undefined)");
+    try {
+      return v.get<T>();
+    } catch (const json::exception&) {
+      fail(source_, "metadata field '" + field + "': " + expected<T>() + ", found " + v.type_name() +
+                        "; rebuild the database");
+    }
+  }
+  int integer(const json& v, const std::string& field) const {
+    if (!v.is_number_integer())
+      fail(source_, "metadata field '" + field + "': expected a whole number, found " + v.type_name() + "; rebuild the database");
+    const bool fits = v.is_number_unsigned() ? v.get<std::uint64_t>() <= 0x7fffffffu
+                                             : v.get<std::int64_t>() >= -0x7fffffff - 1 && v.get<std::int64_t>() <= 0x7fffffff;
+    if (!fits) fail(source_, "metadata field '" + field + "': " + v.dump() + " is out of range");
+    return static_cast<int>(v.get<std::int64_t>());
+  }
+  int integer(const json& obj, const std::string& path, const char* key) const {
+    return integer(at(obj, path, key), path.empty() ? key : path + "." + key);
+  }
+  std::vector<int> integers(const json& v, const std::string& field) const {
+    if (!v.is_array()) fail(source_, "metadata field '" + field + "': expected an array, found " + v.type_name());
+    std::vector<int> out;
+    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(integer(v[i], field + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+  Vec3 vec3(const json& v, const std::string& field) const {
+    const auto a = as<std::vector<double>>(v, field);
+    if (a.size() != 3) fail(source_, "metadata field '" + field + "': expected [x, y, z]");
+    return {a[0], a[1], a[2]};
+  }
+
+ private:
+  template <class T>
+  static std::string expected() {
+    if constexpr (std::is_same_v<T, bool>) return "expected true or false";
+    else if constexpr (std::is_same_v<T, std::string>) return "expected a string";
+    else if constexpr (std::is_arithmetic_v<T>) return "expected a number";
+    else return "expected an array of the right length and type";
+  }
+  const std::string& source_;
+};
+
+Skeleton parse_skeleton(const MetaReader& r, const json& sk, const std::string& source) {
+  const auto names = r.get<std::vector<std::string>>(sk, "skeleton", "names");
+  const auto parents = r.integers(r.at(sk, "skeleton", "parents"), "skeleton.parents");
+  const json& offsets = r.array(sk, "skeleton", "rest_offsets_m");
+  const json& ends = r.array(sk, "skeleton", "end_sites_m");
+  if (parents.size() != names.size() || offsets.size() != names.size() || ends.size() != names.size())
+    fail(source, "metadata field 'skeleton': names, parents, rest_offsets_m and end_sites_m have different lengths");
+  std::vector<Vec3> offset(names.size()), end(names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string at = "[" + std::to_string(i) + "]";
+    offset[i] = r.vec3(offsets[i], "skeleton.rest_offsets_m" + at);
+    if (!ends[i].is_null()) end[i] = r.vec3(ends[i], "skeleton.end_sites_m" + at);
+  }
   try {
-    j = json::parse(text);
     Skeleton s;
-    const auto& sk = j.at("skeleton");
-    const auto names = sk.at("names").get<std::vector<std::string>>();
-    const auto parents = sk.at("parents").get<std::vector<int>>();
-    if (names.size() != parents.size() || names.size() != sk.at("rest_offsets_m").size())
-      fail(source, "skeleton arrays have different lengths");
     for (std::size_t i = 0; i < names.size(); ++i) {
-      s.add_joint(names[i], parents[i], json_vec3(sk.at("rest_offsets_m").at(i)));
-      const auto& e = sk.at("end_sites_m").at(i);
-      if (!e.is_null()) {
-        s.end_sites[i] = json_vec3(e);
-        s.has_end_site[i] = 1;
-      }
+      s.add_joint(names[i], parents[i], offset[i]);
+      s.end_sites[i] = end[i];
+      s.has_end_site[i] = ends[i].is_null() ? 0 : 1;
     }
     s.validate();
     resolve_roles(s);
-    m.skeleton = std::move(s);
-    m.height = j.at("height_m").get<double>();
-    const auto& b = j.at("build");
-    m.settings.fps = b.at("fps").get<double>();
-    m.settings.hop = b.at("hop").get<int>();
-    m.settings.correlation_threshold = b.at("correlation_threshold").get<double>();
-    m.settings.speeds = b.at("speeds").get<std::vector<double>>();
-    m.settings.mirrored = b.at("mirrored").get<bool>();
-    const auto& f = j.at("features");
-    if (f.at("window").get<int>() != kWindow) fail(source, "window size differs from this build's " + std::to_string(kWindow));
-    m.space.fps = f.at("fps").get<double>();
-    m.space.scale = f.at("scale").get<std::array<double, kRawDim>>();
-    m.space.group_weight = f.at("group_weight").get<std::array<double, 3>>();
-    m.space.projection = f.at("projection").get<std::array<double, kDim * kDim>>();
-    m.typical_distance = j.at("typical_distance").get<double>();
-    m.classes = j.at("classes").get<std::vector<std::string>>();
-    m.ranges.clear();
-    for (const auto& r : j.at("class_ranges")) m.ranges.emplace_back(r.at(0).get<int>(), r.at(1).get<int>());
-    m.trials.clear();
-    for (const auto& t : j.at("trials"))
-      m.trials.push_back({t.at("file").get<std::string>(), t.at("class").get<std::string>(), t.at("subject").get<int>(),
-                          t.at("trial").get<int>(), t.at("correlation").get<double>()});
-  } catch (const json::exception& e) {
-    fail(source, std::string("metadata is malformed: ") + e.what());
+    return s;
+  } catch (const Error& e) {
+    fail(source, std::string("metadata field 'skeleton': ") + e.what());
+  }
+}
+
+void parse_meta(DatabaseMeta& m, const std::string& text, const std::string& source) {
+  const json j = json::parse(text, nullptr, false);
+  if (j.is_discarded()) fail(source, "metadata is not valid JSON; rebuild the database");
+  const MetaReader r(source);
+  m.skeleton = parse_skeleton(r, r.at(j, "", "skeleton"), source);
+  m.height = r.get<double>(j, "", "height_m");
+  const json& b = r.at(j, "", "build");
+  m.settings.fps = r.get<double>(b, "build", "fps");
+  m.settings.hop = r.integer(b, "build", "hop");
+  m.settings.correlation_threshold = r.get<double>(b, "build", "correlation_threshold");
+  m.settings.speeds = r.get<std::vector<double>>(b, "build", "speeds");
+  m.settings.mirrored = r.get<bool>(b, "build", "mirrored");
+  const json& f = r.at(j, "", "features");
+  if (r.integer(f, "features", "window") != kWindow) fail(source, "window size differs from this build's " + std::to_string(kWindow));
+  m.space.fps = r.get<double>(f, "features", "fps");
+  m.space.scale = r.get<std::array<double, kRawDim>>(f, "features", "scale");
+  m.space.group_weight = r.get<std::array<double, 3>>(f, "features", "group_weight");
+  m.space.projection = r.get<std::array<double, kDim * kDim>>(f, "features", "projection");
+  m.typical_distance = r.get<double>(j, "", "typical_distance");
+  m.classes = r.get<std::vector<std::string>>(j, "", "classes");
+  m.ranges.clear();
+  const json& ranges = r.array(j, "", "class_ranges");
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    const auto ab = r.integers(r.at(ranges, "class_ranges", i), "class_ranges[" + std::to_string(i) + "]");
+    if (ab.size() != 2) fail(source, "metadata field 'class_ranges[" + std::to_string(i) + "]': expected [first, end]");
+    m.ranges.emplace_back(ab[0], ab[1]);
+  }
+  m.trials.clear();
+  const json& trials = r.array(j, "", "trials");
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    const std::string at = "trials[" + std::to_string(i) + "]";
+    const json& t = r.at(trials, "trials", i);
+    m.trials.push_back({r.get<std::string>(t, at, "file"), r.get<std::string>(t, at, "class"), r.integer(t, at, "subject"),
+                        r.integer(t, at, "trial"), r.get<double>(t, at, "correlation")});
   }
   if (m.ranges.size() != m.classes.size()) fail(source, "class ranges do not match the class list");
 }

@@ -74,6 +74,7 @@ void run_accent_job(const AccentJob& a) {
     io::announce("headset session", a.save_session);
   }
   AccentRun run = accentuate(make_model(db, cfg), frames, fps);
+  for (const auto& w : run.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const SessionFigures fig = session_figures(run);
   std::printf("database: %s (%d windows, loaded in %.1f ms)\n", a.db.c_str(), db.window_count(), load_s * 1e3);
   std::printf("frames: %d at %.4g Hz; %.0f frames/s in update() (%s search); mean match weight %.2f\n", run.output.frame_count(), fps,

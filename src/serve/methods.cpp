@@ -4,12 +4,14 @@
 #include <legwork/accent/accent.hpp>
 #include <legwork/accent/database.hpp>
 #include <legwork/combined/combined.hpp>
+#include <legwork/core/limits.hpp>
 #include <legwork/core/measure.hpp>
 #include <legwork/ik/full_body.hpp>
 #include <legwork/wip/wip.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace legwork::serve {
 namespace {
@@ -171,8 +173,12 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
   }
   if (!(opt.exaggeration > 0 && opt.exaggeration <= 4))
     throw Error("exaggeration " + std::to_string(opt.exaggeration) + " is outside (0, 4]");
-  if (!(opt.user_height == 0 || (opt.user_height >= 0.5 && opt.user_height <= 2.5)))
-    throw Error("user_height " + std::to_string(opt.user_height) + " m is outside [0.5, 2.5] (0 = the avatar's own)");
+  if (!(opt.user_height == 0 || (opt.user_height >= kMinUserHeight && opt.user_height <= kMaxUserHeight))) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "user_height %f m is outside [%g, %g] (0 = the avatar's own)", opt.user_height,
+                  kMinUserHeight, kMaxUserHeight);
+    throw Error(msg);
+  }
   if (opt.method == "ik") return runtime_method<IkRuntime>(res, opt);
   if (opt.method == "wip") return runtime_method<WipRuntime>(res, opt);
   if (opt.method == "combined") return runtime_method<CombinedRuntime>(res, opt);

@@ -3,10 +3,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace legwork::serve {
 namespace {
@@ -37,8 +39,11 @@ DevicePose parse_device(const json& d, const std::string& name) {
     if (!q->is_array() || q->size() != 4) fail("bad_message", "frame." + name + ".q must be an array of 4 numbers [w,x,y,z]");
     std::array<double, 4> c{};
     for (std::size_t i = 0; i < 4; ++i) c[i] = number((*q)[i], "frame." + name + ".q[" + std::to_string(i) + "]");
-    Quat r(c[0], c[1], c[2], c[3]);
-    if (!(r.norm() > 1e-6)) fail("bad_value", "frame." + name + ".q is not a rotation (zero length)");
+    // Scaled by the largest component first: the norm of [1e300, 0, 0, 0] overflows to Inf
+    // and would normalize to a zero quaternion.
+    const double big = std::max({std::abs(c[0]), std::abs(c[1]), std::abs(c[2]), std::abs(c[3])});
+    const Quat r = big > 0 ? Quat(c[0] / big, c[1] / big, c[2] / big, c[3] / big) : Quat(0, 0, 0, 0);
+    if (!(big * r.norm() > 1e-6)) fail("bad_value", "frame." + name + ".q is not a rotation (zero length)");
     out.rotation = r.normalized();
   }
   out.valid = true;
@@ -100,6 +105,14 @@ void put(std::string& out, T v) {
   std::memcpy(b, &v, sizeof(T));
   out.append(b, sizeof(T));
 }
+// A double as a float of the binary forms: out-of-range values saturate
+// (a plain cast of them is undefined behaviour); they stay absurd, so a
+// device carrying one is still not usable().
+float to_float(double v) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  return static_cast<float>(std::isnan(v) ? v : std::clamp(v, -kMax, kMax));
+}
+
 template <typename T>
 T get(std::span<const std::byte> bytes, std::size_t at) {
   T v;
@@ -113,7 +126,12 @@ void num(std::string& out, double v, int precision) {
     return;
   }
   char b[48];
-  const auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, precision);
+  auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::fixed, precision);
+  if (r.ec != std::errc()) {  // too long in fixed notation (|v| >= ~1e40): shortest exponent form
+    r = std::to_chars(b, b + sizeof b, v);
+    out.append(b, static_cast<std::size_t>(r.ptr - b));
+    return;
+  }
   // Trim trailing zeros ("0.500000" -> "0.5", "1.000" -> "1").
   char* e = r.ptr;
   char* dot = static_cast<char*>(std::memchr(b, '.', static_cast<std::size_t>(e - b)));
@@ -212,7 +230,7 @@ std::string binary_frame(const TrackerFrame& f) {
   for (const DevicePose& p : f.devices) {
     const Quat q = p.valid ? p.rotation : Quat::Identity();
     const Vec3 x = p.valid ? p.position : Vec3::Zero();
-    for (double v : {x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z()}) put(out, static_cast<float>(v));
+    for (double v : {x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z()}) put(out, to_float(v));
   }
   return out;
 }
@@ -329,11 +347,11 @@ void format_pose_binary(std::string& out, const PoseMessage& m) {
   put(out, static_cast<std::uint32_t>(m.joints.size()));
   for (int j : m.joints) {
     const Quat& q = m.pose.rotations[static_cast<std::size_t>(j)];
-    for (double v : {q.w(), q.x(), q.y(), q.z()}) put(out, static_cast<float>(v));
+    for (double v : {q.w(), q.x(), q.y(), q.z()}) put(out, to_float(v));
   }
   for (int j : m.joints) {
     const Vec3& p = m.world[static_cast<std::size_t>(j)];
-    for (double v : {p.x(), p.y(), p.z()}) put(out, static_cast<float>(v));
+    for (double v : {p.x(), p.y(), p.z()}) put(out, to_float(v));
   }
 }
 

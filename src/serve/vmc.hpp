@@ -17,6 +17,8 @@
 
 namespace legwork::serve {
 
+struct VmcInput;  // receiver state (vmc_input.hpp)
+
 class Vmc {
  public:
   // Throws legwork::Error for a bad --vmc-out address or a --vmc-in port in use.
@@ -28,8 +30,6 @@ class Vmc {
   void offer(const std::shared_ptr<Avatar>& a);
   void release(const Avatar* a);
 
-  struct Input;  // receiver state (liblo callbacks)
-
  private:
   void send_pose(const Skeleton& skel, ConstPoseRef pose);
   void input_loop();
@@ -39,7 +39,7 @@ class Vmc {
   Workers& workers_;
   void* out_address_ = nullptr;  // lo_address
   void* in_server_ = nullptr;    // lo_server
-  std::unique_ptr<Input> input_;
+  std::unique_ptr<VmcInput> input_;  // receiver state (vmc_input.hpp)
   std::shared_ptr<Avatar> in_avatar_;
   std::mutex mu_;
   const Avatar* owner_ = nullptr;

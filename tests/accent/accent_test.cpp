@@ -355,6 +355,42 @@ TEST(AccentLive, ManyAvatarsShareOneDatabaseAcrossThreads) {
   for (int t = 0; t < 4; ++t) EXPECT_TRUE(same[static_cast<std::size_t>(t)]) << "avatar " << t << " differs";
 }
 
+// Silent nonsense made loud: an exaggeration far from the user's matched no
+// frame and exited 0 with every frame 'unmatched'.
+TEST_F(HeldOut, NothingMatchedIsAWarning) {
+  const auto frames = tracker_frames_from_motion(*input_);
+  Settings s;
+  EXPECT_TRUE(accentuate(make_model(*db_, s), frames, 90.0).warnings.empty());
+  s.exaggeration = 100;
+  const AccentRun run = accentuate(make_model(*db_, s), frames, 90.0);
+  ASSERT_EQ(run.warnings.size(), 1u);
+  EXPECT_EQ(run.warnings[0].rfind("no frame matched the database (" + std::to_string(frames.size()) + " of " +
+                                      std::to_string(frames.size()) + " frames unmatched)",
+                                  0),
+            0u)
+      << run.warnings[0];
+}
+
+TEST(AccentLive, ImplausibleUserHeightIsAnErrorWithTheRange) {
+  const Database db = build_database(testing::sample_trials({"walking/07_01"}), BuildConfig{});
+  Settings s;
+  for (double h : {0.0, 0.5, 1.7, 2.5}) {
+    s.user_height = h;
+    EXPECT_NO_THROW((void)make_model(db, s)) << h;
+  }
+  for (double h : {0.1, 2.6, -1.7, std::nan("")}) {
+    s.user_height = h;
+    try {
+      (void)make_model(db, s);
+      ADD_FAILURE() << h;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(" m is outside the plausible range [0.5, 2.5] m (0 = the database skeleton's height)"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
   const Database db = build_database(testing::sample_trials({"walking/07_01"}), BuildConfig{});
   Settings ac;

@@ -69,7 +69,38 @@ void set_meta_number(std::vector<std::byte>& block, const std::string& key, cons
   std::memcpy(meta + b, repl.data(), repl.size());
 }
 
+// Replaces the first `from` in the metadata by `to` (same length: no offset moves).
+void replace_in_meta(std::vector<std::byte>& block, const std::string& from, const std::string& to) {
+  ASSERT_EQ(from.size(), to.size());
+  FileHeader h;
+  std::memcpy(&h, block.data(), sizeof h);
+  char* meta = reinterpret_cast<char*>(block.data() + h.meta_offset);
+  const auto at = std::string_view(meta, h.meta_bytes).find(from);
+  ASSERT_NE(at, std::string_view::npos) << from;
+  std::memcpy(meta + at, to.data(), to.size());
+}
+
 }  // namespace
+
+TEST(DatabaseFile, MetadataErrorsNameTheFieldNotTheJsonLibrary) {
+  const fs::path good = temp_dir() / "meta_good.lwdb", bad = temp_dir() / "meta_bad.lwdb";
+  save_database(good.string(), testing::indexed_database({"walking/07_01"}));
+  const std::vector<std::byte> block = read_all(good);
+  const auto error_for = [&](const std::string& from, const std::string& to) {
+    auto b = block;
+    replace_in_meta(b, from, to);
+    write_with_checksum(bad, b);
+    return load_error(bad);
+  };
+  const std::string prefix = "accent database '" + bad.string() + "': ";
+  EXPECT_EQ(error_for("\"hop\":", "\"hoq\":"), prefix + "metadata field 'build.hop' is missing; rebuild the database");
+  EXPECT_EQ(error_for("\"mirrored\":false", "\"mirrored\":\"abc\""),
+            prefix + "metadata field 'build.mirrored': expected true or false, found string; rebuild the database");
+  EXPECT_EQ(error_for("\"height_m\":", "\"height_m\"["), prefix + "metadata is not valid JSON; rebuild the database");
+  // A raw byte in the JSON: the library's message quoted it ("last read: '\xff...'").
+  const std::string msg = error_for("{\"build\"", "\xff\"build\"");
+  EXPECT_EQ(msg, prefix + "metadata is not valid JSON; rebuild the database");
+}
 
 TEST(DatabaseFile, SavingOverAMappedFileLeavesTheReaderIntact) {
   const fs::path path = temp_dir() / "mapped.lwdb";

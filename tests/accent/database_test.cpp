@@ -225,6 +225,26 @@ TEST(AccentBuild, AllFilteredOrEmptyInputIsAClearError) {
   EXPECT_THROW((void)build_database(std::vector<TrialInput>{}, BuildConfig{}), Error);
 }
 
+// A typo in an exclusion used to keep the held-out trial in the database silently.
+TEST(AccentBuild, ExcludingATrialThatIsNotThereIsAnError) {
+  const std::string data = testdata::sample("cmu").string();
+  const auto message = [&](const std::vector<std::string>& classes, const std::string& exclude) {
+    try {
+      (void)load_trials(data, classes, {exclude});
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_EQ(message({"boxing"}, "nothere.bvh"),
+            "exclude 'nothere.bvh' matches no trial of '" + data +
+                "' in the chosen classes (name a file as in the manifest, e.g. 'bvh/boxing/13_18.bvh', or by its file name)");
+  EXPECT_NE(message({"boxing"}, "bvh/walking/07_01.bvh").find("matches no trial"), std::string::npos);
+  EXPECT_EQ(message({"boxing", "walking"}, "bvh/walking/07_02.bvh"), "(no error)");
+  EXPECT_EQ(message({"boxing", "walking"}, "07_02.bvh"), "(no error)");
+  EXPECT_EQ(load_trials(data, {"boxing"}, {"13_18.bvh"}).size(), 0u);
+}
+
 TEST(AccentBuild, SkeletonWithoutHandsIsRejectedPerTrial) {
   auto trials = testing::sample_trials({"walking/07_01", "walking/05_01"});
   // Cut the arms off the second trial's rig: its hands' roles disappear.

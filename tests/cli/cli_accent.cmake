@@ -30,3 +30,13 @@ legwork_cli_error(accent_run_not_a_db "error: accent database '.*MANIFEST.tsv': 
 legwork_cli_error(accent_run_unknown_class "error: accent: class 'dancing' is not in the database \\(it has: " accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --classes dancing
                  --out ${O}/x.bvh)
 set_tests_properties(cli.accent_run_unknown_class PROPERTIES FIXTURES_REQUIRED accent_db)
+# Bad options name the option and what was expected; silent nonsense is an error or a warning.
+legwork_cli_error(accent_build_bad_weights "error: --weights 'a,b,c': 'a' is not a number; expected position,velocity,acceleration weights such as 1,1,0.5"
+                 accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --weights a,b,c --out ${O}/x.lwdb)
+legwork_cli_error(accent_build_exclude_nothing "error: exclude 'nothere.bvh' matches no trial of '.*data/cmu' \\(name a file as in the manifest"
+                 accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --exclude nothere.bvh --out ${O}/x.lwdb)
+legwork_cli_error(accent_run_height_implausible "error: accent: user height 0.1 m is outside the plausible range \\[0.5, 2.5\\] m"
+                 accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --height 0.1 --out ${O}/x.bvh)
+legwork_cli_error(accent_run_nothing_matched "warning: no frame matched the database \\([0-9]+ of [0-9]+ frames unmatched\\)"
+                 accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --exaggerate 100 --out ${O}/accent_unmatched.bvh)
+set_tests_properties(cli.accent_run_height_implausible cli.accent_run_nothing_matched PROPERTIES FIXTURES_REQUIRED accent_db)

@@ -10,6 +10,12 @@ legwork_cli_fail(eval_missing_data eval accent --data ${O}/no-such-folder --quic
 legwork_cli_fail(eval_unknown_class eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing --quick)
 legwork_cli_fail(eval_bad_protocol eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols leave_one_out --quick)
 legwork_cli_fail(eval_cross_dataset_needs_test eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols cross_dataset)
+# --out is checked before the evaluation runs (it used to fail with a raw "filesystem error" at the end).
+legwork_cli_error(eval_out_is_a_file "error: --out '.*README.md': is a file, not a folder"
+                 eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --out ${PROJECT_SOURCE_DIR}/README.md)
+legwork_cli_error(eval_out_under_a_file "error: --out '.*README.md/report': cannot write in '.*README.md' \\(it is a file, not a folder\\)"
+                 eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --out ${PROJECT_SOURCE_DIR}/README.md/report)
+set_tests_properties(cli.eval_out_is_a_file cli.eval_out_under_a_file PROPERTIES TIMEOUT 20)
 legwork_cli_fail(eval_bad_manifest eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --manifest ${PROJECT_SOURCE_DIR}/data/cmu/bvh/walking/07_01.bvh)
 # Cross-dataset: a fixed database (manifest subset) scoring other subjects' trials;
 # boxing has no database trial and is listed as not evaluable.

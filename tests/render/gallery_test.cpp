@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
+
+#include <unistd.h>
 
 using namespace legwork;
 namespace fs = std::filesystem;
@@ -14,7 +17,8 @@ namespace {
 
 // A results folder laid out like the demo's (file contents do not matter to the page).
 fs::path make_results() {
-  const fs::path root = fs::temp_directory_path() / "legwork_gallery_test";
+  // One folder per test process: ctest runs the tests of this file in parallel.
+  const fs::path root = fs::temp_directory_path() / ("legwork_gallery_test_" + std::to_string(::getpid()));
   fs::remove_all(root);
   for (const char* d : {"accent", "data", "wip/eval", "zoo"}) fs::create_directories(root / d);
   for (const char* f : {"data/sheet.png", "data/sheet.svg", "data/arc.svg", "data/walk.mp4", "data/walk.poster.png", "data/walk.glb",

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace legwork::serve {
 namespace {
@@ -30,6 +32,29 @@ TEST(Protocol, BinaryAndJsonFramesRoundTripARealFrame) {
     EXPECT_LT((j.devices[i].position - f.devices[i].position).norm(), 1e-5);  // 5 decimals
     EXPECT_LT(b.devices[i].rotation.angularDistance(f.devices[i].rotation), 1e-5);
   }
+}
+
+// Found by fuzz/protocol_fuzz.cpp: finite but absurd values must still make a
+// unit rotation or an error, valid JSON and a binary form without a float
+// overflow (undefined behaviour, caught by UBSan's float-cast-overflow).
+TEST(Protocol, AbsurdButFiniteValuesKeepTheFormsValid) {
+  // |q| overflows to Inf: it used to normalize to a zero quaternion marked valid.
+  const TrackerFrame f = parse_text(R"({"type":"frame","t":1e300,"head":{"p":[1e300,-1e300,0],"q":[1e300,0,1e300,0]}})").frame;
+  ASSERT_TRUE(f.head().valid);
+  EXPECT_NEAR(f.head().rotation.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(f.head().rotation.w(), std::sqrt(0.5), 1e-12);
+  EXPECT_FALSE(usable(f.head()));  // 1e300 m: lost tracking, not a pose
+  // The JSON form used to append 48 bytes of a failed fixed-notation conversion.
+  const std::string text = json_frame(f);
+  EXPECT_NE(text.find("\"t\":1e+300"), std::string::npos) << text;
+  const TrackerFrame back = parse_text(text).frame;
+  EXPECT_EQ(back.time, 1e300);
+  EXPECT_EQ(back.head().position.x(), 1e300);
+  // The binary form saturates at the float range instead of overflowing.
+  const TrackerFrame b = parse_binary_frame(bytes(binary_frame(f)));
+  EXPECT_EQ(b.head().position.x(), std::numeric_limits<float>::max());
+  EXPECT_EQ(b.head().position.y(), -std::numeric_limits<float>::max());
+  EXPECT_FALSE(usable(b.head()));
 }
 
 TEST(Protocol, BinaryPoseLayout) {

@@ -37,4 +37,8 @@ TEST(Paths, FormatsAndBadPaths) {
   EXPECT_NE(msg.find("unsupported command 'A'"), std::string::npos) << msg;
   msg = expect_error([] { parse_path_json(R"({"bezier": [[0,0],[0,1],[0,2]]})", "b.json"); });
   EXPECT_NE(msg.find("3n+1"), std::string::npos) << msg;
+  // Finite but absurd: the length overflowed to Inf (1e308 - -1e308) before the bound.
+  msg = expect_error([] { parse_path_json(R"({"polyline": [[0,0],[1e308,0],[-1e308,0]]})", "far.json"); });
+  EXPECT_EQ(msg, "far.json: path point (1e+308, 0) is beyond 1e6 m from the origin (coordinates are metres)");
+  EXPECT_NEAR(parse_path_json(R"({"polyline": [[0,0],[1e6,0]]})", "p").length(), 1e6, 1e-6);
 }

@@ -102,6 +102,13 @@ std::vector<TrialInput> load_trials(const std::string& dir, const std::vector<st
                                     const std::vector<std::string>& exclude, const Progress& progress) {
   if (!fs::is_directory(dir)) throw Error("data folder '" + dir + "' does not exist");
   const io::Catalogue catalogue = io::read_catalogue(dir, "", classes, /*cmu_names=*/false);
+  // An exclusion that matches nothing is a typo that would leak a held-out trial into the database.
+  for (const auto& e : exclude)
+    if (std::none_of(catalogue.trials.begin(), catalogue.trials.end(), [&](const io::TrialEntry& t) { return excluded(t.file, {e}); }))
+      throw Error("exclude '" + e + "' matches no trial of '" + dir + "'" + (classes.empty() ? "" : " in the chosen classes") +
+                  " (name a file as in the manifest, e.g. '" +
+                  (catalogue.trials.empty() ? std::string("bvh/walking/07_01.bvh") : catalogue.trials.front().file) +
+                  "', or by its file name)");
   std::vector<io::TrialEntry> chosen;
   for (const auto& t : catalogue.trials)
     if (!excluded(t.file, exclude)) chosen.push_back(t);

@@ -5,6 +5,7 @@
 #include <legwork/core/measure.hpp>
 #include <legwork/core/rotation.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -29,6 +30,12 @@ AccentRun accentuate(const Model& model, std::span<const TrackerFrame> frames, d
     run.output.set_frame(static_cast<int>(f), pose);
   }
   run.seconds = seconds;
+  const auto count = [&](MatchStatus s) { return std::count_if(run.info.begin(), run.info.end(), [s](const Info& i) { return i.match == s; }); };
+  const auto unmatched = count(MatchStatus::Unmatched);
+  if (unmatched > 0 && count(MatchStatus::Matched) + count(MatchStatus::Partial) == 0)
+    run.warnings.push_back("no frame matched the database (" + std::to_string(unmatched) + " of " + std::to_string(frames.size()) +
+                           " frames unmatched): the body is only the direct mapping of the head and hands. Is the user "
+                           "height or the exaggeration far from the user's, or is this motion absent from the database?");
   return run;
 }
 

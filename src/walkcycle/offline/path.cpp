@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 namespace legwork::walkcycle {
@@ -76,6 +77,12 @@ Path make_path(const std::vector<Vec3>& points, std::string_view what) {
   Path p;
   for (const auto& q : points) {
     if (!q.allFinite()) throw Error(std::string(what) + ": path point is not finite");
+    // Beyond this, lengths can overflow to Inf (1e308 - -1e308); paths are metres on a floor.
+    if (std::abs(q.x()) > kMaxPathCoordinate || std::abs(q.z()) > kMaxPathCoordinate) {
+      char xz[64];
+      std::snprintf(xz, sizeof xz, "(%g, %g)", q.x(), q.z());
+      throw Error(std::string(what) + ": path point " + xz + " is beyond 1e6 m from the origin (coordinates are metres)");
+    }
     p.points.push_back(Vec3(q.x(), 0.0, q.z()));
   }
   check_no_repeats(p.points, what, "points");

@@ -62,7 +62,7 @@ using Progress = std::function<void(int done, int total, const std::string& what
 // Reads the trials of `classes` (empty = all) from a CMU-style folder: rows of
 // DIR/MANIFEST.tsv (columns file, class, subject, trial) or, without a
 // manifest, DIR/bvh*/<class>/*.bvh. Frame 0 (the T-pose) is dropped.
-// `exclude` lists files (as in the manifest, or basenames) to leave out.
+// `exclude` lists files (as in the manifest, or basenames) to leave out; one matching no chosen trial is an error.
 std::vector<TrialInput> load_trials(const std::string& dir, const std::vector<std::string>& classes,
                                     const std::vector<std::string>& exclude = {}, const Progress& progress = {});
 

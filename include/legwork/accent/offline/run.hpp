@@ -3,6 +3,7 @@
 #include <legwork/accent/accent.hpp>
 
 #include <span>
+#include <string>
 #include <vector>
 
 namespace legwork::accent {
@@ -13,10 +14,15 @@ struct AccentRun {
   std::vector<UpdateStatus> status;  // per frame
   double seconds = 0;          // time spent in update() only
   std::vector<float> frame_seconds;  // per frame: time in update()
+  // Results that are almost certainly not what was wanted, each a sentence
+  // (e.g. every frame unmatched: the body was only the direct mapping).
+  std::vector<std::string> warnings;
 };
 
 // Runs one avatar of `model` over the frames (output labelled at `fps`). A
-// rejected frame repeats the previous output pose.
+// rejected frame repeats the previous output pose. Warns when no frame
+// matched the database (a user height or exaggeration far from the user, or
+// a motion the database does not hold).
 AccentRun accentuate(const Model& model, std::span<const TrackerFrame> frames, double fps);
 // Convenience: input = a motion's head and hands, resampled to the database
 // rate; settings.user_height (if 0) = the motion's standing height. Throws

@@ -32,8 +32,11 @@ struct Path {
   double total_turning() const;
 };
 
+// Largest |x| or |z| of a path point (metres).
+inline constexpr double kMaxPathCoordinate = 1e6;
+
 // Builds a path from floor points (x, z); throws on < 2 points, repeated
-// consecutive points or non-finite values. `what` names the source in errors.
+// consecutive points, non-finite values or coordinates beyond kMaxPathCoordinate. `what` names the source in errors.
 Path make_path(const std::vector<Vec3>& points, std::string_view what);
 // Straight path of `metres` along +z from the origin.
 Path straight_path(double metres);
