@@ -158,7 +158,8 @@ std::string arc_title(const ArcFigures& a) {
 
 std::string arc_summary(const ArcFigures& a) {
   std::string t;
-  appendf(t, "arc %s: spans %.2f m, jerk ratio %.2f at frame %.1f, largest curvature jump %.1f deg at frame %.1f%s\n",
+  appendf(t, "arc %s: spans %.2f m, jerk ratio %.2f at frame %.1f (its sharpest change of acceleration over the "
+          "arc's typical one, docs/walkcycle.md), largest curvature jump %.1f deg at frame %.1f%s\n",
           a.name.c_str(), a.smooth.extent_m, a.smooth.jerk_ratio, a.smooth.jerk_frame, a.smooth.max_curvature_jump_deg,
           a.smooth.jump_frame, a.jerky ? "  <- jerky: check the keys near this frame" : "");
   return t;
