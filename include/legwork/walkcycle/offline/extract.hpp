@@ -48,8 +48,9 @@ struct Extraction {
 // Throws legwork::Error if fewer than two steady steps are found. If both
 // feet are off the floor in more than max_flight_fraction of the steady
 // steps' frames (not a walk: running, hopping), sets `warning`, or throws
-// with refuse_non_walks. (On the shared CMU set: every run but one that stops
-// suddenly is caught; one brisk walk, 07_12, is flagged too: hence a warning.)
+// with refuse_non_walks. (On the shared CMU set with the one contact detector of
+// core/contacts.hpp: 32 of 34 runs are caught, no walk is flagged - walks
+// measure 0-6 %, the brisk 07_12 0 %; a warning all the same.)
 Extraction extract_walk(const Motion& clip, const ExtractOptions& opt = {});
 
 // Key poses from four frames of a clip (contact, down, pass, up, in order);
