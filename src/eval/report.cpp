@@ -589,6 +589,14 @@ std::string series_name(const std::string& method, const std::string& protocol) 
   return std::string(method == "ik" ? "IK baseline" : "accent engine") + ", " + p;
 }
 
+// An engine or IK bar series of one protocol, named and coloured as everywhere in the report.
+render::BarSeries method_series(const std::string& method, const std::string& protocol) {
+  render::BarSeries s;
+  s.name = series_name(method, protocol);
+  s.color = method_color(method, protocol, false);
+  return s;
+}
+
 // Figure 4 A: per body part, this run's methods beside the document's figures.
 render::BarChart body_parts_chart(const json& r) {
   render::BarChart c = cm_chart("Mean joint error per body part (cm)");
@@ -601,9 +609,7 @@ render::BarChart body_parts_chart(const json& r) {
   for (const auto& p : kProtocols)
     for (const char* m : {"accent", "ik"}) {
       if (!r.contains(p) || !r[p].contains(m)) continue;
-      render::BarSeries s;
-      s.name = series_name(m, p);
-      s.color = method_color(m, p, false);
+      render::BarSeries s = method_series(m, p);
       for (const auto& [k, label] : parts) s.values.push_back(value_of(r, p, m, k));
       c.series.push_back(s);
     }
@@ -632,9 +638,7 @@ render::BarChart classes_chart(const json& r) {
   for (const auto& p : kProtocols)
     for (const char* m : {"accent", "ik"}) {
       if (!r.contains(p) || !r[p].contains(m)) continue;
-      render::BarSeries s;
-      s.name = series_name(m, p);
-      s.color = method_color(m, p, false);
+      render::BarSeries s = method_series(m, p);
       for (const auto& cls : c.groups) {
         const json& cj = r[p][m]["classes"];
         s.values.push_back(cj.contains(cls) ? get(cj[cls], "full_body_cm") : kNaN);
