@@ -56,12 +56,17 @@ class RuntimeMethod final : public Method {
   typename Runtime::State state_;
 };
 
+// A runtime's contract types and its update(), named once for RuntimeMethod.
+template <class M, class S, class I, UpdateStatus (*Update)(const M&, const TrackerFrame&, S&, PoseRef, I*)>
+struct Contract {
+  using Model = M;
+  using State = S;
+  using Info = I;
+  static UpdateStatus update(const M& m, const TrackerFrame& f, S& s, PoseRef o, I* i) { return Update(m, f, s, o, i); }
+};
+
 // The VRIK-style full-body IK avatar (head + hands).
-struct IkRuntime {
-  using Model = ik::Model;
-  using State = ik::State;
-  using Info = ik::Info;
-  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) { return ik::update(m, f, s, o, i); }
+struct IkRuntime : Contract<ik::Model, ik::State, ik::Info, &ik::update> {
   static void describe(const Info& i, MethodInfo& out) {
     out.add("steps", i.steps_taken);
     out.add("lean", i.lean);
@@ -71,11 +76,7 @@ struct IkRuntime {
 };
 
 // Walking-in-place legs from the ankles (the head's yaw is the walking heading).
-struct WipRuntime {
-  using Model = wip::Model;
-  using State = wip::State;
-  using Info = wip::Info;
-  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) { return wip::update(m, f, s, o, i); }
+struct WipRuntime : Contract<wip::Model, wip::State, wip::Info, &wip::update> {
   static void describe(const Info& i, MethodInfo& out) {
     out.add("walking", i.walking ? 1.0 : 0.0);
     out.add("speed", i.speed);
@@ -88,13 +89,7 @@ struct WipRuntime {
 };
 
 // CoolMoves accentuation over the shared database (one Model per session's settings).
-struct AccentRuntime {
-  using Model = accent::Model;
-  using State = accent::State;
-  using Info = accent::Info;
-  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) {
-    return accent::update(m, f, s, o, i);
-  }
+struct AccentRuntime : Contract<accent::Model, accent::State, accent::Info, &accent::update> {
   static void describe(const Info& i, MethodInfo& out) {
     out.add("match", accent::status_name(i.match));
     out.add("match_weight", i.match_weight);
@@ -118,13 +113,7 @@ std::unique_ptr<Method> runtime_method(const Resources& res, const MethodOptions
 
 // The combined avatar (legwork::combined): upper body from accent (ik without
 // a database), legs from walking-in-place, faded over blend_time.
-struct CombinedRuntime {
-  using Model = combined::Model;
-  using State = combined::State;
-  using Info = combined::Info;
-  static UpdateStatus update(const Model& m, const TrackerFrame& f, State& s, PoseRef o, Info* i) {
-    return combined::update(m, f, s, o, i);
-  }
+struct CombinedRuntime : Contract<combined::Model, combined::State, combined::Info, &combined::update> {
   static void describe(const Info& i, MethodInfo& out) {
     out.add("walking", i.walking ? 1.0 : 0.0);
     out.add("speed", i.speed);
