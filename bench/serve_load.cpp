@@ -5,9 +5,10 @@
 //
 //   serve_load --port P [--clients N] [--seconds S] [--method ik] [--ramp] [--json out.json]
 //
-// --ramp: N = 10, 20, 40, ... (up to --max-clients) until answers < 99 %;
-// "sustained" is the largest N such that it and every smaller step kept
-// p99 <= --p99-ms with every frame answered. --server-pids adds the servers'
+// --ramp: N = 10, 20, 40, ... (up to --max-clients) until answers < 99 %,
+// then halving steps between the last good N and the first bad one;
+// "sustained" is the largest N found that kept p99 <= --p99-ms with every
+// frame answered (the doubling steps below it kept it too). --server-pids adds the servers'
 // CPU time per frame (from /proc) and the avatars per core it implies.
 #include <legwork/core/tracker.hpp>
 #include <legwork/io/bvh.hpp>
@@ -72,12 +73,15 @@ struct Run {
 
 constexpr std::uint32_t kWarmupFrames = 45;  // the first half second of each client is not timed
 
+constexpr long kPeriodUs = 11111;  // 90 Hz
+
 class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
  public:
+  // phase: when in the 11.1 ms frame period this client sends (0..1).
   ReplayClient(net::io_context& ioc, const std::vector<std::string>& frames, Run& run, std::string method, double seconds,
-               int offset)
+               int offset, double phase)
       : ws_(net::make_strand(ioc)), timer_(ioc), frames_(frames), run_(run), method_(std::move(method)), seconds_(seconds),
-        index_(static_cast<std::size_t>(offset) % frames.size()) {}
+        index_(static_cast<std::size_t>(offset) % frames.size()), phase_(phase) {}
 
   void start(const tcp::endpoint& ep) {
     beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(10));
@@ -122,8 +126,11 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
       const json j = json::parse(beast::buffers_to_string(buf_.data()), nullptr, false);
       if (j.value("type", "") == "welcome") {
         start_ = now;
-        next_ = now;
-        tick();
+        next_ = now + std::chrono::microseconds(static_cast<long>(phase_ * kPeriodUs));
+        timer_.expires_at(next_);
+        timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
+          if (!ec && !self->failed_) self->tick();
+        });
       } else {
         ++run_.errors;
       }
@@ -161,7 +168,7 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
         if (ec) self->fail();
       });
     }
-    next_ += std::chrono::microseconds(11111);
+    next_ += std::chrono::microseconds(kPeriodUs);
     timer_.expires_at(next_);
     timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
       if (!ec && !self->failed_) self->tick();
@@ -175,19 +182,22 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
   std::string method_, hello_, out_;
   double seconds_;
   std::size_t index_;
+  double phase_;
   beast::flat_buffer buf_;
   std::vector<Clock::time_point> sent_at_;
   Clock::time_point start_, next_;
   bool writing_ = false, failed_ = false, done_ = false;
 };
 
+// Clients send at evenly spread phases of the frame period, as independent
+// headsets do; `aligned` makes them all send at once (the worst case).
 Run run_clients(const tcp::endpoint& ep, const std::vector<std::string>& frames, int clients, double seconds,
-                const std::string& method) {
+                const std::string& method, bool aligned) {
   Run run;
   run.clients = clients;
   net::io_context ioc;
   for (int i = 0; i < clients; ++i)
-    std::make_shared<ReplayClient>(ioc, frames, run, method, seconds, i * 7)->start(ep);
+    std::make_shared<ReplayClient>(ioc, frames, run, method, seconds, i * 7, aligned ? 0.0 : double(i) / clients)->start(ep);
   ioc.run_for(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds + 15)));
   auto& l = run.latency_ms;
   std::sort(l.begin(), l.end());
@@ -213,16 +223,17 @@ int main(int argc, char** argv) {
   CLI::App app{"serve_load: N replay clients at 90 Hz against legwork serve on loopback"};
   int port = 0, clients = 10, max_clients = 1280;
   double seconds = 5, p99_limit = 5.0;
-  bool ramp = false, still = false;
+  bool ramp = false, still = false, aligned = false;
   std::string method = "ik", trial = std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/07_02.bvh", out, label = "one process";
   app.add_option("--port", port, "server (or haproxy) port on 127.0.0.1")->required();
   app.add_option("--clients", clients, "concurrent clients")->check(CLI::Range(1, 5000));
   app.add_option("--seconds", seconds, "streaming time per step")->check(CLI::Range(0.5, 60.0));
   app.add_option("--method", method, "session method");
   app.add_option("--trial", trial, "BVH trial replayed (head + hands)");
-  app.add_flag("--ramp", ramp, "double the clients until p99 or answers fail");
+  app.add_flag("--ramp", ramp, "double the clients until p99 or answers fail, then narrow the bracket");
   app.add_option("--max-clients", max_clients, "ramp ceiling")->check(CLI::Range(1, 5000));
   app.add_option("--p99-ms", p99_limit, "latency limit for 'sustained'");
+  app.add_flag("--aligned", aligned, "all clients send at the same instant (worst case; default: spread over the 11.1 ms period)");
   app.add_option("--label", label, "name of this configuration in the JSON");
   app.add_option("--json", out, "write the figures here");
   std::vector<int> server_pids;
@@ -240,14 +251,13 @@ int main(int argc, char** argv) {
   }
   const tcp::endpoint ep(net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port));
   json steps = json::array();
-  int sustained = 0;
-  bool contiguous = true;  // sustained = the largest N with every smaller step ok too
-  for (int n = ramp ? 10 : clients; n <= (ramp ? max_clients : clients); n *= 2) {
+  // One step: n clients for `seconds`; prints and records it; true when ok.
+  auto step = [&](int n, bool& answered) {
     const double cpu0 = cpu_seconds(server_pids);
-    Run r = run_clients(ep, frames, n, seconds, method);
+    Run r = run_clients(ep, frames, n, seconds, method, aligned);
     if (r.answered > 0 && !server_pids.empty())
       r.server_cpu_us_per_frame = 1e6 * (cpu_seconds(server_pids) - cpu0) / static_cast<double>(r.answered);
-    const bool answered = r.answered_share >= 0.99 && r.failed_clients == 0;
+    answered = r.answered_share >= 0.99 && r.failed_clients == 0;
     const bool ok = answered && r.p99 <= p99_limit;
     std::printf("%-13s clients %5d  sent %8llu  answered %6.2f %%  p50 %6.2f ms  p99 %7.2f ms  max %7.2f ms  server CPU %6.1f us/frame  %s\n",
                 label.c_str(), n, static_cast<unsigned long long>(r.sent), 100 * r.answered_share, r.p50, r.p99, r.max,
@@ -255,13 +265,25 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     steps.push_back(to_json(r));
     steps.back()["ok"] = ok;
-    contiguous = contiguous && ok;
-    if (contiguous) sustained = n;
+    return ok;
+  };
+  int sustained = 0, first_over = 0;
+  for (int n = ramp ? 10 : clients; n <= (ramp ? max_clients : clients); n *= 2) {
+    bool answered = false;
+    const bool ok = step(n, answered);
+    if (ok && first_over == 0) sustained = n;  // sustained: every smaller step ok too
+    if (!ok && first_over == 0) first_over = n;
     if (!answered) break;  // p99 over the limit alone: keep going for the CPU figures
+  }
+  // Narrow the doubling's bracket (sustained, first_over) to an eighth of it.
+  while (ramp && sustained > 0 && first_over > sustained && first_over - sustained > std::max(4, sustained / 8)) {
+    const int mid = (sustained + first_over) / 2;
+    bool answered = false;
+    (step(mid, answered) ? sustained : first_over) = mid;
   }
   std::printf("%s: %d avatars sustained at 90 Hz with p99 <= %.1f ms (method %s)\n", label.c_str(), sustained, p99_limit, method.c_str());
   if (!out.empty()) {
-    std::ofstream(out) << json{{"label", label}, {"method", method}, {"rate_hz", 90}, {"p99_limit_ms", p99_limit},
+    std::ofstream(out) << json{{"label", label}, {"method", method}, {"rate_hz", 90}, {"p99_limit_ms", p99_limit}, {"aligned", aligned},
                                {"sustained_avatars", sustained}, {"steps", steps}}
                               .dump(2)
                        << "\n";

@@ -5,10 +5,10 @@
 #   1. one server process pinned to one core (taskset -c 0), and
 #   2. two server processes (cores 0 and 1) behind HAProxy (scripts/serve-cluster.sh).
 # Prints the figures and writes OUT.json (default serve-bench.json).
-#   scripts/serve-bench.sh [--out FILE] [--method ik|accent] [--db FILE] [--seconds S] [--max-clients N] [--build DIR]
+#   scripts/serve-bench.sh [--out FILE] [--method ik|accent] [--db FILE] [--seconds S] [--max-clients N] [--build DIR] [--workers N (default 0)]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-out=serve-bench.json method=ik db="" seconds=5 max=1280 build="$root/build"
+out=serve-bench.json method=ik db="" seconds=5 max=1280 build="$root/build" workers=0
 while [ $# -gt 0 ]; do
   case $1 in
     --out) out=$2; shift 2 ;;
@@ -17,11 +17,12 @@ while [ $# -gt 0 ]; do
     --seconds) seconds=$2; shift 2 ;;
     --max-clients) max=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
+    --workers) workers=$2; shift 2 ;;
     *) echo "serve-bench: unknown option $1" >&2; exit 2 ;;
   esac
 done
 legwork="$build/apps/legwork/legwork" load="$build/bench/serve_load"
-serve_args=(--max-sessions 5000 --max-rate 1000)
+serve_args=(--max-sessions 5000 --max-rate 1000 --workers "$workers")
 [ -n "$db" ] && serve_args+=(--db "$db")
 work=$(mktemp -d)
 trap '"$root/scripts/serve-cluster.sh" stop --dir "$work/c1" >/dev/null 2>&1 || true; "$root/scripts/serve-cluster.sh" stop --dir "$work/c2" >/dev/null 2>&1 || true; rm -rf "$work"' EXIT

@@ -42,7 +42,7 @@ void register_serve(CLI::App& app) {
   cmd->add_option("--max-rate", o->max_rate_hz, "most frames per second per session (above: dropped)")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--record", o->record_dir, "record each session here when it ends: input as tracker CSV, output as BVH");
   cmd->add_option("--record-max-seconds", o->record_max_seconds, "longest recording per session")->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--workers", o->workers, "synthesis threads")->capture_default_str()->check(CLI::Range(1, 256));
+  cmd->add_option("--workers", o->workers, "synthesis threads (0: synthesize on the network thread, fastest for one process per core)")->capture_default_str()->check(CLI::Range(0, 256));
   cmd->add_flag("--verbose", o->verbose, "log sessions to stderr");
   cmd->callback([o] {
     if (o->web_dir.empty()) o->web_dir = default_dir("web/dist");

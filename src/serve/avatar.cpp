@@ -215,13 +215,18 @@ void Avatar::write_recording() {
 
 // ---- Workers ---------------------------------------------------------------
 
-Workers::Workers(int threads) {
-  for (int i = 0; i < std::max(1, threads); ++i) threads_.emplace_back([this] { loop(); });
+Workers::Workers(int threads) : inline_(threads <= 0) {
+  for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { loop(); });
 }
 
 Workers::~Workers() { stop(); }
 
 void Workers::schedule(std::shared_ptr<Avatar> a) {
+  if (inline_) {  // no threads: run on the caller's (network) thread
+    while (a->process_one()) {
+    }
+    return;
+  }
   {
     std::lock_guard lock(mu_);
     ready_.push_back(std::move(a));

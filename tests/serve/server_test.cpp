@@ -336,6 +336,20 @@ TEST(Serve, OptionsBeforeHelloAndBadOptionsAreErrors) {
   expect_alive(c, 0.1);
 }
 
+TEST(Serve, WorkersZeroSynthesizesOnTheNetworkThreadWithTheSameAnswers) {
+  ServeOptions o = test_options();
+  o.workers = 0;
+  RunningServer srv(o);
+  Client c(srv.port());
+  const auto [worst, poses] = stream_trial(c, c.hello({{"format", "binary"}}), true);
+  EXPECT_EQ(poses, static_cast<int>(trial_frames().size()));
+  EXPECT_LT(worst, 0.01) << "wrists must be within 1 cm of the input hands";
+  Client other(srv.port());  // a second session after the first streamed
+  other.hello();
+  other.send_text(json_frame(trial_frames()[0]));
+  EXPECT_EQ(other.expect("pose")["seq"], 1);
+}
+
 TEST(Serve, RecordsInputAsTrackerCsvAndOutputAsBvh) {
   const auto dir = std::filesystem::temp_directory_path() / ("legwork-serve-rec-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);

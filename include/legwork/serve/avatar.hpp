@@ -102,6 +102,8 @@ class Avatar {
 };
 
 // Worker threads running Avatars (FIFO over avatars: each gets one frame per turn).
+// With 0 threads, schedule() runs the avatar at once on the calling thread: no
+// hand-off between threads, the cheapest choice for one process per core.
 class Workers {
  public:
   explicit Workers(int threads);
@@ -115,6 +117,7 @@ class Workers {
   std::condition_variable cv_;
   std::deque<std::shared_ptr<Avatar>> ready_;
   bool stopping_ = false;
+  bool inline_ = false;
   std::vector<std::thread> threads_;
 };
 
