@@ -34,6 +34,7 @@ Canvas::Canvas(const std::string& path, int width, int height)
   }
   cr_ = cairo_create(surface_);
   clear();
+  layout_begin(cr_, path, width, height);
 }
 
 Canvas::Canvas(int width, int height) : width_(width), height_(height) {
@@ -99,6 +100,9 @@ double text(cairo_t* cr, double x, double y, const std::string& s, double size, 
   if (align == Align::Centre) x0 = x - w / 2;
   if (align == Align::Right) x0 = x - w;
   set_color(cr, color, alpha);
+  cairo_text_extents_t ink;
+  cairo_text_extents(cr, s.c_str(), &ink);
+  layout_text(cr, s, x0 + ink.x_bearing, y + ink.y_bearing, ink.width, ink.height);
   cairo_move_to(cr, x0, y);
   cairo_show_text(cr, s.c_str());
   cairo_new_path(cr);

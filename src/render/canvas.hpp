@@ -53,6 +53,12 @@ std::string title_text(const std::string& s);
 // reduced (down to 11 px) and, if still too wide, the end cut with "...".
 double title(cairo_t* cr, double x, double y, const std::string& s, double size, double max_width);
 void set_color(cairo_t* cr, const Rgb& c, double alpha = 1.0);
+// Layout recording (layout.hpp): a picture file's canvas registers itself;
+// text() records its ink box; charts record their data areas and legends.
+// No-ops unless a LayoutRecorder is alive on this thread.
+void layout_begin(cairo_t* cr, const std::string& path, int width, int height);
+void layout_text(cairo_t* cr, const std::string& s, double x, double y, double w, double h);
+void layout_area(cairo_t* cr, double x, double y, double w, double h, bool legend);
 // A "nice" step (1, 2, 2.5 or 5 x 10^k) close to span / target_count.
 double nice_step(double span, int target_count);
 // Formats a number without trailing zeros ("0.5", "12", "1.25").

@@ -83,6 +83,7 @@ void draw_legend_at(cairo_t* cr, const std::vector<LegendItem>& items, double x0
   if (items.empty()) return;
   const auto [box_w, box_h] = legend_size(cr, items);
   const double row = 16;
+  detail::layout_area(cr, x0, y0, box_w, box_h, true);
   cairo_save(cr);
   cairo_rectangle(cr, x0, y0, box_w, box_h);
   cairo_set_source_rgba(cr, 1, 1, 1, 0.88);
@@ -223,6 +224,7 @@ void draw_axes(cairo_t* cr, const PlotPanel& p, const PanelFrame& f, bool x_tick
 void draw_panel(cairo_t* cr, const PlotPanel& p, const Range& xr, double left, double top, double w, double h,
                 bool x_ticks, const std::string& x_label) {
   const PanelFrame f{xr, panel_y_range(p, xr), left, top, w, h};
+  detail::layout_area(cr, left, top, w, h, false);
   cairo_save(cr);
   cairo_rectangle(cr, left, top, w, h);  // bands, grid and curves stay inside the panel
   cairo_clip(cr);
@@ -376,7 +378,9 @@ void plot_bars(const BarChart& chart, const std::string& path) {
   detail::Canvas canvas(path, width, height);
   cairo_t* cr = canvas.cr();
   if (!chart.title.empty()) detail::title(cr, 12, 24, chart.title, 16, width - 24);
+  if (!items.empty()) detail::layout_area(cr, left, legend_top, w, legend_rows(m.cr, items, left, legend_top, w, false), true);
   legend_rows(cr, items, left, legend_top, w, true);
+  detail::layout_area(cr, left, title_h, w, h, false);
   auto Y = [&](double y) { return title_h + h - (y - yr.lo) / (yr.hi - yr.lo) * h; };
   const int yd = decimals_for(yr.step);
   cairo_set_line_width(cr, 1);

@@ -5,7 +5,12 @@
 #include <legwork/core/interpolate.hpp>
 #include <legwork/io/bvh.hpp>
 
+#include <legwork/render/layout.hpp>
+
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <unistd.h>
 
 #include <cmath>
 #include <map>
@@ -19,15 +24,20 @@ using json = nlohmann::json;
 constexpr double kTestSeconds = 3.0;
 
 // One small run shared by the tests: three classes, both protocols, no ablation.
-const json& sample_report() {
-  static const json report = [] {
+const EvalResult& sample_run() {
+  static const EvalResult run = [] {
     const Catalogue data = read_catalogue(testdata::sample("cmu").string(), "", {"basketball", "running", "walking"});
     RunOptions opt;
     opt.ablation = false;
     opt.threads = 2;
     opt.max_test_seconds = kTestSeconds;
-    return report_json(run_evaluation(data, nullptr, opt));
+    return run_evaluation(data, nullptr, opt);
   }();
+  return run;
+}
+
+const json& sample_report() {
+  static const json report = report_json(sample_run());
   return report;
 }
 
@@ -123,6 +133,25 @@ TEST(EvalReport, MarkdownAndSummaryShowWinnersAndGoals) {
   EXPECT_NE(sum.find("class walking"), std::string::npos);
   EXPECT_NE(sum.find("(truth "), std::string::npos);
   for (const auto& t : r["targets"]) EXPECT_NE(sum.find(t["target"].get<std::string>()), std::string::npos);
+}
+
+}  // namespace
+}  // namespace legwork::eval
+
+namespace legwork::eval {
+namespace {
+
+TEST(EvalReport, ChartsHaveNoOverlappingLabelsOrLegendsOverData) {
+  const auto dir = std::filesystem::temp_directory_path() / ("legwork-report-layout-" + std::to_string(::getpid()));
+  render::LayoutRecorder layout;
+  const auto written = write_report(sample_run(), dir.string());
+  std::size_t charts = 0;
+  for (const auto& f : written) charts += f.ends_with(".png") || f.ends_with(".svg");
+  ASSERT_GT(charts, 0u);
+  EXPECT_EQ(layout.pictures().size(), charts);
+  for (const auto& picture : layout.pictures())
+    for (const auto& problem : render::layout_problems(picture)) ADD_FAILURE() << problem;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

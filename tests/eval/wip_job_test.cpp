@@ -6,6 +6,8 @@
 
 #include "testdata.hpp"
 
+#include <legwork/render/layout.hpp>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -68,10 +70,16 @@ TEST(WipJob, EvaluationOverTwoTrialsWritesItsReport) {
   job.eval_out = temp("eval");
   testing::internal::CaptureStdout();
   testing::internal::CaptureStderr();
+  render::LayoutRecorder layout;
   eval::run_wip_eval_job(job);
   const std::string printed = testing::internal::GetCapturedStdout();
   testing::internal::GetCapturedStderr();
   EXPECT_NE(printed.find("2 trials, strict foot-offs +-200 ms"), std::string::npos) << printed;
+  // Its charts (per-trial phases, the summary) have no overlapping labels
+  // and no legend over the data, by the chart layer's own layout boxes.
+  EXPECT_GE(layout.pictures().size(), 3u);
+  for (const auto& picture : layout.pictures())
+    for (const auto& problem : render::layout_problems(picture)) ADD_FAILURE() << problem;
   const auto report = nlohmann::json::parse(io::read_text_file(job.eval_out + "/report.json"));
   EXPECT_EQ(report["trials"].get<int>(), 2);
   EXPECT_EQ(report["per_trial"].size(), 2u);

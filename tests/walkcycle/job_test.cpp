@@ -4,6 +4,7 @@
 
 #include <legwork/io/bvh.hpp>
 #include <legwork/io/text.hpp>
+#include <legwork/render/layout.hpp>
 
 #include "cmu_sample.hpp"
 #include "testdata.hpp"
@@ -76,4 +77,30 @@ TEST(WalkJob, ExtractsKeysFromARealWalkThatWalkAgain) {
   testing::internal::GetCapturedStdout();
   const auto report = nlohmann::json::parse(io::read_text_file(job.report));
   EXPECT_EQ(report["steps"].get<int>(), 4);
+}
+
+// The demo's pictures of each shipped walk (key sheet, arcs, top view) as the
+// demo draws them: no label over another label, none outside the picture,
+// by the drawing layer's own layout boxes.
+TEST(WalkJob, PicturesOfTheShippedWalksHaveNoOverlappingLabels) {
+  for (const std::string w : {"normal", "sneak", "double-bounce"}) {
+    walkcycle::WalkJob job;
+    job.keys = testdata::walk_keys_file(w);
+    job.path = testdata::sample("walks/paths/quarter-turn.json").string();
+    job.sheet = temp(w + "_keys.png");
+    job.arc = "LeftHand,LeftToeBase";
+    job.arc_out = temp(w);
+    job.top = temp(w + "_top.png");
+    testing::internal::CaptureStdout();
+    testing::internal::CaptureStderr();
+    render::LayoutRecorder layout;
+    walkcycle::run_walk_job(job);
+    testing::internal::GetCapturedStdout();
+    testing::internal::GetCapturedStderr();
+    EXPECT_GE(layout.pictures().size(), 4u) << w;
+    for (const auto& picture : layout.pictures()) {
+      EXPECT_GE(picture.texts.size(), 3u) << picture.path << ": its title and labels were recorded";
+      for (const auto& problem : render::layout_problems(picture)) ADD_FAILURE() << problem;
+    }
+  }
 }
