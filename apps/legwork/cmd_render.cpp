@@ -30,6 +30,7 @@ struct RenderArgs {
   std::string title;
   std::vector<std::string> compare;  // more motions for a side-by-side video
   bool footprints = false;
+  bool follow = false;
 };
 
 // A joint by exact name or by role name (e.g. left_ankle); the error lists the valid names.
@@ -55,6 +56,7 @@ void run_render(const RenderArgs& a) {
   if (a.footprints && (trace < 0 || ext == ".mp4"))
     throw Error("--footprints needs --trace JOINT and a .png/.svg output (it draws under the joint's path)");
 
+  if (a.follow && ext != ".mp4") throw Error("--follow is for videos (--out .mp4): a picture has no camera to move");
   if (ext == ".mp4") {
     render::VideoOptions opt;
     opt.camera.view = view;
@@ -62,6 +64,7 @@ void run_render(const RenderArgs& a) {
     opt.camera.height = a.height > 0 ? a.height : 480;
     opt.fps = a.fps;
     opt.trace_joint = trace;
+    opt.follow = a.follow;
     opt.title = !a.title.empty() ? a.title : clip + " (" + render::view_name(view) + " view)";
     const Motion part = (first == 0 && last == m.frame_count() - 1) ? m : trim(m, first, last);
     if (a.compare.empty()) {
@@ -156,6 +159,9 @@ void register_render(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_flag("--footprints", a->footprints,
                 "with --trace (pictures): draw rough footprints where each ankle rests (best with --view top)");
+  cmd->add_flag("--follow", a->follow,
+                "video only: the camera follows the body over the floor, so it fills the frame (default: one "
+                "framing over the whole path)");
   cmd->callback([a] { run_render(*a); });
 }
 

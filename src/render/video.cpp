@@ -217,7 +217,8 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
   const int top = opt.title.empty() ? 0 : 30;  // frame-wide title strip
   const int panel_w = W / n;
   const bool titled = n > 1 || !labels.empty();
-  const std::vector<Track> tracks = panel_tracks(motions, labels, opt, panel_w, H - top, titled);
+  const int counter_strip = 22;  // the time / frame counter's own strip: never over a foot
+  const std::vector<Track> tracks = panel_tracks(motions, labels, opt, panel_w, H - top - counter_strip, titled);
 
   double duration = 0;
   for (const Motion* m : motions) duration = std::max(duration, m->duration());

@@ -131,3 +131,43 @@ TEST(Video, OverlongClipIsRefusedBeforeStartingFfmpeg) {
   }
   EXPECT_FALSE(std::filesystem::exists(file));
 }
+
+namespace {
+// Vertical extent (pixels) of the body's side colours in a PNG still.
+int body_height(const std::string& png) {
+  const render::testing::Image img(png);
+  EXPECT_TRUE(img.ok()) << png;
+  int top = img.height(), bottom = -1;
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x) {
+      const auto p = img.at(x, y);
+      if (render::testing::near_color(p, kLeftColor, 0.15) || render::testing::near_color(p, kRightColor, 0.15))
+        top = std::min(top, y), bottom = std::max(bottom, y);
+    }
+  return bottom - top;
+}
+}  // namespace
+
+// A real walk covers metres: one framing over the whole path draws the body
+// small; following it (`follow`, `legwork render --follow`) fills the frame.
+TEST(Video, FollowKeepsAWalkingBodyLargeInItsFrame) {
+  REQUIRE_FFMPEG();
+  const Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
+  int heights[2] = {0, 0};
+  for (int follow = 0; follow < 2; ++follow) {
+    VideoOptions opt;
+    opt.camera.view = View::Side;
+    opt.camera.width = 320;
+    opt.camera.height = 240;
+    opt.fps = 5;
+    opt.follow = follow == 1;
+    const auto dir = render::testing::out_dir();
+    const std::string file = (dir / (follow ? "follow.mp4" : "fixed.mp4")).string();
+    const std::string still = (dir / (follow ? "follow.png" : "fixed.png")).string();
+    render_video(m, opt, file);
+    write_video_still(file, still, m.duration() / 2);
+    heights[follow] = body_height(still);
+  }
+  EXPECT_GT(heights[0], 20) << "the body is drawn without following too";
+  EXPECT_GT(heights[1], heights[0] * 13 / 10) << "fixed " << heights[0] << " px, follow " << heights[1] << " px";
+}
