@@ -2,6 +2,8 @@
 # Builds legwork with sanitizers and runs its tests there.
 #   scripts/sanitize.sh            AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/), whole ctest suite
 #   scripts/sanitize.sh --tsan     ThreadSanitizer (build-tsan/), the threaded tests only
+#   scripts/sanitize.sh --tsan --ci ThreadSanitizer of the server's tests and the avatars sharing one
+#                                  database (what ./run-tests runs), in build-tsan/
 #   scripts/sanitize.sh --ci       ASan+UBSan of the subset ./run-tests runs (parsers, per-frame
 #                                  updates, C API, server; see docs/reliability.md), in build-asan/
 #   extra arguments after the mode go to ctest (e.g. -R Bvh)
@@ -73,6 +75,13 @@ elif [ "$mode" = asan ]; then
   ninja -C "$build" -j"$jobs"
   echo "sanitize: ASan+UBSan build with $cxx took $(($(date +%s) - start)) s (load: $(cut -d' ' -f1-3 /proc/loadavg))" >&2
   ctest --test-dir "$build" --output-on-failure -j"$jobs" --timeout 1800 "$@"
+elif [ $ci = 1 ]; then
+  # CI: the server (network thread, worker threads, VMC receiver, sessions
+  # opening and closing while others stream) and avatars sharing a database.
+  ninja -C "$build" -j"$jobs" test_serve test_accent
+  echo "sanitize: TSan build (CI subset) with $cxx took $(($(date +%s) - start)) s (load: $(cut -d' ' -f1-3 /proc/loadavg))" >&2
+  ctest --test-dir "$build" --output-on-failure -j"$jobs" --timeout 900 -L '^test_serve$' -E "$ci_exclude" "$@"
+  ctest --test-dir "$build" --output-on-failure -j"$jobs" --timeout 900 -L '^test_accent$' -R 'Thread' "$@"
 else
   # The tests that run threads: many avatars over one database, the
   # evaluation's parallel trial loading and its CLI run.
