@@ -15,25 +15,18 @@
 #include <tuple>
 
 #include "testdata.hpp"
+#include "error_message.hpp"
 
 using namespace legwork;
 using io::Catalogue;
 using io::read_catalogue;
 namespace fs = std::filesystem;
 
+using legwork::testdata::message_of;
+
 namespace {
 
 std::string sample_root() { return testdata::sample("cmu").string(); }
-
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // A fresh, empty folder under the temp directory.
 fs::path fresh_dir(const std::string& name) {

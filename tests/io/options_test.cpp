@@ -9,7 +9,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "error_message.hpp"
+
 using namespace legwork;
+
+using legwork::testdata::message_of;
 
 namespace {
 
@@ -19,21 +23,6 @@ std::filesystem::path temp_dir() {
   return d;
 }
 
-std::string write_bytes(const std::string& name, const std::string& bytes) {
-  const auto p = (temp_dir() / name).string();
-  std::ofstream(p, std::ios::binary) << bytes;
-  return p;
-}
-
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 }  // namespace
 
 TEST(Options, NumberListsNameTheOptionAndTheExpectedForm) {
@@ -52,7 +41,8 @@ TEST(Options, NumberListsNameTheOptionAndTheExpectedForm) {
 }
 
 TEST(Options, OutputFoldersAreCheckedBeforeAnyWork) {
-  const std::string file = write_bytes("not_a_folder.txt", "x");
+  const std::string file = (temp_dir() / "not_a_folder.txt").string();
+  std::ofstream(file) << "x";
   EXPECT_EQ(message_of([&] { io::require_writable_folder(file, "--out"); }), "--out '" + file + "': is a file, not a folder");
   EXPECT_EQ(message_of([&] { io::require_writable_folder(file + "/report", "--out"); }),
             "--out '" + file + "/report': cannot write in '" + file + "' (it is a file, not a folder)");

@@ -12,20 +12,13 @@
 #include <limits>
 
 #include "cmu_sample.hpp"
+#include "error_message.hpp"
 
 using namespace legwork;
 
-namespace {
+using legwork::testdata::message_of;
 
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+namespace {
 
 // A two-sample table with one point per name; `rot` names get rotation columns.
 io::TrackerTable table_with(std::initializer_list<const char*> names, std::initializer_list<const char*> rot = {}) {

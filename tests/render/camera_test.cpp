@@ -6,32 +6,20 @@
 
 #include "render_test_util.hpp"
 #include "testdata.hpp"
+#include "error_message.hpp"
 
 using namespace legwork;
 using namespace legwork::render;
 using legwork::render::testing::camera;
 using legwork::render::testing::Image;
 using legwork::render::testing::near_color;
+using legwork::render::testing::out;
+using legwork::render::testing::walk_07_01;
 using legwork::render::testing::out_dir;
 
+using legwork::testdata::message_of;
+
 namespace {
-
-const Motion& walk() {
-  static const Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
-  return m;
-}
-
-std::string out(const std::string& name) { return (out_dir() / name).string(); }
-
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // A scene holding one curve through `points` (framing only looks at content points).
 Scene curve_scene(std::vector<Vec3> points, bool floor = false) {
@@ -100,7 +88,7 @@ TEST(Projection, PixelsMatchTheDrawing) {
 }
 
 TEST(Sides, CmuSkeletonLegsAndArmsAreSided) {
-  const auto& skel = walk().skeleton;
+  const auto& skel = walk_07_01().skeleton;
   const auto sides = joint_sides(skel);
   EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("LeftFoot"))], Side::Left);
   EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("LeftHand"))], Side::Left);
@@ -188,7 +176,7 @@ TEST(Framing, EmptyScenesAndTinyContent) {
 }
 
 TEST(Figures, PositionsAndTipsAreTheForwardKinematics) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   const Figure f = make_figure(m.skeleton, m.frame(30), 0.4, "thirty");
   EXPECT_EQ(f.skeleton, &m.skeleton);
   EXPECT_EQ(f.alpha, 0.4);

@@ -12,26 +12,19 @@
 #include <fstream>
 #include <sstream>
 
+#include "error_message.hpp"
+
 using namespace legwork;
 using namespace legwork::render;
 using namespace legwork::render::detail;
 using legwork::render::testing::Image;
 using legwork::render::testing::is_background;
+using legwork::render::testing::out;
 using legwork::render::testing::out_dir;
 
+using legwork::testdata::message_of;
+
 namespace {
-
-std::string out(const std::string& name) { return (out_dir() / name).string(); }
-
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 }  // namespace
 

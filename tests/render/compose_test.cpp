@@ -18,6 +18,7 @@ using namespace legwork;
 using namespace legwork::render;
 using legwork::render::testing::Image;
 using legwork::render::testing::near_color;
+using legwork::render::testing::out;
 using legwork::render::testing::out_dir;
 using legwork::render::testing::Rgba;
 
@@ -27,8 +28,6 @@ const Motion& walk() {
   static const Motion m = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
   return m;
 }
-
-std::string out(const std::string& name) { return (out_dir() / name).string(); }
 
 // Horizontal distance from p to the nearest position of joint j over frames [first, last].
 double nearest_xz(const Motion& m, int j, int first, int last, const Vec3& p) {
@@ -179,10 +178,10 @@ TEST(Compose, SlideVideo) {
     v.key_times.push_back(k * 0.5);
   }
   v.duration = 1.0;
-  v.sample = [&](double t, PoseRef out) {
+  v.sample = [&](double t, PoseRef pose_out) {
     const int f = std::min(m.frame_count() - 1, static_cast<int>(t * m.fps));
-    std::copy(m.frame(f).rotations.begin(), m.frame(f).rotations.end(), out.rotations.begin());
-    std::copy(m.frame(f).translations.begin(), m.frame(f).translations.end(), out.translations.begin());
+    std::copy(m.frame(f).rotations.begin(), m.frame(f).rotations.end(), pose_out.rotations.begin());
+    std::copy(m.frame(f).translations.begin(), m.frame(f).translations.end(), pose_out.translations.begin());
   };
   const std::string path = out("compose_slide.mp4");
   std::filesystem::remove(path);

@@ -17,23 +17,13 @@ using legwork::render::testing::camera;
 using legwork::render::testing::Image;
 using legwork::render::testing::is_background;
 using legwork::render::testing::near_color;
+using legwork::render::testing::out;
+using legwork::render::testing::walk_07_01;
+using legwork::render::testing::rendered;
 using legwork::render::testing::out_dir;
 using legwork::render::testing::Rgba;
 
 namespace {
-
-const Motion& walk() {
-  static const Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
-  return m;
-}
-
-std::string out(const std::string& name) { return (out_dir() / name).string(); }
-
-// Renders `s` to out(name) and decodes it.
-Image rendered(const Scene& s, const Camera& cam, const std::string& name) {
-  render_scene(s, cam, out(name));
-  return Image(out(name));
-}
 
 Rgba pixel(const Image& img, const Eigen::Vector2d& q) { return img.at(static_cast<int>(q.x()), static_cast<int>(q.y())); }
 
@@ -42,7 +32,7 @@ double brightness(const Rgba& p) { return (p.r + p.g + p.b) / 3; }
 }  // namespace
 
 TEST(RenderScene, NonFinitePositionsAreSkippedNotFatal) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   Scene s;
   Figure f = make_figure(m.skeleton, m.frame(40), 1.0, "broken hand");
   f.positions[static_cast<std::size_t>(m.skeleton.require("LeftHand"))] = Vec3::Constant(std::nan(""));
@@ -169,7 +159,7 @@ TEST(DrawCurves, NonFinitePointsLiftThePen) {
 }
 
 TEST(DrawFigures, BonesInTheirSideColoursAndTranslucentFiguresArePaler) {
-  const Skeleton& skel = walk().skeleton;
+  const Skeleton& skel = walk_07_01().skeleton;
   const Pose rest(skel);
   Scene s;
   s.floor = false;

@@ -19,22 +19,12 @@ using legwork::render::testing::camera;
 using legwork::render::testing::Image;
 using legwork::render::testing::is_background;
 using legwork::render::testing::near_color;
+using legwork::render::testing::out;
+using legwork::render::testing::walk_07_01;
+using legwork::render::testing::rendered;
 using legwork::render::testing::out_dir;
 
 namespace {
-
-const Motion& walk() {
-  static const Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
-  return m;
-}
-
-std::string out(const std::string& name) { return (out_dir() / name).string(); }
-
-// Renders `s` to out(name) and decodes it.
-Image rendered(const Scene& s, const Camera& cam, const std::string& name) {
-  render_scene(s, cam, out(name));
-  return Image(out(name));
-}
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
@@ -46,7 +36,7 @@ std::string slurp(const std::string& path) {
 }  // namespace
 
 TEST(RenderScene, PngHasSizeContentAndFigureInsideFrame) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   Scene s;
   s.figures.push_back(make_figure(m.skeleton, m.frame(60), 1.0, "frame 60"));
   s.title = "07_01 frame 60";
@@ -75,7 +65,7 @@ TEST(RenderScene, PngHasSizeContentAndFigureInsideFrame) {
 }
 
 TEST(RenderScene, SvgHasPaths) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   Scene s;
   s.figures.push_back(make_figure(m.skeleton, m.frame(10)));
   const auto file = out("scene.svg");
@@ -96,7 +86,7 @@ TEST(RenderScene, BadExtensionIsAnError) {
 // left half. Checked on the rest pose (facing +z, arms out) and on a real
 // walking frame turned to face +z by the contact sheet.
 TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
-  const auto& skel = walk().skeleton;
+  const auto& skel = walk_07_01().skeleton;
   Scene s;
   s.floor = false;
   s.figures.push_back(make_figure(skel, Pose(skel)));
@@ -119,7 +109,7 @@ TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
 // must turn it back, so the front row still shows the left side on the right
 // (and without face_forward the picture shows the back: left on the left).
 TEST(ContactSheet, FrontRowFacesTheViewerWhateverTheWalkingDirection) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   const auto fr = m.frame(100);
   Pose p;
   p.rotations.assign(fr.rotations.begin(), fr.rotations.end());
@@ -152,7 +142,7 @@ TEST(ContactSheet, FrontRowFacesTheViewerWhateverTheWalkingDirection) {
 }
 
 TEST(ContactSheet, RowsPerViewPosesSideBySide) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   std::vector<Pose> poses;
   std::vector<std::string> labels;
   for (int f = 20; f <= 120; f += 25) {
@@ -184,7 +174,7 @@ TEST(ContactSheet, RowsPerViewPosesSideBySide) {
 }
 
 TEST(Trajectory, PathDrawnWithMarks) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   const int foot = m.skeleton.require("LeftFoot");
   const Camera cam = camera(View::Side, 800, 360);
   const auto file = out("trajectory.png");
@@ -198,7 +188,7 @@ TEST(Trajectory, PathDrawnWithMarks) {
 }
 
 TEST(RenderPanels, GridOfViewsHasEveryPanelDrawn) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   std::vector<Panel> panels;
   for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
     Panel p;

@@ -8,17 +8,20 @@
 
 #include <filesystem>
 
+#include "error_message.hpp"
+
 using namespace legwork;
 using namespace legwork::render;
 using legwork::render::testing::Image;
 using legwork::render::testing::is_background;
 using legwork::render::testing::near_color;
+using legwork::render::testing::out;
 using legwork::render::testing::out_dir;
 using legwork::render::testing::Rgba;
 
-namespace {
+using legwork::testdata::message_of;
 
-std::string out(const std::string& name) { return (out_dir() / name).string(); }
+namespace {
 
 // A width x height PNG filled with one colour.
 std::string solid_png(const std::string& name, int width, int height, const Rgb& c) {
@@ -31,16 +34,6 @@ std::string solid_png(const std::string& name, int width, int height, const Rgb&
   EXPECT_EQ(cairo_surface_write_to_png(s, path.c_str()), CAIRO_STATUS_SUCCESS);
   cairo_surface_destroy(s);
   return path;
-}
-
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 }  // namespace
