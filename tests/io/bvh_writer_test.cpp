@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <limits>
 #include <sstream>
+#include <unistd.h>
 
 using namespace legwork;
 using legwork::testdata::expect_same_motion;
@@ -89,7 +90,7 @@ TEST(BvhWriter, DefaultLayoutFrameTimeAndScale) {
 
 TEST(BvhWriter, WriteBvhStoresTheFormattedText) {
   const auto f = io::read_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
-  const auto path = (std::filesystem::temp_directory_path() / "legwork_bvh_writer_test.bvh").string();
+  const auto path = (std::filesystem::temp_directory_path() / ("legwork_bvh_writer_test_" + std::to_string(::getpid()) + ".bvh")).string();
   io::write_bvh(path, f.motion);
   EXPECT_EQ(io::read_text_file(path), io::format_bvh(f.motion));
   expect_same_motion(f.motion, io::read_bvh(path, metres()).motion, 1e-6);

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 #include <tuple>
+#include <unistd.h>
 
 #include "testdata.hpp"
 #include "error_message.hpp"
@@ -30,7 +31,7 @@ std::string sample_root() { return testdata::sample("cmu").string(); }
 
 // A fresh, empty folder under the temp directory.
 fs::path fresh_dir(const std::string& name) {
-  const auto d = fs::temp_directory_path() / ("legwork_catalogue_test_" + name);
+  const auto d = fs::temp_directory_path() / ("legwork_catalogue_test_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "error_message.hpp"
 
@@ -18,7 +19,7 @@ using legwork::testdata::message_of;
 namespace {
 
 std::filesystem::path temp_dir() {
-  const auto d = std::filesystem::temp_directory_path() / "legwork_options_test";
+  const auto d = std::filesystem::temp_directory_path() / ("legwork_options_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(d);
   return d;
 }
@@ -55,6 +56,7 @@ TEST(Options, OutputFoldersAreCheckedBeforeAnyWork) {
   // Not writable: /proc refuses new folders even to root.
   const std::string msg = message_of([] { io::require_writable_folder("/proc/legwork-report", "--out"); });
   EXPECT_EQ(msg.rfind("--out '/proc/legwork-report': cannot write in '/proc' (", 0), 0u) << msg;
+  std::filesystem::remove_all(temp_dir());
 }
 
 TEST(Options, NumberListsKeepSignsExponentsAndOrder) {
@@ -73,5 +75,5 @@ TEST(Options, TheWriteProbeLeavesNothingBehind) {
   io::require_writable_folder((dir / "new").string(), "--out");
   io::require_writable_folder(dir.string(), "--out");
   EXPECT_TRUE(std::filesystem::is_empty(dir));
-  std::filesystem::remove_all(dir);
+  std::filesystem::remove_all(temp_dir());
 }

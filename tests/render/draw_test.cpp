@@ -27,6 +27,18 @@ namespace {
 
 Rgba pixel(const Image& img, const Eigen::Vector2d& q) { return img.at(static_cast<int>(q.x()), static_cast<int>(q.y())); }
 
+// A scene without floor holding one dark blue 3 px curve through `points`.
+Scene ink_curve(std::vector<Vec3> points) {
+  Scene s;
+  s.floor = false;
+  Curve c;
+  c.points = std::move(points);
+  c.color = {0.1, 0.1, 0.6};
+  c.width = 3;
+  s.curves.push_back(c);
+  return s;
+}
+
 double brightness(const Rgba& p) { return (p.r + p.g + p.b) / 3; }
 
 }  // namespace
@@ -117,13 +129,8 @@ TEST(RenderScene, TracedPathsNeverUseTheSideColours) {
 
 TEST(DrawCurves, ASegmentDarkensItsPixelsAndNothingFarFromIt) {
   const Vec3 a(-0.6, 0.5, 0), b(0.6, 1.4, 0);
-  Scene s;
-  s.floor = false;
-  Curve c;
-  c.points = {a, b};
-  c.color = {0.1, 0.1, 0.6};
-  c.width = 3;
-  s.curves.push_back(c);
+  const Scene s = ink_curve({a, b});
+  const Curve& c = s.curves[0];
   const Camera cam = camera(View::Front, 320, 320);
   const Image img = rendered(s, cam, "draw_segment.png");
   ASSERT_TRUE(img.ok());
@@ -142,13 +149,8 @@ TEST(DrawCurves, ASegmentDarkensItsPixelsAndNothingFarFromIt) {
 
 TEST(DrawCurves, NonFinitePointsLiftThePen) {
   const Vec3 a0(-0.6, 1, 0), a1(-0.3, 1, 0), b0(0.3, 1, 0), b1(0.6, 1, 0);
-  Scene s;
-  s.floor = false;
-  Curve c;
-  c.points = {a0, a1, Vec3::Constant(std::nan("")), b0, b1};
-  c.color = {0.1, 0.1, 0.6};
-  c.width = 3;
-  s.curves.push_back(c);
+  const Scene s = ink_curve({a0, a1, Vec3::Constant(std::nan("")), b0, b1});
+  const Curve& c = s.curves[0];
   const Camera cam = camera(View::Front, 320, 200);
   const Image img = rendered(s, cam, "draw_gap.png");
   ASSERT_TRUE(img.ok());
