@@ -97,7 +97,9 @@ std::vector<TrialEntry> from_folders(const fs::path& root, bool cmu_names) {
         if (f.path().extension() != ".bvh") continue;
         TrialEntry e;
         e.cls = cls.path().filename().string();
-        e.file = fs::relative(f.path(), root).string();
+        // Lexically: fs::relative resolves symbolic links, so a linked class
+        // folder gave "../../<link target>/x.bvh" instead of "bvh/<class>/x.bvh".
+        e.file = f.path().lexically_relative(root).string();
         e.path = f.path().string();
         if (!parse_cmu_name(f.path().stem().string(), e.subject, e.trial)) {
           if (cmu_names)

@@ -1,6 +1,5 @@
 // File helpers: every failure names the path and says what is wrong, in
 // words a user can act on (never "std::bad_alloc" for a directory).
-#include <legwork/io/options.hpp>
 #include <legwork/io/text.hpp>
 
 #include <legwork/core/types.hpp>
@@ -165,47 +164,4 @@ TEST(TextHelpers, OutputFoldersAreMadeOnlyUnderTheWorkingFolder) {
                       "outside the working folder; create it first");
   EXPECT_FALSE(fs::exists("/nonexistent-legwork-test"));
   EXPECT_EQ(file_parent, "--out 'afile/out.png': 'afile' is a file, not a folder");
-}
-
-namespace {
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-}  // namespace
-
-TEST(Text, NumberListsNameTheOptionAndTheExpectedForm) {
-  EXPECT_EQ(io::parse_number_list(" 1, 1 ,0.5", 3, "--weights", "p,v,a"), (std::vector<double>{1, 1, 0.5}));
-  // std::stod used to surface as "error: stod".
-  EXPECT_EQ(message_of([] { io::parse_number_list("a,b,c", 3, "--weights", "p,v,a such as 1,1,0.5"); }),
-            "--weights 'a,b,c': 'a' is not a number; expected p,v,a such as 1,1,0.5");
-  EXPECT_EQ(message_of([] { io::parse_number_list("1,2", 3, "--weights", "p,v,a"); }),
-            "--weights '1,2': expected 3 numbers p,v,a, found 2");
-  EXPECT_EQ(message_of([] { io::parse_number_list("1,,2", 3, "--weights", "p,v,a"); }),
-            "--weights '1,,2': '' is not a number; expected p,v,a");
-  EXPECT_EQ(message_of([] { io::parse_number_list("1,2,1e999", 3, "--weights", "p,v,a"); }),
-            "--weights '1,2,1e999': '1e999' is not a number; expected p,v,a");
-  EXPECT_EQ(message_of([] { io::parse_number_list("1,2,3x", 3, "--weights", "p,v,a"); }),
-            "--weights '1,2,3x': '3x' is not a number; expected p,v,a");
-}
-
-TEST(Text, OutputFoldersAreCheckedBeforeAnyWork) {
-  const std::string file = write_bytes("not_a_folder.txt", "x");
-  EXPECT_EQ(message_of([&] { io::require_writable_folder(file, "--out"); }), "--out '" + file + "': is a file, not a folder");
-  EXPECT_EQ(message_of([&] { io::require_writable_folder(file + "/report", "--out"); }),
-            "--out '" + file + "/report': cannot write in '" + file + "' (it is a file, not a folder)");
-  // A folder that does not exist yet, below a writable one, is fine (and is not created here).
-  const auto fresh = temp_dir() / "fresh" / "deeper";
-  std::filesystem::remove_all(temp_dir() / "fresh");
-  EXPECT_EQ(message_of([&] { io::require_writable_folder(fresh.string(), "--out"); }), "(no error)");
-  EXPECT_FALSE(std::filesystem::exists(fresh));
-  EXPECT_EQ(message_of([&] { io::require_writable_folder(temp_dir().string(), "--out"); }), "(no error)");
-  // Not writable: /proc refuses new folders even to root.
-  const std::string msg = message_of([] { io::require_writable_folder("/proc/legwork-report", "--out"); });
-  EXPECT_EQ(msg.rfind("--out '/proc/legwork-report': cannot write in '/proc' (", 0), 0u) << msg;
 }

@@ -1,6 +1,6 @@
 // Renderer tests on real CMU data: files decode, have the requested size, are
 // not blank, put the figure inside the frame, keep left/right on the correct
-// side, and project known points where the view says they go.
+// side; contact sheets, trajectories and panel grids.
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/io/bvh.hpp>
@@ -19,22 +19,12 @@ using legwork::render::testing::camera;
 using legwork::render::testing::Image;
 using legwork::render::testing::is_background;
 using legwork::render::testing::near_color;
+using legwork::render::testing::out;
+using legwork::render::testing::walk_07_01;
+using legwork::render::testing::rendered;
 using legwork::render::testing::out_dir;
 
 namespace {
-
-const Motion& walk() {
-  static const Motion m = io::load_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
-  return m;
-}
-
-std::string out(const std::string& name) { return (out_dir() / name).string(); }
-
-// Renders `s` to out(name) and decodes it.
-Image rendered(const Scene& s, const Camera& cam, const std::string& name) {
-  render_scene(s, cam, out(name));
-  return Image(out(name));
-}
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
@@ -45,62 +35,8 @@ std::string slurp(const std::string& path) {
 
 }  // namespace
 
-TEST(Projection, EachViewMapsAKnownPoint) {
-  const Vec3 p(1.0, 2.0, 3.0);  // x = character's left, y = up, z = forward
-  EXPECT_TRUE(project(View::Side, p).isApprox(Eigen::Vector2d(3.0, 2.0)));   // forward to the right
-  EXPECT_TRUE(project(View::Front, p).isApprox(Eigen::Vector2d(1.0, 2.0)));  // left to the right
-  EXPECT_TRUE(project(View::Top, p).isApprox(Eigen::Vector2d(3.0, 1.0)));    // forward right, left up
-  // Three-quarter: right = (x + z)/sqrt2, up mostly +y with the camera looking down.
-  const auto q = project(View::ThreeQuarter, p);
-  EXPECT_NEAR(q.x(), 4.0 / std::sqrt(2.0), 1e-12);
-  const auto b = view_basis(View::ThreeQuarter);
-  EXPECT_NEAR(b.right.norm(), 1, 1e-12);
-  EXPECT_NEAR(b.up.dot(b.right), 0, 1e-12);
-  EXPECT_NEAR(b.toward.dot(b.up), 0, 1e-12);
-  EXPECT_GT(b.up.y(), 0.9);
-  EXPECT_GT(b.toward.y(), 0.2);  // camera above the floor, looking down
-  EXPECT_GT(b.toward.z(), 0.5);  // in front of the character
-  // Every basis is right-handed: right x up = towards the viewer.
-  for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
-    const auto bb = view_basis(v);
-    EXPECT_TRUE(bb.right.cross(bb.up).isApprox(bb.toward)) << view_name(v);
-    EXPECT_EQ(parse_view(view_name(v)), v);
-  }
-  EXPECT_THROW(parse_view("diagonal"), Error);
-}
-
-TEST(Projection, PixelsMatchTheDrawing) {
-  // A marked dot at a known 3D point lands on the pixel Framing::to_pixel gives,
-  // in every view; and equal metres are equal pixels on both axes.
-  const Vec3 p(0.4, 1.1, -0.3);
-  for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
-    Scene s;
-    s.floor = false;
-    Curve c;
-    c.points = {Vec3(-1, 0, -1), p, Vec3(1, 2, 1)};
-    c.color = {0.0, 0.6, 0.0};
-    c.width = 3;
-    c.marks = {1};
-    s.curves.push_back(c);
-    const Camera cam = camera(v, 300, 200);
-    const auto file = out("proj_" + view_name(v) + ".png");
-    render_scene(s, cam, file);
-    const Framing fr = frame_scene(s, cam);
-    const auto px = fr.to_pixel(p);
-    Image img(file);
-    ASSERT_TRUE(img.ok());
-    const auto got = img.at(static_cast<int>(px.x()), static_cast<int>(px.y()));
-    EXPECT_TRUE(near_color(got, c.color, 0.1)) << view_name(v) << " at " << px.transpose();
-    // A 1 m step along the view's right and up axes is the same number of pixels.
-    const auto b = view_basis(v);
-    const double sx = (fr.to_pixel(p + b.right) - px).norm(), sy = (fr.to_pixel(p + b.up) - px).norm();
-    EXPECT_NEAR(sx, sy, 1e-9);
-    EXPECT_LT(fr.to_pixel(p + b.up).y(), px.y());  // up is up in the picture
-  }
-}
-
 TEST(RenderScene, PngHasSizeContentAndFigureInsideFrame) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   Scene s;
   s.figures.push_back(make_figure(m.skeleton, m.frame(60), 1.0, "frame 60"));
   s.title = "07_01 frame 60";
@@ -129,7 +65,7 @@ TEST(RenderScene, PngHasSizeContentAndFigureInsideFrame) {
 }
 
 TEST(RenderScene, SvgHasPaths) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   Scene s;
   s.figures.push_back(make_figure(m.skeleton, m.frame(10)));
   const auto file = out("scene.svg");
@@ -139,35 +75,10 @@ TEST(RenderScene, SvgHasPaths) {
   EXPECT_NE(text.find("<path"), std::string::npos);
 }
 
-TEST(RenderScene, NonFinitePositionsAreSkippedNotFatal) {
-  const Motion& m = walk();
-  Scene s;
-  Figure f = make_figure(m.skeleton, m.frame(40), 1.0, "broken hand");
-  f.positions[static_cast<std::size_t>(m.skeleton.require("LeftHand"))] = Vec3::Constant(std::nan(""));
-  s.figures.push_back(f);
-  s.footprints.push_back({Vec3(std::nan(""), 0, 0), 0.0, true});
-  const auto file = out("nan.png");
-  ASSERT_NO_THROW(render_scene(s, Camera{}, file));
-  Image img(file);
-  ASSERT_TRUE(img.ok());
-  EXPECT_GT(img.count([](int, int, const auto& p) { return near_color(p, kRightColor); }), 100);
-}
-
 TEST(RenderScene, BadExtensionIsAnError) {
   Scene s;
   EXPECT_THROW(render_scene(s, Camera{}, out("x.jpg")), Error);
   EXPECT_THROW(render_scene(s, Camera{}, out("no-extension")), Error);
-}
-
-TEST(Sides, CmuSkeletonLegsAndArmsAreSided) {
-  const auto& skel = walk().skeleton;
-  const auto sides = joint_sides(skel);
-  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("LeftFoot"))], Side::Left);
-  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("LeftHand"))], Side::Left);
-  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("RightToeBase"))], Side::Right);
-  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("RightForeArm"))], Side::Right);
-  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("Head"))], Side::Centre);
-  EXPECT_EQ(sides[static_cast<std::size_t>(skel.require("Hips"))], Side::Centre);
 }
 
 // In the front view the character's left (+x) is on the picture's right: the
@@ -175,7 +86,7 @@ TEST(Sides, CmuSkeletonLegsAndArmsAreSided) {
 // left half. Checked on the rest pose (facing +z, arms out) and on a real
 // walking frame turned to face +z by the contact sheet.
 TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
-  const auto& skel = walk().skeleton;
+  const auto& skel = walk_07_01().skeleton;
   Scene s;
   s.floor = false;
   s.figures.push_back(make_figure(skel, Pose(skel)));
@@ -198,7 +109,7 @@ TEST(RenderScene, FrontViewPutsTheLeftSideOnThePictureRight) {
 // must turn it back, so the front row still shows the left side on the right
 // (and without face_forward the picture shows the back: left on the left).
 TEST(ContactSheet, FrontRowFacesTheViewerWhateverTheWalkingDirection) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   const auto fr = m.frame(100);
   Pose p;
   p.rotations.assign(fr.rotations.begin(), fr.rotations.end());
@@ -231,7 +142,7 @@ TEST(ContactSheet, FrontRowFacesTheViewerWhateverTheWalkingDirection) {
 }
 
 TEST(ContactSheet, RowsPerViewPosesSideBySide) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   std::vector<Pose> poses;
   std::vector<std::string> labels;
   for (int f = 20; f <= 120; f += 25) {
@@ -263,7 +174,7 @@ TEST(ContactSheet, RowsPerViewPosesSideBySide) {
 }
 
 TEST(Trajectory, PathDrawnWithMarks) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   const int foot = m.skeleton.require("LeftFoot");
   const Camera cam = camera(View::Side, 800, 360);
   const auto file = out("trajectory.png");
@@ -276,32 +187,8 @@ TEST(Trajectory, PathDrawnWithMarks) {
   EXPECT_THROW(render_trajectory(m, foot, {m.frame_count()}, cam, file), Error);
 }
 
-TEST(Footprints, TopViewPutsLeftFootAboveRight) {
-  // Top view: +z to the right, +x (character's left) up. Left foot at x=+0.15.
-  Scene s;
-  s.footprints.push_back({Vec3(0.15, 0, 0), 0.0, true});
-  s.footprints.push_back({Vec3(-0.15, 0, 0.4), 0.0, false});
-  const Camera cam = camera(View::Top, 300, 300);
-  const auto file = out("footprints.png");
-  render_scene(s, cam, file);
-  Image img(file);
-  ASSERT_TRUE(img.ok());
-  double ly = 0, ry = 0, lx = 0, rx = 0;
-  int ln = 0, rn = 0;
-  for (int y = 0; y < img.height(); ++y)
-    for (int x = 0; x < img.width(); ++x) {
-      const auto p = img.at(x, y);
-      if (near_color(p, kLeftColor, 0.1)) ly += y, lx += x, ++ln;
-      if (near_color(p, kRightColor, 0.1)) ry += y, rx += x, ++rn;
-    }
-  ASSERT_GT(ln, 20);
-  ASSERT_GT(rn, 20);
-  EXPECT_LT(ly / ln, ry / rn);  // left foot higher in the picture
-  EXPECT_LT(lx / ln, rx / rn);  // right foot further forward (+z = right)
-}
-
 TEST(RenderPanels, GridOfViewsHasEveryPanelDrawn) {
-  const Motion& m = walk();
+  const Motion& m = walk_07_01();
   std::vector<Panel> panels;
   for (View v : {View::Side, View::Front, View::ThreeQuarter, View::Top}) {
     Panel p;
@@ -326,48 +213,3 @@ TEST(RenderPanels, GridOfViewsHasEveryPanelDrawn) {
   EXPECT_THROW(render_panels({}, 2, file), Error);
 }
 
-TEST(RenderScene, TrackedDevicesAreMarkersNotBones) {
-  // A headset and two controllers (the accentuation video's input): no bone
-  // from the head to a hand in the side colours, a marker at each hand.
-  Skeleton s;
-  s.add_joint("Head", -1, Vec3(0, 1.6, 0));
-  s.add_joint("LeftHand", 0, Vec3(0.3, -0.6, 0));
-  s.add_joint("RightHand", 0, Vec3(-0.3, -0.6, 0));
-  s.end_sites = {Vec3(0, 0.12, 0), Vec3(0, 0, 0.08), Vec3(0, 0, 0.08)};
-  s.has_end_site = {1, 1, 1};
-  resolve_roles(s);
-  Scene scene;
-  scene.figures.push_back(make_figure(s, Pose(s)));
-  const Camera cam = camera(View::Front, 300, 300);
-  const Image img = rendered(scene, cam, "devices.png");
-  ASSERT_TRUE(img.ok());
-  const Framing fr = frame_scene(scene, cam);
-  const auto& p = scene.figures[0].positions;
-  for (int hand : {1, 2}) {
-    const Rgb side = hand == 1 ? kLeftColor : kRightColor;
-    const auto at = fr.to_pixel(p[static_cast<std::size_t>(hand)]);
-    EXPECT_TRUE(near_color(img.at(static_cast<int>(at.x()), static_cast<int>(at.y())), side)) << "no marker at hand " << hand;
-    const auto mid = fr.to_pixel((p[0] + p[static_cast<std::size_t>(hand)]) / 2);
-    int coloured = 0;
-    for (int dx = -3; dx <= 3; ++dx)
-      coloured += near_color(img.at(static_cast<int>(mid.x()) + dx, static_cast<int>(mid.y())), side, 0.15);
-    EXPECT_EQ(coloured, 0) << "a side-coloured bone between the head and hand " << hand;
-  }
-}
-
-TEST(RenderScene, TracedPathsNeverUseTheSideColours) {
-  // The convention: left blue, right orange, paths green. A left joint's arc
-  // was drawn orange (the default curve colour) in the walk-cycle arcs.
-  Scene s;
-  Curve c;
-  for (int i = 0; i <= 20; ++i) c.points.emplace_back(0.3 * std::cos(i * 0.3), 1 + 0.3 * std::sin(i * 0.3), 0);
-  c.marks = {0, 10};
-  c.mark_labels = {"C", "P"};
-  c.label = "LeftHand";
-  s.curves.push_back(c);
-  const Image img = rendered(s, camera(View::Front, 300, 300), "trace_colour.png");
-  ASSERT_TRUE(img.ok());
-  EXPECT_GT(img.count([](int, int, const auto& px) { return near_color(px, kTraceColor); }), 100);
-  EXPECT_EQ(img.count([](int, int, const auto& px) { return near_color(px, kRightColor, 0.15); }), 0);
-  EXPECT_EQ(img.count([](int, int, const auto& px) { return near_color(px, kLeftColor, 0.15); }), 0);
-}

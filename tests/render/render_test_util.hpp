@@ -1,5 +1,6 @@
 #pragma once
 // Helpers for render tests: read PNGs back through cairo and count pixels.
+#include <legwork/io/bvh.hpp>
 #include <legwork/render/render.hpp>
 
 #include <cairo.h>
@@ -19,6 +20,12 @@ inline std::filesystem::path out_dir() {
   auto d = std::filesystem::temp_directory_path() / "legwork-render-test";
   std::filesystem::create_directories(d);
   return d;
+}
+
+// The sample walk 07_01 as the file has it (T-pose frame kept), loaded once.
+inline const Motion& walk_07_01() {
+  static const Motion m = io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/07_01.bvh");
+  return m;
 }
 
 // A camera on view v making a width x height picture.
@@ -64,6 +71,15 @@ class Image {
  private:
   std::unique_ptr<cairo_surface_t, void (*)(cairo_surface_t*)> surf_;
 };
+
+// out_dir()/name as a string.
+inline std::string out(const std::string& name) { return (out_dir() / name).string(); }
+
+// Renders `s` to out(name) and decodes it.
+inline Image rendered(const Scene& s, const Camera& cam, const std::string& name) {
+  render_scene(s, cam, out(name));
+  return Image(out(name));
+}
 
 inline bool is_background(const Rgba& p) { return p.r > 0.97 && p.g > 0.97 && p.b > 0.97; }
 // Within tol of colour c (per channel); anti-aliased edges are excluded.

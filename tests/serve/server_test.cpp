@@ -381,11 +381,12 @@ TEST(Serve, RecordsInputAsTrackerCsvAndOutputAsBvh) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(Serve, HttpApiAndNoTraversal) {
+// The server hands HTTP requests to handle_http (tests/serve/http_api_test.cpp
+// checks the API and the static files themselves) with the raw target.
+TEST(Serve, HttpRequestsReachTheApiAndTheWebFolder) {
   const auto web = std::filesystem::temp_directory_path() / ("legwork-serve-web-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(web / "js");
+  std::filesystem::create_directories(web);
   std::ofstream(web / "index.html") << "<html>legwork</html>";
-  std::ofstream(web / "js" / "app.js") << "console.log(1)";
   ServeOptions o = test_options();
   o.web_dir = web.string();
   RunningServer srv(o);
@@ -403,28 +404,14 @@ TEST(Serve, HttpApiAndNoTraversal) {
     return std::make_pair(res.result_int(), res.body());
   };
   EXPECT_EQ(get("/").second, "<html>legwork</html>");
-  EXPECT_EQ(get("/js/app.js").first, 200u);
-  EXPECT_EQ(get("/../../../etc/passwd").first, 404u);
   EXPECT_EQ(get("/%2e%2e/%2e%2e/etc/passwd").first, 404u);
-  EXPECT_EQ(get("/js/../../x").first, 404u);
   const json info = json::parse(get("/api/info").second);
   EXPECT_EQ(info["version"], 1);
   EXPECT_EQ(info["methods"], json({"ik", "wip", "combined"}));
-  const json trials = json::parse(get("/api/trials").second);
-  EXPECT_NE(std::find(trials["trials"].begin(), trials["trials"].end(), "walking/07_02"), trials["trials"].end());
   const auto [code, body] = get("/api/trial?name=walking/07_02&rate=90");
   ASSERT_EQ(code, 200u);
-  const json trial = json::parse(body);
-  const auto frames = trial_frames("walking/07_02.bvh", true);
-  ASSERT_EQ(trial["frames"].size(), frames.size());
-  EXPECT_LT((vec(trial["frames"][10]["left"]["p"]) - frames[10].hand(kLeft).position).norm(), 1e-9);
-  EXPECT_EQ(trial["truth"]["positions"].size(), frames.size());
-  EXPECT_EQ(trial["truth"]["positions"][0].size(), 3 * trial["truth"]["names"].size());
-  const auto bad = get("/api/trial?name=../../etc/passwd");
-  EXPECT_EQ(bad.first, 400u);
+  EXPECT_EQ(json::parse(body)["frames"].size(), trial_frames("walking/07_02.bvh", true).size());
   EXPECT_EQ(get("/api/trial?name=walking/07_02&rate=1000").first, 400u);
-  EXPECT_NE(json::parse(get("/api/trial?name=walking/99_99").second)["message"].get<std::string>().find("no trial 'walking/99_99'"),
-            std::string::npos);
   std::filesystem::remove_all(web);
 }
 

@@ -17,7 +17,9 @@ namespace legwork::render {
 // ankle->toe. Empty when the skeleton has no ankles.
 std::vector<Footprint> detect_footprints(const Motion& m, int first, int last);
 
-// Frames first..last sampled every `every` frames (or ~6 evenly when every <= 0), last included.
+// Frames first..last sampled every `every` frames (or up to 6 evenly, first and
+// last included, when every <= 0). With every > 0 the last frame is added
+// unless it is less than every/2 after the last sample.
 std::vector<int> sample_frames(int first, int last, int every);
 
 // A picture height that suits the content's aspect in this view (less empty

@@ -1,0 +1,155 @@
+// The server's methods without a server: which methods a resource set
+// offers, option checks with the client-facing messages, and the ik / wip /
+// combined methods driven straight by a real trial's trackers.
+#include <legwork/serve/methods.hpp>
+
+#include <legwork/core/fk.hpp>
+#include <legwork/core/limits.hpp>
+#include <legwork/core/measure.hpp>
+#include <legwork/io/bvh.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+
+#include "cmu_sample.hpp"
+#include "error_message.hpp"
+
+namespace legwork::serve {
+using legwork::testdata::message_of;
+
+namespace {
+
+// The avatar skeleton (CMU subject 7) and head + hands (+ ankles) of another trial of the same subject.
+const Skeleton& avatar() { return testdata::sample_skeleton(); }
+std::vector<TrackerFrame> trial(bool feet) {
+  auto frames = tracker_frames_from_motion(testdata::load_sample("cmu/bvh/walking/07_02.bvh"), 90.0);
+  if (!feet)
+    for (auto& f : frames) f.foot(kLeft).valid = f.foot(kRight).valid = false;
+  return frames;
+}
+
+Resources skeleton_only() {
+  Resources r;
+  r.skeleton = &avatar();
+  return r;
+}
+
+MethodOptions options(const std::string& method) {
+  MethodOptions o;
+  o.method = method;
+  return o;
+}
+
+const MethodInfo::Item* find_info(const MethodInfo& info, const char* key) {
+  for (int i = 0; i < info.count; ++i)
+    if (std::strcmp(info.items[static_cast<std::size_t>(i)].key, key) == 0) return &info.items[static_cast<std::size_t>(i)];
+  return nullptr;
+}
+
+TEST(ServeMethods, AvailableMethodsFollowTheResources) {
+  EXPECT_EQ(known_methods(), (std::vector<std::string>{"accent", "ik", "wip", "combined"}));
+  EXPECT_TRUE(available_methods(Resources{}).empty());
+  EXPECT_EQ(available_methods(skeleton_only()), (std::vector<std::string>{"ik", "wip", "combined"}));
+}
+
+TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
+  const Resources res = skeleton_only();
+  EXPECT_EQ(message_of([&] { make_method(res, options("dance")); }),
+            "unknown method 'dance' (known: accent, ik, wip, combined)");
+  EXPECT_EQ(message_of([&] { make_method(res, options("accent")); }),
+            "method 'accent' needs a database: start the server with --db FILE");
+  EXPECT_EQ(message_of([&] { make_method(Resources{}, options("ik")); }),
+            "method 'ik' is not available in this server (available: )");
+  MethodOptions o = options("ik");
+  o.exaggeration = 0;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "exaggeration 0.000000 is outside (0, 4]");
+  o.exaggeration = 4;  // the upper bound is allowed
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
+  o.user_height = 9;
+  char want[160];
+  std::snprintf(want, sizeof want, "user_height 9.000000 m is outside [%g, %g] (0 = the avatar's own)", kMinUserHeight,
+                kMaxUserHeight);
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), want);
+}
+
+TEST(ServeMethods, UserHeightScalesTheAvatar) {
+  const double own = measure_body(avatar()).standing_height;
+  EXPECT_EQ(measure_body(make_method(skeleton_only(), options("ik"))->skeleton()).standing_height, own);
+  for (const char* m : {"ik", "wip", "combined"}) {
+    MethodOptions o = options(m);
+    o.user_height = 1.5;
+    const auto method = make_method(skeleton_only(), o);
+    EXPECT_NEAR(measure_body(method->skeleton()).standing_height, 1.5, 1e-9) << m;
+    EXPECT_EQ(method->skeleton().joint_count(), avatar().joint_count()) << m;
+  }
+}
+
+TEST(ServeMethods, IkWristsReachTheTrackedHands) {
+  const auto method = make_method(skeleton_only(), options("ik"));
+  const Skeleton& skel = method->skeleton();
+  const int hand[2] = {skel.require("LeftHand"), skel.require("RightHand")};
+  Pose pose(skel);
+  std::vector<Vec3> world(static_cast<std::size_t>(skel.joint_count()));
+  double worst = 0;
+  for (const TrackerFrame& f : trial(false)) {
+    MethodInfo info;
+    ASSERT_EQ(method->update(f, pose.ref(), info), UpdateStatus::Ok);
+    ASSERT_NE(find_info(info, "head_tracked"), nullptr);
+    EXPECT_EQ(find_info(info, "head_tracked")->number, 1.0);
+    forward_positions(skel, pose.ref(), world);
+    for (int s = 0; s < 2; ++s) worst = std::max(worst, (world[static_cast<std::size_t>(hand[s])] - f.hand(s).position).norm());
+  }
+  EXPECT_LT(worst, 0.01) << "wrists must be within 1 cm of the input hands";
+}
+
+TEST(ServeMethods, ARejectedFrameLeavesThePoseAlone) {
+  const auto method = make_method(skeleton_only(), options("ik"));
+  const auto frames = trial(false);
+  Pose pose(method->skeleton());
+  MethodInfo info;
+  ASSERT_NE(method->update(frames[5], pose.ref(), info), UpdateStatus::Rejected);
+  const Pose before = pose;
+  MethodInfo again;
+  EXPECT_EQ(method->update(frames[2], pose.ref(), again), UpdateStatus::Rejected);  // earlier time
+  EXPECT_EQ(again.count, 0);  // no diagnostics for a frame not consumed
+  for (int j = 0; j < method->skeleton().joint_count(); ++j) {
+    EXPECT_EQ(pose.rotations[static_cast<std::size_t>(j)].coeffs(), before.rotations[static_cast<std::size_t>(j)].coeffs());
+    EXPECT_EQ(pose.translations[static_cast<std::size_t>(j)], before.translations[static_cast<std::size_t>(j)]);
+  }
+}
+
+TEST(ServeMethods, WipAndCombinedDescribeTheirLegs) {
+  const auto frames = trial(true);
+  for (const char* m : {"wip", "combined"}) {
+    SCOPED_TRACE(m);
+    const auto method = make_method(skeleton_only(), options(m));
+    Pose pose(method->skeleton());
+    int walking = 0;
+    double distance = 0;
+    for (const TrackerFrame& f : frames) {
+      MethodInfo info;
+      ASSERT_NE(method->update(f, pose.ref(), info), UpdateStatus::Rejected);
+      const auto* w = find_info(info, "walking");
+      const auto* d = find_info(info, "distance");
+      ASSERT_NE(w, nullptr);
+      ASSERT_NE(d, nullptr);
+      walking += w->number > 0;
+      EXPECT_GE(d->number, distance);  // distance walked never shrinks
+      distance = d->number;
+    }
+    EXPECT_GT(walking, 0) << "the legs never walked on a real walk's ankles";
+    EXPECT_GT(distance, 0.0);
+  }
+  // The combined method says where its legs come from: wip while the feet are tracked.
+  const auto combined = make_method(skeleton_only(), options("combined"));
+  Pose pose(combined->skeleton());
+  MethodInfo info;
+  combined->update(frames[0], pose.ref(), info);
+  ASSERT_NE(find_info(info, "legs"), nullptr);
+  EXPECT_STREQ(find_info(info, "legs")->text, "wip");
+}
+
+}  // namespace
+}  // namespace legwork::serve
