@@ -5,6 +5,7 @@
 #include <legwork/io/bvh.hpp>
 
 #include "cmu_sample.hpp"
+#include "error_message.hpp"
 #include "testdata.hpp"
 
 #include <gtest/gtest.h>
@@ -12,22 +13,12 @@
 #include <cmath>
 
 using namespace legwork;
+using testdata::error_of;
 
 namespace {
 Motion walk() { return testdata::load_sample("cmu/bvh/walking/07_01.bvh"); }
 double quat_distance(const Quat& a, const Quat& b) { return 1.0 - std::abs(a.dot(b)); }
 double angle_between(const Quat& a, const Quat& b) { return a.angularDistance(b); }
-
-// The message of the legwork::Error that fn throws ("" if none).
-template <class Fn>
-std::string error_of(Fn&& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 void expect_same_pose(ConstPoseRef a, ConstPoseRef b, double tol) {
   ASSERT_EQ(a.joint_count(), b.joint_count());

@@ -3,6 +3,7 @@
 #include <legwork/core/tracker.hpp>
 
 #include "cmu_sample.hpp"
+#include "error_message.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,12 +15,7 @@ namespace {
 Motion walk() { return testdata::load_sample("cmu/bvh/walking/07_01.bvh"); }
 
 std::string error_of(const Motion& m, double rate, std::size_t max_frames) {
-  try {
-    (void)tracker_frames_from_motion(m, rate, max_frames);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return testdata::error_of([&] { (void)tracker_frames_from_motion(m, rate, max_frames); });
 }
 
 // Device d of every frame sits on (and turns with) the joint of its role.
@@ -95,7 +91,7 @@ TEST(TrackerMotion, BadRateAndTooManyFramesSayWhy) {
   EXPECT_NE(error_of(m, std::nan(""), 1000000).find("tracker frames: rate must be 0"), std::string::npos);
   EXPECT_EQ(error_of(m, 0, 10), "tracker frames: " + std::to_string(static_cast<double>(m.frame_count())) +
                                     " frames at 0.000000 Hz exceed the limit of 10");
-  EXPECT_EQ(error_of(m, 0, static_cast<std::size_t>(m.frame_count())), "");  // exactly at the limit is fine
+  EXPECT_EQ(error_of(m, 0, static_cast<std::size_t>(m.frame_count())), "(no error)");  // exactly at the limit is fine
 }
 
 }  // namespace
