@@ -16,6 +16,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
+
+#include <unistd.h>
 
 using namespace legwork;
 
@@ -23,10 +26,19 @@ namespace {
 
 const std::string kHeldOut = "bvh/walking/07_02.bvh";
 
+// One folder per process (ctest runs these tests in parallel processes, each
+// building its database), removed when the process ends.
+struct Scratch {
+  std::filesystem::path dir = std::filesystem::temp_directory_path() / ("legwork_accent_job_test_" + std::to_string(getpid()));
+  Scratch() { std::filesystem::create_directories(dir); }
+  ~Scratch() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+};
 std::string temp(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / "legwork_accent_job_test";
-  std::filesystem::create_directories(d);
-  return (d / name).string();
+  static const Scratch scratch;
+  return (scratch.dir / name).string();
 }
 
 // A database of the sample walks except the held-out one, saved once.

@@ -12,6 +12,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+
+#include <unistd.h>
 
 using namespace legwork;
 
@@ -94,11 +97,12 @@ TEST(Session, DescriptionPrintsEveryFigureInItsPlace) {
 TEST(Session, VideoIsWrittenOrAMissingEncoderIsNamed) {
   const Motion truth = trim(walk(), 0, 29);
   const auto frames = tracker_frames_from_motion(truth);
-  const auto path = (std::filesystem::temp_directory_path() / "legwork_session_test.mp4").string();
+  const auto path = (std::filesystem::temp_directory_path() / ("legwork_session_test_" + std::to_string(getpid()) + ".mp4")).string();
   std::filesystem::remove(path);
   if (std::system("command -v ffmpeg >/dev/null 2>&1") == 0) {
     eval::render_session_video(frames, truth.fps, truth, nullptr, &truth, "session test", path);
     EXPECT_GT(std::filesystem::file_size(path), 0u);
+    std::filesystem::remove(path);
   }
   setenv("LEGWORK_FFMPEG", "/nonexistent/ffmpeg", 1);
   try {
