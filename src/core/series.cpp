@@ -1,10 +1,14 @@
 #include <legwork/core/series.hpp>
 
+#include <legwork/core/types.hpp>
+
 #include <deque>
+#include <string>
 
 namespace legwork {
 
 std::vector<double> rolling_min(const std::vector<double>& x, int w) {
+  if (w < 0) throw Error("rolling_min: window must be >= 0 samples, got " + std::to_string(w));
   // Monotone deque of indices whose values increase from front to back.
   const int n = static_cast<int>(x.size());
   std::vector<double> out(x.size());

@@ -1,17 +1,16 @@
-// Database build, file format and search.
+// The database (contents, file format): built once from the sample trials.
+// Search is in search_test.cpp, the builder's own functions in builder_test.cpp.
 #include <legwork/accent/offline/builder.hpp>
-#include <legwork/accent/search.hpp>
 
 #include "accent_testing.hpp"
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <tuple>
-#include <random>
 
 namespace legwork::accent {
 namespace {
@@ -119,51 +118,6 @@ TEST_F(SampleDb, ClassesAreContiguousAndEveryWindowHasItsSource) {
   EXPECT_GT(fast, db_->window_count() / 2);
 }
 
-TEST_F(SampleDb, ExactSearchEqualsBruteForceAndFastRecallIsReported) {
-  std::mt19937 rng(3);
-  std::uniform_int_distribution<int> pick(0, db_->window_count() - 1);
-  std::normal_distribution<float> noise(0.0f, static_cast<float>(0.5 * db_->typical_distance() / std::sqrt(kDim)));
-  int hits = 0, total = 0;
-  for (int q = 0; q < 200; ++q) {
-    const int hand = q % 2;
-    Feature f = db_->feature(hand, pick(rng));
-    for (auto& x : f) x += noise(rng);
-    std::array<Match, 8> brute, exact, fast;
-    const int nb = search_knn(*db_, hand, f, 8, SearchMode::BruteForce, 0, {}, brute);
-    const int ne = search_knn(*db_, hand, f, 8, SearchMode::Exact, 0, {}, exact);
-    const int nf = search_knn(*db_, hand, f, 8, SearchMode::Fast, 2.0f, {}, fast);
-    ASSERT_EQ(nb, 8);
-    ASSERT_EQ(ne, nb);
-    for (int i = 0; i < nb; ++i) {
-      EXPECT_NEAR(exact[static_cast<std::size_t>(i)].distance, brute[static_cast<std::size_t>(i)].distance, 1e-4f);
-      // Windows differ only between equidistant duplicates (mirror/speed copies).
-      if (exact[static_cast<std::size_t>(i)].window != brute[static_cast<std::size_t>(i)].window) {
-        EXPECT_NEAR(exact[static_cast<std::size_t>(i)].distance, brute[static_cast<std::size_t>(i)].distance, 1e-6f);
-      }
-    }
-    for (int i = 0; i < nf; ++i)
-      for (int j = 0; j < nb; ++j) hits += fast[static_cast<std::size_t>(i)].window == brute[static_cast<std::size_t>(j)].window;
-    total += nb;
-  }
-  const double recall = static_cast<double>(hits) / total;
-  std::printf("[ figures  ] fast-mode recall@8 (eps 2) on %d windows: %.3f\n", db_->window_count(), recall);
-  EXPECT_GT(recall, 0.3);
-}
-
-TEST_F(SampleDb, ClassMaskRestrictsMatches) {
-  const int boxing = db_->find_class("boxing");
-  ASSERT_GE(boxing, 0);
-  std::vector<unsigned char> mask(static_cast<std::size_t>(db_->class_count()), 0);
-  mask[static_cast<std::size_t>(boxing)] = 1;
-  const Feature& f = db_->feature(0, db_->class_range(db_->find_class("walking")).first + 5);
-  for (SearchMode mode : {SearchMode::BruteForce, SearchMode::Exact, SearchMode::Fast}) {
-    std::array<Match, 5> m;
-    const int n = search_knn(*db_, 0, f, 5, mode, 1.0f, mask, m);
-    ASSERT_EQ(n, 5);
-    for (int i = 0; i < n; ++i) EXPECT_EQ(db_->source(m[static_cast<std::size_t>(i)].window).cls, boxing);
-  }
-}
-
 TEST_F(SampleDb, FileRoundTripByMmapIsIdentical) {
   const auto path = temp_file("roundtrip.lwdb");
   save_database(path.string(), *db_);
@@ -210,90 +164,6 @@ TEST_F(SampleDb, BadFilesAreRejectedWithClearMessages) {
   expect_error({}, "empty");
   fs::remove(path);
   EXPECT_THROW((void)load_database(temp_file("missing.lwdb").string()), Error);
-}
-
-TEST(AccentBuild, AllFilteredOrEmptyInputIsAClearError) {
-  BuildConfig cfg;
-  cfg.correlation_threshold = 1.01;  // nothing can pass
-  BuildReport report;
-  try {
-    (void)build_database(testing::sample_trials({"walking/07_01"}), cfg, &report);
-    ADD_FAILURE() << "expected an error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("no windows"), std::string::npos) << e.what();
-  }
-  EXPECT_THROW((void)build_database(std::vector<TrialInput>{}, BuildConfig{}), Error);
-}
-
-// A typo in an exclusion used to keep the held-out trial in the database silently.
-TEST(AccentBuild, ExcludingATrialThatIsNotThereIsAnError) {
-  const std::string data = testdata::sample("cmu").string();
-  const auto message = [&](const std::vector<std::string>& classes, const std::string& exclude) {
-    try {
-      (void)load_trials(data, classes, {exclude});
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("(no error)");
-  };
-  EXPECT_EQ(message({"boxing"}, "nothere.bvh"),
-            "exclude 'nothere.bvh' matches no trial of '" + data +
-                "' in the chosen classes (name a file as in the manifest, e.g. 'bvh/boxing/13_18.bvh', or by its file name)");
-  EXPECT_NE(message({"boxing"}, "bvh/walking/07_01.bvh").find("matches no trial"), std::string::npos);
-  EXPECT_EQ(message({"boxing", "walking"}, "bvh/walking/07_02.bvh"), "(no error)");
-  EXPECT_EQ(message({"boxing", "walking"}, "07_02.bvh"), "(no error)");
-  EXPECT_EQ(load_trials(data, {"boxing"}, {"13_18.bvh"}).size(), 0u);
-}
-
-TEST(AccentBuild, SkeletonWithoutHandsIsRejectedPerTrial) {
-  auto trials = testing::sample_trials({"walking/07_01", "walking/05_01"});
-  // Cut the arms off the second trial's rig: its hands' roles disappear.
-  Skeleton s;
-  const Skeleton& full = trials[1].motion.skeleton;
-  std::vector<int> keep(static_cast<std::size_t>(full.joint_count()), -1);
-  const int lhand = full.roles[Role::LeftHand];
-  for (int j = 0; j < full.joint_count(); ++j) {
-    const int p = full.parents[static_cast<std::size_t>(j)];
-    if (full.is_ancestor(lhand, j) || (p >= 0 && keep[static_cast<std::size_t>(p)] < 0)) continue;
-    keep[static_cast<std::size_t>(j)] = s.add_joint(full.names[static_cast<std::size_t>(j)], p < 0 ? -1 : keep[static_cast<std::size_t>(p)], full.rest_offsets[static_cast<std::size_t>(j)]);
-  }
-  resolve_roles(s);
-  ASSERT_FALSE(s.roles.has(Role::LeftHand));
-  trials[1].motion = Motion(s, trials[1].motion.fps, 50);
-  BuildReport report;
-  const Database db = build_database(trials, BuildConfig{}, &report);
-  ASSERT_EQ(report.trials.size(), 2u);
-  EXPECT_TRUE(report.trials[0].kept);
-  EXPECT_FALSE(report.trials[1].kept);
-  EXPECT_NE(report.trials[1].reason.find("left_hand"), std::string::npos) << report.trials[1].reason;
-}
-
-}  // namespace
-}  // namespace legwork::accent
-
-namespace legwork::accent {
-namespace {
-
-// The leave-one-out path of the evaluation: prepare once, assemble per fold.
-TEST(AccentFolds, PreparedTrialsAssembleFoldsWithoutTheHeldOutTrial) {
-  const auto trials = testing::sample_trials({"walking/05_01", "walking/07_01", "walking/07_12", "running/09_01"});
-  const Skeleton ref = reference_skeleton(trials);
-  const BuildConfig cfg;
-  std::vector<PreparedTrial> prepared;
-  for (const auto& t : trials) prepared.push_back(prepare_trial(t, ref, cfg));
-  for (std::size_t held = 0; held < prepared.size(); ++held) {
-    std::vector<const PreparedTrial*> train;
-    for (std::size_t i = 0; i < prepared.size(); ++i)
-      if (i != held) train.push_back(&prepared[i]);
-    BuildReport report;
-    const Database db = assemble_database(train, ref, cfg, &report);
-    EXPECT_EQ(db.skeleton().names, ref.names);
-    for (int w = 0; w < db.window_count(); ++w)
-      ASSERT_NE(db.trials()[db.source(w).trial].file, prepared[held].info.file) << "fold " << held << " leaks";
-    int expected = 0;
-    for (const auto* t : train) expected += t->kept;
-    EXPECT_EQ(static_cast<int>(db.trials().size()), expected);
-  }
 }
 
 }  // namespace

@@ -1,10 +1,7 @@
 // The shared per-frame input and time rules (core/tracker.hpp).
 #include <legwork/core/tracker.hpp>
-#include <legwork/io/bvh.hpp>
 
 #include <gtest/gtest.h>
-
-#include <cmu_sample.hpp>
 
 #include <limits>
 
@@ -75,22 +72,6 @@ TEST(Tracker, UsableRejectsInvalidNonFiniteAndHugeSamples) {
   EXPECT_FALSE(usable(d));
   d = {Vec3::Zero(), Quat(0, 0, 0, 0), true};
   EXPECT_FALSE(usable(d));
-}
-
-TEST(Tracker, FramesFromARealMotionPlaceDevicesOnTheJoints) {
-  const Motion m = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
-  const auto frames = tracker_frames_from_motion(m);
-  ASSERT_EQ(static_cast<int>(frames.size()), m.frame_count());
-  for (const auto& f : frames)
-    for (const auto& d : f.devices) EXPECT_TRUE(usable(d));
-  // The head is above the hands and feet, the feet near the floor.
-  EXPECT_GT(frames[10].head().position.y(), frames[10].hand(kLeft).position.y());
-  EXPECT_LT(frames[10].foot(kLeft).position.y(), 0.3);
-  EXPECT_NEAR(frames[1].time - frames[0].time, 1.0 / m.fps, 1e-12);
-  const auto at30 = tracker_frames_from_motion(m, 30.0);
-  EXPECT_NEAR(static_cast<double>(at30.size()), m.duration() * 30.0 + 1, 1.0);
-  EXPECT_THROW(tracker_frames_from_motion(m, -1.0), Error);
-  EXPECT_THROW(tracker_frames_from_motion(m, 1e9), Error);
 }
 
 }  // namespace

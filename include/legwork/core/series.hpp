@@ -5,7 +5,8 @@
 
 namespace legwork {
 
-// Rolling minimum over a window of +-w samples around each sample (O(n)).
+// Rolling minimum over a window of +-w samples around each sample (O(n));
+// throws legwork::Error for w < 0.
 std::vector<double> rolling_min(const std::vector<double>& x, int w);
 
 }  // namespace legwork

@@ -87,14 +87,14 @@ PosVec stack(const HandWindow& w) {
 }  // namespace
 
 std::vector<double> speed_factors(const BuildConfig& cfg) {
+  // Slower copies below 1, faster above (one more of them for an odd count),
+  // each side spread evenly up to speed_range: distinct factors, no copy twice.
   std::vector<double> s{1.0};
-  const int per_side = cfg.speed_variants / 2;
-  for (int i = 1; i <= per_side; ++i) {
-    const double d = cfg.speed_range * i / per_side;
-    s.push_back(1.0 - d);
-    s.push_back(1.0 + d);
+  const int below = cfg.speed_variants / 2, above = cfg.speed_variants - below;
+  for (int i = 1; i <= above; ++i) {
+    if (i <= below) s.push_back(1.0 - cfg.speed_range * i / below);
+    s.push_back(1.0 + cfg.speed_range * i / above);
   }
-  if (cfg.speed_variants % 2 == 1) s.push_back(1.0 + cfg.speed_range);
   return s;
 }
 
