@@ -70,10 +70,14 @@ void bind_runtime(pb::module_& m) {
       .def_property_readonly("root_height", &Model::root_height, "standing root height above the floor, metres");
   pb::class_<LearnedMapping>(m, "LearnedMapping", "Depth table learned from real walks (legwork wip learn).")
       .def_readonly("apex_mean", &LearnedMapping::apex_mean, "metres")
-      .def_readonly("gain_slope", &LearnedMapping::gain_slope, "depth gain per metre of apex")
+      .def_readonly("amplitude_intercept", &LearnedMapping::amplitude_intercept, "depth amplitude / leg at apex 0")
+      .def_readonly("amplitude_slope", &LearnedMapping::amplitude_slope, "depth amplitude / leg per metre of apex")
+      .def("amplitude", &LearnedMapping::amplitude, "apex"_a, "cadence"_a,
+           "depth amplitude / leg length for a step apex (m) and cadence (strides/s)")
       .def_readonly("samples", &LearnedMapping::samples)
-      .def("lookup", &LearnedMapping::lookup, "own"_a, "other"_a, "lead"_a,
-           "z / leg length for cycle coordinates own, other (0..2); lead 1 = this foot landed last, 0 not, -1 unknown");
+      .def("lookup", &LearnedMapping::lookup, "own"_a, "other"_a, "lead"_a, "since"_a,
+           "depth / amplitude for cycle coordinates own, other (0..2); lead 1 = this foot landed last, 0 not, -1 unknown;\n"
+           "since: seconds since that landing");
   m.def("read_learned_mapping", &read_learned_mapping, "path"_a,
         "The learned table file (data/wip/learned_mapping.txt); legwork.Error naming the line and field.");
   m.def(

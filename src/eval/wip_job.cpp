@@ -211,8 +211,10 @@ void run_wip_learn_job(const WipJob& a) {
   write_learned_mapping(a.out, table,
                         std::to_string(trials) + " trials of subjects " + who + " from " + fs::path(data).filename().string() +
                             " at " + std::to_string(static_cast<int>(a.rate)) + " Hz");
-  std::printf("learned depth mapping from %d trials (subjects %s): %d frames, apex mean %.3f m, gain slope %.2f per m\n",
-              trials, who.c_str(), table.samples, table.apex_mean, table.gain_slope);
+  std::printf("learned depth mapping from %d trials (subjects %s): %d frames; depth amplitude / leg = %.3f + %.2f x apex "
+              "(m) + %.3f x cadence (strides/s), clamped to %.3f..%.3f\n",
+              trials, who.c_str(), table.samples, table.amplitude_intercept, table.amplitude_slope, table.cadence_slope,
+              table.amplitude_min, table.amplitude_max);
   io::announce("learned mapping", a.out);
 }
 

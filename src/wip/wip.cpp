@@ -148,6 +148,9 @@ void reset_motion(const Model& model, State& st) {
   st.h_switch = 1;
   st.cycle[0] = st.cycle[1] = 0;
   st.lead = -1;
+  st.last_off[0] = st.last_off[1] = -1e9;
+  st.last_strike = -1e9;
+  st.stride_period = LearnedMapping::kDefaultStridePeriod;
 }
 
 }  // namespace
@@ -247,18 +250,25 @@ void drive_step(const Model& m, State& st, const unsigned ev[2]) {
 
 // The learned mapping's inputs (always kept, for Info and training) and,
 // with the learned mapping, its depth targets while walking.
-void learned_depth_targets(const Model& m, State& st, const unsigned ev[2]) {
+void learned_depth_targets(const Model& m, State& st, const unsigned ev[2], double time) {
   const auto& p = m.settings();
   for (int f = 0; f < 2; ++f) {
-    if (ev[f] & kEventFootStrike) st.lead = f;
+    if (ev[f] & kEventFootStrike) st.lead = f, st.last_strike = time;
     st.cycle[f] = cycle_coordinate(st.gait[f], p.gait, st.feet[f].h);
+    if (!(ev[f] & kEventFootOff)) continue;
+    // Stride period: the running mean of each foot's foot-off to foot-off time.
+    const double interval = time - st.last_off[f];
+    if (interval > 0.3 && interval < LearnedMapping::kMaxStridePeriod)
+      st.stride_period += 0.3 * (interval - st.stride_period);
+    st.last_off[f] = time;
   }
   const LearnedMapping* table = m.learned();
   if (!table || !st.walking) return;
-  const double g = table->gain(0.5 * (st.gait[0].apex_estimate + st.gait[1].apex_estimate));
+  const double apex = 0.5 * (st.gait[0].apex_estimate + st.gait[1].apex_estimate);
   for (int f = 0; f < 2; ++f) {
     const int lead = st.lead < 0 ? -1 : st.lead == f ? 1 : 0;
-    st.z_target[f] = m.leg_length() * g * table->lookup(st.cycle[f], st.cycle[1 - f], lead);
+    st.z_target[f] =
+        m.leg_length() * table->depth(st.cycle[f], st.cycle[1 - f], lead, time - st.last_strike, apex, 1 / st.stride_period);
   }
 }
 
@@ -364,6 +374,8 @@ void fill_info(const Model& m, const State& st, double time, const unsigned ev[2
   fr.walking = st.walking;
   fr.driver = st.driver;
   fr.lead = st.lead;
+  fr.stride_period = st.stride_period;
+  fr.since_strike = time - st.last_strike;
   fr.kind = st.kind;
   fr.double_support_time = st.ds_time;
 }
@@ -386,11 +398,12 @@ UpdateStatus update(const Model& m, const TrackerFrame& frame, State& st, PoseRe
   unsigned ev[2];
   const bool feet_ok = track_feet(m, frame, st, dt, ev);
   update_depth_targets(m, st, ev, dt);
-  learned_depth_targets(m, st, ev);
+  learned_depth_targets(m, st, ev, frame.time);
 
   // Smooth the targets (frame-rate independent form of the document's lerp).
   const auto& mp = p.mapping;
-  for (int f = 0; f < 2; ++f) st.z[f] = approach(st.z[f], st.z_target[f], dt, mp.smoothing_tau);
+  const double tau = m.learned() ? mp.learned_smoothing_tau : mp.smoothing_tau;
+  for (int f = 0; f < 2; ++f) st.z[f] = approach(st.z[f], st.z_target[f], dt, tau);
   // Eq. 5-7: the body drops with the trailing foot's depth while walking. The
   // leading foot can reach further than the trailing one (the strike
   // overshoot of eq. 3), so the farther of the two sets the drop: otherwise

@@ -70,8 +70,13 @@ TEST(CycleCoordinate, RisesThroughTheSwingAndRestsAtZeroOnARealWalk) {
       EXPECT_GE(fr.cycle[f], 0);
       EXPECT_LE(fr.cycle[f], 2);
       const bool down = fr.phase[f] == GaitPhase::MidSwing || fr.phase[f] == GaitPhase::TerminalSwing;
-      if (down) EXPECT_GE(fr.cycle[f], 1), ++descending;
-      else EXPECT_LE(fr.cycle[f], 1), ++rising;
+      if (down) {
+        EXPECT_GE(fr.cycle[f], 1);
+        ++descending;
+      } else {
+        EXPECT_LE(fr.cycle[f], 1);
+        ++rising;
+      }
     }
   EXPECT_GT(descending, 20);
   EXPECT_GT(rising, 20);

@@ -42,6 +42,8 @@ struct MappingSettings {
   double lift_scale = 0.5;    // eq. 8's 0.5: avatar lift per metre of user lift
   double stop_time = 1.5;     // s of double support -> stop (legs back to neutral)
   double smoothing_tau = 0.05;  // s: exponential approach of the targets (the document's lerp)
+  double learned_smoothing_tau = 0;  // s: the same for the learned mapping (its table is continuous and already
+                                     // lags with the filter; extra smoothing only delays: 0 = none)
   double body_tau = 0.05;       // s: same for the body's vertical offset
   double hint_forward = 0.29;   // m in front of the knee at the reference leg
   double knee_bend = 0.02;      // standing root lowered by this fraction of the leg (keeps knees soft)
@@ -122,6 +124,8 @@ struct Info {
   double cycle[2] = {0, 0};              // cycle coordinate (learned.hpp): 0 rest, 0..1 rising, 1..2 descending
   double apex_estimate[2] = {0, 0};      // running estimate of the user's step apex, m
   int lead = -1;                         // foot that landed last (-1 none yet)
+  double stride_period = 0;              // running mean of foot-off to foot-off of the same foot, s
+  double since_strike = 0;               // s since the last foot strike (huge before the first)
   double root_offset = 0;                // vertical root offset, -dh while walking (eq. 6, 7)
   double speed = 0, distance = 0;        // forward speed m/s, distance walked m
   double heading = 0;                    // walking heading used, radians (0 = +z)
@@ -156,6 +160,9 @@ struct State {
   double gap_up[2] = {0, 0}, h_off = 0;     // gap at foot-off, faded out while ascending
   double cycle[2] = {0, 0};                 // cycle coordinates (learned mapping's input)
   int lead = -1;                            // foot that landed last
+  double last_off[2] = {-1e9, -1e9};        // time of each foot's last foot-off
+  double last_strike = -1e9;                // time of the last foot strike (either foot)
+  double stride_period = LearnedMapping::kDefaultStridePeriod;  // s (learned mapping's cadence input)
   Vec3 root_xz = Vec3::Zero();
 };
 
