@@ -16,7 +16,7 @@
 namespace legwork::wip {
 
 struct LearnedMapping {
-  static constexpr int kNodes = 21;  // grid nodes per cycle-coordinate axis over [0, 2]
+  static constexpr int kNodes = 13;  // grid nodes per cycle-coordinate axis over [0, 2]
   static constexpr int kSinceNodes = 5;  // grid nodes over the time since the last foot strike
   static constexpr std::array<double, kSinceNodes> kSince = {0.0, 0.15, 0.3, 0.6, 1.2};  // s (clamped beyond)
   static constexpr double kDefaultStridePeriod = 1.1;  // s, before two foot-offs of a foot were seen
