@@ -49,23 +49,29 @@ TEST(LearningSamples, BothFeetOfTheWalkingFramesAfterSettlingWithTheirLeadAndDep
   EXPECT_LT(lead, static_cast<int>(samples.size()));
 }
 
-TEST(BuildLearnedMapping, SamplesOnANodeGiveItTheirMeanAndEmptyNodesTakeTheNearest) {
+TEST(BuildLearnedMapping, SamplesOnANodeGiveItTheirMeanShapeAndEmptyNodesTakeTheNearest) {
   std::vector<LearnSample> samples;
   for (int k = 0; k < 300; ++k) {
-    samples.push_back({0.0, 0.0, 1, 0.15, k % 2 ? 0.4 : 0.2});  // node (0, 0) of lead 1: mean 0.3
-    samples.push_back({2.0, 2.0, 0, 0.15, -0.5});               // node (last, last) of lead 0
+    // node (since 0, 0, 0) of lead 1: z / amplitude 0.4 / 0.5 and 0.2 / 0.5, mean 0.6
+    samples.push_back({0.0, 0.0, 1, 0.0, 0.1, 1.0, k % 2 ? 0.4 : 0.2, 0.5});
+    samples.push_back({2.0, 2.0, 0, 100.0, 0.2, 0.5, -0.25, 0.25});  // the last node of lead 0: -1
   }
   const auto m = build_learned_mapping(samples);
-  constexpr int n = LearnedMapping::kNodes;
-  EXPECT_NEAR(m.at(1, 0, 0), 0.3, 1e-12);
-  EXPECT_NEAR(m.at(0, n - 1, n - 1), -0.5, 1e-12);
-  EXPECT_NEAR(m.at(1, n - 1, n - 1), 0.3, 1e-12);  // the only filled node of its slice
+  constexpr int n = LearnedMapping::kNodes, ks = LearnedMapping::kSinceNodes;
+  EXPECT_NEAR(m.at(1, 0, 0, 0), 0.6, 1e-12);
+  EXPECT_NEAR(m.at(0, ks - 1, n - 1, n - 1), -1, 1e-12);
+  EXPECT_NEAR(m.at(1, ks - 1, n - 1, n - 1), 0.6, 1e-12);  // the only filled node of its slice
+  EXPECT_NEAR(m.at(0, 0, 0, 0), -1, 1e-12);
   EXPECT_NEAR(m.apex_mean, 0.15, 1e-12);
+  EXPECT_NEAR(m.cadence_mean, 0.75, 1e-12);
+  // amplitude 0.5 at (apex 0.1, cadence 1), 0.25 at (0.2, 0.5): collinear, so the fit goes through both
+  EXPECT_NEAR(m.amplitude(0.1, 1.0), 0.5, 1e-9);
+  EXPECT_NEAR(m.amplitude(0.2, 0.5), 0.25, 1e-9);
   EXPECT_EQ(m.samples, 600);
 }
 
 TEST(BuildLearnedMapping, TooFewSamplesAreRefusedWithTheCount) {
-  std::vector<LearnSample> samples(10, LearnSample{0.5, 0.5, 1, 0.1, 0.2});
+  std::vector<LearnSample> samples(10, LearnSample{0.5, 0.5, 1, 0.2, 0.1, 1.0, 0.2, 0.4});
   try {
     (void)build_learned_mapping(samples);
     FAIL() << "no exception";
@@ -78,8 +84,10 @@ TEST(BuildLearnedMapping, TooFewSamplesAreRefusedWithTheCount) {
 TEST(LearnedMappingFile, TheShippedTableRoundTrips) {
   const auto m = read_learned_mapping(shipped_path());
   const auto again = parse_learned_mapping(format_learned_mapping(m, "round trip"), "again.txt");
-  for (std::size_t k = 0; k < m.depth.size(); ++k) EXPECT_NEAR(again.depth[k], m.depth[k], 1e-5 * (1 + std::abs(m.depth[k])));
-  EXPECT_NEAR(again.gain_slope, m.gain_slope, 1e-5 * (1 + std::abs(m.gain_slope)));
+  for (std::size_t k = 0; k < m.shape.size(); ++k) EXPECT_NEAR(again.shape[k], m.shape[k], 1e-5 * (1 + std::abs(m.shape[k])));
+  EXPECT_NEAR(again.amplitude_intercept, m.amplitude_intercept, 1e-6);
+  EXPECT_NEAR(again.amplitude_slope, m.amplitude_slope, 1e-5 * (1 + std::abs(m.amplitude_slope)));
+  EXPECT_NEAR(again.cadence_slope, m.cadence_slope, 1e-5 * (1 + std::abs(m.cadence_slope)));
   EXPECT_NEAR(again.apex_mean, m.apex_mean, 1e-6);
   EXPECT_EQ(again.samples, m.samples);
 }
@@ -88,15 +96,15 @@ TEST(LearnedMappingFile, BadFilesNameTheLineAndTheField) {
   const std::string good = format_learned_mapping(read_learned_mapping(shipped_path()), "test");
   EXPECT_NE(error_of("hello\n").find("table.txt:1: not a learned walking-in-place mapping"), std::string::npos);
   std::string bad = good;
-  bad.replace(bad.find("gain_slope "), 11, "gain_slop ");
-  EXPECT_NE(error_of(bad).find("expected 'gain_slope <number>'"), std::string::npos) << error_of(bad);
+  bad.replace(bad.find("cadence_slope "), 14, "cadence_slop ");
+  EXPECT_NE(error_of(bad).find("expected 'cadence_slope <number>'"), std::string::npos) << error_of(bad);
   bad = good;
-  const auto row = bad.find("lead 1\n") + 7;
+  const auto row = bad.find("\n", bad.find("lead 1\n") + 7) + 1;  // first row after "since 0"
   bad.replace(row, bad.find(' ', row) - row, "x");
   const std::string e = error_of(bad);
-  EXPECT_NE(e.find("lead 1 table row 0: column 0 is not a finite number"), std::string::npos) << e;
+  EXPECT_NE(e.find("lead 1 since node 0 row 0: column 0 is not a finite number"), std::string::npos) << e;
   EXPECT_NE(e.find("table.txt:"), std::string::npos) << e;
-  EXPECT_NE(error_of(good.substr(0, good.rfind('\n', good.size() / 2) + 1)).find("file ends inside the lead"), std::string::npos);
+  EXPECT_NE(error_of(good.substr(0, good.rfind('\n', good.size() / 2) + 1)).find("file ends inside the table"), std::string::npos);
 }
 
 }  // namespace
