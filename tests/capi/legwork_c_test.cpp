@@ -43,6 +43,16 @@ const std::string& database_file() {
   return path;
 }
 
+// The joint of the model's skeleton with a Unity humanoid name, -1 if none.
+int humanoid_joint(const lw_model* model, const std::string& name) {
+  const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(model));
+  for (int j = 0; j < n; ++j) {
+    const char* h = lw_model_humanoid_name(model, j, 0);
+    if (h && name == h) return j;
+  }
+  return -1;
+}
+
 struct Frames {
   lw_frame* data = nullptr;
   int32_t count = 0;
@@ -148,14 +158,8 @@ TEST(CApi, IkAvatarPutsTheWristsOnTheControllers) {
   ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
   Frames f;
   ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/07_02.bvh").c_str(), 0, 1, &f.data, &f.count), LW_OK);
-  const lw_skeleton* out = lw_model_skeleton(model);
-  const int32_t n = lw_skeleton_joint_count(out);
-  int wrist[2] = {-1, -1};
-  for (int j = 0; j < n; ++j) {
-    const char* h = lw_model_humanoid_name(model, j, 0);
-    if (h && std::string(h) == "LeftHand") wrist[0] = j;
-    if (h && std::string(h) == "RightHand") wrist[1] = j;
-  }
+  const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(model));
+  const int wrist[2] = {humanoid_joint(model, "LeftHand"), humanoid_joint(model, "RightHand")};
   ASSERT_GE(wrist[0], 0);
   ASSERT_GE(wrist[1], 0);
   std::vector<double> world(3 * static_cast<std::size_t>(n));
@@ -190,15 +194,9 @@ TEST(CApi, WipWithTheLearnedMappingWalksOnARealWalk) {
   ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
   Frames f;
   ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), 30, 1, &f.data, &f.count), LW_OK);
-  const lw_skeleton* out = lw_model_skeleton(model);
-  const int32_t n = lw_skeleton_joint_count(out);
-  int foot[2] = {-1, -1}, hips = -1;
-  for (int j = 0; j < n; ++j) {
-    const char* h = lw_model_humanoid_name(model, j, 0);
-    if (h && std::string(h) == "LeftFoot") foot[0] = j;
-    if (h && std::string(h) == "RightFoot") foot[1] = j;
-    if (h && std::string(h) == "Hips") hips = j;
-  }
+  const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(model));
+  const int foot[2] = {humanoid_joint(model, "LeftFoot"), humanoid_joint(model, "RightFoot")};
+  const int hips = humanoid_joint(model, "Hips");
   ASSERT_GE(foot[0], 0);
   ASSERT_GE(foot[1], 0);
   ASSERT_GE(hips, 0);

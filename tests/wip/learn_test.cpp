@@ -4,7 +4,7 @@
 #include <legwork/wip/offline/learn.hpp>
 #include <legwork/wip/offline/run.hpp>
 
-#include "cmu_sample.hpp"
+#include "sample_walk_run.hpp"
 #include "testdata.hpp"
 
 #include <cmath>
@@ -25,15 +25,12 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(LearningSamples, BothFeetOfTheWalkingFramesAfterSettlingWithTheirLeadAndDepthPerLeg) {
-  const Motion walk = testdata::load_sample("cmu/bvh/walking/05_01.bvh");
-  const Model model = make_model(walk.skeleton);
-  RunOptions ro;
-  ro.calibrate = false;
-  ro.keep_poses = false;
-  const auto frames = run_wip(model, tracker_frames_from_motion(walk, 30), ro).frames;
+  const auto& run = testing::sample_walk_run();
+  const auto& frames = run.frames;
+  const double leg = run.leg_length;
   std::vector<double> left(frames.size(), 0.3), right(frames.size(), -0.2);
   right[frames.size() / 2] = NAN;  // a frame without truth for one foot
-  const auto samples = learning_samples(frames, left, right, model.leg_length(), 0.5);
+  const auto samples = learning_samples(frames, left, right, leg, 0.5);
   std::size_t expected = 0;
   for (std::size_t i = 0; i < frames.size(); ++i)
     if (frames[i].walking && frames[i].lead >= 0 && frames[i].time >= 0.5) expected += i == frames.size() / 2 ? 1 : 2;
@@ -41,7 +38,7 @@ TEST(LearningSamples, BothFeetOfTheWalkingFramesAfterSettlingWithTheirLeadAndDep
   EXPECT_EQ(samples.size(), expected);
   int lead = 0;
   for (const auto& s : samples) {
-    EXPECT_TRUE(std::abs(s.z - 0.3 / model.leg_length()) < 1e-12 || std::abs(s.z + 0.2 / model.leg_length()) < 1e-12);
+    EXPECT_TRUE(std::abs(s.z - 0.3 / leg) < 1e-12 || std::abs(s.z + 0.2 / leg) < 1e-12);
     EXPECT_GT(s.apex, 0.02);
     lead += s.lead;
   }

@@ -5,7 +5,7 @@
 #include <legwork/wip/offline/learn.hpp>
 #include <legwork/wip/offline/run.hpp>
 
-#include "cmu_sample.hpp"
+#include "sample_walk_run.hpp"
 #include "testdata.hpp"
 
 #include <cmath>
@@ -71,12 +71,7 @@ TEST(LearnedLookup, TheAmplitudeFollowsApexAndCadenceWithinItsRange) {
 }
 
 TEST(CycleCoordinate, RisesThroughTheSwingAndRestsAtZeroOnARealWalk) {
-  const Motion walk = testdata::load_sample("cmu/bvh/walking/05_01.bvh");
-  const Model model = make_model(walk.skeleton);
-  RunOptions ro;
-  ro.calibrate = false;
-  ro.keep_poses = false;
-  const auto frames = run_wip(model, tracker_frames_from_motion(walk, 30), ro).frames;
+  const auto& frames = testing::sample_walk_run().frames;
   int descending = 0, rising = 0;
   for (const auto& fr : frames)
     for (int f = 0; f < 2; ++f) {
