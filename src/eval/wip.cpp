@@ -801,6 +801,8 @@ void summary_chart(const WipEvalSummary& s, const std::string& path) {
   bc.groups = {"strict F1 +-200 ms", "strict F1 (noisy)", "lenient overlap F1", "depth r"};
   bc.series.emplace_back("method", std::vector<double>{s.strict.f1, s.strict_noisy.f1, s.steps.f1, s.depth.correlation});
   bc.series.emplace_back("document's fixed thresholds", std::vector<double>{s.strict_fixed.f1, NAN, s.steps_fixed.f1, NAN});
+  bc.series.emplace_back("learned depth mapping (cross-validated by subject)",
+                         std::vector<double>{NAN, NAN, NAN, s.learned.samples > 1 ? s.learned.correlation : NAN});
   bc.series.emplace_back("key-frame baseline", std::vector<double>{NAN, NAN, NAN, s.baseline_depth.correlation});
   render::plot_bars(bc, path);
 }
