@@ -6,10 +6,12 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/io/bvh.hpp>
+#include <legwork/wip/offline/learn.hpp>
 #include <legwork/wip/offline/synthetic.hpp>
 #include <legwork/wip/wip.hpp>
 
 #include "cmu_sample.hpp"
+#include "testdata.hpp"
 
 #include <string>
 #include <vector>
@@ -48,6 +50,17 @@ void BM_WipUpdatePerAvatarFrame(benchmark::State& state) {
   state.counters["joints"] = model.skeleton().joint_count();
 }
 BENCHMARK(BM_WipUpdatePerAvatarFrame);
+
+// The same with the depth mapping learned from real walks (the shipped table).
+void BM_WipUpdateLearnedMapping(benchmark::State& state) {
+  const Motion walk = load_walk("16_15.bvh");
+  Settings settings;
+  settings.mapping.depth = DepthMapping::Learned;
+  const LearnedMapping table = read_learned_mapping(testdata::sample("wip/learned_mapping.txt").string());
+  const Model model = make_model(walk.skeleton, settings, {}, &table);
+  run_updates(state, model, tracker_frames_from_motion(walk, 30.0));
+}
+BENCHMARK(BM_WipUpdateLearnedMapping);
 
 void BM_WipUpdateSynthetic(benchmark::State& state) {
   const Model model = make_model(load_walk("07_01.bvh").skeleton);

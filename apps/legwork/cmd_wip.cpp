@@ -22,6 +22,10 @@ void add_method_options(CLI::App* cmd, eval::WipJob& a) {
                 "feed the raw height into the equations (default: normalised by the user's step apex)");
   cmd->add_option("--stop-time", a.stop_time, "double support longer than this stops the legs, s (default 1.5)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--mapping", a.mapping,
+                  "fore-aft IK-target depths: document (equations 1-4, default) or learned (table from real walks)")
+      ->check(CLI::IsMember({"document", "learned"}));
+  cmd->add_option("--table", a.table, "learned mapping table (default data/wip/learned_mapping.txt; `legwork wip learn`)");
   cmd->add_option("--step-length", a.step_length, "maximum step length S for a 0.8 m leg, m (default 0.6; scaled to the avatar)")
       ->check(CLI::PositiveNumber);
 }
@@ -85,8 +89,20 @@ void register_wip(CLI::App& app) {
   ev->add_option("--rate", a->rate, "tracker rate, Hz (default 30)")->check(CLI::Range(10.0, 1000.0));
   add_method_options(ev, *a);
   ev->callback([a] { eval::run_wip_eval_job(*a); });
-  cmd->callback([a, ev] {
-    if (ev->parsed()) return;
+  auto* learn = cmd->add_subcommand(
+      "learn",
+      "Learn the walking-in-place depth mapping from real walks: each trial's own ankles run through the method's\n"
+      "filters and gait machines, paired with the real fore-aft ankle offsets; writes the table used by --mapping learned.\n"
+      "Example: legwork wip learn --data ../shared/data/cmu/bvh/walking --out data/wip/learned_mapping.txt");
+  learn->add_option("--data", a->data, "folder of walking BVH trials (default ../shared/data/cmu/bvh/walking)");
+  output_file(learn->add_option("--out", a->out, "the learned table (.txt)")->required());
+  learn->add_option("--exclude-subjects", a->exclude_subjects, "CMU subjects left out, e.g. 105,16 (for held-out tests)");
+  learn->add_option("--limit", a->limit, "use only the first N trials")->check(CLI::PositiveNumber);
+  learn->add_option("--rate", a->rate, "tracker rate, Hz (default 30)")->check(CLI::Range(10.0, 1000.0));
+  add_method_options(learn, *a);
+  learn->callback([a] { eval::run_wip_learn_job(*a); });
+  cmd->callback([a, ev, learn] {
+    if (ev->parsed() || learn->parsed()) return;
     if (a->syn.pause_start < 0) a->syn.pause_length = 0;
     eval::run_wip_job(*a);
   });

@@ -153,6 +153,10 @@ LW_API lw_status lw_model_create_ik(const lw_skeleton* skeleton, lw_model** out)
 /* Walking-in-place legs on a skeleton (copied), driven by the feet devices'
  * heights; the head's yaw steers. Call lw_avatar_set_floor after create. */
 LW_API lw_status lw_model_create_wip(const lw_skeleton* skeleton, lw_model** out);
+/* The same with the depth mapping learned from real walks instead of the
+ * document's equations: `table_path` is a table written by `legwork wip learn`
+ * (the repository ships data/wip/learned_mapping.txt); read once, copied. */
+LW_API lw_status lw_model_create_wip_learned(const lw_skeleton* skeleton, const char* table_path, lw_model** out);
 
 /* A walk-cycle walker from a key-pose JSON file (skeleton found next to it);
  * steered frame by frame by the head device's yaw. */

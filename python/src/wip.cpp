@@ -2,6 +2,7 @@
 #include "bindings.hpp"
 
 #include <legwork/core/contacts.hpp>
+#include <legwork/wip/offline/learn.hpp>
 #include <legwork/wip/wip.hpp>
 
 namespace legwork::py {
@@ -35,8 +36,12 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("lost_confidence", &GaitSettings::lost_confidence)
       .def_readwrite("adaptive", &GaitSettings::adaptive);
   pb::enum_<SpeedModel>(m, "SpeedModel").value("StepSpeed", SpeedModel::StepSpeed).value("StepFrequency", SpeedModel::StepFrequency);
+  pb::enum_<DepthMapping>(m, "DepthMapping", "Fore-aft IK-target depths: the document's equations or the learned table.")
+      .value("Document", DepthMapping::Document)
+      .value("Learned", DepthMapping::Learned);
   pb::class_<MappingSettings>(m, "MappingSettings", "Step mapping onto the avatar (metres, seconds, m/s).")
       .def(pb::init<>())
+      .def_readwrite("depth", &MappingSettings::depth, "legwork.wip.DepthMapping (Learned needs a table in make_model)")
       .def_readwrite("reference_leg", &MappingSettings::reference_leg)
       .def_readwrite("step_length", &MappingSettings::step_length)
       .def_readwrite("user_step_height", &MappingSettings::user_step_height)
@@ -63,9 +68,24 @@ void bind_runtime(pb::module_& m) {
   state.def_readonly("calibrated", &State::calibrated);
   model.def_property_readonly("leg_length", &Model::leg_length, "metres")
       .def_property_readonly("root_height", &Model::root_height, "standing root height above the floor, metres");
+  pb::class_<LearnedMapping>(m, "LearnedMapping", "Depth table learned from real walks (legwork wip learn).")
+      .def_readonly("apex_mean", &LearnedMapping::apex_mean, "metres")
+      .def_readonly("amplitude_intercept", &LearnedMapping::amplitude_intercept, "depth amplitude / leg at apex 0")
+      .def_readonly("amplitude_slope", &LearnedMapping::amplitude_slope, "depth amplitude / leg per metre of apex")
+      .def("amplitude", &LearnedMapping::amplitude, "apex"_a, "cadence"_a,
+           "depth amplitude / leg length for a step apex (m) and cadence (strides/s)")
+      .def_readonly("samples", &LearnedMapping::samples)
+      .def("lookup", &LearnedMapping::lookup, "own"_a, "other"_a, "lead"_a, "since"_a,
+           "depth / amplitude for cycle coordinates own, other (0..2); lead 1 = this foot landed last, 0 not, -1 unknown;\n"
+           "since: seconds since that landing");
+  m.def("read_learned_mapping", &read_learned_mapping, "path"_a,
+        "The learned table file (data/wip/learned_mapping.txt); legwork.Error naming the line and field.");
   m.def(
-      "make_model", [](const Skeleton& s, const Settings& st) { return make_model(s, st); }, "avatar"_a, "settings"_a = Settings{},
-      "Model from an avatar skeleton with legs; legwork.Error naming missing roles.");
+      "make_model",
+      [](const Skeleton& s, const Settings& st, const LearnedMapping* learned) { return make_model(s, st, {}, learned); },
+      "avatar"_a, "settings"_a = Settings{}, "learned"_a = nullptr,
+      "Model from an avatar skeleton with legs; legwork.Error naming missing roles. learned: the table for\n"
+      "settings.mapping.depth = DepthMapping.Learned (legwork.wip.read_learned_mapping).");
   m.def("set_floor", &set_floor, "state"_a, "left"_a, "right"_a, "Tracker-space floor height under each ankle, metres.");
   pb::class_<Info>(m, "Info", "Per-frame diagnostics ([left, right] pairs).")
       .def(pb::init<>())

@@ -93,6 +93,28 @@ def test_wip_walks_while_the_feet_step_and_stands_when_they_stop():
     assert distance[-1] - distance[-90] < 1e-3
 
 
+def test_wip_learned_mapping_swings_the_feet_and_needs_its_table():
+    walk = legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/05_01.bvh"), drop_first=True)
+    settings = wip.Settings()
+    settings.mapping.depth = wip.DepthMapping.Learned
+    with pytest.raises(legwork.Error, match="learned depth mapping needs a learned table"):
+        wip.make_model(walk.skeleton, settings)
+    with pytest.raises(legwork.Error, match=r"CMakeLists.txt:1: not a learned walking-in-place mapping"):
+        wip.read_learned_mapping(str(SOURCE / "CMakeLists.txt"))
+    table = wip.read_learned_mapping(str(SOURCE / "data/wip/learned_mapping.txt"))
+    assert table.samples > 5000 and table.lookup(0, 0, 1, 0.05) > 0 > table.lookup(0, 0, 0, 0.05)
+    model = wip.make_model(walk.skeleton, settings, table)
+    state, pose, info = wip.State(model), core.Pose(model.skeleton()), wip.Info()
+    depths = []
+    for f in core.tracker_frames_from_motion(walk, 30.0):
+        wip.update(model, f, state, pose, info)
+        depths.append(info.z)
+    z = np.array(depths)
+    assert np.all(np.isfinite(z))
+    for foot in (0, 1):  # each foot goes in front of and behind the pelvis
+        assert z[:, foot].min() < -0.1 * model.leg_length < 0.1 * model.leg_length < z[:, foot].max()
+
+
 def test_walker_walks_forward_and_turns_to_the_head():
     walk = walkcycle.load_walk(str(SOURCE / "data/walks/normal.json"))
     cycle = walkcycle.build_cycle(walk.skeleton, walk.keys)

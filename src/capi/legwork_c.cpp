@@ -13,6 +13,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/walkcycle/offline/keys.hpp>
 #include <legwork/walkcycle/walker.hpp>
+#include <legwork/wip/offline/learn.hpp>
 #include <legwork/wip/wip.hpp>
 
 #include <cstdlib>
@@ -343,6 +344,18 @@ lw_status lw_model_create_wip(const lw_skeleton* skeleton, lw_model** out) {
   *out = nullptr;
   return guarded("lw_model_create_wip", [&] {
     return store_model(LW_METHOD_WIP, wip::make_model(skeleton->skeleton, wip::Settings{}), out);
+  });
+}
+
+lw_status lw_model_create_wip_learned(const lw_skeleton* skeleton, const char* table_path, lw_model** out) {
+  if (!skeleton || !table_path || !out)
+    return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_wip_learned: skeleton, table_path and out must not be NULL");
+  *out = nullptr;
+  return guarded("lw_model_create_wip_learned", [&] {
+    wip::Settings settings;
+    settings.mapping.depth = wip::DepthMapping::Learned;
+    const wip::LearnedMapping table = wip::read_learned_mapping(table_path);
+    return store_model(LW_METHOD_WIP, wip::make_model(skeleton->skeleton, settings, {}, &table), out);
   });
 }
 

@@ -22,6 +22,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <sstream>
 
 namespace legwork::eval {
@@ -215,6 +217,8 @@ DepthTrack true_depths(const Motion& m, double rate) {
   d.z[0].resize(static_cast<std::size_t>(n));
   d.z[1].resize(static_cast<std::size_t>(n));
   d.time.resize(static_cast<std::size_t>(n));
+  double yaw = NAN, lo = 0, hi = 0;
+  bool first = true;
   for (int i = 0; i < n; ++i) {
     Vec3 left = Vec3::Zero();
     for (int k = std::max(0, i - w); k <= std::min(n - 1, i + w); ++k) left += hipline[static_cast<std::size_t>(k)];
@@ -223,7 +227,14 @@ DepthTrack true_depths(const Motion& m, double rate) {
     const auto iu = static_cast<std::size_t>(i);
     d.time[iu] = i / rate;
     for (int f = 0; f < 2; ++f) d.z[f][iu] = (ankle[f][iu] - pelvis[iu]).dot(forward);
+    const double a = std::atan2(forward.x(), forward.z());
+    if (!std::isfinite(a)) continue;
+    yaw = std::isfinite(yaw) ? yaw + std::remainder(a - yaw, 2 * kPi) : a;  // unwrapped
+    lo = first ? yaw : std::min(lo, yaw);
+    hi = first ? yaw : std::max(hi, yaw);
+    first = false;
   }
+  d.heading_range_deg = (hi - lo) * 180 / kPi;
   return d;
 }
 
@@ -252,9 +263,12 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
                                 const WipEvalOptions& opt, int trial_index) {
   WipTrialEval e;
   e.name = name;
+  e.subject = subject_of(name);
   e.duration = trial.duration();
   const double rate = opt.settings.signal.rate;
-  const wip::Model model = wip::make_model(trial.skeleton, opt.settings);
+  wip::Settings settings = opt.settings;
+  settings.mapping.depth = wip::DepthMapping::Document;  // the learned one is scored by subject (evaluate_learned_depth)
+  const wip::Model model = wip::make_model(trial.skeleton, settings);
   e.leg_length = model.leg_length();
   e.truth = foot_swings(trial, opt.truth);
   wip::RunOptions ro;
@@ -278,6 +292,8 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
     for (const auto& d : e.detected_noisy) g.false_steps_noisy += d.off >= g.begin && d.off <= g.end ? 1 : 0;
 
   e.true_depth = true_depths(trial, rate);
+  e.turning = e.true_depth.heading_range_deg > kTurningDegrees;
+  e.learn = wip::learning_samples(e.frames, e.true_depth.z[0], e.true_depth.z[1], model.leg_length(), opt.settle);
   const auto base_model = wip::make_keyframe_baseline(cycle, model.leg_length());
   auto base = wip::make_baseline_state(base_model);
   const std::size_t n = std::min(e.frames.size(), e.true_depth.time.size());
@@ -297,6 +313,28 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
   return e;
 }
 
+std::string subject_of(const std::string& trial) { return trial.substr(0, trial.find('_')); }
+
+void evaluate_learned_depth(const Motion& trial, const wip::LearnedMapping& table, const WipEvalOptions& opt,
+                            WipTrialEval& e) {
+  wip::Settings settings = opt.settings;
+  settings.mapping.depth = wip::DepthMapping::Learned;
+  const wip::Model model = wip::make_model(trial.skeleton, settings, {}, &table);
+  wip::RunOptions ro;
+  ro.calibrate = false;
+  ro.keep_poses = false;
+  const auto frames = wip::run_wip(model, tracker_frames_from_motion(trial, settings.signal.rate), ro).frames;
+  const std::size_t n = std::min(frames.size(), e.true_depth.time.size());
+  e.depth_learned = {};
+  for (int f = 0; f < 2; ++f) {
+    e.learned_z[f].assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      e.learned_z[f][i] = frames[i].z[f];
+      if (frames[i].time >= opt.settle) e.depth_learned.add(frames[i].z[f], e.true_depth.z[f][i]);
+    }
+  }
+  e.depth_learned.finish();
+}
 
 namespace {
 
@@ -495,7 +533,7 @@ std::string na(double v, const char* f) {
 
 void write_trial_plot(const WipTrialEval& e, const std::string& path) {
   render::LinePlot p;
-  p.title = e.name + ": detected (coloured) vs true (grey) swings; generated vs true vs baseline depth";
+  p.title = e.name + ": detected (coloured) vs true (grey) swings; generated (document, learned) vs true vs baseline depth";
   p.x_label = "time (s)";
   p.panel_height = 150;
   const auto t = column(e.frames, [](const wip::Info& f) { return f.time; });
@@ -526,6 +564,10 @@ void write_trial_plot(const WipTrialEval& e, const std::string& path) {
     pz.series.emplace_back("real foot", tt, tru, render::Rgb{0.1, 0.1, 0.1});
     pz.series.emplace_back("key-frame baseline", tt, base, render::Rgb{0.55, 0.55, 0.55});
     pz.series.back().dashed = true;
+    if (e.learned_z[f].size() >= n) {
+      std::vector<double> learned(e.learned_z[f].begin(), e.learned_z[f].begin() + static_cast<std::ptrdiff_t>(n));
+      pz.series.emplace_back("learned mapping (other subjects)", tt, learned, render::Rgb{0.2, 0.6, 0.25});
+    }
   }
   render::plot_lines(p, path);
 }
@@ -536,6 +578,8 @@ struct Totals {
   std::vector<StrictScore> strict, strict_100, strict_noisy, strict_fixed;
   std::vector<StillSegment> still;
   Agreement depth, base;
+  Agreement depth_class[2], learned, learned_class[2];  // [0] normal, [1] turning walks
+  int learned_trials = 0;
   nlohmann::json trials = nlohmann::json::array();
   std::ostringstream rows;
   int failed = 0;
@@ -552,6 +596,12 @@ void add_trial(const WipTrialEval& e, const WipTrialEval& ef, Totals& t) {
   t.still.insert(t.still.end(), e.still.begin(), e.still.end());
   t.depth.merge(e.depth);
   t.base.merge(e.baseline_depth);
+  t.depth_class[e.turning ? 1 : 0].merge(e.depth);
+  if (e.depth_learned.samples > 1) {
+    ++t.learned_trials;
+    t.learned.merge(e.depth_learned);
+    t.learned_class[e.turning ? 1 : 0].merge(e.depth_learned);
+  }
   t.trials.push_back({{"trial", e.name},
                       {"duration_s", e.duration},
                       {"leg_length_m", e.leg_length},
@@ -565,12 +615,20 @@ void add_trial(const WipTrialEval& e, const WipTrialEval& ef, Totals& t) {
                       {"depth_rms_cm", 100 * e.depth.rms},
                       {"baseline_depth_correlation", num(e.baseline_depth.correlation)},
                       {"baseline_depth_rms_cm", 100 * e.baseline_depth.rms},
+                      {"subject", e.subject},
+                      {"class", e.turning ? "turning" : "normal"},
+                      {"heading_range_deg", e.true_depth.heading_range_deg},
+                      {"learned_depth_correlation", e.depth_learned.samples > 1 ? num(e.depth_learned.correlation) : nullptr},
+                      {"learned_depth_rms_cm", e.depth_learned.samples > 1 ? num(100 * e.depth_learned.rms) : nullptr},
                       {"plot", e.name + ".png"}});
   t.rows << "| " << e.name << " | " << na(e.duration, "%.1f") << " | " << e.strict.true_steps << " | "
          << e.strict.detected << " | " << e.strict.matched << " | " << na(e.strict.f1, "%.3f") << " | "
          << na(e.strict_100.f1, "%.3f") << " | " << na(e.strict_noisy.f1, "%.3f") << " | "
          << na(e.strict.median_ms, "%.0f") << " | " << na(e.steps.true_steps ? e.steps.f1 : NAN, "%.3f") << " | "
-         << na(e.depth.correlation, "%.2f") << " | " << na(100 * e.depth.rms, "%.1f") << " |\n";
+         << na(e.depth.correlation, "%.2f") << " | " << na(100 * e.depth.rms, "%.1f") << " | "
+         << (e.turning ? "turning" : "normal") << " | "
+         << (e.depth_learned.samples > 1 ? na(e.depth_learned.correlation, "%.2f") : "n/a") << " | "
+         << (e.depth_learned.samples > 1 ? na(100 * e.depth_learned.rms, "%.1f") : "n/a") << " |\n";
 }
 
 Motion load_trial(const std::string& path, const WipEvalRun& run) {
@@ -599,13 +657,33 @@ std::vector<Goal> goals(const WipEvalSummary& s) {
   g.push_back({"<= 1 false step per minute on still segments",
                na(s.false_steps_per_minute, "%.2f /min") + " over " + na(s.still_minutes, "%.2f") + " min",
                s.false_steps_per_minute <= 1, std::isfinite(s.false_steps_per_minute)});
-  g.push_back({"IK-target depth r >= 0.9 and RMS <= 8 cm",
+  g.push_back({"IK-target depth r >= 0.9 and RMS <= 8 cm (the document's mapping)",
                "r " + na(s.depth.correlation, "%.3f") + ", RMS " + na(100 * s.depth.rms, "%.1f cm"),
                s.depth.correlation >= 0.9 && s.depth.rms <= 0.08, s.depth.samples > 1});
+  g.push_back({"IK-target depth r >= 0.9 and RMS <= 8 cm (learned mapping, cross-validated by subject)",
+               "r " + na(s.learned.correlation, "%.3f") + ", RMS " + na(100 * s.learned.rms, "%.1f cm"),
+               s.learned.correlation >= 0.9 && s.learned.rms <= 0.08, s.learned.samples > 1});
   return g;
 }
 
 std::string verdict(const Goal& g) { return !g.known ? "n/a" : g.met ? "met" : "not met"; }
+
+nlohmann::json agreement_json(const Agreement& a) {
+  if (a.samples < 2) return nullptr;
+  return {{"r", num(a.correlation)}, {"rms_cm", num(100 * a.rms)}, {"samples", a.samples}};
+}
+
+// Depth agreement of both mappings, pooled and per trial class.
+nlohmann::json depth_mapping_json(const WipEvalSummary& s) {
+  return {{"document", {{"pooled", agreement_json(s.depth)},
+                        {"normal", agreement_json(s.depth_normal)},
+                        {"turning", agreement_json(s.depth_turning)}}},
+          {"learned_cv_by_subject", {{"pooled", agreement_json(s.learned)},
+                                     {"normal", agreement_json(s.learned_normal)},
+                                     {"turning", agreement_json(s.learned_turning)},
+                                     {"trials", s.learned_trials}}},
+          {"turning_if_heading_range_deg_over", kTurningDegrees}};
+}
 
 nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, const Totals& t) {
   const auto& a = run.options.settings;
@@ -630,6 +708,7 @@ nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, cons
   j["depth_rms_cm"] = 100 * s.depth.rms;
   j["baseline_depth_correlation"] = num(s.baseline_depth.correlation);
   j["baseline_depth_rms_cm"] = 100 * s.baseline_depth.rms;
+  j["depth_by_mapping"] = depth_mapping_json(s);
   j["trials"] = s.trials;
   j["trials_skipped"] = s.skipped;
   j["data"] = run.data;
@@ -649,6 +728,24 @@ std::string strict_row(const std::string& label, const StrictScore& s) {
   return "| " + label + " | " + na(s.precision, "%.3f") + " | " + na(s.recall, "%.3f") + " | **" + na(s.f1, "%.3f") +
          "** | " + std::to_string(s.matched) + " / " + std::to_string(s.true_steps) + " / " +
          std::to_string(s.detected) + " | " + na(s.median_ms, "%.0f") + " | " + na(s.p90_ms, "%.0f") + " |\n";
+}
+
+std::string agreement_cell(const Agreement& a) {
+  if (a.samples < 2) return "n/a";
+  return "r " + na(a.correlation, "%.3f") + ", RMS " + na(100 * a.rms, "%.1f") + " cm";
+}
+
+std::string depth_markdown(const WipEvalSummary& s) {
+  std::ostringstream md;
+  md << "\n## IK-target depth vs the real feet, by mapping\n\nThe learned mapping is cross-validated by subject: "
+        "each trial is scored with a table built only from the other subjects' walks ("
+     << s.learned_trials << " trials scored). Turning walks: the walking heading spans more than " << kTurningDegrees
+     << " degrees.\n\n| mapping | normal walks | turning walks | pooled |\n|---|---|---|---|\n"
+     << "| document (equations 1-4) | " << agreement_cell(s.depth_normal) << " | " << agreement_cell(s.depth_turning)
+     << " | " << agreement_cell(s.depth) << " |\n"
+     << "| learned, cross-validated by subject | " << agreement_cell(s.learned_normal) << " | "
+     << agreement_cell(s.learned_turning) << " | " << agreement_cell(s.learned) << " |\n";
+  return md.str();
 }
 
 std::string summary_markdown(const WipEvalRun& run, const WipEvalSummary& s, const Totals& t) {
@@ -686,8 +783,10 @@ std::string summary_markdown(const WipEvalRun& run, const WipEvalSummary& s, con
      << na(100 * s.depth.rms, "%.1f") << " cm** |\n"
      << "| key-frame baseline depth vs real foot depth | r = " << na(s.baseline_depth.correlation, "%.3f")
      << ", RMS " << na(100 * s.baseline_depth.rms, "%.1f") << " cm |\n";
+  md << depth_markdown(s);
   md << "\n## Per trial\n\n| trial | s | true | detected | matched | F1 +-200 | F1 +-100 | F1 noisy | latency "
-        "median ms | lenient overlap F1 | depth r | depth RMS cm |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n"
+        "median ms | lenient overlap F1 | depth r | depth RMS cm | class | learned depth r | learned RMS cm |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
      << t.rows.str();
   md << "\n## Still segments\n\n| trial | from s | to s | false steps | false steps, noisy |\n|---|---|---|---|---|\n";
   for (const auto& g : s.still)
@@ -702,6 +801,8 @@ void summary_chart(const WipEvalSummary& s, const std::string& path) {
   bc.groups = {"strict F1 +-200 ms", "strict F1 (noisy)", "lenient overlap F1", "depth r"};
   bc.series.emplace_back("method", std::vector<double>{s.strict.f1, s.strict_noisy.f1, s.steps.f1, s.depth.correlation});
   bc.series.emplace_back("document's fixed thresholds", std::vector<double>{s.strict_fixed.f1, NAN, s.steps_fixed.f1, NAN});
+  bc.series.emplace_back("learned depth mapping (cross-validated by subject)",
+                         std::vector<double>{NAN, NAN, NAN, s.learned.samples > 1 ? s.learned.correlation : NAN});
   bc.series.emplace_back("key-frame baseline", std::vector<double>{NAN, NAN, NAN, s.baseline_depth.correlation});
   render::plot_bars(bc, path);
 }
@@ -713,6 +814,10 @@ void finish_summary(const Totals& t, WipEvalSummary& s) {
   s.baseline_depth = t.base;
   s.depth.finish();
   s.baseline_depth.finish();
+  Agreement* parts[] = {&s.depth_normal, &s.depth_turning, &s.learned, &s.learned_normal, &s.learned_turning};
+  const Agreement* from[] = {&t.depth_class[0], &t.depth_class[1], &t.learned, &t.learned_class[0], &t.learned_class[1]};
+  for (int i = 0; i < 5; ++i) *parts[i] = *from[i], parts[i]->finish();
+  s.learned_trials = t.learned_trials;
   s.steps = combine(t.clean);
   s.steps_noisy = combine(t.noisy);
   s.steps_fixed = combine(t.fixed);
@@ -728,6 +833,29 @@ void finish_summary(const Totals& t, WipEvalSummary& s) {
   s.false_steps_per_minute_noisy = s.still_minutes > 0 ? false_noisy / s.still_minutes : NAN;
 }
 
+// The learned mapping, cross-validated by subject: each trial is scored with
+// a table built only from the other subjects' walks (n/a when they are too few).
+void cross_validate_learned(const std::vector<Motion>& motions, std::vector<WipTrialEval>& evals, const WipEvalRun& run) {
+  std::map<std::string, std::optional<wip::LearnedMapping>> tables;
+  for (std::size_t i = 0; i < evals.size(); ++i) {
+    WipTrialEval& e = evals[i];
+    auto it = tables.find(e.subject);
+    if (it == tables.end()) {
+      std::vector<wip::LearnSample> train;
+      for (const auto& o : evals)
+        if (o.subject != e.subject) train.insert(train.end(), o.learn.begin(), o.learn.end());
+      std::optional<wip::LearnedMapping> table;
+      try {
+        table = wip::build_learned_mapping(train);
+      } catch (const Error& err) {
+        if (run.log) run.log("legwork wip eval: learned mapping without subject " + e.subject + ": " + err.what() + "\n");
+      }
+      it = tables.emplace(e.subject, std::move(table)).first;
+    }
+    if (it->second) evaluate_learned_depth(motions[i], *it->second, run.options, e);
+  }
+}
+
 }  // namespace
 
 WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
@@ -741,6 +869,8 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
   WipEvalOptions fixed = run.options;  // the document's fixed thresholds, for comparison
   fixed.settings.gait.adaptive = false;
   Totals t;
+  std::vector<Motion> motions;
+  std::vector<WipTrialEval> evals, evals_fixed;
   int index = 0;
   const auto progress = io::progress_printer("legwork wip eval: trial");
   for (const auto& file : run.files) {
@@ -748,9 +878,10 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
     if (run.log) progress(index + 1, static_cast<int>(run.files.size()), name);
     WipTrialEval e, ef;
     try {
-      const Motion m = load_trial(file, run);
+      Motion m = load_trial(file, run);
       e = evaluate_wip_trial(m, name, cycle, run.options, index);
       ef = evaluate_wip_trial(m, name, cycle, fixed, index);
+      motions.push_back(std::move(m));
     } catch (const Error& err) {
       if (run.log) run.log("legwork wip eval: skipping " + file + ": " + err.what() + "\n");
       ++t.failed;
@@ -758,10 +889,15 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
       continue;
     }
     ++index;
-    add_trial(e, ef, t);
-    write_trial_plot(e, (out / (name + ".png")).string());
+    evals.push_back(std::move(e));
+    evals_fixed.push_back(std::move(ef));
   }
   if (run.log) run.log("\n");
+  cross_validate_learned(motions, evals, run);
+  for (std::size_t i = 0; i < evals.size(); ++i) {
+    add_trial(evals[i], evals_fixed[i], t);
+    write_trial_plot(evals[i], (out / (evals[i].name + ".png")).string());
+  }
   if (t.clean.empty()) throw Error("no trial in '" + run.data + "' could be evaluated");
   WipEvalSummary s;
   finish_summary(t, s);

@@ -7,6 +7,7 @@
 #include <legwork/io/text.hpp>
 #include <legwork/io/tracker_csv.hpp>
 #include <legwork/wip/offline/input.hpp>
+#include <legwork/wip/offline/learn.hpp>
 #include <legwork/wip/offline/run.hpp>
 #include <legwork/wip/offline/walk_cycle.hpp>
 
@@ -15,6 +16,8 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
+#include <sstream>
 
 namespace legwork::eval {
 namespace {
@@ -34,6 +37,17 @@ Motion load_bvh_motion(const std::string& path, bool keep_first) {
 
 }  // namespace
 
+wip::LearnedMapping load_learned_table(const WipJob& a) {
+  std::string path = a.table;
+  if (path.empty()) {
+    const auto root = io::find_repo_root("data/wip/learned_mapping.txt");
+    if (root.empty()) throw Error("--mapping learned: data/wip/learned_mapping.txt not found; pass --table FILE (legwork wip learn)");
+    path = (root / "data/wip/learned_mapping.txt").string();
+  }
+  if (!fs::exists(path)) throw Error("--table '" + path + "' does not exist (make one with `legwork wip learn`)");
+  return read_learned_mapping(path);
+}
+
 wip::Settings wip_settings(const WipJob& a, double rate) {
   Settings p;
   p.signal.rate = rate;
@@ -46,6 +60,9 @@ wip::Settings wip_settings(const WipJob& a, double rate) {
   p.mapping.stop_time = a.stop_time;
   p.mapping.max_speed = a.max_speed;
   p.mapping.step_length = a.step_length;
+  if (a.mapping == "document") p.mapping.depth = DepthMapping::Document;
+  else if (a.mapping == "learned") p.mapping.depth = DepthMapping::Learned;
+  else throw Error("--mapping '" + a.mapping + "': expected 'document' (equations 1-4) or 'learned' (from real walks)");
   if (a.speed_model == "step") p.mapping.speed_model = SpeedModel::StepSpeed;
   else if (a.speed_model == "frequency") p.mapping.speed_model = SpeedModel::StepFrequency;
   else throw Error("--speed-model '" + a.speed_model + "': expected 'step' (Bruno et al.) or 'frequency' (GUD-WIP)");
@@ -88,9 +105,11 @@ void run_wip_job(const WipJob& a) {
   const Motion avatar_file = load_bvh_motion(avatar_path, a.keep_first);
   const TrackerInput in = load_input(a);
   const Settings settings = wip_settings(a, in.rate);
+  LearnedMapping table;
+  if (settings.mapping.depth == DepthMapping::Learned) table = load_learned_table(a);
   const Model model = [&] {
     try {
-      return make_model(avatar_file.skeleton, settings);
+      return make_model(avatar_file.skeleton, settings, {}, &table);
     } catch (const Error& e) {
       throw Error("--avatar " + avatar_path + ": " + e.what());
     }
@@ -139,22 +158,74 @@ void run_wip_job(const WipJob& a) {
   }
 }
 
+namespace {
+
+// The sorted .bvh files of --data (default the shared walks), cut to --limit.
+std::vector<std::string> walking_files(const WipJob& a, std::string& data_out, std::string& note, const char* tool) {
+  const fs::path data = a.data.empty() ? io::walking_data(&note) : fs::path(a.data);
+  if (!fs::is_directory(data)) throw Error("--data '" + data.string() + "' is not a directory");
+  if (!note.empty()) std::cerr << "legwork " << tool << ": note: " << note << "\n";
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(data))
+    if (io::extension_of(e.path().string()) == ".bvh") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  if (a.limit > 0 && static_cast<int>(files.size()) > a.limit) files.resize(static_cast<std::size_t>(a.limit));
+  if (files.empty()) throw Error("--data '" + data.string() + "' holds no .bvh files");
+  data_out = data.string();
+  return files;
+}
+
+}  // namespace
+
+void run_wip_learn_job(const WipJob& a) {
+  if (a.out.empty()) throw Error("--out FILE is required (the learned table, e.g. data/wip/learned_mapping.txt)");
+  std::string data, note;
+  const auto files = walking_files(a, data, note, "wip learn");
+  std::set<std::string> excluded;
+  std::stringstream ss(a.exclude_subjects);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) excluded.insert(item);
+  Settings settings = wip_settings(a, a.rate);
+  settings.mapping.depth = DepthMapping::Document;
+  std::vector<LearnSample> samples;
+  std::set<std::string> subjects;
+  int trials = 0;
+  for (const auto& file : files) {
+    const std::string name = fs::path(file).stem().string();
+    if (excluded.count(subject_of(name))) continue;
+    const Motion m = load_bvh_motion(file, false);
+    const Model model = make_model(m.skeleton, settings);
+    RunOptions ro;
+    ro.calibrate = false;
+    ro.keep_poses = false;
+    const auto frames = run_wip(model, tracker_frames_from_motion(m, a.rate), ro).frames;
+    const DepthTrack truth = true_depths(m, a.rate);
+    const auto s = learning_samples(frames, truth.z[0], truth.z[1], model.leg_length());
+    samples.insert(samples.end(), s.begin(), s.end());
+    subjects.insert(subject_of(name));
+    ++trials;
+  }
+  const LearnedMapping table = build_learned_mapping(samples);
+  std::string who;
+  for (const auto& s : subjects) who += (who.empty() ? "" : ",") + s;
+  write_learned_mapping(a.out, table,
+                        std::to_string(trials) + " trials of subjects " + who + " from " + fs::path(data).filename().string() +
+                            " at " + std::to_string(static_cast<int>(a.rate)) + " Hz");
+  std::printf("learned depth mapping from %d trials (subjects %s): %d frames; depth amplitude / leg = %.3f + %.2f x apex "
+              "(m) + %.3f x cadence (strides/s), clamped to %.3f..%.3f\n",
+              trials, who.c_str(), table.samples, table.amplitude_intercept, table.amplitude_slope, table.cadence_slope,
+              table.amplitude_min, table.amplitude_max);
+  io::announce("learned mapping", a.out);
+}
+
 void run_wip_eval_job(const WipJob& a) {
   if (a.eval_out.empty()) throw Error("--out DIR is required");
   WipEvalRun run;
-  const fs::path data = a.data.empty() ? io::walking_data(&run.note) : fs::path(a.data);
-  if (!fs::is_directory(data)) throw Error("--data '" + data.string() + "' is not a directory");
   if (fs::exists(a.eval_out) && !fs::is_directory(a.eval_out)) throw Error("--out '" + a.eval_out + "' is not a folder");
-  if (!run.note.empty()) std::cerr << "legwork wip eval: note: " << run.note << "\n";
-  for (const auto& e : fs::directory_iterator(data))
-    if (io::extension_of(e.path().string()) == ".bvh") run.files.push_back(e.path().string());
-  std::sort(run.files.begin(), run.files.end());
-  if (a.limit > 0 && static_cast<int>(run.files.size()) > a.limit) run.files.resize(static_cast<std::size_t>(a.limit));
-  if (run.files.empty()) throw Error("--data '" + data.string() + "' holds no .bvh files");
-  run.data = data.string();
+  run.files = walking_files(a, run.data, run.note, "wip eval");
   run.clip = a.clip.empty() ? io::sample_walk_file("--clip") : a.clip;
   run.out = a.eval_out;
-  run.options.settings = wip_settings(a, a.rate);
+  run.options.settings = wip_settings(a, a.rate);  // both depth mappings are scored (learned: by subject)
   run.options.noise = a.noise;
   run.options.drop_rate = a.drop_rate;
   run.options.seed = a.seed;
@@ -162,9 +233,9 @@ void run_wip_eval_job(const WipJob& a) {
   run.log = [](const std::string& s) { std::cerr << s << std::flush; };
   const auto s = run_wip_evaluation(run);
   std::printf("%d trials, strict foot-offs +-200 ms: %s\nnoisy F1 %.3f; lenient overlap F1 %.3f (secondary); depth r %.3f / "
-              "RMS %.1f cm\n",
+              "RMS %.1f cm (document), learned (cross-validated by subject) r %.3f / RMS %.1f cm\n",
               s.trials, format_strict(s.strict).c_str(), s.strict_noisy.f1, s.steps.f1, s.depth.correlation,
-              100 * s.depth.rms);
+              100 * s.depth.rms, s.learned.correlation, 100 * s.learned.rms);
   for (const auto& f : s.written) io::announce("report", f);
 }
 

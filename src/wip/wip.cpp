@@ -66,8 +66,16 @@ double approach(double current, double target, double dt, double tau) {
 
 }  // namespace
 
-Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef upper_body) {
+Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef upper_body,
+                 const LearnedMapping* learned) {
   Model m;
+  if (settings.mapping.depth == DepthMapping::Learned) {
+    if (!learned)
+      throw Error("walking-in-place settings: the learned depth mapping needs a learned table "
+                  "(wip::read_learned_mapping, or `legwork wip learn`)");
+    m.learned_ = *learned;
+    m.has_learned_ = true;
+  }
   m.skeleton_ = avatar;
   m.settings_ = settings;
   const Skeleton& s = m.skeleton_;
@@ -138,6 +146,11 @@ void reset_motion(const Model& model, State& st) {
   st.gap[0] = st.gap[1] = st.gap_up[0] = st.gap_up[1] = 0;
   st.h_off = 0;
   st.h_switch = 1;
+  st.cycle[0] = st.cycle[1] = 0;
+  st.lead = -1;
+  st.last_off[0] = st.last_off[1] = -1e9;
+  st.last_strike = -1e9;
+  st.stride_period = LearnedMapping::kDefaultStridePeriod;
 }
 
 }  // namespace
@@ -235,6 +248,30 @@ void drive_step(const Model& m, State& st, const unsigned ev[2]) {
   st.z_target[o] = zo + fade * st.gap[o];
 }
 
+// The learned mapping's inputs (always kept, for Info and training) and,
+// with the learned mapping, its depth targets while walking.
+void learned_depth_targets(const Model& m, State& st, const unsigned ev[2], double time) {
+  const auto& p = m.settings();
+  for (int f = 0; f < 2; ++f) {
+    if (ev[f] & kEventFootStrike) st.lead = f, st.last_strike = time;
+    st.cycle[f] = cycle_coordinate(st.gait[f], p.gait, st.feet[f].h);
+    if (!(ev[f] & kEventFootOff)) continue;
+    // Stride period: the running mean of each foot's foot-off to foot-off time.
+    const double interval = time - st.last_off[f];
+    if (interval > 0.3 && interval < LearnedMapping::kMaxStridePeriod)
+      st.stride_period += 0.3 * (interval - st.stride_period);
+    st.last_off[f] = time;
+  }
+  const LearnedMapping* table = m.learned();
+  if (!table || !st.walking) return;
+  const double apex = 0.5 * (st.gait[0].apex_estimate + st.gait[1].apex_estimate);
+  for (int f = 0; f < 2; ++f) {
+    const int lead = st.lead < 0 ? -1 : st.lead == f ? 1 : 0;
+    st.z_target[f] =
+        m.leg_length() * table->depth(st.cycle[f], st.cycle[1 - f], lead, time - st.last_strike, apex, 1 / st.stride_period);
+  }
+}
+
 // Starts, drives, finishes and stops steps (equations 1-4 and the stop rule).
 void update_depth_targets(const Model& m, State& st, const unsigned ev[2], double dt) {
   const bool both_down = !in_swing(st.gait[0].phase) && !in_swing(st.gait[1].phase);
@@ -325,6 +362,8 @@ void fill_info(const Model& m, const State& st, double time, const unsigned ev[2
     fr.z_target[f] = st.z_target[f];
     fr.z[f] = st.z[f];
     fr.y[f] = y_local[f];
+    fr.cycle[f] = st.cycle[f];
+    fr.apex_estimate[f] = st.gait[f].apex_estimate;
     fr.target_world[f] = target_world[f];
   }
   fr.root_offset = -st.dh;
@@ -334,6 +373,9 @@ void fill_info(const Model& m, const State& st, double time, const unsigned ev[2
   fr.root_position = out.translations[0];
   fr.walking = st.walking;
   fr.driver = st.driver;
+  fr.lead = st.lead;
+  fr.stride_period = st.stride_period;
+  fr.since_strike = time - st.last_strike;
   fr.kind = st.kind;
   fr.double_support_time = st.ds_time;
 }
@@ -356,10 +398,12 @@ UpdateStatus update(const Model& m, const TrackerFrame& frame, State& st, PoseRe
   unsigned ev[2];
   const bool feet_ok = track_feet(m, frame, st, dt, ev);
   update_depth_targets(m, st, ev, dt);
+  learned_depth_targets(m, st, ev, frame.time);
 
   // Smooth the targets (frame-rate independent form of the document's lerp).
   const auto& mp = p.mapping;
-  for (int f = 0; f < 2; ++f) st.z[f] = approach(st.z[f], st.z_target[f], dt, mp.smoothing_tau);
+  const double tau = m.learned() ? mp.learned_smoothing_tau : mp.smoothing_tau;
+  for (int f = 0; f < 2; ++f) st.z[f] = approach(st.z[f], st.z_target[f], dt, tau);
   // Eq. 5-7: the body drops with the trailing foot's depth while walking. The
   // leading foot can reach further than the trailing one (the strike
   // overshoot of eq. 3), so the farther of the two sets the drop: otherwise

@@ -43,6 +43,16 @@ const std::string& database_file() {
   return path;
 }
 
+// The joint of the model's skeleton with a Unity humanoid name, -1 if none.
+int humanoid_joint(const lw_model* model, const std::string& name) {
+  const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(model));
+  for (int j = 0; j < n; ++j) {
+    const char* h = lw_model_humanoid_name(model, j, 0);
+    if (h && name == h) return j;
+  }
+  return -1;
+}
+
 struct Frames {
   lw_frame* data = nullptr;
   int32_t count = 0;
@@ -148,14 +158,8 @@ TEST(CApi, IkAvatarPutsTheWristsOnTheControllers) {
   ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
   Frames f;
   ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/07_02.bvh").c_str(), 0, 1, &f.data, &f.count), LW_OK);
-  const lw_skeleton* out = lw_model_skeleton(model);
-  const int32_t n = lw_skeleton_joint_count(out);
-  int wrist[2] = {-1, -1};
-  for (int j = 0; j < n; ++j) {
-    const char* h = lw_model_humanoid_name(model, j, 0);
-    if (h && std::string(h) == "LeftHand") wrist[0] = j;
-    if (h && std::string(h) == "RightHand") wrist[1] = j;
-  }
+  const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(model));
+  const int wrist[2] = {humanoid_joint(model, "LeftHand"), humanoid_joint(model, "RightHand")};
   ASSERT_GE(wrist[0], 0);
   ASSERT_GE(wrist[1], 0);
   std::vector<double> world(3 * static_cast<std::size_t>(n));
@@ -170,6 +174,50 @@ TEST(CApi, IkAvatarPutsTheWristsOnTheControllers) {
     }
   }
   EXPECT_LT(worst, 0.01) << "a wrist missed its controller by " << worst << " m";
+  lw_avatar_destroy(avatar);
+  lw_model_destroy(model);
+}
+
+// Walking-in-place with the shipped learned depth mapping: the legs walk on
+// a real walk's ankles, both feet swing in front of and behind the pelvis.
+TEST(CApi, WipWithTheLearnedMappingWalksOnARealWalk) {
+  lw_skeleton* skel = nullptr;
+  ASSERT_EQ(lw_skeleton_load_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), &skel), LW_OK) << lw_last_error();
+  lw_model* model = nullptr;
+  EXPECT_NE(lw_model_create_wip_learned(skel, sample("cmu/MANIFEST.tsv").c_str(), &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("MANIFEST.tsv:1: not a learned walking-in-place mapping"), std::string::npos)
+      << lw_last_error();
+  EXPECT_EQ(lw_model_create_wip_learned(skel, nullptr, &model), LW_ERROR_INVALID_ARGUMENT);
+  ASSERT_EQ(lw_model_create_wip_learned(skel, sample("wip/learned_mapping.txt").c_str(), &model), LW_OK) << lw_last_error();
+  lw_skeleton_destroy(skel);
+  lw_avatar* avatar = nullptr;
+  ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
+  Frames f;
+  ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), 30, 1, &f.data, &f.count), LW_OK);
+  const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(model));
+  const int foot[2] = {humanoid_joint(model, "LeftFoot"), humanoid_joint(model, "RightFoot")};
+  const int hips = humanoid_joint(model, "Hips");
+  ASSERT_GE(foot[0], 0);
+  ASSERT_GE(foot[1], 0);
+  ASSERT_GE(hips, 0);
+  std::vector<double> world(3 * static_cast<std::size_t>(n));
+  double lo = 0, hi = 0, root[3] = {0, 0, 0};
+  for (int32_t i = 0; i < f.count; ++i) {
+    ASSERT_GE(lw_avatar_update(avatar, &f.data[i]), 0);
+    ASSERT_EQ(lw_avatar_pose(avatar, nullptr, root, world.data(), n), LW_OK);
+    for (int s = 0; s < 2; ++s) {
+      // The foot's offset from the hips along the direction the root has travelled so far.
+      const double dz = world[3 * static_cast<std::size_t>(foot[s]) + 2] - world[3 * static_cast<std::size_t>(hips) + 2];
+      const double dx = world[3 * static_cast<std::size_t>(foot[s])] - world[3 * static_cast<std::size_t>(hips)];
+      const double len = std::hypot(root[0], root[2]);
+      if (len < 0.5) continue;
+      const double along = (dx * root[0] + dz * root[2]) / len;
+      lo = std::min(lo, along), hi = std::max(hi, along);
+    }
+  }
+  EXPECT_GT(std::hypot(root[0], root[2]), 1.0);  // it walked
+  EXPECT_LT(lo, -0.1);                           // a foot behind the hips
+  EXPECT_GT(hi, 0.1);                            // and in front
   lw_avatar_destroy(avatar);
   lw_model_destroy(model);
 }

@@ -7,6 +7,12 @@ legwork_cli_test(wip_keyframe wip --input ${D}/walking/07_02.bvh --out ${O}/wip_
                  --avatar ${D}/walking/07_01.bvh)
 legwork_cli_test(wip_eval wip eval --data ${D}/walking --out ${O}/wip_eval --limit 3)
 legwork_cli_test(wip_frequency wip --synthetic --duration 8 --speed-model frequency --rate 90 --out ${O}/wip_90hz.bvh)
+# The learned depth mapping: the shipped table, and a table learned from the sample walks.
+legwork_cli_test(wip_learned wip --input ${D}/walking/16_15.bvh --mapping learned --out ${O}/wip_16_15_learned.bvh)
+legwork_cli_test(wip_learn wip learn --data ${D}/walking --exclude-subjects 16 --out ${O}/wip_learned_mapping.txt)
+legwork_cli_test(wip_learned_table wip --input ${D}/walking/16_15.bvh --mapping learned --table ${O}/wip_learned_mapping.txt
+                 --out ${O}/wip_16_15_learned_table.bvh)
+set_tests_properties(cli.wip_learned_table PROPERTIES DEPENDS cli.wip_learn)
 # The synthetic tracker CSV written above, read back (runs after wip_synthetic).
 legwork_cli_test(wip_csv wip --input ${O}/wip_synthetic_tracker.csv --out ${O}/wip_from_csv.bvh)
 set_tests_properties(cli.wip_csv PROPERTIES DEPENDS cli.wip_synthetic)
@@ -34,6 +40,12 @@ legwork_cli_error(wip_csv_time_backwards "error: [^\n]*time_backwards.csv:4:1: t
              wip --input ${PROJECT_SOURCE_DIR}/tests/wip/data/time_backwards.csv --out ${O}/x.bvh)
 legwork_cli_error(wip_avatar_without_legs "error: [^\n]*--avatar [^ ]*no_legs.bvh: avatar skeleton has no usable legs: joint roles left_hip"
              wip --synthetic --avatar ${PROJECT_SOURCE_DIR}/tests/wip/data/no_legs.bvh --out ${O}/x.bvh)
+legwork_cli_error(wip_bad_mapping "--mapping: fancy not in \\{document,learned\\}" wip --synthetic --out ${O}/x.glb
+             --mapping fancy)
+legwork_cli_error(wip_missing_table "error: [^\n]*--table '[^']*nope.txt' does not exist \\(make one with `legwork wip learn`\\)"
+             wip --synthetic --out ${O}/x.glb --mapping learned --table ${O}/nope.txt)
+legwork_cli_error(wip_bad_table "error: [^\n]*CMakeLists.txt:1: not a learned walking-in-place mapping"
+             wip --synthetic --out ${O}/x.glb --mapping learned --table ${PROJECT_SOURCE_DIR}/CMakeLists.txt)
 legwork_cli_error(wip_eval_no_data "error: [^\n]*--data '[^']*does-not-exist' is not a directory"
              wip eval --data ${O}/does-not-exist --out ${O}/wip_eval_x)
 legwork_cli_error(wip_eval_no_trials "error: [^\n]*--data '[^']*tests/wip' holds no .bvh files"
@@ -47,4 +59,5 @@ set_tests_properties(cli.wip_help cli.wip_synthetic cli.wip_bvh cli.wip_keyframe
                      cli.wip_bad_speed_model cli.wip_bad_baseline cli.wip_input_not_a_tracker cli.wip_synthetic_too_long
                      cli.wip_not_still cli.wip_csv_missing_columns cli.wip_csv_time_backwards
                      cli.wip_avatar_without_legs cli.wip_eval_no_data cli.wip_eval_no_trials cli.wip_eval_out_is_a_file
-                     PROPERTIES WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+                     cli.wip_learned cli.wip_learn cli.wip_learned_table cli.wip_bad_mapping cli.wip_missing_table
+                     cli.wip_bad_table PROPERTIES WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})

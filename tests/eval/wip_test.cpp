@@ -205,6 +205,49 @@ TEST(RealWalking, StepsAreDetectedAndDepthsFollowTheRealFeetOnSampleTrials) {
   EXPECT_LE(s200.p90_ms, 200);
 }
 
+// The learned depth mapping, cross-validated by subject on the sample walks:
+// for each subject, a table from the other subjects' walks drives that
+// subject's trials; pooled, it follows the real feet better than the
+// document's equations (higher r, lower RMS).
+TEST(LearnedMapping, HeldOutSubjectsFollowTheRealFeetBetterThanTheEquations) {
+  const Motion cycle = wip::extract_walk_cycle(load("cmu/bvh/walking/07_01.bvh"));
+  std::vector<Motion> motions;
+  std::vector<WipTrialEval> evals;
+  int i = 0;
+  for (const auto& name : kSampleTrials) {
+    motions.push_back(load("cmu/bvh/walking/" + name + ".bvh"));
+    evals.push_back(evaluate_wip_trial(motions.back(), name, cycle, {}, i++));
+    EXPECT_EQ(evals.back().subject, name.substr(0, 2));
+    EXPECT_FALSE(evals.back().learn.empty()) << name;
+  }
+  Agreement document, learned;
+  for (std::size_t t = 0; t < evals.size(); ++t) {
+    std::vector<wip::LearnSample> train;
+    for (const auto& o : evals)
+      if (o.subject != evals[t].subject) train.insert(train.end(), o.learn.begin(), o.learn.end());
+    const auto table = wip::build_learned_mapping(train);
+    evaluate_learned_depth(motions[t], table, {}, evals[t]);
+    EXPECT_GT(evals[t].depth_learned.samples, 50) << evals[t].name;
+    document.merge(evals[t].depth);
+    learned.merge(evals[t].depth_learned);
+  }
+  document.finish();
+  learned.finish();
+  EXPECT_GT(learned.correlation, document.correlation) << "learned r " << learned.correlation;
+  EXPECT_LT(learned.rms, document.rms) << "learned RMS " << learned.rms;
+}
+
+TEST(LearnedMapping, TrialsThatTurnAroundAreTurningWalks) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  // 105_02 walks out and back (a half turn); 07_01 walks straight.
+  const auto turn = true_depths(io::load_bvh((testdata::shared_cmu() / "bvh" / "walking" / "105_02.bvh").string(), opt), 30);
+  const auto straight = true_depths(load("cmu/bvh/walking/07_01.bvh"), 30);
+  EXPECT_GT(turn.heading_range_deg, kTurningDegrees);
+  EXPECT_LT(straight.heading_range_deg, kTurningDegrees);
+}
+
 TEST(RealWalking, FullSharedSetKeepsStepF1Above90Percent) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const Motion cycle = wip::extract_walk_cycle(load("cmu/bvh/walking/07_01.bvh"));

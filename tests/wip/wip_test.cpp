@@ -2,6 +2,7 @@
 // the time rules (non-finite, absurd, backward and far-future times), lost
 // and absurd ankle samples, the heading from the head, and restarts that keep
 // the floor calibration.
+#include <legwork/wip/offline/learn.hpp>
 #include <legwork/wip/offline/run.hpp>
 #include <legwork/wip/offline/synthetic.hpp>
 #include <legwork/wip/wip.hpp>
@@ -78,6 +79,48 @@ TEST(Update, AllocatesNothingPerFrameOnRealWalking) {
   });
   EXPECT_EQ(allocations, 0);
   EXPECT_GT(info.distance, 1.0);  // it did walk
+}
+
+// The learned depth mapping (the shipped table, built from the shared CMU
+// walks) in the same per-frame contract: no allocation, finite targets that
+// swing both ways while walking.
+TEST(Update, TheLearnedMappingAllocatesNothingAndSwingsTheFeetBothWays) {
+  Settings settings;
+  settings.mapping.depth = DepthMapping::Learned;
+  const LearnedMapping table = read_learned_mapping((testdata::source_dir() / "data/wip/learned_mapping.txt").string());
+  const Model m = make_model(walk().skeleton, settings, {}, &table);
+  ASSERT_NE(m.learned(), nullptr);
+  State st(m);
+  Pose pose(m.skeleton());
+  Info info;
+  const auto& frames = walk_frames();
+  update(m, frames[0], st, pose.ref(), &info);
+  double lo[2] = {0, 0}, hi[2] = {0, 0};
+  bool finite = true;
+  const long allocations = alloc_count::count_allocations([&] {
+    for (std::size_t i = 1; i < frames.size(); ++i) {
+      update(m, frames[i], st, pose.ref(), &info);
+      for (int f = 0; f < 2; ++f) lo[f] = std::min(lo[f], info.z[f]), hi[f] = std::max(hi[f], info.z[f]);
+      finite = finite && finite_info(info);
+    }
+  });
+  EXPECT_EQ(allocations, 0);
+  EXPECT_TRUE(finite);
+  for (int f = 0; f < 2; ++f) {
+    EXPECT_LT(lo[f], -0.1 * m.leg_length()) << "foot " << f << " never behind the pelvis";
+    EXPECT_GT(hi[f], 0.1 * m.leg_length()) << "foot " << f << " never in front of the pelvis";
+  }
+}
+
+TEST(Update, TheLearnedMappingWithoutATableIsRefusedWithAMessage) {
+  Settings settings;
+  settings.mapping.depth = DepthMapping::Learned;
+  try {
+    (void)make_model(walk().skeleton, settings);
+    FAIL() << "no exception";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("learned depth mapping needs a learned table"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Update, ANonFiniteOrAbsurdFirstTimestampIsRejectedAndDoesNotFreezeTheStream) {

@@ -7,6 +7,7 @@
 #include <legwork/core/motion.hpp>
 #include <legwork/wip/offline/synthetic.hpp>
 #include <legwork/core/contacts.hpp>
+#include <legwork/wip/offline/learn.hpp>
 #include <legwork/wip/wip.hpp>
 
 #include <cmath>
@@ -75,7 +76,10 @@ std::vector<StillSegment> still_segments(const Motion& m, const std::string& nam
 struct DepthTrack {
   std::vector<double> time;
   std::vector<double> z[2];
+  double heading_range_deg = 0;  // max - min of the (unwrapped) walking heading over the trial
 };
+// Trials whose heading spans more than this are "turning" walks in the report.
+inline constexpr double kTurningDegrees = 90;
 DepthTrack true_depths(const Motion& m, double rate);
 
 struct Agreement {
@@ -111,7 +115,18 @@ struct WipTrialEval {
   std::vector<wip::Info> frames;       // clean run
   DepthTrack true_depth;               // at the tracker rate
   std::vector<double> baseline_z[2];   // baseline ankle depths per frame
+  std::string subject;                 // CMU subject (the name before '_'): the cross-validation fold
+  bool turning = false;                // true_depth.heading_range_deg > kTurningDegrees
+  std::vector<wip::LearnSample> learn; // training samples of the clean run (learned mapping)
+  Agreement depth_learned;             // learned mapping, table built without this subject (samples 0 = n/a)
+  std::vector<double> learned_z[2];    // its IK-target depths per frame
 };
+// The CMU subject of a trial name ("105_02" -> "105").
+std::string subject_of(const std::string& trial);
+// Runs the trial again with the learned mapping `table` and scores its depths
+// against e.true_depth (fills e.depth_learned, e.learned_z).
+void evaluate_learned_depth(const Motion& trial, const wip::LearnedMapping& table, const WipEvalOptions& opt,
+                            WipTrialEval& e);
 // `cycle`: the baseline's in-place walk cycle (wip::extract_walk_cycle).
 WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, const Motion& cycle,
                                 const WipEvalOptions& opt, int trial_index = 0);
@@ -133,6 +148,10 @@ struct WipEvalSummary {
   std::vector<StillSegment> still;
   double still_minutes = 0, false_steps_per_minute = NAN, false_steps_per_minute_noisy = NAN;
   Agreement depth, baseline_depth;
+  // Depth agreement by trial class (normal / turning walks), the document's
+  // mapping and the learned one cross-validated by subject.
+  Agreement depth_normal, depth_turning, learned, learned_normal, learned_turning;
+  int learned_trials = 0;
   std::vector<std::string> written;  // report.md, report.json
 };
 // Evaluates every trial (with the adaptive and the document's fixed

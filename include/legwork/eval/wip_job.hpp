@@ -16,6 +16,8 @@ struct WipJob {
   std::string input, avatar, out, csv, plot, baseline, clip, tracker_out, strip;
   bool synthetic = false, keep_first = false, no_adaptive = false, raw_height = false;
   std::string calibrate = "auto", speed_model = "step";
+  std::string mapping = "document", table;  // depth mapping; the learned table file ("" = data/wip/learned_mapping.txt)
+  std::string exclude_subjects;             // wip learn: comma-separated CMU subjects left out
   double rate = 30, cutoff = 4, h1 = 0.1, v1 = 0.2, v2 = 0.6, stop_time = 1.5, max_speed = 3.5, step_length = 0.6;
   wip::SyntheticOptions syn;
   std::string data, eval_out, truth = "learned";  // eval
@@ -28,5 +30,11 @@ struct WipJob {
 wip::Settings wip_settings(const WipJob& job, double rate);
 void run_wip_job(const WipJob& job);
 void run_wip_eval_job(const WipJob& job);
+// `legwork wip learn`: the learned depth mapping from the walking trials in
+// job.data (default the shared CMU walks), written to job.out.
+void run_wip_learn_job(const WipJob& job);
+// The learned table for job.mapping == "learned": job.table, or the
+// repository's data/wip/learned_mapping.txt. Throws naming --table.
+wip::LearnedMapping load_learned_table(const WipJob& job);
 
 }  // namespace legwork::eval

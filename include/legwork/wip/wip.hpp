@@ -14,6 +14,7 @@
 #include <legwork/core/tracker.hpp>
 #include <legwork/ik/two_bone.hpp>
 #include <legwork/wip/gait.hpp>
+#include <legwork/wip/learned.hpp>
 #include <legwork/wip/mapping.hpp>
 #include <legwork/wip/speed.hpp>
 
@@ -22,8 +23,13 @@
 namespace legwork::wip {
 
 enum class SpeedModel { StepSpeed, StepFrequency };
+// Fore-aft IK-target depths: the document's equations 1-4 (the reference), or
+// the table learned from real CMU walks (legwork/wip/learned.hpp; the model
+// needs a LearnedMapping, see make_model).
+enum class DepthMapping { Document, Learned };
 
 struct MappingSettings {
+  DepthMapping depth = DepthMapping::Document;
   // Avatar scaling: the document's S = 0.6 m and hint 0.29 m are for a 0.8 m
   // leg; both scale with the avatar's measured leg length.
   double reference_leg = 0.8;
@@ -36,6 +42,8 @@ struct MappingSettings {
   double lift_scale = 0.5;    // eq. 8's 0.5: avatar lift per metre of user lift
   double stop_time = 1.5;     // s of double support -> stop (legs back to neutral)
   double smoothing_tau = 0.05;  // s: exponential approach of the targets (the document's lerp)
+  double learned_smoothing_tau = 0;  // s: the same for the learned mapping (its table is continuous and already
+                                     // lags with the filter; extra smoothing only delays: 0 = none)
   double body_tau = 0.05;       // s: same for the body's vertical offset
   double hint_forward = 0.29;   // m in front of the knee at the reference leg
   double knee_bend = 0.02;      // standing root lowered by this fraction of the leg (keeps knees soft)
@@ -73,9 +81,12 @@ class Model {
   double root_height() const { return root_height_; }  // standing root height above the floor, m
   const Pose& base_pose() const { return base_pose_; }  // standing pose the legs are solved from
   const Leg& leg(int side) const { return legs_[side & 1]; }
+  // The learned depth table (a copy), or nullptr with the document's mapping.
+  const LearnedMapping* learned() const { return has_learned_ ? &learned_ : nullptr; }
 
  private:
-  friend Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef upper_body);
+  friend Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef upper_body,
+                          const LearnedMapping* learned);
   Model() = default;
   Skeleton skeleton_;
   Settings settings_;
@@ -83,14 +94,19 @@ class Model {
   Pose base_pose_;
   double leg_length_ = 0, scale_ = 1, root_height_ = 0;
   StepShape shape_;
+  LearnedMapping learned_;
+  bool has_learned_ = false;
 };
 
 // Throws legwork::Error if the skeleton lacks the leg roles (naming them) or
 // the settings are unusable. `upper_body` (optional, e.g. a frame of the
 // avatar's own motion) gives the local rotations of the joints the legs do
 // not drive (spine, arms, head); default: the rest pose with the upper arms
-// hanging down.
-Model make_model(const Skeleton& avatar, const Settings& settings = {}, ConstPoseRef upper_body = {});
+// hanging down. `learned`: the table for settings.mapping.depth == Learned
+// (copied; required then, ignored otherwise; legwork/wip/offline/learn.hpp
+// builds and reads it).
+Model make_model(const Skeleton& avatar, const Settings& settings = {}, ConstPoseRef upper_body = {},
+                 const LearnedMapping* learned = nullptr);
 
 enum class StepKind : unsigned char { None, First, Consecutive };
 
@@ -105,6 +121,11 @@ struct Info {
   double z_target[2] = {0, 0};           // equation output (depth, forward +)
   double z[2] = {0, 0};                  // smoothed IK-target depth
   double y[2] = {0, 0};                  // IK-target height, eq. 8 (avatar local)
+  double cycle[2] = {0, 0};              // cycle coordinate (learned.hpp): 0 rest, 0..1 rising, 1..2 descending
+  double apex_estimate[2] = {0, 0};      // running estimate of the user's step apex, m
+  int lead = -1;                         // foot that landed last (-1 none yet)
+  double stride_period = 0;              // running mean of foot-off to foot-off of the same foot, s
+  double since_strike = 0;               // s since the last foot strike (huge before the first)
   double root_offset = 0;                // vertical root offset, -dh while walking (eq. 6, 7)
   double speed = 0, distance = 0;        // forward speed m/s, distance walked m
   double heading = 0;                    // walking heading used, radians (0 = +z)
@@ -137,6 +158,11 @@ struct State {
   double z_target[2] = {0, 0}, z[2] = {0, 0};
   double gap[2] = {0, 0}, h_switch = 1;     // gap at mid-swing, faded out while descending
   double gap_up[2] = {0, 0}, h_off = 0;     // gap at foot-off, faded out while ascending
+  double cycle[2] = {0, 0};                 // cycle coordinates (learned mapping's input)
+  int lead = -1;                            // foot that landed last
+  double last_off[2] = {-1e9, -1e9};        // time of each foot's last foot-off
+  double last_strike = -1e9;                // time of the last foot strike (either foot)
+  double stride_period = LearnedMapping::kDefaultStridePeriod;  // s (learned mapping's cadence input)
   Vec3 root_xz = Vec3::Zero();
 };
 
