@@ -10,10 +10,10 @@ namespace legwork::cli {
 namespace {
 
 // A default folder: relative to the working directory, else to the source tree.
-std::string default_dir(const std::string& rel) {
+std::string default_path(const std::string& rel) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (fs::is_directory(rel, ec)) return rel;
+  if (fs::exists(rel, ec)) return rel;
 #ifdef LEGWORK_SOURCE_DIR
   const fs::path p = fs::path(LEGWORK_SOURCE_DIR) / rel;
   if (fs::exists(p, ec)) return p.string();
@@ -27,6 +27,9 @@ void register_serve(CLI::App& app) {
                                  "Live avatars: HTTP + WebSocket (viewer, docs/protocol.md) and VMC (OSC/UDP) in and out.\n"
                                  "Example: legwork serve --db all.lwdb --port 8080   then open http://127.0.0.1:8080/");
   cmd->add_option("--db", o->db_path, "accent database (.lwdb, from 'legwork accent build'); without it the ik and wip methods on --skeleton");
+  cmd->add_option("--wip-table", o->wip_table,
+                  "learned walking-in-place mapping for sessions asking \"mapping\": \"learned\" (default: "
+                  "data/wip/learned_mapping.txt when present; `legwork wip learn` makes one)");
   cmd->add_option("--skeleton", o->skeleton_path, "BVH whose skeleton the ik/wip/combined avatars use when there is no --db (default: data/cmu/bvh/walking/07_01.bvh)");
   cmd->add_option("--host", o->host, "address to bind (127.0.0.1 = this machine only; 0.0.0.0 = every interface)")->capture_default_str();
   cmd->add_option("--port", o->port, "HTTP + WebSocket port (0 = any free port, printed)")->capture_default_str()->check(CLI::Range(0, 65535));
@@ -45,8 +48,9 @@ void register_serve(CLI::App& app) {
   cmd->add_option("--workers", o->workers, "synthesis threads (0: synthesize on the network thread, fastest for one process per core)")->capture_default_str()->check(CLI::Range(0, 256));
   cmd->add_flag("--verbose", o->verbose, "log sessions to stderr");
   cmd->callback([o] {
-    if (o->web_dir.empty()) o->web_dir = default_dir("web/dist");
-    if (o->trials_dir.empty()) o->trials_dir = default_dir("data/cmu/bvh");
+    if (o->web_dir.empty()) o->web_dir = default_path("web/dist");
+    if (o->trials_dir.empty()) o->trials_dir = default_path("data/cmu/bvh");
+    if (o->wip_table.empty()) o->wip_table = default_path("data/wip/learned_mapping.txt");
     if (o->db_path.empty() && o->skeleton_path.empty() && !o->trials_dir.empty()) {
       const auto p = std::filesystem::path(o->trials_dir) / "walking" / "07_01.bvh";
       if (std::filesystem::exists(p)) o->skeleton_path = p.string();

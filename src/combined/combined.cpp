@@ -8,13 +8,13 @@
 
 namespace legwork::combined {
 
-void Model::finish() {
+void Model::finish(const wip::LearnedMapping* learned) {
   if (!(settings_.blend_time > 0) || !std::isfinite(settings_.blend_time))
     throw Error("combined: blend_time " + std::to_string(settings_.blend_time) + " s must be positive");
   if (!(settings_.unlock_time > 0) || !std::isfinite(settings_.unlock_time))
     throw Error("combined: unlock_time " + std::to_string(settings_.unlock_time) + " s must be positive");
   const Skeleton& skel = skeleton();
-  wip_.emplace(wip::make_model(skel, settings_.wip));
+  wip_.emplace(wip::make_model(skel, settings_.wip, {}, learned));
   for (Role hip : {Role::LeftHip, Role::RightHip})
     if (!skel.roles.has(hip)) throw Error("combined: the avatar skeleton has no " + std::string(role_name(hip)) + " joint");
   legs_ = {ik::left_leg(skel), ik::right_leg(skel)};
@@ -26,19 +26,19 @@ void Model::finish() {
       }
 }
 
-Model make_model(const accent::Database& db, const Settings& settings) {
+Model make_model(const accent::Database& db, const Settings& settings, const wip::LearnedMapping* learned) {
   Model m;
   m.settings_ = settings;
   m.accent_.emplace(accent::make_model(db, settings.accent));
-  m.finish();
+  m.finish(learned);
   return m;
 }
 
-Model make_model(const Skeleton& skeleton, const Settings& settings) {
+Model make_model(const Skeleton& skeleton, const Settings& settings, const wip::LearnedMapping* learned) {
   Model m;
   m.settings_ = settings;
   m.ik_.emplace(ik::make_model(skeleton, settings.ik));
-  m.finish();
+  m.finish(learned);
   return m;
 }
 

@@ -36,6 +36,19 @@ Skeleton avatar_skeleton(const Resources& res, double user_height) {
   return skel;
 }
 
+// The legs' depth mapping named in the session's options (document | learned)
+// and the learned table it needs (null for the document's).
+const wip::LearnedMapping* leg_mapping(const Resources& res, const MethodOptions& opt, wip::Settings& s) {
+  if (opt.mapping == "document") return nullptr;
+  if (opt.mapping != "learned")
+    throw Error("mapping '" + opt.mapping + "' is not one of: document, learned");
+  if (!res.wip_learned)
+    throw Error("mapping 'learned' needs the learned table: start the server with --wip-table FILE "
+                "(data/wip/learned_mapping.txt, or one made by `legwork wip learn`)");
+  s.mapping.depth = wip::DepthMapping::Learned;
+  return res.wip_learned;
+}
+
 // One runtime on the per-frame contract (Model / State / Info / update) as a
 // Method: Runtime names the types, forwards update and describes its Info.
 template <typename Runtime>
@@ -85,7 +98,11 @@ struct WipRuntime : Contract<wip::Model, wip::State, wip::Info, &wip::update> {
     out.add("phase_left", wip::phase_name(i.phase[0]).data());  // static, NUL-terminated literals
     out.add("phase_right", wip::phase_name(i.phase[1]).data());
   }
-  static Model model(const Resources& res, const MethodOptions& opt) { return wip::make_model(avatar_skeleton(res, opt.user_height)); }
+  static Model model(const Resources& res, const MethodOptions& opt) {
+    wip::Settings s;
+    const wip::LearnedMapping* learned = leg_mapping(res, opt, s);
+    return wip::make_model(avatar_skeleton(res, opt.user_height), s, {}, learned);
+  }
 };
 
 // CoolMoves accentuation over the shared database (one Model per session's settings).
@@ -124,11 +141,12 @@ struct CombinedRuntime : Contract<combined::Model, combined::State, combined::In
   }
   static Model model(const Resources& res, const MethodOptions& opt) {
     combined::Settings c;
-    if (!res.db) return combined::make_model(avatar_skeleton(res, opt.user_height), c);
+    const wip::LearnedMapping* learned = leg_mapping(res, opt, c.wip);
+    if (!res.db) return combined::make_model(avatar_skeleton(res, opt.user_height), c, learned);
     c.accent.classes = opt.classes;
     c.accent.exaggeration = opt.exaggeration;
     c.accent.user_height = opt.user_height;
-    return combined::make_model(*res.db, c);
+    return combined::make_model(*res.db, c, learned);
   }
 };
 

@@ -85,6 +85,10 @@ Hello parse_hello(const json& j) {
   if (auto c = j.find("classes"); c != j.end() && !c->is_null()) h.method.classes = string_list(*c, "hello.classes");
   if (auto e = j.find("exaggeration"); e != j.end()) h.method.exaggeration = number(*e, "hello.exaggeration");
   if (auto u = j.find("user_height"); u != j.end() && !u->is_null()) h.method.user_height = number(*u, "hello.user_height");
+  if (auto mp = j.find("mapping"); mp != j.end() && !mp->is_null()) {
+    if (!mp->is_string()) fail("bad_message", "hello.mapping must be a string (\"document\" or \"learned\")");
+    h.method.mapping = mp->get<std::string>();
+  }
   if (auto js = j.find("joints"); js != j.end() && !(js->is_string() && js->get<std::string>() == "all"))
     h.joints = string_list(*js, "hello.joints (\"all\" or joint names)");
   if (auto f = j.find("format"); f != j.end()) {

@@ -8,6 +8,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/serve/avatar.hpp>
 #include <legwork/serve/protocol.hpp>
+#include <legwork/wip/offline/learn.hpp>
 
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp uses std::exchange without it
 
@@ -34,6 +35,7 @@ struct Server::Impl {
   ServeOptions opt;
   std::optional<accent::Database> db;
   Skeleton skeleton;
+  std::optional<wip::LearnedMapping> wip_learned;
   ApiContext api;
   net::io_context ioc{1};
   tcp::acceptor acceptor{ioc};
@@ -320,6 +322,10 @@ Server::Impl::Impl(ServeOptions o) : opt(std::move(o)), workers(opt.workers) {
   if (!opt.skeleton_path.empty()) {
     skeleton = io::load_bvh(opt.skeleton_path).skeleton;
     api.resources.skeleton = &skeleton;
+  }
+  if (!opt.wip_table.empty()) {
+    wip_learned = wip::read_learned_mapping(opt.wip_table);
+    api.resources.wip_learned = &*wip_learned;
   }
   if (!api.resources.db && !api.resources.skeleton)
     throw Error("legwork serve needs an avatar: --db FILE.lwdb (all methods) or --skeleton FILE.bvh (ik only)");

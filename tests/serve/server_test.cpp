@@ -456,6 +456,45 @@ namespace {
 
 using namespace testing;
 
+// The learned depth mapping (issue 13) through the server: a session asks for
+// it in hello; its feet move fore-aft otherwise than the document's equations
+// on the same real walk; without a table, or with an unknown name, hello gets
+// an error naming the option.
+TEST(ServeWip, LearnedMappingIsASessionOption) {
+  ServeOptions o = test_options();
+  o.wip_table = source_dir() + "/data/wip/learned_mapping.txt";
+  RunningServer srv(o);
+  const auto frames = trial_frames("walking/07_02.bvh", true);
+  std::vector<std::vector<double>> depth(2);  // left ankle's fore-aft offset from the hips, per pose
+  for (int learned = 0; learned < 2; ++learned) {
+    Client c(srv.port());
+    const json w = c.hello({{"method", "wip"}, {"mapping", learned ? "learned" : "document"}});
+    const auto& names = w["skeleton"]["names"];
+    const auto foot = static_cast<std::size_t>(std::find(names.begin(), names.end(), "LeftFoot") - names.begin());
+    for (const TrackerFrame& f : frames) {
+      c.send_text(json_frame(f));
+      const json p = c.expect("pose");
+      const Vec3 hips = vec(p["positions"][0]), ankle = vec(p["positions"][foot]);
+      depth[static_cast<std::size_t>(learned)].push_back(ankle.z() - hips.z());
+    }
+  }
+  ASSERT_EQ(depth[0].size(), depth[1].size());
+  double most = 0;
+  for (std::size_t i = 0; i < depth[0].size(); ++i) {
+    EXPECT_TRUE(std::isfinite(depth[1][i])) << "pose " << i;
+    most = std::max(most, std::abs(depth[1][i] - depth[0][i]));
+  }
+  EXPECT_GT(most, 0.02) << "the learned mapping moved the foot like the document's";
+
+  Client bad(srv.port());
+  bad.send_text(R"({"type":"hello","version":1,"method":"wip","mapping":"magic"})");
+  EXPECT_EQ(bad.expect("error")["message"], "mapping 'magic' is not one of: document, learned");
+  RunningServer plain;  // no --wip-table
+  Client none(plain.port());
+  none.send_text(R"({"type":"hello","version":1,"method":"combined","mapping":"learned"})");
+  EXPECT_EQ(none.expect("error")["message"].get<std::string>().rfind("mapping 'learned' needs the learned table: start the server with --wip-table FILE", 0), 0u);
+}
+
 TEST(ServeCombined, UpperBodyFollowsTheHandsAndTheLegsComeFromWip) {
   RunningServer srv;
   Client c(srv.port());

@@ -52,9 +52,9 @@ class Model {
   const ik::TwoBoneChain& leg(int foot) const { return legs_[static_cast<std::size_t>(foot)]; }
 
  private:
-  friend Model make_model(const accent::Database&, const Settings&);
-  friend Model make_model(const Skeleton&, const Settings&);
-  void finish();
+  friend Model make_model(const accent::Database&, const Settings&, const wip::LearnedMapping*);
+  friend Model make_model(const Skeleton&, const Settings&, const wip::LearnedMapping*);
+  void finish(const wip::LearnedMapping* learned);
   Settings settings_;
   std::optional<accent::Model> accent_;
   std::optional<ik::Model> ik_;
@@ -65,10 +65,11 @@ class Model {
 
 // Upper body by accentuation over `db` (which must outlive the model), at
 // settings.accent.user_height. Throws legwork::Error (from either method, or
-// for blend_time <= 0 or a skeleton without hips).
-Model make_model(const accent::Database& db, const Settings& settings = {});
+// for blend_time <= 0 or a skeleton without hips). `learned`: the legs' table
+// when settings.wip.mapping.depth == Learned (copied; see wip::make_model).
+Model make_model(const accent::Database& db, const Settings& settings = {}, const wip::LearnedMapping* learned = nullptr);
 // Upper body by the full-body IK avatar on `skeleton`.
-Model make_model(const Skeleton& skeleton, const Settings& settings = {});
+Model make_model(const Skeleton& skeleton, const Settings& settings = {}, const wip::LearnedMapping* learned = nullptr);
 
 struct State {
   explicit State(const Model& model);

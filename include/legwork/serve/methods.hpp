@@ -14,6 +14,9 @@
 namespace legwork::accent {
 class Database;
 }
+namespace legwork::wip {
+struct LearnedMapping;
+}
 
 namespace legwork::serve {
 
@@ -21,6 +24,7 @@ namespace legwork::serve {
 struct Resources {
   const accent::Database* db = nullptr;  // null: methods needing a database are unavailable
   const Skeleton* skeleton = nullptr;    // avatar skeleton for ik/wip when there is no database
+  const wip::LearnedMapping* wip_learned = nullptr;  // null: the learned walking-in-place mapping is unavailable
   std::string database_name;             // for /api/info
 };
 
@@ -30,6 +34,7 @@ struct MethodOptions {
   std::vector<std::string> classes;  // accent classes to match (empty = all)
   double exaggeration = 1.0;         // accent: hand-motion exaggeration about the head
   double user_height = 0;            // metres; 0 = the avatar skeleton's own height
+  std::string mapping = "document";  // wip / combined legs' depths: document (equations 1-4) | learned
 };
 
 // Per-frame diagnostics as a flat list of name -> number or name -> text
