@@ -87,7 +87,7 @@ TEST(Ground, EveryShippedWalkGoesUpTheRampAndOverTheHillOnItsFeet) {
     for (const char* p : {"ramp", "hill"}) {
       const Path path = shipped_path(p);
       const WalkResult w = walk_path(m, path);
-      const SlipReport slip = measure_stance_slip(m, w.motion, w.labels);
+      const SlipReport slip = measure_stance_slip(m, w.motion, w.labels, w.ground);
       const GroundContactReport c = measure_ground_contact(m, w.motion, w.labels, path.ground);
       const Vec3 end = w.motion.frame(w.motion.frame_count() - 1).translations[0];
       const double accel = root_vertical_accel(w);

@@ -2,6 +2,7 @@
 // stop, reproducibility, retiming.
 #include <legwork/core/fk.hpp>
 #include <legwork/core/mirror.hpp>
+#include <legwork/ik/two_bone.hpp>
 #include <legwork/io/bvh.hpp>
 #include <legwork/walkcycle/offline/keys.hpp>
 #include <legwork/walkcycle/offline/measure.hpp>
@@ -64,11 +65,23 @@ TEST(Walk, SlipMeasureCatchesASlidingFoot) {
 
 TEST(Walk, StopsInTheStandingPose) {
   const CycleModel m = shipped("normal");
+  WalkOptions pivot;
+  pivot.root = RootMotion::Pivot;
+  const WalkResult pw = walk_path(m, straight_path(5.0), pivot);
   const WalkResult w = walk_path(m, straight_path(5.0));
-  const int last = w.motion.frame_count() - 1;
-  const auto pose = w.motion.frame(last);
-  for (int j = 1; j < m.skeleton.joint_count(); ++j)
-    EXPECT_LT(rotation_distance(pose.rotations[static_cast<std::size_t>(j)], m.stand.rotations[static_cast<std::size_t>(j)]), 1e-9);
+  // The pivoting root ends exactly in the standing pose; so does the smooth
+  // root's body, except the planted leg: that foot keeps the yaw it landed
+  // with (it does not twist on the floor to square up), its leg solved to it.
+  const ik::TwoBoneChain planted = w.labels.back().left_stance ? ik::left_leg(m.skeleton) : ik::right_leg(m.skeleton);
+  const int planted_toe = m.foot(w.labels.back().left_stance).toe;
+  const auto pose = w.motion.frame(w.motion.frame_count() - 1);
+  const auto pivot_pose = pw.motion.frame(pw.motion.frame_count() - 1);
+  for (int j = 1; j < m.skeleton.joint_count(); ++j) {
+    const Quat& stand = m.stand.rotations[static_cast<std::size_t>(j)];
+    EXPECT_LT(rotation_distance(pivot_pose.rotations[static_cast<std::size_t>(j)], stand), 1e-9) << j;
+    if (j == planted.root || j == planted.mid || j == planted.end || j == planted_toe) continue;
+    EXPECT_LT(rotation_distance(pose.rotations[static_cast<std::size_t>(j)], stand), 1e-9) << j;
+  }
   // Both feet on the floor, side by side.
   const auto pos = joint_positions(m.skeleton, pose);
   const Vec3 la = pos[static_cast<std::size_t>(m.left.ankle)], ra = pos[static_cast<std::size_t>(m.right.ankle)];
@@ -266,4 +279,35 @@ TEST(Walk, SmoothRootOnTurnsAndEveryShippedPath) {
   bad.soft_reach = 1.5;
   EXPECT_EQ(expect_error([&] { walk_path(shipped("normal"), straight_path(3), bad); }),
             "walk: soft_reach 1.500000 is out of range (0.5, 1]: the fraction of a leg's length it may straighten to");
+}
+
+// Turning (issue 14, item 2): the stance foot keeps the yaw it landed with
+// while its heel is down and turns on its ball once the heel is up, so
+// neither the heel nor the ball slides while on the ground and a flat foot
+// does not twist. The pivoting plan's feet, which turn with the body about
+// their pivot, are what the measure must catch.
+TEST(Walk, StanceFootTurnsOnItsBallNotInPlace) {
+  for (const auto& name : kWalks) {
+    const CycleModel m = shipped(name);
+    for (const char* file : {"quarter-turn", "s-curve"}) {
+      const Path path = read_path((testdata::source_dir() / "data/walks/paths" / (std::string(file) + ".json")).string());
+      WalkOptions twist;
+      twist.turn_on_ball = false;
+      const WalkResult w = walk_path(m, path), t = walk_path(m, path, twist);
+      const FootTurnReport on_ball = measure_foot_turning(m, w.motion, w.labels, w.ground);
+      const FootTurnReport twisted = measure_foot_turning(m, t.motion, t.labels, t.ground);
+      std::printf("[walkcycle] %-13s %-12s stance foot: heel slip %.2f -> %.2f mm, ball slip %.2f -> %.2f mm, flat twist %.2f -> %.2f deg, "
+                  "turn on the ball up to %.1f deg\n",
+                  name.c_str(), file, twisted.heel_slip_mm, on_ball.heel_slip_mm, twisted.ball_slip_mm, on_ball.ball_slip_mm,
+                  twisted.twist_deg, on_ball.twist_deg, on_ball.turn_on_ball_deg);
+      EXPECT_LE(on_ball.heel_slip_mm, 2.0) << name << " " << file;
+      EXPECT_LE(on_ball.ball_slip_mm, 2.0) << name << " " << file;
+      EXPECT_LE(on_ball.twist_deg, 1.0) << name << " " << file;
+      EXPECT_GT(std::max(twisted.heel_slip_mm, twisted.ball_slip_mm), 2.0) << name << " " << file;
+      // Same walk otherwise: the body ends where it did, the pivot does not slip.
+      EXPECT_NEAR(w.end_distance, t.end_distance, 1e-9) << name << " " << file;
+      EXPECT_LE(measure_stance_slip(m, w.motion, w.labels).max_mm, 2.0) << name << " " << file;
+      EXPECT_LT(measure_ground_contact(m, w.motion, w.labels, w.ground).penetration_mm, 0.01) << name << " " << file;
+    }
+  }
 }

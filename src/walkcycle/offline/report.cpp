@@ -65,7 +65,7 @@ json cycle_report(const CycleModel& model, const std::string& name, std::string&
 }
 
 void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, json& report, std::string& text) {
-  const auto slip = measure_stance_slip(model, w.motion, w.labels);
+  const auto slip = measure_stance_slip(model, w.motion, w.labels, w.ground);
   appendf(text,
           "walk: %d steps, %d frames at %g fps (%.1f ms), path %.2f m, turning %.1f deg, end %.3f m from the path's end, "
           "facing %.1f deg off its end tangent; travelled %.3f m, max deviation %.3f m\n",
@@ -101,6 +101,16 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   appendf(text, "ground: %s; feet at most %.2f mm below it (frame %d), the stance foot at most %.2f mm above it (frame %d)\n",
           w.ground.describe().c_str(), contact.penetration_mm, contact.penetration_frame, contact.stance_float_mm,
           contact.float_frame);
+  const auto turn = measure_foot_turning(model, w.motion, w.labels, w.ground);
+  report["stance_heel_slip_mm_max"] = round6(turn.heel_slip_mm);
+  report["stance_ball_slip_mm_max"] = round6(turn.ball_slip_mm);
+  report["stance_twist_deg_max"] = round6(turn.twist_deg);
+  report["stance_twist_step"] = turn.worst_step;
+  report["stance_turn_on_ball_deg_max"] = round6(turn.turn_on_ball_deg);
+  appendf(text, "stance foot (heel / ball down within %.0f mm of the ground): heel slips up to %.2f mm, ball %.2f mm; "
+          "a flat foot twists up to %.2f deg (step %d); turns up to %.1f deg on its ball\n",
+          kFootDownTolerance * 1e3, turn.heel_slip_mm, turn.ball_slip_mm, turn.twist_deg, turn.worst_step,
+          turn.turn_on_ball_deg);
   report["foot_roll_max_deg"] = round6(rad2deg(w.foot_roll_max));
   report["pelvis_drop_max_m"] = round6(w.pelvis_drop_max);
   report["leg_reach_max"] = round6(w.leg_reach_max);

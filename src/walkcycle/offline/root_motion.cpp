@@ -4,8 +4,10 @@
 #include <legwork/core/fk.hpp>
 #include <legwork/core/rotation.hpp>
 #include <legwork/ik/two_bone.hpp>
+#include <legwork/walkcycle/offline/measure.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace legwork::walkcycle {
@@ -178,6 +180,101 @@ std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool res
 
 namespace {
 
+// A rigid horizontal move of one foot of the plan: turned by `angle` about the
+// vertical through the plan's point `pivot`, then moved by `offset`
+// (horizontal). The identity leaves the plan's foot alone.
+struct FootHold {
+  double angle = 0;
+  Vec3 pivot = Vec3::Zero();
+  Vec3 offset = Vec3::Zero();
+  Vec3 apply(const Vec3& x) const { return pivot + yaw_rotation(angle) * (x - pivot) + offset; }
+  Transform apply(const Transform& t) const { return {(yaw_rotation(angle) * t.rotation).normalized(), apply(t.translation)}; }
+};
+
+// How far through its step each frame is (0 at the step's first frame, 1 at its last).
+std::vector<double> step_fractions(std::span<const FrameLabel> labels) {
+  std::vector<double> frac(labels.size(), 0.0);
+  std::size_t begin = 0;
+  for (std::size_t f = 1; f <= labels.size(); ++f) {
+    if (f < labels.size() && labels[f].step == labels[begin].step) continue;
+    const double span = static_cast<double>(f - 1 - begin);
+    for (std::size_t k = begin; k < f; ++k) frac[k] = span > 0 ? static_cast<double>(k - begin) / span : 1.0;
+    begin = f;
+  }
+  return frac;
+}
+
+// The stance foot turns on its ball, not in place (issue 14, item 2). The
+// pivoting plan turns the whole body, stance foot included, about the planted
+// pivot: a flat foot twists on its heel and its heel slides round the ball.
+// Here each stance foot keeps the yaw it landed with while its heel is down
+// and turns to the plan's yaw on its ball as the heel rises (fully once the
+// heel is 2 cm up; at the latest over the last quarter of the stance), its
+// pivot (heel, then ball) held where it was. Once the foot leaves the ground
+// the offset this leaves is faded out over the middle of the swing, so it
+// lands on the plan's footprint. Per frame, per side (0 = right, 1 = left).
+std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const Motion& plan,
+                                                     std::span<const FrameLabel> labels, double step_frames) {
+  const int n = std::min(plan.frame_count(), static_cast<int>(labels.size()));
+  std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
+  const std::vector<double> frac = step_fractions(labels.first(static_cast<std::size_t>(n)));
+  std::vector<Transform> g(static_cast<std::size_t>(plan.joint_count()));
+  struct Side {
+    bool stance = false;
+    Pivot pivot = Pivot::Heel;
+    double landed_yaw = 0, turned = 0;  // the yaw it landed with; how far it has turned to the plan's (0-1)
+    int left_ground = -1;               // frame the foot left the ground
+    Vec3 lift_off = Vec3::Zero();       // its offset from the plan then
+    Vec3 anchor = Vec3::Zero();         // where the stance foot's pivot is held (floor)
+    Vec3 heel = Vec3::Zero(), ball = Vec3::Zero();  // the plan's, previous frame
+    FootHold hold;
+  } sides[2];
+  const double rise = 0.02;  // metres of heel lift over which the foot turns on its ball
+  for (int f = 0; f < n; ++f) {
+    forward_kinematics(plan.skeleton, plan.frame(f), g);
+    const FrameLabel& l = labels[static_cast<std::size_t>(f)];
+    for (int side = 0; side < 2; ++side) {
+      Side& sd = sides[side];
+      const FootPivots& foot = m.foot(side == 1);
+      const Transform& ankle = g[static_cast<std::size_t>(foot.ankle)];
+      const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
+      if (f == 0) sd.heel = heel, sd.ball = ball;
+      const double yaw = std::atan2(ball.x() - heel.x(), ball.z() - heel.z());
+      const bool stance = l.left_stance == (side == 1);
+      if (stance) {
+        const bool landing = !sd.stance;
+        if (landing) sd.landed_yaw = yaw, sd.turned = 0;
+        // Its pivot: the heel, then the ball from the pass key or as soon as
+        // the heel is up with the ball down (a foot rising early to its toes).
+        const bool heel_up = heel.y() > kFootDownTolerance && ball.y() <= kFootDownTolerance;
+        const Pivot pv = (!landing && sd.pivot == Pivot::Ball) || l.pivot == Pivot::Ball || heel_up ? Pivot::Ball : Pivot::Heel;
+        if (landing || pv != sd.pivot) sd.anchor = horizontal(sd.hold.apply(pv == Pivot::Heel ? sd.heel : sd.ball));
+        sd.pivot = pv;
+        const Vec3& now = pv == Pivot::Heel ? heel : ball;
+        sd.hold.pivot = now;
+        sd.hold.offset = sd.anchor - horizontal(now);  // the pivot stays where it was, wherever the plan has it
+        if (pv == Pivot::Ball) {
+          sd.turned = std::max(sd.turned, smoothstep((heel.y() - kFootDownTolerance) / rise));
+          if (!l.stopping) sd.turned = std::max(sd.turned, smoothstep((frac[static_cast<std::size_t>(f)] - 0.75) / 0.25));
+        }
+        sd.hold.angle = std::remainder(sd.landed_yaw - yaw, 2 * kPi) * (1.0 - sd.turned);
+      } else {
+        if (sd.stance) sd.left_ground = f, sd.lift_off = horizontal(sd.hold.apply(sd.heel) - sd.heel);
+        const double u = sd.left_ground < 0 ? 1.0 : ((f - sd.left_ground) / step_frames - 0.25) / 0.6;
+        sd.hold = {0.0, Vec3::Zero(), sd.lift_off * (1 - smoothstep(u))};
+        sd.pivot = Pivot::Heel;
+      }
+      holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)] = sd.hold;
+      sd.stance = stance, sd.heel = heel, sd.ball = ball;
+    }
+  }
+  return holds;
+}
+
+}  // namespace
+
+namespace {
+
 // One frame of the smooth root: the pivoting pose (in `pose`) moved by
 // `shift` (horizontal, plus a pelvis drop in y), each foot rolled if out of
 // reach, both legs solved. Returns the pelvis drop that would bring every
@@ -196,7 +293,8 @@ struct FrameSolver {
   }
   // A frame of the plan: the first pass (r = nullptr) measures the drop
   // needed and leaves `pose` alone; the second moves and solves it.
-  double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r);
+  double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, const std::array<FootHold, 2>& hold,
+               WalkResult* r);
 };
 
 // Pelvis drop that brings `hip` within `reach` of `target`.
@@ -206,7 +304,8 @@ double drop_to_reach(const Vec3& hip, const Vec3& target, double reach) {
   return std::max(0.0, above - std::sqrt(reach * reach - side * side));
 }
 
-double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r) {
+double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label,
+                          const std::array<FootHold, 2>& hold, WalkResult* r) {
   const Skeleton& s = m.skeleton;
   forward_kinematics(s, pose, before);
   if (r) pose.translations[0] += shift;
@@ -218,9 +317,10 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     const LegIk& leg = legs[side];
     const FootPivots& foot = m.foot(side == 1);
     const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
-    Transform ankle = before[static_cast<std::size_t>(leg.chain.end)];
+    Transform ankle = hold[side].apply(before[static_cast<std::size_t>(leg.chain.end)]);
     // As straight as the keys had it, or soft_reach, whichever is more.
-    const double keyed = (ankle.translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
+    const double keyed = (before[static_cast<std::size_t>(leg.chain.end)].translation -
+                          before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
     const double soft = std::max(opt.soft_reach, keyed);
     const bool stance = label.left_stance == (side == 1);
     Quat slope;  // the ground's turn under the foot (its toes follow it)
@@ -241,7 +341,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
       // uneven ground they turn with the ground under the foot.
       if ((roll != 0.0 || !ground.flat()) && foot.toe >= 0)
         pose.rotations[static_cast<std::size_t>(foot.toe)] =
-            (t.rotation.conjugate() * slope * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
+            (t.rotation.conjugate() * slope * yaw_rotation(hold[side].angle) * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
       update_toe(s, foot, pose, g);
     };
     solve_leg();
@@ -306,13 +406,15 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   std::vector<Vec3> shift(static_cast<std::size_t>(n));
   for (std::size_t f = 0; f < shift.size(); ++f) shift[f] = horizontal(smooth[f] - floor_offset[f]) + lift[f];
   FrameSolver solver(m, ground, opt, motion);
+  std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
+  if (opt.turn_on_ball) holds = hold_stance_yaw(m, motion, r.labels, step_frames);
   // First pass: where the legs, rolled, still cannot reach, the pelvis must
   // drop; the drop is spread smoothly (running maximum over a quarter step,
   // averaged over as much: never less than needed).
   std::vector<double> drop(static_cast<std::size_t>(n));
   for (int f = 0; f < n; ++f)
-    drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)],
-                                                     r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)], nullptr);
+    drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)], r.heading[static_cast<std::size_t>(f)],
+                                                     r.labels[static_cast<std::size_t>(f)], holds[static_cast<std::size_t>(f)], nullptr);
   const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / 4)));
   const std::vector<double> envelope = running_max(drop, quarter);
   std::vector<Vec3> lowered(static_cast<std::size_t>(n));
@@ -321,7 +423,8 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   for (int f = 0; f < n; ++f) {
     const Vec3 d = shift[static_cast<std::size_t>(f)] + lowered[static_cast<std::size_t>(f)];
     r.pelvis_drop_max = std::max(r.pelvis_drop_max, -lowered[static_cast<std::size_t>(f)].y());
-    solver.solve(motion.frame(f), d, r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)], &r);
+    solver.solve(motion.frame(f), d, r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)],
+                 holds[static_cast<std::size_t>(f)], &r);
   }
 }
 

@@ -50,6 +50,10 @@ struct WalkOptions {
   // ankle); beyond, the ankle target is pulled in smoothly (soft limit: the
   // knee never locks or hyper-extends; the foot may then slide).
   double soft_reach = 0.98;
+  // Smooth root: a stance foot keeps the yaw it landed with while its heel is
+  // down and turns on its ball as the heel rises (false: it turns with the
+  // body about its pivot, twisting in place, as the pivoting plan has it).
+  bool turn_on_ball = true;
   double lookahead_steps = 1.0;  // heading lead along the path, in step lengths
   bool stop = true;            // end in the standing pose at the path's end
   int max_steps = 100000;      // safety limit
