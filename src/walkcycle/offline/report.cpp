@@ -55,11 +55,15 @@ json cycle_report(const CycleModel& model, const std::string& name, std::string&
     const double in_step = std::fmod(floor.lift_frame, model.half_cycle());
     int k = 0;
     while (k < 3 && in_step >= model.key_frames[static_cast<std::size_t>(k + 1)]) ++k;
-    appendf(text, "floor: between the %s and %s keys the interpolated foot would dip %.0f mm below the floor (frame %.2f); %s\n",
-            names[k], names[k + 1], floor.max_lift_m * 1e3, floor.lift_frame,
-            model.floor_clamp ? "the root is lifted smoothly there (floor_clamp), so no foot goes through the floor; "
-                                "an in-between key near that frame removes the lift"
-                              : "floor_clamp is off: the foot goes through the floor");
+    if (model.floor_clamp)
+      appendf(text, "floor: the keys touch the floor; between the %s and %s keys (frame %.2f) the spline alone would take a "
+              "foot %.0f mm lower, which the loop takes up by lifting the root and a walk by its legs, so nothing goes "
+              "through the floor\n",
+              names[k], names[k + 1], floor.lift_frame, floor.max_lift_m * 1e3);
+    else
+      appendf(text, "floor: between the %s and %s keys the interpolated foot dips %.0f mm below the floor (frame %.2f); "
+              "floor_clamp is off: the in-place loop and the pivoting root go through the floor\n",
+              names[k], names[k + 1], floor.max_lift_m * 1e3, floor.lift_frame);
   }
   return report;
 }
