@@ -490,13 +490,29 @@ WalkResult walk_path(const CycleModel& model, const Path& path, const WalkOption
   if (opt.steps > 0 || !opt.stop) return best->take();
   // (The smooth root rests where the plan does, so the plans are compared
   // and only the best one is smoothed.)
+  // The end moves with the aim smoothly only while the number of steps stays
+  // the same, and on a path that hooks round in its last metre it moves less
+  // than the aim (the final steps turn away from it): each correction is
+  // scaled by how far the end moved for the last one (a secant step, up to
+  // 4 times the miss), and one that does not get closer is halved, from the
+  // best walk so far.
   Vec3 offset = Vec3::Zero(), miss = best->planned().end_position - horizontal(path.points.back());
-  for (int i = 0; i < 3 && miss.norm() > 0.01; ++i) {
-    offset -= miss;
-    auto again = std::make_unique<PathWalk>(m, path, opt, finals, offset);
+  double gain = 1.0;
+  for (int i = 0; i < opt.end_iterations && miss.norm() > 0.01; ++i) {
+    const Vec3 trial = offset - gain * miss;
+    auto again = std::make_unique<PathWalk>(m, path, opt, finals, trial);
     again->run();
-    miss = again->planned().end_position - horizontal(path.points.back());
-    if (again->planned().end_distance < best->planned().end_distance) best = std::move(again);
+    if (again->planned().end_distance < best->planned().end_distance) {
+      // How far the end moved for the aim's move: the next correction is scaled by it (secant).
+      const Vec3 now = again->planned().end_position - horizontal(path.points.back()), step = trial - offset;
+      const double moved = (now - miss).dot(step) / step.squaredNorm();
+      gain = 1.0 / std::clamp(moved, 0.25, 1.0);
+      best = std::move(again);
+      offset = trial;
+      miss = now;
+    } else {
+      gain *= 0.5;
+    }
   }
   return best->take();
 }

@@ -57,6 +57,9 @@ struct WalkOptions {
   double lookahead_steps = 1.0;  // heading lead along the path, in step lengths
   bool stop = true;            // end in the standing pose at the path's end
   int max_steps = 100000;      // safety limit
+  // Walks again aiming past a miss of the path's end (> 1 cm), at most this
+  // many times; the closest walk is kept (0: walk once).
+  int end_iterations = 6;
   int steps = -1;              // > 0: walk exactly this many steps, the stop step included, ignoring
                                // the path's end (0 is rejected: a walk takes at least one step)
 };
