@@ -119,6 +119,7 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   report["pelvis_drop_max_m"] = round6(w.pelvis_drop_max);
   report["leg_reach_max"] = round6(w.leg_reach_max);
   report["reach_limited_frames"] = w.reach_limited_frames;
+  report["foot_lifted_out_of_ground_mm_max"] = round6(w.ground_lift_max * 1e3);
   appendf(text, "root: %s, speed %.2f-%.2f m/s (mean %.2f), peak acceleration %.1f m/s^2",
           w.root == RootMotion::Smooth ? "smooth (legs by IK)" : "pivoting (document 001)", rm.speed_min_mps,
           rm.speed_max_mps, rm.speed_mean_mps, rm.accel_max_mps2);

@@ -134,7 +134,7 @@ double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Ve
 // that near a millimetre on a 12 % grade. Returns the turn applied.
 Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_ball, Transform& ankle, Quat& full) {
   full = Quat::Identity();
-  if (ground.flat()) return full;
+  if (ground.flat() || ground.stepped()) return full;  // (stairs: planted flat by plant_on_treads)
   const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
   const Vec3 up = Vec3::UnitY();
   const double flat = std::clamp(1.0 - std::abs(ball.y() - heel.y()) / 0.05, 0.0, 1.0);
@@ -187,7 +187,8 @@ struct FootHold {
   double angle = 0;
   Vec3 pivot = Vec3::Zero();
   Vec3 offset = Vec3::Zero();
-  Vec3 apply(const Vec3& x) const { return pivot + yaw_rotation(angle) * (x - pivot) + offset; }
+  double lift = 0;  // stairs: the height the foot is planted at (or carried at in the swing), metres
+  Vec3 apply(const Vec3& x) const { return pivot + yaw_rotation(angle) * (x - pivot) + offset + Vec3(0, lift, 0); }
   Transform apply(const Transform& t) const { return {(yaw_rotation(angle) * t.rotation).normalized(), apply(t.translation)}; }
 };
 
@@ -271,6 +272,90 @@ std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const 
   return holds;
 }
 
+// Where a foot stands on stairs over a plant: the extent of its heel, ball
+// and toe tip along the stairs, and of its ball alone (metres from the
+// stairs' origin, over every frame of the plant).
+struct FootExtent {
+  double lo = 1e300, hi = -1e300, ball_lo = 1e300, ball_hi = -1e300;
+};
+
+// Stairs: a foot that would stand across a tread's edge is moved along the
+// stairs, the least it takes (1 cm steps, up to a tread's depth), until its
+// ball stays at least 2 cm from an edge and neither its heel nor its toe tip
+// goes lower than the tread under the ball (the heel may overhang the tread
+// below, as on real stairs). Returns the move (metres) and the tread's
+// height in `height`.
+double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
+  auto h = [&](double s) { return ground.height(ground.origin + s * ground.direction); };
+  const double margin = 0.02;
+  for (int i = 0; i <= static_cast<int>(ground.run / 0.01); ++i)
+    for (int sign : {-1, 1}) {
+      const double d = sign * 0.01 * i, tread = h(e.ball_lo + d);
+      if (h(e.ball_lo + d - margin) != tread || h(e.ball_hi + d + margin) != tread) continue;
+      if (h(e.lo + d) > tread || h(e.hi + d) > tread) continue;
+      height = tread;
+      return d;
+    }
+  height = std::max(h(e.lo), h(e.hi));
+  return 0.0;
+}
+
+// Stairs: each stance foot is planted flat on a tread (fit_on_tread, over
+// its whole stance); between two plants the swing carries it from one to
+// the next - along the stairs over the whole swing, up over its first 60 %
+// (the toes clear the riser ahead) or down over its last 60 % (they clear
+// the edge behind). Adds to `holds` (FootHold::lift, offset).
+void plant_on_treads(const CycleModel& m, const Motion& plan, std::span<const FrameLabel> labels, const Ground& ground,
+                     std::vector<std::array<FootHold, 2>>& holds) {
+  const int n = static_cast<int>(holds.size());
+  std::vector<Transform> g(static_cast<std::size_t>(plan.joint_count()));
+  struct Plant {
+    int first, last;
+    FootExtent extent;
+    double height = 0, move = 0;
+  };
+  std::vector<Plant> plants[2];
+  auto along = [&](const Vec3& p) { return (p - ground.origin).dot(ground.direction); };
+  for (int f = 0; f < n; ++f) {
+    forward_kinematics(plan.skeleton, plan.frame(f), g);
+    for (int side = 0; side < 2; ++side) {
+      const bool stance = labels[static_cast<std::size_t>(f)].left_stance == (side == 1);
+      auto& list = plants[side];
+      if (!stance && f != 0 && f != n - 1) continue;  // (a foot in the air at the start or end stands where it is)
+      if (!(stance && !list.empty() && list.back().last == f - 1)) list.push_back({f, f, {}});
+      Plant& p = list.back();
+      p.last = f;
+      const FootPivots& foot = m.foot(side == 1);
+      const Transform& a = g[static_cast<std::size_t>(foot.ankle)];
+      const FootHold& h = holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)];
+      const double heel = along(h.apply(a.apply(foot.heel_local))), ball = along(h.apply(a.apply(foot.ball_local)));
+      const double toe = foot.toe >= 0 ? along(h.apply(end_site_position(plan.skeleton, g, foot.toe))) : ball;
+      p.extent.lo = std::min({p.extent.lo, heel, ball, toe});
+      p.extent.hi = std::max({p.extent.hi, heel, ball, toe});
+      p.extent.ball_lo = std::min(p.extent.ball_lo, ball);
+      p.extent.ball_hi = std::max(p.extent.ball_hi, ball);
+    }
+  }
+  for (auto& list : plants)
+    for (Plant& p : list) p.move = fit_on_tread(ground, p.extent, p.height);
+  for (int side = 0; side < 2; ++side) {
+    auto at = [&](int f) -> FootHold& { return holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)]; };
+    const auto& list = plants[side];
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Plant& p = list[i];
+      for (int f = p.first; f <= p.last; ++f) at(f).lift = p.height, at(f).offset += p.move * ground.direction;
+      if (i + 1 == list.size()) break;
+      const Plant& q = list[i + 1];
+      for (int f = p.last + 1; f < q.first; ++f) {
+        const double u = static_cast<double>(f - p.last) / (q.first - p.last);
+        const double w = q.height >= p.height ? smoothstep(u / 0.6) : smoothstep((u - 0.4) / 0.6);
+        at(f).lift = p.height + w * (q.height - p.height);
+        at(f).offset += (p.move + smoothstep(u) * (q.move - p.move)) * ground.direction;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -352,6 +437,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     if (below > 0) {
       t.position.y() += below;
       solve_leg();
+      r->ground_lift_max = std::max(r->ground_lift_max, below);
     }
     r->foot_roll_max = std::max(r->foot_roll_max, std::abs(roll));
     r->leg_reach_max = std::max(r->leg_reach_max, reach);
@@ -377,10 +463,15 @@ namespace {
 
 // The pelvis's rise over uneven ground: the mean ground height under the two
 // ankles of the plan, averaged over one step twice (as the root's travel).
-std::vector<Vec3> ground_lift(const Ground& ground, const Motion& motion, double step_frames, bool rest_at_end) {
+std::vector<Vec3> ground_lift(const Ground& ground, const Motion& motion, double step_frames, bool rest_at_end,
+                              std::span<const std::array<FootHold, 2>> holds) {
   const int n = motion.frame_count();
   std::vector<Vec3> lift(static_cast<std::size_t>(n), Vec3::Zero());
   if (ground.flat()) return lift;
+  if (ground.stepped()) {  // (the heights the feet are planted and carried at)
+    for (int f = 0; f < n; ++f) lift[static_cast<std::size_t>(f)] = Vec3(0, 0.5 * (holds[static_cast<std::size_t>(f)][0].lift + holds[static_cast<std::size_t>(f)][1].lift), 0);
+    return window_average(window_average(lift, step_frames, rest_at_end), step_frames, rest_at_end);
+  }
   const Skeleton& s = motion.skeleton;
   const int feet[2] = {s.roles[Role::LeftAnkle], s.roles[Role::RightAnkle]};
   std::vector<Transform> g(static_cast<std::size_t>(s.joint_count()));
@@ -402,12 +493,13 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   if (n < 2 || static_cast<int>(floor_offset.size()) != n) return;
   const std::vector<Vec3> smooth =
       window_average(window_average(floor_offset, step_frames, opt.stop), step_frames, opt.stop);
-  const std::vector<Vec3> lift = ground_lift(ground, motion, step_frames, opt.stop);
+  std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
+  if (opt.turn_on_ball) holds = hold_stance_yaw(m, motion, r.labels, step_frames);
+  if (ground.stepped()) plant_on_treads(m, motion, r.labels, ground, holds);
+  const std::vector<Vec3> lift = ground_lift(ground, motion, step_frames, opt.stop, holds);
   std::vector<Vec3> shift(static_cast<std::size_t>(n));
   for (std::size_t f = 0; f < shift.size(); ++f) shift[f] = horizontal(smooth[f] - floor_offset[f]) + lift[f];
   FrameSolver solver(m, ground, opt, motion);
-  std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
-  if (opt.turn_on_ball) holds = hold_stance_yaw(m, motion, r.labels, step_frames);
   // First pass: where the legs, rolled, still cannot reach, the pelvis must
   // drop; the drop is spread smoothly (running maximum over a quarter step,
   // averaged over as much: never less than needed).
@@ -415,7 +507,9 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   for (int f = 0; f < n; ++f)
     drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)], r.heading[static_cast<std::size_t>(f)],
                                                      r.labels[static_cast<std::size_t>(f)], holds[static_cast<std::size_t>(f)], nullptr);
-  const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / 4)));
+  // (On stairs the drop needed changes by a tread's rise from step to step:
+  // spread over half a step, averaged over a step.)
+  const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / (ground.stepped() ? 2 : 4))));
   const std::vector<double> envelope = running_max(drop, quarter);
   std::vector<Vec3> lowered(static_cast<std::size_t>(n));
   for (std::size_t f = 0; f < lowered.size(); ++f) lowered[f] = Vec3(0, -envelope[f], 0);

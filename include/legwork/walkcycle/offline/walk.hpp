@@ -111,6 +111,10 @@ struct WalkResult {
   double pelvis_drop_max = 0;
   double leg_reach_max = 0;
   int reach_limited_frames = 0;
+  // Smooth root: the most a foot was lifted straight up because a heel, ball
+  // or toe tip would have gone into the ground (the plan's blend into the
+  // standing pose, the spline between keys, a riser in a swing), metres.
+  double ground_lift_max = 0;
 };
 
 // Straight-walk advance per step of the cycle (metres); the walk's stride.
