@@ -41,15 +41,21 @@ void only_fields(const json& o, std::initializer_list<const char*> known, std::s
   }
 }
 
-Ground parse_slope(const json& o, std::string_view source) {
-  if (!o.is_object()) fail(source, "expected an object with origin, direction, grade (and length)");
-  only_fields(o, {"origin", "direction", "grade", "length"}, source);
+// A ground laid out along a direction from an origin (slope, stairs).
+Ground directed(const json& o, Ground::Kind kind, std::string_view source) {
   Ground g;
-  g.kind = Ground::Kind::Slope;
+  g.kind = kind;
   g.origin = point(o, "origin", source);
   g.direction = point(o, "direction", source);
   if (g.direction.norm() < 1e-9) fail(source, "direction: must not be [0, 0]");
   g.direction.normalize();
+  return g;
+}
+
+Ground parse_slope(const json& o, std::string_view source) {
+  if (!o.is_object()) fail(source, "expected an object with origin, direction, grade (and length)");
+  only_fields(o, {"origin", "direction", "grade", "length"}, source);
+  Ground g = directed(o, Ground::Kind::Slope, source);
   g.grade = number(o, "grade", source);
   if (std::abs(g.grade) > kMaxGrade)
     fail(source, "grade " + std::to_string(g.grade) + ": steeper than the walks can follow (at most 0.3, a 30 % grade)");
@@ -101,12 +107,7 @@ Ground parse_height_field(const json& o, std::string_view source) {
 Ground parse_stairs(const json& o, std::string_view source) {
   if (!o.is_object()) fail(source, "expected an object with origin, direction, rise, run, count");
   only_fields(o, {"origin", "direction", "rise", "run", "count"}, source);
-  Ground g;
-  g.kind = Ground::Kind::Stairs;
-  g.origin = point(o, "origin", source);
-  g.direction = point(o, "direction", source);
-  if (g.direction.norm() < 1e-9) fail(source, "direction: must not be [0, 0]");
-  g.direction.normalize();
+  Ground g = directed(o, Ground::Kind::Stairs, source);
   g.rise = number(o, "rise", source);
   if (!(std::abs(g.rise) > 0 && std::abs(g.rise) <= 0.2))
     fail(source, "rise " + std::to_string(g.rise) + ": expected metres, 0 < |rise| <= 0.2 (higher steps than the legs can take)");

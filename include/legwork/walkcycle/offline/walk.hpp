@@ -13,7 +13,9 @@
 // Curved paths: the character turns only about y (the paper's root rotate Y,
 // heading theta_n per path segment); heading changes are spread from the
 // middle of one step to the middle of the next, and every rotation is applied
-// about the planted pivot, so the stance foot stays put while the body turns.
+// about the planted pivot, so the stance foot stays put while the body turns
+// (with the smooth root the legs then turn the stance foot on its ball
+// instead of with the body: WalkOptions::turn_on_ball).
 // Each step's heading is decided at the middle of the previous step: the
 // path's direction one step further on (where the heading will have blended
 // in), corrected towards the path by atan(offset / two steps).
