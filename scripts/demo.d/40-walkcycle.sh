@@ -34,11 +34,18 @@ pivot_video=()
 "$LEGWORK" walkcycle --keys "$walks/normal.json" --path "$path" --root pivot --top "$out/normal_pivot_root_top.png" \
   --report "$out/normal_pivot_root_report.json" "${pivot_video[@]}" >/dev/null
 
-# Uneven ground (issue 14, item 3): the three walks over a hill and up a ramp
-# (height field and slope in the path files; the feet put on the ground by the
-# legs' IK). The video's floor is drawn flat: read the feet's heights in the reports.
+# Turning on the ball (issue 14, item 2): the same turn with the stance foot
+# turning with the body (--stance-turn twist) against the default; compare the
+# stance_heel/ball_slip and stance_twist figures of the two reports.
+"$LEGWORK" walkcycle --keys "$walks/normal.json" --path "$path" --stance-turn twist \
+  --report "$out/normal_stance_twist_report.json" >/dev/null
+
+# Uneven ground (issue 14, item 3): the three walks over a hill, up a ramp and
+# up a flight of stairs (height field, slope and stairs in the path files; the
+# feet put on the ground by the legs' IK). The video's floor is drawn flat:
+# read the feet's heights in the reports.
 for w in normal sneak double-bounce; do
-  for g in hill ramp; do
+  for g in hill ramp stairs; do
     "$LEGWORK" walkcycle --keys "$walks/$w.json" --path "$walks/paths/$g.json" --out "$out/${w}_${g}.bvh" \
       --report "$out/${w}_${g}_report.json" >/dev/null
   done
@@ -90,10 +97,12 @@ fi
   done
   echo "normal_path_pivot_root.mp4: before/after: the normal walk on the same turn with document 001's pivoting root (the pelvis lunges and stalls); compare normal_path.mp4"
   echo "normal_pivot_root_top.png: its top view (root marks bunch and spread every step)"
+  echo "normal_stance_twist_report.json: the turn with the stance foot turning with the body (--stance-turn twist): heel/ball slip and flat-foot twist against normal_report.json's"
   echo "normal_pivot_root_report.json: its report (root speed 0.15-3.08 m/s against the smooth root's even speed)"
   for w in normal sneak double-bounce; do
     echo "${w}_hill.bvh / ${w}_hill_report.json: '$w' over a hill (height field, 10 % grades): feet on the ground, slip and penetration in the report"
     echo "${w}_ramp.bvh / ${w}_ramp_report.json: '$w' up a 12 % ramp"
+    echo "${w}_stairs.bvh / ${w}_stairs_report.json: '$w' up five stairs (0.15 m rise, 0.36 m run): feet planted flat on the treads"
   done
   echo "16_15_keys.png: key poses extracted from CMU 16_15 (a real walk), averaged over its steady steps"
   echo "16_15_keys.json: the extracted key-pose file, ready to stylise"

@@ -60,3 +60,9 @@ legwork_cli_error(walkcycle_ground_hill "ground: height field 5 x 20, 0\\.50 m c
                   walkcycle --keys ${W}/normal.json --path ${W}/paths/hill.json --report ${O}/wc_hill.json)
 legwork_cli_error(walkcycle_ground_pivot "error: walk: uneven ground \\(slope 12\\.0 % over 4\\.00 m\\) needs the smooth root"
                   walkcycle --keys ${W}/normal.json --path ${W}/paths/ramp.json --root pivot --out ${O}/x.bvh)
+legwork_cli_error(walkcycle_ground_stairs "ground: stairs up, 5 steps of 0\\.150 m rise, 0\\.360 m run; feet at most 0\\.00 mm below it"
+                  walkcycle --keys ${W}/normal.json --path ${W}/paths/stairs.json --report ${O}/wc_stairs.json)
+legwork_cli_error(walkcycle_stance_turn "stance foot \\(heel / ball down within 5 mm of the ground\\): heel slips up to 0\\.[0-9]+ mm, ball 0\\.[0-9]+ mm; a flat foot twists up to 0\\.00 deg"
+                  walkcycle --keys ${W}/normal.json --path ${W}/paths/quarter-turn.json --report ${O}/wc_turn.json)
+legwork_cli_error(walkcycle_stance_turn_bad "--stance-turn: nope not in \\{ball,twist\\}"
+                  walkcycle --keys ${W}/normal.json --path ${W}/paths/quarter-turn.json --stance-turn nope --out ${O}/x.bvh)

@@ -2,6 +2,7 @@
 // paths parse to the heights they describe, bad grounds fail clearly, and
 // every shipped walk goes up the ramp and over the hill with its feet on the
 // ground (no slip, no penetration) and the pelvis following smoothly.
+#include <legwork/core/fk.hpp>
 #include <legwork/walkcycle/offline/measure.hpp>
 #include <legwork/walkcycle/offline/path.hpp>
 #include <legwork/walkcycle/offline/walk.hpp>
@@ -10,6 +11,7 @@
 #include "walk_samples.hpp"
 
 #include <cstdio>
+#include <map>
 
 using namespace legwork;
 using namespace legwork::walkcycle;
@@ -68,7 +70,16 @@ TEST(Ground, BadGroundsAreNamed) {
   EXPECT_EQ(msg(R"({"heightfield": {"origin": [0, 0], "cell": 0.5, "heights": [[0, 0], [0, 0.2]]}})"),
             "p.json: ground: heightfield: heights: row 0, column 1: rises 0.200000 m to its neighbour over a 0.500000 m cell, "
             "steeper than the walks can follow (at most 0.3 m per metre; steps are not supported)");
-  EXPECT_EQ(msg(R"({"stairs": {}})"), "p.json: ground: expected {\"slope\": {...}} or {\"heightfield\": {...}}");
+  EXPECT_EQ(msg(R"({"steps": {}})"),
+            "p.json: ground: expected {\"slope\": {...}}, {\"heightfield\": {...}} or {\"stairs\": {...}}");
+  EXPECT_EQ(msg(R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.3, "run": 0.3, "count": 3}})"),
+            "p.json: ground: stairs: rise 0.300000: expected metres, 0 < |rise| <= 0.2 (higher steps than the legs can take)");
+  EXPECT_EQ(msg(R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "run": 0.1, "count": 3}})"),
+            "p.json: ground: stairs: run 0.100000: expected metres >= 0.2 (a tread a foot fits on)");
+  EXPECT_EQ(msg(R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "run": 0.3, "count": 2.5}})"),
+            "p.json: ground: stairs: count: expected a whole number of steps, 1 to 50");
+  EXPECT_EQ(msg(R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "count": 3}})"),
+            "p.json: ground: stairs: run: missing");
   EXPECT_EQ(msg(R"({"slope": {"origin": [0, 0], "direction": [0, 1], "grade": 0.1, "rise": 1}})"),
             "p.json: ground: slope: unknown field 'rise'");
   WalkOptions pivot;
@@ -87,7 +98,7 @@ TEST(Ground, EveryShippedWalkGoesUpTheRampAndOverTheHillOnItsFeet) {
     for (const char* p : {"ramp", "hill"}) {
       const Path path = shipped_path(p);
       const WalkResult w = walk_path(m, path);
-      const SlipReport slip = measure_stance_slip(m, w.motion, w.labels);
+      const SlipReport slip = measure_stance_slip(m, w.motion, w.labels, w.ground);
       const GroundContactReport c = measure_ground_contact(m, w.motion, w.labels, path.ground);
       const Vec3 end = w.motion.frame(w.motion.frame_count() - 1).translations[0];
       const double accel = root_vertical_accel(w);
@@ -107,5 +118,59 @@ TEST(Ground, EveryShippedWalkGoesUpTheRampAndOverTheHillOnItsFeet) {
       EXPECT_LT(w.end_distance, 0.05) << name << " " << p;
       EXPECT_EQ(w.reach_limited_frames, 0) << name << " " << p;
     }
+  }
+}
+
+// Stairs (issue 14, item 3): every foot planted flat on a tread (its ball on
+// one tread, heel and toe tip not below it), carried from tread to tread
+// without going into a riser, the pelvis climbing smoothly.
+TEST(Ground, EveryShippedWalkClimbsTheStairsOnTheTreads) {
+  const Path path = shipped_path("stairs");
+  ASSERT_TRUE(path.ground.stepped());
+  EXPECT_EQ(path.ground.describe(), "stairs up, 5 steps of 0.150 m rise, 0.360 m run");
+  EXPECT_DOUBLE_EQ(path.ground.height(0, 1.49), 0.0);
+  EXPECT_DOUBLE_EQ(path.ground.height(0, 1.5), 0.15);
+  EXPECT_DOUBLE_EQ(path.ground.height(0, 3.5), 0.75);
+  for (const auto& name : kWalks) {
+    const CycleModel m = shipped(name);
+    const WalkResult flat = walk_path(m, straight_path(6.0));
+    const double flat_accel = root_vertical_accel(flat);
+    const double stand_y = flat.motion.frame(flat.motion.frame_count() - 1).translations[0].y();
+    const WalkResult w = walk_path(m, path);
+    const SlipReport slip = measure_stance_slip(m, w.motion, w.labels, w.ground);
+    const FootTurnReport feet = measure_foot_turning(m, w.motion, w.labels, w.ground);
+    const GroundContactReport c = measure_ground_contact(m, w.motion, w.labels, path.ground);
+    const Vec3 end = w.motion.frame(w.motion.frame_count() - 1).translations[0];
+    const double accel = root_vertical_accel(w);
+    // Every stance foot's ball comes down on a tread: within 5 mm of the ground under it.
+    std::vector<Transform> g(static_cast<std::size_t>(m.skeleton.joint_count()));
+    std::map<int, double> ball_above;  // per step: lowest the stance ball gets above the ground
+    for (int f = 0; f < w.motion.frame_count(); ++f) {
+      forward_kinematics(m.skeleton, w.motion.frame(f), g);
+      const FrameLabel& l = w.labels[static_cast<std::size_t>(f)];
+      const FootPivots& foot = m.foot(l.left_stance);
+      const Vec3 b = g[static_cast<std::size_t>(foot.ankle)].apply(foot.ball_local);
+      auto it = ball_above.try_emplace(l.step, 1e9).first;
+      it->second = std::min(it->second, b.y() - path.ground.height(b));
+    }
+    double worst_ball = 0;
+    for (const auto& [step, above] : ball_above) worst_ball = std::max(worst_ball, above);
+    std::printf("[walkcycle] %-13s stairs: slip max %.2f mm (heel %.2f, ball %.2f), feet below the ground %.2f mm, lifted out of "
+                "it %.1f mm (flat %.1f), stance ball at most %.1f mm above its tread, root vertical acceleration %.1f m/s^2 "
+                "(flat %.1f), end height above the ground %.3f m (standing %.3f m), pelvis drop %.0f mm, end %.3f m\n",
+                name.c_str(), slip.max_mm, feet.heel_slip_mm, feet.ball_slip_mm, c.penetration_mm, w.ground_lift_max * 1e3,
+                flat.ground_lift_max * 1e3, worst_ball * 1e3, accel, flat_accel, end.y() - path.ground.height(end), stand_y,
+                w.pelvis_drop_max * 1e3, w.end_distance);
+    EXPECT_LE(slip.max_mm, 2.0) << name;
+    EXPECT_LE(feet.heel_slip_mm, 2.0) << name;
+    EXPECT_LE(feet.ball_slip_mm, 2.0) << name;
+    EXPECT_LE(c.penetration_mm, 2.0) << name;
+    // No foot is popped out of a riser: lifted no more than on the floor (the keys' own dip).
+    EXPECT_LE(w.ground_lift_max, flat.ground_lift_max + 0.002) << name;
+    EXPECT_LE(worst_ball, 0.005) << name;
+    EXPECT_NEAR(end.y() - path.ground.height(end), stand_y, 0.005) << name;
+    EXPECT_LE(accel, 2.0 * flat_accel) << name;
+    EXPECT_LT(w.end_distance, 0.05) << name;
+    EXPECT_EQ(w.reach_limited_frames, 0) << name;
   }
 }

@@ -41,15 +41,21 @@ void only_fields(const json& o, std::initializer_list<const char*> known, std::s
   }
 }
 
-Ground parse_slope(const json& o, std::string_view source) {
-  if (!o.is_object()) fail(source, "expected an object with origin, direction, grade (and length)");
-  only_fields(o, {"origin", "direction", "grade", "length"}, source);
+// A ground laid out along a direction from an origin (slope, stairs).
+Ground directed(const json& o, Ground::Kind kind, std::string_view source) {
   Ground g;
-  g.kind = Ground::Kind::Slope;
+  g.kind = kind;
   g.origin = point(o, "origin", source);
   g.direction = point(o, "direction", source);
   if (g.direction.norm() < 1e-9) fail(source, "direction: must not be [0, 0]");
   g.direction.normalize();
+  return g;
+}
+
+Ground parse_slope(const json& o, std::string_view source) {
+  if (!o.is_object()) fail(source, "expected an object with origin, direction, grade (and length)");
+  only_fields(o, {"origin", "direction", "grade", "length"}, source);
+  Ground g = directed(o, Ground::Kind::Slope, source);
   g.grade = number(o, "grade", source);
   if (std::abs(g.grade) > kMaxGrade)
     fail(source, "grade " + std::to_string(g.grade) + ": steeper than the walks can follow (at most 0.3, a 30 % grade)");
@@ -98,6 +104,21 @@ Ground parse_height_field(const json& o, std::string_view source) {
   return g;
 }
 
+Ground parse_stairs(const json& o, std::string_view source) {
+  if (!o.is_object()) fail(source, "expected an object with origin, direction, rise, run, count");
+  only_fields(o, {"origin", "direction", "rise", "run", "count"}, source);
+  Ground g = directed(o, Ground::Kind::Stairs, source);
+  g.rise = number(o, "rise", source);
+  if (!(std::abs(g.rise) > 0 && std::abs(g.rise) <= 0.2))
+    fail(source, "rise " + std::to_string(g.rise) + ": expected metres, 0 < |rise| <= 0.2 (higher steps than the legs can take)");
+  g.run = number(o, "run", source);
+  if (!(g.run >= 0.2)) fail(source, "run " + std::to_string(g.run) + ": expected metres >= 0.2 (a tread a foot fits on)");
+  const double count = number(o, "count", source);
+  if (!(count >= 1 && count <= 50 && count == std::floor(count))) fail(source, "count: expected a whole number of steps, 1 to 50");
+  g.count = static_cast<int>(count);
+  return g;
+}
+
 }  // namespace
 
 double Ground::height(double x, double z) const {
@@ -116,6 +137,10 @@ double Ground::height(double x, double z) const {
       auto h = [&](int rr, int cc) { return heights[static_cast<std::size_t>(rr * columns + cc)]; };
       return (1 - fv) * ((1 - fu) * h(r, c) + fu * h(r, c + 1)) + fv * ((1 - fu) * h(r + 1, c) + fu * h(r + 1, c + 1));
     }
+    case Kind::Stairs: {
+      const double d = (x - origin.x()) * direction.x() + (z - origin.z()) * direction.z();
+      return d < 0 ? 0.0 : rise * std::min(count, static_cast<int>(std::floor(d / run)) + 1);
+    }
   }
   return 0.0;
 }
@@ -128,6 +153,9 @@ std::string Ground::describe() const {
   } else if (kind == Kind::HeightField) {
     const auto [lo, hi] = std::minmax_element(heights.begin(), heights.end());
     std::snprintf(buf, sizeof buf, "height field %d x %d, %.2f m cells, %.3f-%.3f m", columns, rows, cell, *lo, *hi);
+  } else if (kind == Kind::Stairs) {
+    std::snprintf(buf, sizeof buf, "stairs %s, %d steps of %.3f m rise, %.3f m run", rise > 0 ? "up" : "down", count,
+                  std::abs(rise), run);
   } else {
     return "flat";
   }
@@ -141,9 +169,10 @@ Ground parse_ground_json(std::string_view text, std::string_view source) {
   } catch (const json::exception& e) {
     fail(source, std::string("not valid JSON: ") + e.what());
   }
-  if (!doc.is_object() || doc.size() != 1 || !(doc.contains("slope") || doc.contains("heightfield")))
-    fail(source, "expected {\"slope\": {...}} or {\"heightfield\": {...}}");
+  if (!doc.is_object() || doc.size() != 1 || !(doc.contains("slope") || doc.contains("heightfield") || doc.contains("stairs")))
+    fail(source, "expected {\"slope\": {...}}, {\"heightfield\": {...}} or {\"stairs\": {...}}");
   if (doc.contains("slope")) return parse_slope(doc["slope"], std::string(source) + ": slope");
+  if (doc.contains("stairs")) return parse_stairs(doc["stairs"], std::string(source) + ": stairs");
   return parse_height_field(doc["heightfield"], std::string(source) + ": heightfield");
 }
 

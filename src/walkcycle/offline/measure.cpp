@@ -19,7 +19,8 @@ Vec3 pivot_world(const CycleModel& m, std::span<const Transform> g, bool left, P
 
 }  // namespace
 
-SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels) {
+SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels,
+                               const Ground& ground) {
   SlipReport r;
   const int n = walk.frame_count();
   if (n < 2 || static_cast<int>(labels.size()) != n) return r;
@@ -28,6 +29,7 @@ SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::spa
   forward_kinematics(walk.skeleton, walk.frame(0), g_prev);
   std::map<int, double> per_step;
   Vec3 anchor = Vec3::Zero();
+  bool down = false;
   double phase_max = 0, sum = 0;
   for (int f = 1; f < n; ++f) {
     forward_kinematics(walk.skeleton, walk.frame(f), g);
@@ -36,15 +38,23 @@ SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::spa
     const bool new_phase = f == 1 || l.step != lp.step || l.left_stance != lp.left_stance || l.pivot != lp.pivot;
     if (new_phase) {
       if (f > 1) sum += phase_max, ++r.phases;
-      anchor = pivot_world(m, g_prev, l.left_stance, l.pivot);  // where the pivot was as the phase began
       phase_max = 0;
+      // Where the pivot was as the phase began, if it was on the ground.
+      const Vec3 was = pivot_world(m, g_prev, l.left_stance, l.pivot);
+      down = was.y() - ground.height(was) <= kFootDownTolerance;
+      anchor = was;
     }
-    const Vec3 d = pivot_world(m, g, l.left_stance, l.pivot) - anchor;
-    const double mm = std::hypot(d.x(), d.z()) * 1000.0;
+    std::swap(g, g_prev);
+    const Vec3 p = pivot_world(m, g_prev, l.left_stance, l.pivot);
+    if (p.y() - ground.height(p) > kFootDownTolerance) {  // in the air: not slipping; anchored again when down
+      down = false;
+      continue;
+    }
+    if (!down) down = true, anchor = p;
+    const double mm = std::hypot(p.x() - anchor.x(), p.z() - anchor.z()) * 1000.0;
     phase_max = std::max(phase_max, mm);
     per_step[l.step] = std::max(per_step[l.step], mm);
     if (mm > r.max_mm) r.max_mm = mm, r.worst_step = l.step;
-    std::swap(g, g_prev);
   }
   sum += phase_max, ++r.phases;
   r.mean_mm = sum / r.phases;
@@ -66,6 +76,59 @@ GroundContactReport measure_ground_contact(const CycleModel& m, const Motion& wa
       if (foot.toe >= 0) low = std::min(low, above(end_site_position(m.skeleton, g, foot.toe)));
       if (-low > r.penetration_mm) r.penetration_mm = -low, r.penetration_frame = f;
       if (left == labels[static_cast<std::size_t>(f)].left_stance && low > r.stance_float_mm) r.stance_float_mm = low, r.float_frame = f;
+    }
+  }
+  return r;
+}
+
+namespace {
+
+// One foot point's contact over a stance: where it came down, if it is down.
+struct PointContact {
+  bool down = false;
+  Vec3 anchor = Vec3::Zero();
+  // Horizontal distance from where it came down (0 when it just did), mm;
+  // negative while the point is up.
+  double track(const Vec3& p, double height_above) {
+    if (height_above > kFootDownTolerance) return down = false, -1.0;
+    if (!down) down = true, anchor = p;
+    return std::hypot(p.x() - anchor.x(), p.z() - anchor.z()) * 1000.0;
+  }
+};
+
+double yaw_of(const Vec3& heel, const Vec3& ball) { return std::atan2(ball.x() - heel.x(), ball.z() - heel.z()); }
+
+}  // namespace
+
+FootTurnReport measure_foot_turning(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels,
+                                    const Ground& ground) {
+  FootTurnReport r;
+  const int n = std::min(walk.frame_count(), static_cast<int>(labels.size()));
+  std::vector<Transform> g(static_cast<std::size_t>(walk.joint_count()));
+  PointContact heel, ball;
+  bool flat = false, on_ball = false;
+  double flat_yaw = 0, ball_yaw = 0;
+  for (int f = 0; f < n; ++f) {
+    const FrameLabel& l = labels[static_cast<std::size_t>(f)];
+    if (f == 0 || l.step != labels[static_cast<std::size_t>(f - 1)].step) heel = {}, ball = {}, flat = on_ball = false;
+    forward_kinematics(walk.skeleton, walk.frame(f), g);
+    const Vec3 h = pivot_world(m, g, l.left_stance, Pivot::Heel), b = pivot_world(m, g, l.left_stance, Pivot::Ball);
+    const double hs = heel.track(h, h.y() - ground.height(h)), bs = ball.track(b, b.y() - ground.height(b));
+    r.heel_slip_mm = std::max(r.heel_slip_mm, hs);
+    r.ball_slip_mm = std::max(r.ball_slip_mm, bs);
+    const double yaw = yaw_of(h, b);
+    auto change = [&](double from) { return std::abs(rad2deg(std::remainder(yaw - from, 2 * kPi))); };
+    if (hs >= 0 && bs >= 0) {
+      if (!flat) flat = true, flat_yaw = yaw;
+      if (change(flat_yaw) > r.twist_deg) r.twist_deg = change(flat_yaw), r.worst_step = l.step;
+    } else {
+      flat = false;
+    }
+    if (hs < 0 && bs >= 0) {
+      if (!on_ball) on_ball = true, ball_yaw = yaw;
+      r.turn_on_ball_deg = std::max(r.turn_on_ball_deg, change(ball_yaw));
+    } else {
+      on_ball = false;
     }
   }
   return r;

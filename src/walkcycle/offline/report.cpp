@@ -55,17 +55,21 @@ json cycle_report(const CycleModel& model, const std::string& name, std::string&
     const double in_step = std::fmod(floor.lift_frame, model.half_cycle());
     int k = 0;
     while (k < 3 && in_step >= model.key_frames[static_cast<std::size_t>(k + 1)]) ++k;
-    appendf(text, "floor: between the %s and %s keys the interpolated foot would dip %.0f mm below the floor (frame %.2f); %s\n",
-            names[k], names[k + 1], floor.max_lift_m * 1e3, floor.lift_frame,
-            model.floor_clamp ? "the root is lifted smoothly there (floor_clamp), so no foot goes through the floor; "
-                                "an in-between key near that frame removes the lift"
-                              : "floor_clamp is off: the foot goes through the floor");
+    if (model.floor_clamp)
+      appendf(text, "floor: the keys touch the floor; between the %s and %s keys (frame %.2f) the spline alone would take a "
+              "foot %.0f mm lower, which the loop takes up by lifting the root and a walk by its legs, so nothing goes "
+              "through the floor\n",
+              names[k], names[k + 1], floor.lift_frame, floor.max_lift_m * 1e3);
+    else
+      appendf(text, "floor: between the %s and %s keys the interpolated foot dips %.0f mm below the floor (frame %.2f); "
+              "floor_clamp is off: the in-place loop and the pivoting root go through the floor\n",
+              names[k], names[k + 1], floor.max_lift_m * 1e3, floor.lift_frame);
   }
   return report;
 }
 
 void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, json& report, std::string& text) {
-  const auto slip = measure_stance_slip(model, w.motion, w.labels);
+  const auto slip = measure_stance_slip(model, w.motion, w.labels, w.ground);
   appendf(text,
           "walk: %d steps, %d frames at %g fps (%.1f ms), path %.2f m, turning %.1f deg, end %.3f m from the path's end, "
           "facing %.1f deg off its end tangent; travelled %.3f m, max deviation %.3f m\n",
@@ -101,10 +105,21 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   appendf(text, "ground: %s; feet at most %.2f mm below it (frame %d), the stance foot at most %.2f mm above it (frame %d)\n",
           w.ground.describe().c_str(), contact.penetration_mm, contact.penetration_frame, contact.stance_float_mm,
           contact.float_frame);
+  const auto turn = measure_foot_turning(model, w.motion, w.labels, w.ground);
+  report["stance_heel_slip_mm_max"] = round6(turn.heel_slip_mm);
+  report["stance_ball_slip_mm_max"] = round6(turn.ball_slip_mm);
+  report["stance_twist_deg_max"] = round6(turn.twist_deg);
+  report["stance_twist_step"] = turn.worst_step;
+  report["stance_turn_on_ball_deg_max"] = round6(turn.turn_on_ball_deg);
+  appendf(text, "stance foot (heel / ball down within %.0f mm of the ground): heel slips up to %.2f mm, ball %.2f mm; "
+          "a flat foot twists up to %.2f deg (step %d); turns up to %.1f deg on its ball\n",
+          kFootDownTolerance * 1e3, turn.heel_slip_mm, turn.ball_slip_mm, turn.twist_deg, turn.worst_step,
+          turn.turn_on_ball_deg);
   report["foot_roll_max_deg"] = round6(rad2deg(w.foot_roll_max));
   report["pelvis_drop_max_m"] = round6(w.pelvis_drop_max);
   report["leg_reach_max"] = round6(w.leg_reach_max);
   report["reach_limited_frames"] = w.reach_limited_frames;
+  report["foot_lifted_out_of_ground_mm_max"] = round6(w.ground_lift_max * 1e3);
   appendf(text, "root: %s, speed %.2f-%.2f m/s (mean %.2f), peak acceleration %.1f m/s^2",
           w.root == RootMotion::Smooth ? "smooth (legs by IK)" : "pivoting (document 001)", rm.speed_min_mps,
           rm.speed_max_mps, rm.speed_mean_mps, rm.accel_max_mps2);

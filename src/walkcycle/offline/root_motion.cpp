@@ -4,8 +4,10 @@
 #include <legwork/core/fk.hpp>
 #include <legwork/core/rotation.hpp>
 #include <legwork/ik/two_bone.hpp>
+#include <legwork/walkcycle/offline/measure.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace legwork::walkcycle {
@@ -132,7 +134,7 @@ double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Ve
 // that near a millimetre on a 12 % grade. Returns the turn applied.
 Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_ball, Transform& ankle, Quat& full) {
   full = Quat::Identity();
-  if (ground.flat()) return full;
+  if (ground.flat() || ground.stepped()) return full;  // (stairs: planted flat by plant_on_treads)
   const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
   const Vec3 up = Vec3::UnitY();
   const double flat = std::clamp(1.0 - std::abs(ball.y() - heel.y()) / 0.05, 0.0, 1.0);
@@ -178,6 +180,186 @@ std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool res
 
 namespace {
 
+// A rigid horizontal move of one foot of the plan: turned by `angle` about the
+// vertical through the plan's point `pivot`, then moved by `offset`
+// (horizontal). The identity leaves the plan's foot alone.
+struct FootHold {
+  double angle = 0;
+  Vec3 pivot = Vec3::Zero();
+  Vec3 offset = Vec3::Zero();
+  double lift = 0;  // stairs: the height the foot is planted at (or carried at in the swing), metres
+  Vec3 apply(const Vec3& x) const { return pivot + yaw_rotation(angle) * (x - pivot) + offset + Vec3(0, lift, 0); }
+  Transform apply(const Transform& t) const { return {(yaw_rotation(angle) * t.rotation).normalized(), apply(t.translation)}; }
+};
+
+// How far through its step each frame is (0 at the step's first frame, 1 at its last).
+std::vector<double> step_fractions(std::span<const FrameLabel> labels) {
+  std::vector<double> frac(labels.size(), 0.0);
+  std::size_t begin = 0;
+  for (std::size_t f = 1; f <= labels.size(); ++f) {
+    if (f < labels.size() && labels[f].step == labels[begin].step) continue;
+    const double span = static_cast<double>(f - 1 - begin);
+    for (std::size_t k = begin; k < f; ++k) frac[k] = span > 0 ? static_cast<double>(k - begin) / span : 1.0;
+    begin = f;
+  }
+  return frac;
+}
+
+// The stance foot turns on its ball, not in place (issue 14, item 2). The
+// pivoting plan turns the whole body, stance foot included, about the planted
+// pivot: a flat foot twists on its heel and its heel slides round the ball.
+// Here each stance foot keeps the yaw it landed with while its heel is down
+// and turns to the plan's yaw on its ball as the heel rises (fully once the
+// heel is 2 cm up; at the latest over the last quarter of the stance), its
+// pivot (heel, then ball) held where it was. Once the foot leaves the ground
+// the offset this leaves is faded out over the middle of the swing, so it
+// lands on the plan's footprint. Per frame, per side (0 = right, 1 = left).
+std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const Motion& plan,
+                                                     std::span<const FrameLabel> labels, double step_frames) {
+  const int n = std::min(plan.frame_count(), static_cast<int>(labels.size()));
+  std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
+  const std::vector<double> frac = step_fractions(labels.first(static_cast<std::size_t>(n)));
+  std::vector<Transform> g(static_cast<std::size_t>(plan.joint_count()));
+  struct Side {
+    bool stance = false;
+    Pivot pivot = Pivot::Heel;
+    double landed_yaw = 0, turned = 0;  // the yaw it landed with; how far it has turned to the plan's (0-1)
+    int left_ground = -1;               // frame the foot left the ground
+    Vec3 lift_off = Vec3::Zero();       // its offset from the plan then
+    Vec3 anchor = Vec3::Zero();         // where the stance foot's pivot is held (floor)
+    Vec3 heel = Vec3::Zero(), ball = Vec3::Zero();  // the plan's, previous frame
+    FootHold hold;
+  } sides[2];
+  const double rise = 0.02;  // metres of heel lift over which the foot turns on its ball
+  for (int f = 0; f < n; ++f) {
+    forward_kinematics(plan.skeleton, plan.frame(f), g);
+    const FrameLabel& l = labels[static_cast<std::size_t>(f)];
+    for (int side = 0; side < 2; ++side) {
+      Side& sd = sides[side];
+      const FootPivots& foot = m.foot(side == 1);
+      const Transform& ankle = g[static_cast<std::size_t>(foot.ankle)];
+      const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
+      if (f == 0) sd.heel = heel, sd.ball = ball;
+      const double yaw = std::atan2(ball.x() - heel.x(), ball.z() - heel.z());
+      const bool stance = l.left_stance == (side == 1);
+      if (stance) {
+        const bool landing = !sd.stance;
+        if (landing) sd.landed_yaw = yaw, sd.turned = 0;
+        // Its pivot: the heel, then the ball from the pass key or as soon as
+        // the heel is up with the ball down (a foot rising early to its toes).
+        const bool heel_up = heel.y() > kFootDownTolerance && ball.y() <= kFootDownTolerance;
+        const Pivot pv = (!landing && sd.pivot == Pivot::Ball) || l.pivot == Pivot::Ball || heel_up ? Pivot::Ball : Pivot::Heel;
+        if (landing || pv != sd.pivot) sd.anchor = horizontal(sd.hold.apply(pv == Pivot::Heel ? sd.heel : sd.ball));
+        sd.pivot = pv;
+        const Vec3& now = pv == Pivot::Heel ? heel : ball;
+        sd.hold.pivot = now;
+        sd.hold.offset = sd.anchor - horizontal(now);  // the pivot stays where it was, wherever the plan has it
+        if (pv == Pivot::Ball) {
+          sd.turned = std::max(sd.turned, smoothstep((heel.y() - kFootDownTolerance) / rise));
+          if (!l.stopping) sd.turned = std::max(sd.turned, smoothstep((frac[static_cast<std::size_t>(f)] - 0.75) / 0.25));
+        }
+        sd.hold.angle = std::remainder(sd.landed_yaw - yaw, 2 * kPi) * (1.0 - sd.turned);
+      } else {
+        if (sd.stance) sd.left_ground = f, sd.lift_off = horizontal(sd.hold.apply(sd.heel) - sd.heel);
+        const double u = sd.left_ground < 0 ? 1.0 : ((f - sd.left_ground) / step_frames - 0.25) / 0.6;
+        sd.hold = {0.0, Vec3::Zero(), sd.lift_off * (1 - smoothstep(u))};
+        sd.pivot = Pivot::Heel;
+      }
+      holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)] = sd.hold;
+      sd.stance = stance, sd.heel = heel, sd.ball = ball;
+    }
+  }
+  return holds;
+}
+
+// Where a foot stands on stairs over a plant: the extent of its heel, ball
+// and toe tip along the stairs, and of its ball alone (metres from the
+// stairs' origin, over every frame of the plant).
+struct FootExtent {
+  double lo = 1e300, hi = -1e300, ball_lo = 1e300, ball_hi = -1e300;
+};
+
+// Stairs: a foot that would stand across a tread's edge is moved along the
+// stairs, the least it takes (1 cm steps, up to a tread's depth), until its
+// ball stays at least 2 cm from an edge and neither its heel nor its toe tip
+// goes lower than the tread under the ball (the heel may overhang the tread
+// below, as on real stairs). Returns the move (metres) and the tread's
+// height in `height`.
+double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
+  auto h = [&](double s) { return ground.height(ground.origin + s * ground.direction); };
+  const double margin = 0.02;
+  for (int i = 0; i <= static_cast<int>(ground.run / 0.01); ++i)
+    for (int sign : {-1, 1}) {
+      const double d = sign * 0.01 * i, tread = h(e.ball_lo + d);
+      if (h(e.ball_lo + d - margin) != tread || h(e.ball_hi + d + margin) != tread) continue;
+      if (h(e.lo + d) > tread || h(e.hi + d) > tread) continue;
+      height = tread;
+      return d;
+    }
+  height = std::max(h(e.lo), h(e.hi));
+  return 0.0;
+}
+
+// Stairs: each stance foot is planted flat on a tread (fit_on_tread, over
+// its whole stance); between two plants the swing carries it from one to
+// the next - along the stairs over the whole swing, up over its first 60 %
+// (the toes clear the riser ahead) or down over its last 60 % (they clear
+// the edge behind). Adds to `holds` (FootHold::lift, offset).
+void plant_on_treads(const CycleModel& m, const Motion& plan, std::span<const FrameLabel> labels, const Ground& ground,
+                     std::vector<std::array<FootHold, 2>>& holds) {
+  const int n = static_cast<int>(holds.size());
+  std::vector<Transform> g(static_cast<std::size_t>(plan.joint_count()));
+  struct Plant {
+    int first, last;
+    FootExtent extent;
+    double height = 0, move = 0;
+  };
+  std::vector<Plant> plants[2];
+  auto along = [&](const Vec3& p) { return (p - ground.origin).dot(ground.direction); };
+  for (int f = 0; f < n; ++f) {
+    forward_kinematics(plan.skeleton, plan.frame(f), g);
+    for (int side = 0; side < 2; ++side) {
+      const bool stance = labels[static_cast<std::size_t>(f)].left_stance == (side == 1);
+      auto& list = plants[side];
+      if (!stance && f != 0 && f != n - 1) continue;  // (a foot in the air at the start or end stands where it is)
+      if (!(stance && !list.empty() && list.back().last == f - 1)) list.push_back({f, f, {}});
+      Plant& p = list.back();
+      p.last = f;
+      const FootPivots& foot = m.foot(side == 1);
+      const Transform& a = g[static_cast<std::size_t>(foot.ankle)];
+      const FootHold& h = holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)];
+      const double heel = along(h.apply(a.apply(foot.heel_local))), ball = along(h.apply(a.apply(foot.ball_local)));
+      const double toe = foot.toe >= 0 ? along(h.apply(end_site_position(plan.skeleton, g, foot.toe))) : ball;
+      p.extent.lo = std::min({p.extent.lo, heel, ball, toe});
+      p.extent.hi = std::max({p.extent.hi, heel, ball, toe});
+      p.extent.ball_lo = std::min(p.extent.ball_lo, ball);
+      p.extent.ball_hi = std::max(p.extent.ball_hi, ball);
+    }
+  }
+  for (auto& list : plants)
+    for (Plant& p : list) p.move = fit_on_tread(ground, p.extent, p.height);
+  for (int side = 0; side < 2; ++side) {
+    auto at = [&](int f) -> FootHold& { return holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)]; };
+    const auto& list = plants[side];
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Plant& p = list[i];
+      for (int f = p.first; f <= p.last; ++f) at(f).lift = p.height, at(f).offset += p.move * ground.direction;
+      if (i + 1 == list.size()) break;
+      const Plant& q = list[i + 1];
+      for (int f = p.last + 1; f < q.first; ++f) {
+        const double u = static_cast<double>(f - p.last) / (q.first - p.last);
+        const double w = q.height >= p.height ? smoothstep(u / 0.6) : smoothstep((u - 0.4) / 0.6);
+        at(f).lift = p.height + w * (q.height - p.height);
+        at(f).offset += (p.move + smoothstep(u) * (q.move - p.move)) * ground.direction;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+namespace {
+
 // One frame of the smooth root: the pivoting pose (in `pose`) moved by
 // `shift` (horizontal, plus a pelvis drop in y), each foot rolled if out of
 // reach, both legs solved. Returns the pelvis drop that would bring every
@@ -196,7 +378,8 @@ struct FrameSolver {
   }
   // A frame of the plan: the first pass (r = nullptr) measures the drop
   // needed and leaves `pose` alone; the second moves and solves it.
-  double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r);
+  double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, const std::array<FootHold, 2>& hold,
+               WalkResult* r);
 };
 
 // Pelvis drop that brings `hip` within `reach` of `target`.
@@ -206,7 +389,8 @@ double drop_to_reach(const Vec3& hip, const Vec3& target, double reach) {
   return std::max(0.0, above - std::sqrt(reach * reach - side * side));
 }
 
-double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, WalkResult* r) {
+double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label,
+                          const std::array<FootHold, 2>& hold, WalkResult* r) {
   const Skeleton& s = m.skeleton;
   forward_kinematics(s, pose, before);
   if (r) pose.translations[0] += shift;
@@ -218,9 +402,10 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     const LegIk& leg = legs[side];
     const FootPivots& foot = m.foot(side == 1);
     const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
-    Transform ankle = before[static_cast<std::size_t>(leg.chain.end)];
+    Transform ankle = hold[side].apply(before[static_cast<std::size_t>(leg.chain.end)]);
     // As straight as the keys had it, or soft_reach, whichever is more.
-    const double keyed = (ankle.translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
+    const double keyed = (before[static_cast<std::size_t>(leg.chain.end)].translation -
+                          before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
     const double soft = std::max(opt.soft_reach, keyed);
     const bool stance = label.left_stance == (side == 1);
     Quat slope;  // the ground's turn under the foot (its toes follow it)
@@ -241,7 +426,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
       // uneven ground they turn with the ground under the foot.
       if ((roll != 0.0 || !ground.flat()) && foot.toe >= 0)
         pose.rotations[static_cast<std::size_t>(foot.toe)] =
-            (t.rotation.conjugate() * slope * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
+            (t.rotation.conjugate() * slope * yaw_rotation(hold[side].angle) * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
       update_toe(s, foot, pose, g);
     };
     solve_leg();
@@ -252,6 +437,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     if (below > 0) {
       t.position.y() += below;
       solve_leg();
+      r->ground_lift_max = std::max(r->ground_lift_max, below);
     }
     r->foot_roll_max = std::max(r->foot_roll_max, std::abs(roll));
     r->leg_reach_max = std::max(r->leg_reach_max, reach);
@@ -277,10 +463,15 @@ namespace {
 
 // The pelvis's rise over uneven ground: the mean ground height under the two
 // ankles of the plan, averaged over one step twice (as the root's travel).
-std::vector<Vec3> ground_lift(const Ground& ground, const Motion& motion, double step_frames, bool rest_at_end) {
+std::vector<Vec3> ground_lift(const Ground& ground, const Motion& motion, double step_frames, bool rest_at_end,
+                              std::span<const std::array<FootHold, 2>> holds) {
   const int n = motion.frame_count();
   std::vector<Vec3> lift(static_cast<std::size_t>(n), Vec3::Zero());
   if (ground.flat()) return lift;
+  if (ground.stepped()) {  // (the heights the feet are planted and carried at)
+    for (int f = 0; f < n; ++f) lift[static_cast<std::size_t>(f)] = Vec3(0, 0.5 * (holds[static_cast<std::size_t>(f)][0].lift + holds[static_cast<std::size_t>(f)][1].lift), 0);
+    return window_average(window_average(lift, step_frames, rest_at_end), step_frames, rest_at_end);
+  }
   const Skeleton& s = motion.skeleton;
   const int feet[2] = {s.roles[Role::LeftAnkle], s.roles[Role::RightAnkle]};
   std::vector<Transform> g(static_cast<std::size_t>(s.joint_count()));
@@ -302,7 +493,10 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   if (n < 2 || static_cast<int>(floor_offset.size()) != n) return;
   const std::vector<Vec3> smooth =
       window_average(window_average(floor_offset, step_frames, opt.stop), step_frames, opt.stop);
-  const std::vector<Vec3> lift = ground_lift(ground, motion, step_frames, opt.stop);
+  std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
+  if (opt.turn_on_ball) holds = hold_stance_yaw(m, motion, r.labels, step_frames);
+  if (ground.stepped()) plant_on_treads(m, motion, r.labels, ground, holds);
+  const std::vector<Vec3> lift = ground_lift(ground, motion, step_frames, opt.stop, holds);
   std::vector<Vec3> shift(static_cast<std::size_t>(n));
   for (std::size_t f = 0; f < shift.size(); ++f) shift[f] = horizontal(smooth[f] - floor_offset[f]) + lift[f];
   FrameSolver solver(m, ground, opt, motion);
@@ -311,9 +505,11 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   // averaged over as much: never less than needed).
   std::vector<double> drop(static_cast<std::size_t>(n));
   for (int f = 0; f < n; ++f)
-    drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)],
-                                                     r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)], nullptr);
-  const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / 4)));
+    drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)], r.heading[static_cast<std::size_t>(f)],
+                                                     r.labels[static_cast<std::size_t>(f)], holds[static_cast<std::size_t>(f)], nullptr);
+  // (On stairs the drop needed changes by a tread's rise from step to step:
+  // spread over half a step, averaged over a step.)
+  const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / (ground.stepped() ? 2 : 4))));
   const std::vector<double> envelope = running_max(drop, quarter);
   std::vector<Vec3> lowered(static_cast<std::size_t>(n));
   for (std::size_t f = 0; f < lowered.size(); ++f) lowered[f] = Vec3(0, -envelope[f], 0);
@@ -321,7 +517,8 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   for (int f = 0; f < n; ++f) {
     const Vec3 d = shift[static_cast<std::size_t>(f)] + lowered[static_cast<std::size_t>(f)];
     r.pelvis_drop_max = std::max(r.pelvis_drop_max, -lowered[static_cast<std::size_t>(f)].y());
-    solver.solve(motion.frame(f), d, r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)], &r);
+    solver.solve(motion.frame(f), d, r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)],
+                 holds[static_cast<std::size_t>(f)], &r);
   }
 }
 

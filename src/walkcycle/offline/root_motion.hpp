@@ -28,8 +28,12 @@ std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool res
 // (trailing) or heel (leading) first; what is still out of reach is pulled in
 // by the soft limit. Uneven `ground`: each foot's heel and ball rise by the
 // ground under them (fit_to_ground), the pelvis by the ground under the feet
-// averaged over a step. Fills r.leg_reach_max, r.foot_roll_max,
-// r.pelvis_drop_max, r.reach_limited_frames.
+// averaged over a step; on stairs each foot is planted flat on a tread and
+// carried between treads in the swing. With opt.turn_on_ball a stance foot
+// keeps the yaw it landed with while its heel is down and turns on its ball
+// as the heel rises (its pivot held). Fills r.leg_reach_max,
+// r.foot_roll_max, r.pelvis_drop_max, r.reach_limited_frames,
+// r.ground_lift_max.
 void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<const Vec3> floor_offset, double step_frames,
                         const WalkOptions& opt, WalkResult& r);
 

@@ -67,61 +67,77 @@ double final_weight(double t, double half, int stop_step, double amp) {
   return (1 - amp) + amp * smoothstep(u2);
 }
 
-// Root travel (x = sideways, z = forward), straight ahead, of the cycle
-// between times t0 and t1 (the pivot rule of the walk; fine steps so it does
-// not depend on the output rate). With amp >= 0 the walk ends: step
+// Root travel (x = sideways, z = forward) of the cycle between times t0 and
+// t1, starting straight ahead (the pivot rule of the walk; fine steps so it
+// does not depend on the output rate). With amp >= 0 the walk ends: step
 // stop_step - 1 shortened to amp, step `stop_step` the stop step (0 or 1),
-// then the standing pose.
-Vec3 straight_advance(const CycleModel& m, double t0, double t1, double amp = -1, int stop_step = 1) {
+// then the standing pose; the stop step turns by `turn` (radians, blended in
+// from the middle of the step before it to its middle, as walk_path turns),
+// about the planted foot.
+Vec3 straight_advance(const CycleModel& m, double t0, double t1, double amp = -1, int stop_step = 1, double turn = 0) {
   const double half = m.half_cycle();
   Pose cyc(m.skeleton), pose(m.skeleton);
   auto local = [&](double t) {
     sample_cycle(m, t, cyc.ref());
     blend_poses(cyc, m.stand, amp < 0 ? 0.0 : final_weight(t, half, stop_step, amp), pose.ref());
   };
+  auto heading = [&](double t) { return turn * smoothstep((t - (stop_step - 0.5) * half) / half); };
   local(t0);
   FootPoints prev = foot_points(m, pose);
-  const Vec3 root0 = horizontal(pose.translations[0]);
+  const Vec3 root0 = yaw_rotation(heading(t0)) * horizontal(pose.translations[0]);
   Vec3 c = Vec3::Zero();
+  double th_prev = heading(t0);
   const int sub = std::max(1, static_cast<int>(std::ceil((t1 - t0) * 8)));
   for (int i = 1; i <= sub; ++i) {
-    const double t = t0 + (t1 - t0) * i / sub;
+    const double t = t0 + (t1 - t0) * i / sub, th = heading(t);
     local(t);
     const FootPoints cur = foot_points(m, pose);
     StanceAt st = stance_at(m, t - 0.5 * (t1 - t0) / sub);
     if (amp >= 0 && st.step > stop_step) st = {stop_step, stop_step % 2 == 0, Pivot::Ball};
-    c = planted_offset(prev.get(st.left, st.pivot) + c, cur.get(st.left, st.pivot), 0.0);
+    c = planted_offset(yaw_rotation(th_prev) * prev.get(st.left, st.pivot) + c, cur.get(st.left, st.pivot), th);
     prev = cur;
+    th_prev = th;
   }
-  return horizontal(pose.translations[0]) + c - root0;
+  return yaw_rotation(th_prev) * horizontal(pose.translations[0]) + c - root0;
 }
 
-// Travel of the final steps against the shortened stride, tabulated once per
-// walk (amp = 0, 1/8 .. 1), interpolated linearly: for a stop step 0 (a walk
-// of one stop step) and for later stop steps by parity (1: odd, right foot;
-// 2: even, left foot; the cycle repeats every two steps).
+// Travel of the final steps against the shortened stride and the stop
+// step's turn, tabulated per walk (stride amp = 0, 1/8 .. 1; turn -90 to 90
+// degrees in steps of 22.5), each column simulated when first needed,
+// interpolated linearly: for a stop step 0 (a walk of one stop step, not
+// turned) and for later stop steps by parity (1: odd, right foot; 2: even,
+// left foot; the cycle repeats every two steps).
 struct FinalTravel {
-  static constexpr int kSamples = 9;
+  static constexpr int kSamples = 9, kTurns = 9;
+  static constexpr double kTurnMax = kPi / 2;
   explicit FinalTravel(const CycleModel& model) : m(model) {}
-  Vec3 at(int stop, double amp) const {
+  Vec3 at(int stop, double amp, double turn = 0) const {
     const int row = stop == 0 ? 0 : 2 - stop % 2;
-    auto& t = travel[static_cast<std::size_t>(row)];
-    if (!filled[static_cast<std::size_t>(row)]) {  // rows are simulated when first needed
-      const double half = m.half_cycle();
+    if (row == 0) turn = 0;
+    const double x = (std::clamp(turn, -kTurnMax, kTurnMax) + kTurnMax) / (2 * kTurnMax) * (kTurns - 1);
+    const int i = std::min(kTurns - 2, static_cast<int>(x));
+    const double w = x - i;
+    const Vec3 a = column(row, i, amp);
+    return w > 0 ? Vec3((1 - w) * a + w * column(row, i + 1, amp)) : a;
+  }
+
+ private:
+  Vec3 column(int row, int col, double amp) const {
+    auto& t = travel[static_cast<std::size_t>(row)][static_cast<std::size_t>(col)];
+    if (!filled[static_cast<std::size_t>(row)][static_cast<std::size_t>(col)]) {
+      const double half = m.half_cycle(), turn = -kTurnMax + 2 * kTurnMax * col / (kTurns - 1);
       for (int i = 0; i < kSamples; ++i)
-        t[static_cast<std::size_t>(i)] =
-            straight_advance(m, std::max(0, row - 1) * half, (row + 1.5) * half, static_cast<double>(i) / (kSamples - 1), row);
-      filled[static_cast<std::size_t>(row)] = true;
+        t[static_cast<std::size_t>(i)] = straight_advance(m, std::max(0, row - 1) * half, (row + 1.5) * half,
+                                                          static_cast<double>(i) / (kSamples - 1), row, turn);
+      filled[static_cast<std::size_t>(row)][static_cast<std::size_t>(col)] = true;
     }
     const double x = std::clamp(amp, 0.0, 1.0) * (kSamples - 1);
     const int i = std::min(kSamples - 2, static_cast<int>(x));
     return t[static_cast<std::size_t>(i)] + (x - i) * (t[static_cast<std::size_t>(i + 1)] - t[static_cast<std::size_t>(i)]);
   }
-
- private:
   const CycleModel& m;
-  mutable std::array<std::array<Vec3, kSamples>, 3> travel{};
-  mutable std::array<bool, 3> filled{};
+  mutable std::array<std::array<std::array<Vec3, kSamples>, kTurns>, 3> travel{};
+  mutable std::array<std::array<bool, kTurns>, 3> filled{};
 };
 
 }  // namespace
@@ -151,7 +167,7 @@ class PathWalk {
   void measure_deviation();
   void measure_end();
   bool plan_final_steps(int k, const Vec3& start, double t_here);
-  double solve_amplitude(double distance, int stop, Vec3* travel) const;
+  double solve_amplitude(double distance, int stop, double turn, Vec3* travel) const;
 
   const CycleModel& m;
   const Path& path;
@@ -219,10 +235,10 @@ PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o,
 
 // Root travel of the final steps (from where step stop - 1 starts, or the
 // walk's start) as a function of the shortened stride: forward travel grows
-// with it; inverted by bisection. Returns the stride; `travel` receives the
+// with it; inverted by bisection (the stop step turned by `turn`). Returns the stride; `travel` receives the
 // travel (x sideways as simulated, z forward).
-double PathWalk::solve_amplitude(double distance, int stop, Vec3* travel) const {
-  auto advance = [&](double a) { return finals.at(stop, a); };
+double PathWalk::solve_amplitude(double distance, int stop, double turn, Vec3* travel) const {
+  auto advance = [&](double a) { return finals.at(stop, a, turn); };
   double lo = 0, hi = 1;
   *travel = advance(1.0);
   if (distance >= travel->z()) return 1.0;
@@ -251,10 +267,14 @@ bool PathWalk::plan_final_steps(int k, const Vec3& here, double t_here) {
   stop_step = k + 1;
   if (k == 0 && distance < finals.at(1, 0.0).z()) stop_step = 0;
   Vec3 travel = Vec3::Zero();
-  amp = solve_amplitude(distance, stop_step, &travel);
-  for (int i = 0; i < 3; ++i) {  // the sideways settle: solve on the forward part of the distance
+  const Vec3 t_end = path.tangent(path.length());
+  double turn = 0;  // of the stop step, to the end tangent: it swings the root about the planted foot
+  amp = solve_amplitude(distance, stop_step, turn, &travel);
+  for (int i = 0; i < 4; ++i) {  // the sideways settle and the turn: solve on the forward part of the distance
+    if (k > 0 && distance > 0.05 * L)
+      turn = std::remainder(std::atan2(t_end.x(), t_end.z()) - (std::atan2(to_end.x(), to_end.z()) - std::atan2(travel.x(), travel.z())), 2 * kPi);
     const double forward = std::sqrt(std::max(0.0, distance * distance - travel.x() * travel.x()));
-    amp = solve_amplitude(forward, stop_step, &travel);
+    amp = solve_amplitude(forward, stop_step, turn, &travel);
   }
   // (Simulated with the parity of the real stop step, so x is already the right side.)
   if (k > 0 && distance > 0.05 * L) target.back() = std::atan2(to_end.x(), to_end.z()) - std::atan2(travel.x(), travel.z());
@@ -490,13 +510,29 @@ WalkResult walk_path(const CycleModel& model, const Path& path, const WalkOption
   if (opt.steps > 0 || !opt.stop) return best->take();
   // (The smooth root rests where the plan does, so the plans are compared
   // and only the best one is smoothed.)
+  // The end moves with the aim smoothly only while the number of steps stays
+  // the same, and on a path that hooks round in its last metre it moves less
+  // than the aim (the final steps turn away from it): each correction is
+  // scaled by how far the end moved for the last one (a secant step, up to
+  // 4 times the miss), and one that does not get closer is halved, from the
+  // best walk so far.
   Vec3 offset = Vec3::Zero(), miss = best->planned().end_position - horizontal(path.points.back());
-  for (int i = 0; i < 3 && miss.norm() > 0.01; ++i) {
-    offset -= miss;
-    auto again = std::make_unique<PathWalk>(m, path, opt, finals, offset);
+  double gain = 1.0;
+  for (int i = 0; i < opt.end_iterations && miss.norm() > 0.01; ++i) {
+    const Vec3 trial = offset - gain * miss;
+    auto again = std::make_unique<PathWalk>(m, path, opt, finals, trial);
     again->run();
-    miss = again->planned().end_position - horizontal(path.points.back());
-    if (again->planned().end_distance < best->planned().end_distance) best = std::move(again);
+    if (again->planned().end_distance < best->planned().end_distance) {
+      // How far the end moved for the aim's move: the next correction is scaled by it (secant).
+      const Vec3 now = again->planned().end_position - horizontal(path.points.back()), step = trial - offset;
+      const double moved = (now - miss).dot(step) / step.squaredNorm();
+      gain = 1.0 / std::clamp(moved, 0.25, 1.0);
+      best = std::move(again);
+      offset = trial;
+      miss = now;
+    } else {
+      gain *= 0.5;
+    }
   }
   return best->take();
 }

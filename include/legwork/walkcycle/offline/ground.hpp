@@ -11,8 +11,15 @@
 //     heights[row][column] at (origin.x + column * cell, origin.z + row * cell), bilinear
 //     between, the edge values beyond; neighbouring heights may differ by at most 0.3 * cell
 //
-// Steps and stairs (a height that jumps) are not supported: the feet follow
-// the ground under them, which needs a ground without edges.
+//   "ground": {"stairs": {"origin": [x, z], "direction": [dx, dz], "rise": 0.15, "run": 0.36, "count": 4}}
+//     `count` steps up along the direction (down for a negative rise): the first riser at the
+//     origin, treads `run` deep, the last tread the landing on top; height = rise * the number
+//     of risers behind the point (0 < |rise| <= 0.2 m, run >= 0.2 m, 1 to 50 steps)
+//
+// On a slope or height field the feet follow the ground under them (it has
+// no edges). On stairs each foot is planted flat on the highest tread under
+// its heel and ball and carried from tread to tread in the swing (see
+// docs/walkcycle.md); the footsteps themselves are not moved to the treads.
 #include <legwork/core/types.hpp>
 
 #include <string>
@@ -22,17 +29,20 @@
 namespace legwork::walkcycle {
 
 struct Ground {
-  enum class Kind : unsigned char { Flat, Slope, HeightField };
+  enum class Kind : unsigned char { Flat, Slope, HeightField, Stairs };
   Kind kind = Kind::Flat;
   Vec3 origin = Vec3::Zero();      // slope: where the ramp starts; height field: the grid's first point (y ignored)
-  Vec3 direction = Vec3::UnitZ();  // slope: uphill for a positive grade (unit, horizontal)
+  Vec3 direction = Vec3::UnitZ();  // slope, stairs: uphill for a positive grade / rise (unit, horizontal)
   double grade = 0;                // slope: rise per metre
   double length = 1e9;             // slope: metres of ramp, flat beyond
   double cell = 1;                 // height field: grid spacing, metres
   int columns = 0, rows = 0;       // height field: grid size (x, z)
   std::vector<double> heights;     // height field: row-major, rows * columns
+  double rise = 0, run = 1;        // stairs: height of a step, depth of a tread, metres
+  int count = 0;                   // stairs: number of steps
 
   bool flat() const { return kind == Kind::Flat; }
+  bool stepped() const { return kind == Kind::Stairs; }  // a height that jumps: feet planted flat on treads
   // Ground height under the floor point (x, z), metres.
   double height(double x, double z) const;
   double height(const Vec3& p) const { return height(p.x(), p.z()); }

@@ -10,9 +10,16 @@
 
 namespace legwork::walkcycle {
 
+// A foot point (heel, ball) is on the ground while it is within this height
+// above it (a shoe sole's give); above, it is in the air and cannot slip.
+inline constexpr double kFootDownTolerance = 0.005;  // metres
+
 // Stance slip: for every pivot phase (one stance foot pivoting on its heel or
 // on its ball), the largest horizontal distance the pivot point moves from
-// where it was when the phase began, measured by full FK of the output frames.
+// where it was when the phase began, measured by full FK of the output frames,
+// while it is on the ground (`ground`; a pivot lifted more than
+// kFootDownTolerance - a heel rising early onto the ball, a heel that strikes
+// late - is anchored again where it comes down).
 struct SlipReport {
   double max_mm = 0;
   double mean_mm = 0;  // mean over phases of each phase's maximum
@@ -20,7 +27,8 @@ struct SlipReport {
   int worst_step = -1;
   std::vector<double> per_step_mm;  // max per step
 };
-SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels);
+SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels,
+                               const Ground& ground = Ground{});
 
 // The root's horizontal speed while cruising (steps after the first, before
 // the stop step): frame-to-frame speed min / mean / max (m/s) and the largest
@@ -44,6 +52,23 @@ struct GroundContactReport {
 };
 GroundContactReport measure_ground_contact(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels,
                                            const Ground& ground);
+
+// The stance foot on turns (issue 14, item 2): a foot point (heel, ball) is
+// down while it is within kFootDownTolerance of the ground. For every stance
+// (the weight-bearing foot of one step), the largest horizontal distance the
+// heel and the ball move from where they came down while they stay down
+// (slip), and the largest change of the foot's yaw (heel-to-ball direction)
+// while both are down (twist: a flat foot turning in place). A foot that
+// turns on its ball once the heel is up shows neither.
+struct FootTurnReport {
+  double heel_slip_mm = 0;
+  double ball_slip_mm = 0;
+  double twist_deg = 0;   // largest yaw change while flat
+  int worst_step = -1;    // step of the largest twist
+  double turn_on_ball_deg = 0;  // largest yaw change of a stance foot while only its ball is down
+};
+FootTurnReport measure_foot_turning(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels,
+                                    const Ground& ground);
 
 // Seam of the in-place loop: every joint's model-space position and velocity
 // just before frame N (left limit, quadratic extrapolation) against frame 0

@@ -13,7 +13,9 @@
 // Curved paths: the character turns only about y (the paper's root rotate Y,
 // heading theta_n per path segment); heading changes are spread from the
 // middle of one step to the middle of the next, and every rotation is applied
-// about the planted pivot, so the stance foot stays put while the body turns.
+// about the planted pivot, so the stance foot stays put while the body turns
+// (with the smooth root the legs then turn the stance foot on its ball
+// instead of with the body: WalkOptions::turn_on_ball).
 // Each step's heading is decided at the middle of the previous step: the
 // path's direction one step further on (where the heading will have blended
 // in), corrected towards the path by atan(offset / two steps).
@@ -50,9 +52,16 @@ struct WalkOptions {
   // ankle); beyond, the ankle target is pulled in smoothly (soft limit: the
   // knee never locks or hyper-extends; the foot may then slide).
   double soft_reach = 0.98;
+  // Smooth root: a stance foot keeps the yaw it landed with while its heel is
+  // down and turns on its ball as the heel rises (false: it turns with the
+  // body about its pivot, twisting in place, as the pivoting plan has it).
+  bool turn_on_ball = true;
   double lookahead_steps = 1.0;  // heading lead along the path, in step lengths
   bool stop = true;            // end in the standing pose at the path's end
   int max_steps = 100000;      // safety limit
+  // Walks again aiming past a miss of the path's end (> 1 cm), at most this
+  // many times; the closest walk is kept (0: walk once).
+  int end_iterations = 6;
   int steps = -1;              // > 0: walk exactly this many steps, the stop step included, ignoring
                                // the path's end (0 is rejected: a walk takes at least one step)
 };
@@ -104,6 +113,10 @@ struct WalkResult {
   double pelvis_drop_max = 0;
   double leg_reach_max = 0;
   int reach_limited_frames = 0;
+  // Smooth root: the most a foot was lifted straight up because a heel, ball
+  // or toe tip would have gone into the ground (the plan's blend into the
+  // standing pose, the spline between keys, a riser in a swing), metres.
+  double ground_lift_max = 0;
 };
 
 // Straight-walk advance per step of the cycle (metres); the walk's stride.
