@@ -170,6 +170,10 @@ LW_API lw_status lw_model_create_walker(const char* keys_json_path, lw_model** o
  * must outlive the model. */
 LW_API lw_status lw_model_create_combined(const lw_database* db, const lw_accent_settings* s, const lw_skeleton* skeleton,
                                           lw_model** out);
+/* The same with the legs' depth mapping learned from real walks (the table at
+ * `table_path`, as lw_model_create_wip_learned). */
+LW_API lw_status lw_model_create_combined_learned(const lw_database* db, const lw_accent_settings* s,
+                                                  const lw_skeleton* skeleton, const char* table_path, lw_model** out);
 
 LW_API void lw_model_destroy(lw_model* m);
 LW_API lw_method lw_model_method(const lw_model* m);

@@ -22,10 +22,13 @@ void bind_combined(pb::module_& m) {
   state.def_readonly("legs_weight", &State::legs_weight, "0 = the upper method's legs, 1 = walking-in-place's")
       .def_property_readonly("wip", [](State& s) -> wip::State& { return s.wip; }, pb::return_value_policy::reference_internal,
                              "the legs' walking-in-place state (legwork.wip.set_floor applies)");
-  m.def("make_model", pb::overload_cast<const accent::Database&, const Settings&>(&make_model), "db"_a, "settings"_a = Settings{},
-        pb::keep_alive<0, 1>(), "Upper body by accentuation over `db` (kept alive by the model), legs by walking-in-place.");
-  m.def("make_model", pb::overload_cast<const Skeleton&, const Settings&>(&make_model), "skeleton"_a, "settings"_a = Settings{},
-        "Upper body by the full-body IK avatar on `skeleton`, legs by walking-in-place.");
+  m.def("make_model", pb::overload_cast<const accent::Database&, const Settings&, const wip::LearnedMapping*>(&make_model), "db"_a,
+        "settings"_a = Settings{}, "learned"_a = nullptr, pb::keep_alive<0, 1>(),
+        "Upper body by accentuation over `db` (kept alive by the model), legs by walking-in-place. learned: the legs'\n"
+        "table for settings.wip.mapping.depth = legwork.wip.DepthMapping.Learned (legwork.wip.read_learned_mapping).");
+  m.def("make_model", pb::overload_cast<const Skeleton&, const Settings&, const wip::LearnedMapping*>(&make_model), "skeleton"_a,
+        "settings"_a = Settings{}, "learned"_a = nullptr,
+        "Upper body by the full-body IK avatar on `skeleton`, legs by walking-in-place (learned: as above).");
   pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
       .def(pb::init<>())
       .def_readonly("upper", &Info::upper, "the upper-body method's UpdateStatus")

@@ -179,6 +179,25 @@ def test_combined_legs_come_from_wip_and_the_upper_body_from_ik():
     assert status.count(core.UpdateStatus.Ok) > len(frames) // 2
 
 
+def test_combined_legs_with_the_learned_mapping():
+    walk = legwork.io.read_bvh(str(TRIAL), drop_first=True)
+    frames = core.tracker_frames_from_motion(walk, 30.0)
+    settings = legwork.combined.Settings()
+    settings.wip.signal.rate = 30.0
+    settings.wip.mapping.depth = wip.DepthMapping.Learned
+    with pytest.raises(legwork.Error, match="learned depth mapping needs a learned table"):
+        legwork.combined.make_model(walk.skeleton, settings)
+    table = wip.read_learned_mapping(str(SOURCE / "data/wip/learned_mapping.txt"))
+    model = legwork.combined.make_model(walk.skeleton, settings, learned=table)
+    out, _ = drive(legwork.combined, model, frames)
+    plain = legwork.combined.Settings()
+    plain.wip.signal.rate = 30.0  # the same but for the mapping
+    document, _ = drive(legwork.combined, legwork.combined.make_model(walk.skeleton, plain), frames)
+    legs = sorted(model.leg_joints)
+    assert np.isfinite(out.rotations).all()
+    assert not np.allclose(out.rotations[:, legs], document.rotations[:, legs])  # the learned table moves the legs otherwise
+
+
 def test_combined_with_a_database(db):
     settings = legwork.combined.Settings()
     settings.accent.user_height = 1.7

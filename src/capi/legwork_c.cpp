@@ -331,6 +331,23 @@ lw_status lw_model_create_combined(const lw_database* db, const lw_accent_settin
   });
 }
 
+lw_status lw_model_create_combined_learned(const lw_database* db, const lw_accent_settings* s, const lw_skeleton* skeleton,
+                                           const char* table_path, lw_model** out) {
+  if ((!db && !skeleton) || !table_path || !out)
+    return fail(LW_ERROR_INVALID_ARGUMENT,
+                "lw_model_create_combined_learned: give a database or a skeleton, table_path and out (not NULL)");
+  *out = nullptr;
+  return guarded("lw_model_create_combined_learned", [&] {
+    combined::Settings cfg;
+    if (const std::string why = accent_settings(s, cfg.accent); !why.empty())
+      return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_combined_learned: " + why);
+    cfg.wip.mapping.depth = wip::DepthMapping::Learned;
+    const wip::LearnedMapping table = wip::read_learned_mapping(table_path);
+    return store_model(LW_METHOD_COMBINED,
+                       db ? combined::make_model(db->db, cfg, &table) : combined::make_model(skeleton->skeleton, cfg, &table), out);
+  });
+}
+
 lw_status lw_model_create_ik(const lw_skeleton* skeleton, lw_model** out) {
   if (!skeleton || !out) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_ik: skeleton and out must not be NULL");
   *out = nullptr;

@@ -222,6 +222,53 @@ TEST(CApi, WipWithTheLearnedMappingWalksOnARealWalk) {
   lw_model_destroy(model);
 }
 
+// The combined avatar with the learned legs: its leg joints differ from the
+// document's mapping on the same real walk, its upper body does not.
+TEST(CApi, CombinedWithTheLearnedMappingMovesOnlyTheLegsOtherwise) {
+  lw_skeleton* skel = nullptr;
+  ASSERT_EQ(lw_skeleton_load_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), &skel), LW_OK) << lw_last_error();
+  lw_model* models[2] = {nullptr, nullptr};
+  lw_model* none = nullptr;
+  EXPECT_EQ(lw_model_create_combined_learned(nullptr, nullptr, skel, nullptr, &none), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_STREQ(lw_last_error(), "lw_model_create_combined_learned: give a database or a skeleton, table_path and out (not NULL)");
+  EXPECT_NE(lw_model_create_combined_learned(nullptr, nullptr, skel, sample("cmu/MANIFEST.tsv").c_str(), &none), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("MANIFEST.tsv:1: not a learned walking-in-place mapping"), std::string::npos)
+      << lw_last_error();
+  ASSERT_EQ(lw_model_create_combined(nullptr, nullptr, skel, &models[0]), LW_OK) << lw_last_error();
+  ASSERT_EQ(lw_model_create_combined_learned(nullptr, nullptr, skel, sample("wip/learned_mapping.txt").c_str(), &models[1]), LW_OK)
+      << lw_last_error();
+  lw_skeleton_destroy(skel);
+  Frames f;
+  ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), 30, 1, &f.data, &f.count), LW_OK);
+  const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(models[0]));
+  const int foot = humanoid_joint(models[0], "LeftFoot"), hand = humanoid_joint(models[0], "LeftHand");
+  ASSERT_GE(foot, 0);
+  ASSERT_GE(hand, 0);
+  std::vector<double> world[2] = {std::vector<double>(3 * static_cast<std::size_t>(n)), std::vector<double>(3 * static_cast<std::size_t>(n))};
+  lw_avatar* avatars[2] = {nullptr, nullptr};
+  for (int k = 0; k < 2; ++k) ASSERT_EQ(lw_avatar_create(models[k], &avatars[k]), LW_OK);
+  double foot_apart = 0, hand_apart = 0;
+  for (int32_t i = 0; i < f.count; ++i)
+    for (int k = 0; k < 2; ++k) {
+      ASSERT_GE(lw_avatar_update(avatars[k], &f.data[i]), 0);
+      ASSERT_EQ(lw_avatar_pose(avatars[k], nullptr, nullptr, world[k].data(), n), LW_OK);
+      if (k == 1) {
+        auto apart = [&](int j) {
+          const auto at = 3 * static_cast<std::size_t>(j);
+          return std::hypot(world[0][at] - world[1][at], world[0][at + 1] - world[1][at + 1], world[0][at + 2] - world[1][at + 2]);
+        };
+        foot_apart = std::max(foot_apart, apart(foot));
+        hand_apart = std::max(hand_apart, apart(hand));
+      }
+    }
+  EXPECT_GT(foot_apart, 0.02);
+  EXPECT_LT(hand_apart, 1e-9);  // the upper body is the IK avatar's in both
+  for (int k = 0; k < 2; ++k) {
+    lw_avatar_destroy(avatars[k]);
+    lw_model_destroy(models[k]);
+  }
+}
+
 TEST(CApi, BadInputGivesAStatusAndAMessage) {
   lw_database* db = nullptr;
   EXPECT_EQ(lw_database_load(nullptr, &db), LW_ERROR_INVALID_ARGUMENT);
