@@ -80,6 +80,27 @@ def test_frame_by_frame_equals_whole_clip(db, truth):
     assert matched > len(frames) // 2
 
 
+def test_no_class_setting_recognises_walking(db, truth):
+    """No class given: the engine recognises the held-out walking trial's class; off, it does not recognise."""
+    head, head_rot, left, right = tracks(truth)
+    frames = core.tracker_frames(db.fps, head, head_rot, left, right)
+    counts = {}
+    for recognise in (True, False):
+        settings = settings_for(truth)
+        assert settings.recognize_class  # the default
+        settings.recognize_class = recognise
+        model = accent.make_model(db, settings)
+        state, pose, info = accent.State(model), core.Pose(model.skeleton()), accent.Info()
+        active = []
+        for frame in frames:
+            accent.update(model, frame, state, pose, info)
+            active.append(info.active_class)
+        counts[recognise] = active
+    walking = db.classes.index("walking")
+    assert counts[True].count(walking) > len(frames) // 2
+    assert set(counts[False]) == {-1}
+
+
 def g17(x):
     return "%.17g" % x
 

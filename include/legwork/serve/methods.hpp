@@ -30,6 +30,9 @@ struct MethodOptions {
   std::vector<std::string> classes;  // accent classes to match (empty = all)
   double exaggeration = 1.0;         // accent: hand-motion exaggeration about the head
   double user_height = 0;            // metres; 0 = the avatar skeleton's own height
+  // accent: with several classes allowed, recognise the activity and search
+  // only its class (accent::Settings::recognize_class); false: search all.
+  bool recognize_class = true;
 };
 
 // Per-frame diagnostics as a flat list of name -> number or name -> text
