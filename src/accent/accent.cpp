@@ -461,8 +461,10 @@ double probe_class(const Model& model, State& st, int c) {
     const auto hu = static_cast<std::size_t>(h);
     std::array<Match, 6> m;
     const int seed = st.class_seed[cu][hu];
+    // A probe needs the nearest window only: a quarter of the frame's check budget.
     const int n = search_knn(db, h, st.live[hu], cfg.max_head_tilt_deg > 0 ? 6 : 1, cfg.search, cfg.fast_eps, st.probe_mask, m,
-                             std::span<const int>(&seed, seed >= 0 ? 1 : 0), cfg.fast_max_checks);
+                             std::span<const int>(&seed, seed >= 0 ? 1 : 0),
+                             cfg.fast_max_checks > 0 ? std::max(100, cfg.fast_max_checks / 4) : 0);
     const int kept = cfg.max_head_tilt_deg > 0 ? tilt_gate(model, st, std::span<Match>(m.data(), static_cast<std::size_t>(n))) : n;
     if (n > 0) st.class_seed[cu][hu] = m[0].window;
     cost += kept > 0 ? std::min(far, m[0].distance / typical) : far;

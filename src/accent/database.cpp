@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -218,6 +219,19 @@ const T* section(const Database::Impl& d, std::uint64_t offset, std::uint64_t co
 void validate_contents(const Database::Impl& d, const std::string& source, bool scan_data);
 void build_trees(Database::Impl& d, int leaf_size);
 
+// Maps the pages of [offset, offset + bytes) of a mapped file in one call
+// (instead of one fault per page as they are first read); a hint only.
+void prefault(const Database::Impl& d, std::uint64_t offset, std::uint64_t bytes) {
+#ifdef MADV_POPULATE_READ
+  if (!d.map || offset >= d.size) return;
+  const std::uint64_t page = 4096, start = offset & ~(page - 1);
+  const std::uint64_t end = std::min<std::uint64_t>(d.size, offset + std::min<std::uint64_t>(bytes, d.size - offset));
+  (void)::madvise(static_cast<char*>(d.map) + start, end - start, MADV_POPULATE_READ);
+#else
+  (void)d, (void)offset, (void)bytes;
+#endif
+}
+
 // Validates the block in d.base/d.size and fills the views; with `index`,
 // also the stored search index (rebuilt when another nanoflann wrote it).
 void open_block(Database::Impl& d, const std::string& source, bool verify, bool index) {
@@ -236,6 +250,7 @@ void open_block(Database::Impl& d, const std::string& source, bool verify, bool 
     fail(source, "feature layout (" + std::to_string(h.feature_dim) + " dims, window " + std::to_string(h.window) +
                      ") differs from this build's");
   if (verify) {
+    prefault(d, 0, d.size);  // every byte is read
     const std::uint64_t sum = block_checksum({d.base, d.size});
     if (sum != h.checksum) fail(source, "checksum mismatch: the file is corrupted");
   }
@@ -252,11 +267,13 @@ void open_block(Database::Impl& d, const std::string& source, bool verify, bool 
   d.poses = section<float>(d, h.pose_offset, std::uint64_t{h.pose_count} * h.joint_count * 4, source, "poses");
   d.head_up = section<float>(d, h.head_up_offset, std::uint64_t{h.pose_count} * 3, source, "head up axes");
   d.contacts = section<std::uint8_t>(d, h.contact_offset, std::uint64_t{h.pose_count} * 2, source, "foot contacts");
+  if (!verify) prefault(d, h.source_offset, std::uint64_t{h.window_count} * sizeof(WindowSource));
   for (std::uint32_t w = 0; w < h.window_count; ++w)
     if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count)
       fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
   validate_contents(d, source, verify);
   const std::byte* section_at = section<std::byte>(d, h.index_offset, h.index_bytes, source, "search index");
+  if (index && !verify) prefault(d, h.index_offset, h.index_bytes);
   if (index && !load_index(d, {section_at, h.index_bytes}, source)) build_trees(d, kIndexLeafSize);
 }
 
