@@ -101,6 +101,19 @@ def test_no_class_setting_recognises_walking(db, truth):
     assert set(counts[False]) == {-1}
 
 
+def test_cli_reports_recognised_classes_and_can_turn_them_off(cli, db, db_path, truth, tmp_path):
+    """`legwork accent run` without --classes recognises the class (frames per class in its JSON, as the
+    Python run's Info.active_class counts them); --no-class-recognition leaves the field out."""
+    on, off = tmp_path / "on.json", tmp_path / "off.json"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", tmp_path / "on.bvh", "--json", on)
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", tmp_path / "off.bvh", "--json", off,
+        "--no-class-recognition")
+    recognised = json.loads(on.read_text())["recognized_classes"]
+    assert sum(recognised["frames"].values()) == truth.frame_count
+    assert max(recognised["frames"], key=recognised["frames"].get) == "walking"
+    assert "recognized_classes" not in json.loads(off.read_text())
+
+
 def g17(x):
     return "%.17g" % x
 
