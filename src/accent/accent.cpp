@@ -229,6 +229,7 @@ void reset(const Model& model, State& s) {
   s.active_class = s.challenger = -1;
   s.challenger_seconds = 0;
   s.probe_next = 0;
+  s.next_probe = 0;
   s.class_switches = 0;
   std::fill(s.class_cost.begin(), s.class_cost.end(), -1.0);
   std::fill(s.class_seed.begin(), s.class_seed.end(), std::array<int, 2>{-1, -1});
@@ -486,11 +487,16 @@ void recognize_class(const Model& model, State& st, double dt) {
       if (st.class_cost[static_cast<std::size_t>(c)] < st.class_cost[static_cast<std::size_t>(best)]) best = c;
     }
     st.active_class = best;
+    st.next_probe = now;
   } else {
-    int c = allowed[static_cast<std::size_t>(st.probe_next % static_cast<int>(allowed.size()))];
-    if (c == st.active_class) c = allowed[static_cast<std::size_t>(++st.probe_next % static_cast<int>(allowed.size()))];
-    ++st.probe_next;
-    update_class_cost(model, st, c, probe_class(model, st, c), now);
+    if (now >= st.next_probe) {
+      // Each other class about twice per smoothing time (a probe costs about a frame's search).
+      st.next_probe = now + cfg.class_seconds / (2.0 * static_cast<double>(allowed.size() - 1));
+      int c = allowed[static_cast<std::size_t>(st.probe_next % static_cast<int>(allowed.size()))];
+      if (c == st.active_class) c = allowed[static_cast<std::size_t>(++st.probe_next % static_cast<int>(allowed.size()))];
+      ++st.probe_next;
+      update_class_cost(model, st, c, probe_class(model, st, c), now);
+    }
     int best = st.active_class;
     for (int k : allowed)
       if (st.class_cost[static_cast<std::size_t>(k)] >= 0 && st.class_cost[static_cast<std::size_t>(k)] < st.class_cost[static_cast<std::size_t>(best)]) best = k;

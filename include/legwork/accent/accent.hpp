@@ -72,7 +72,8 @@ struct Settings {
   // (the mean over the hands of the nearest window's distance in that class,
   // head-tilt gate applied, in typical distances) is smoothed over
   // class_seconds; the active class's cost comes from the frame's own search,
-  // one other class is probed per frame (round robin). The active class
+  // another class is probed (round robin) every class_seconds / (2 x the
+  // other classes), so each is scored about twice per class_seconds. The active class
   // changes only when another's smoothed cost is lower by the fraction
   // class_margin for class_hold_seconds (hysteresis). false: every allowed
   // class is searched every frame (the whole-database tree).
@@ -243,6 +244,7 @@ struct State {
   int challenger = -1;              // the class currently beating it by the margin...
   double challenger_seconds = 0;    // ...for this long
   int probe_next = 0;               // index into Model::allowed_classes() of the next class probed
+  double next_probe = 0;            // input time of the next probe
   int class_switches = 0;           // since the last reset
   std::vector<double> class_cost;   // smoothed match cost, typical distances (< 0: unknown)
   std::vector<double> class_time;   // input time of each class's last cost update
