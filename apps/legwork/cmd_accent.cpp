@@ -114,6 +114,15 @@ void register_run(CLI::App& parent) {
   cmd->add_option("--height", a->height, "user height in metres (default: the BVH's standing height, or the database's)")->check(CLI::PositiveNumber);
   cmd->add_option("--exaggerate", a->exaggerate, "scale the input hands about the head before matching")->check(CLI::PositiveNumber);
   cmd->add_option("--classes", a->classes, "comma-separated classes to match against (default: all in the database)");
+  cmd->add_flag("--no-class-recognition", a->no_class_recognition,
+                "with several classes allowed, search all of them every frame instead of recognising the activity and "
+                "searching only its class");
+  cmd->add_option("--class-hold", a->class_hold, "class recognition: seconds another class must stay better before a switch")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--class-margin", a->class_margin, "class recognition: relative cost margin another class needs (0..1)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.99));
   cmd->add_option("--hand-ik", a->hand_ik,
                   "0..1: pull the synthesized arms onto the real hands (needs legwork::ik); 1 = wrists on the controllers, "
                   "0 = the paper's pure synthesis")

@@ -17,7 +17,7 @@ namespace {
 
 struct EvalArgs {
   std::string data, manifest, test, test_manifest, classes, protocols, out;
-  bool quick = false, no_ablation = false, no_ik = false, keep_first = false, video = false;
+  bool quick = false, no_ablation = false, no_ik = false, skip_no_class = false, keep_first = false, video = false;
   int threads = 0, quick_trials = 4;
   double max_seconds = 0, quick_seconds = 12;
   // Engine switches (defaults = the engine's own defaults).
@@ -56,6 +56,8 @@ void register_eval(CLI::App& app) {
   cmd->add_flag("--video", a->video, "also write compare.mp4: truth, engine and IK side by side (needs ffmpeg)");
   cmd->add_flag("--no-ablation", a->no_ablation, "skip the ablation variants");
   cmd->add_flag("--no-ik", a->no_ik, "skip the IK baseline");
+  cmd->add_flag("--skip-no-class", a->skip_no_class,
+                "skip the no-class setting (one database of every class per fold, the class recognised from the input)");
   cmd->add_flag("--keep-first-frame", a->keep_first, "do not drop frame 0 (CMU files start with a T-pose)");
   cmd->add_option("--hop", a->hop, "engine: window hop in samples")->check(CLI::PositiveNumber);
   cmd->add_option("--k", a->k, "engine: neighbours per hand")->check(CLI::Range(1, 32));
@@ -87,6 +89,7 @@ void register_eval(CLI::App& app) {
     if (a->max_seconds > 0) opt.max_test_seconds = a->max_seconds;
     opt.ablation = !a->no_ablation;
     opt.ik = !a->no_ik;
+    opt.no_class = !a->skip_no_class;
     opt.threads = a->threads;
     opt.drop_first_frame = !a->keep_first;
     if (a->hop > 0) opt.build.hop = a->hop;

@@ -78,6 +78,7 @@ namespace Legwork
         public double UserHeight;     // metres; 0 = the database skeleton's height
         public double HandIk;         // 0..1
         public double SmoothHalflife; // seconds
+        public int RecognizeClass;    // 1: several classes allowed -> recognise the activity, search only its class; 0: all
 
         public static AccentSettings Default()
         {
@@ -150,7 +151,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 1;
+        public const uint AbiVersion = 2;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

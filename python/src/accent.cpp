@@ -82,6 +82,11 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("user_height", &Settings::user_height, "metres; 0 = the database skeleton's height")
       .def_readwrite("exaggeration", &Settings::exaggeration, "hands scaled about the head before matching (> 0)")
       .def_readwrite("classes", &Settings::classes, "classes to match, list[str] ([] = all)")
+      .def_readwrite("recognize_class", &Settings::recognize_class,
+                     "with several classes allowed: recognise the activity from the input (with hysteresis) and search only its class")
+      .def_readwrite("class_seconds", &Settings::class_seconds, "smoothing of the per-class match costs, seconds")
+      .def_readwrite("class_margin", &Settings::class_margin, "relative cost margin another class needs to take over (0..1)")
+      .def_readwrite("class_hold_seconds", &Settings::class_hold_seconds, "seconds another class must stay better before a switch")
       .def_readwrite("joint_limits", &Settings::joint_limits)
       .def_readwrite("drive_head", &Settings::drive_head)
       .def_readwrite("fallback_seconds", &Settings::fallback_seconds, "seconds")
@@ -114,7 +119,8 @@ void bind_settings(pb::module_& m) {
       .def_readonly("best_distance", &Info::best_distance, "best distance per hand, typical-distance units")
       .def_readonly("contact", &Info::contact, "blended foot contact of the candidates [left, right] (0..1)")
       .def_readonly("foot_locked", &Info::foot_locked, "whether each foot is locked [left, right]")
-      .def_readonly("ik_share", &Info::ik_share, "share of the IK body in the output (0..1)");
+      .def_readonly("ik_share", &Info::ik_share, "share of the IK body in the output (0..1)")
+      .def_readonly("active_class", &Info::active_class, "recognised class (index into Database.classes), -1 = not recognising");
 }
 
 pb::dict run_dict(AccentRun run) {

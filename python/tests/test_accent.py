@@ -80,6 +80,40 @@ def test_frame_by_frame_equals_whole_clip(db, truth):
     assert matched > len(frames) // 2
 
 
+def test_no_class_setting_recognises_walking(db, truth):
+    """No class given: the engine recognises the held-out walking trial's class; off, it does not recognise."""
+    head, head_rot, left, right = tracks(truth)
+    frames = core.tracker_frames(db.fps, head, head_rot, left, right)
+    counts = {}
+    for recognise in (True, False):
+        settings = settings_for(truth)
+        assert settings.recognize_class  # the default
+        settings.recognize_class = recognise
+        model = accent.make_model(db, settings)
+        state, pose, info = accent.State(model), core.Pose(model.skeleton()), accent.Info()
+        active = []
+        for frame in frames:
+            accent.update(model, frame, state, pose, info)
+            active.append(info.active_class)
+        counts[recognise] = active
+    walking = db.classes.index("walking")
+    assert counts[True].count(walking) > len(frames) // 2
+    assert set(counts[False]) == {-1}
+
+
+def test_cli_reports_recognised_classes_and_can_turn_them_off(cli, db, db_path, truth, tmp_path):
+    """`legwork accent run` without --classes recognises the class (frames per class in its JSON, as the
+    Python run's Info.active_class counts them); --no-class-recognition leaves the field out."""
+    on, off = tmp_path / "on.json", tmp_path / "off.json"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", tmp_path / "on.bvh", "--json", on)
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", tmp_path / "off.bvh", "--json", off,
+        "--no-class-recognition")
+    recognised = json.loads(on.read_text())["recognized_classes"]
+    assert sum(recognised["frames"].values()) == truth.frame_count
+    assert max(recognised["frames"], key=recognised["frames"].get) == "walking"
+    assert "recognized_classes" not in json.loads(off.read_text())
+
+
 def g17(x):
     return "%.17g" % x
 

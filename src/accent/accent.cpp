@@ -74,6 +74,9 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: foot_release_seconds must be >= 0");
   if (!(cfg.ik_blend_min >= 0 && cfg.ik_blend_min <= cfg.ik_blend_max && cfg.ik_blend_max <= 1))
     throw Error("accent: IK blend shares need 0 <= ik_blend_min <= ik_blend_max <= 1");
+  if (!(cfg.class_seconds >= 0) || !(cfg.class_hold_seconds >= 0) || !(cfg.class_margin >= 0 && cfg.class_margin < 1) ||
+      !std::isfinite(cfg.class_seconds) || !std::isfinite(cfg.class_hold_seconds))
+    throw Error("accent: class recognition needs class_seconds >= 0, class_hold_seconds >= 0 and 0 <= class_margin < 1");
   if (!(cfg.ik_blend_near < cfg.ik_blend_far) || !std::isfinite(cfg.ik_blend_far) || !(cfg.ik_blend_seconds >= 0))
     throw Error("accent: IK blend needs ik_blend_near < ik_blend_far and ik_blend_seconds >= 0");
 }
@@ -142,6 +145,9 @@ Model make_model(const Database& db, const Settings& settings) {
   m.scale_ = settings.user_height > 0 && db.height() > 0 ? settings.user_height / db.height() : 1.0;
   m.skeleton_.scale(m.scale_);
   m.class_mask_ = make_class_mask(db, settings.classes);
+  for (int c = 0; c < db.class_count(); ++c)
+    if (m.class_mask_[static_cast<std::size_t>(c)] && db.class_range(c).second > db.class_range(c).first) m.allowed_.push_back(c);
+  m.recognizes_ = settings.recognize_class && m.allowed_.size() > 1;
   const Skeleton& skel = m.skeleton_;
   const auto& r = skel.roles;
   const int n = skel.joint_count();
@@ -179,7 +185,7 @@ Model make_model(const Database& db, const Settings& settings) {
 
 std::size_t Model::bytes() const {
   const auto nj = static_cast<std::size_t>(skeleton_.joint_count());
-  return sizeof(*this) + class_mask_.size() + nj * (sizeof(Group) + sizeof(Limit) + sizeof(Quat) + sizeof(Vec3)) +
+  return sizeof(*this) + class_mask_.size() + allowed_.size() * sizeof(int) + nj * (sizeof(Group) + sizeof(Limit) + sizeof(Quat) + sizeof(Vec3)) +
          nj * (3 * sizeof(Vec3) + sizeof(int) + 40);
 }
 
@@ -192,6 +198,12 @@ State::State(const Model& model) {
   spring_vel.assign(n, Vec3::Zero());
   model_rot.resize(n);
   model_space.resize(n);
+  const auto nc = static_cast<std::size_t>(model.database().class_count());
+  class_cost.assign(nc, -1.0);
+  class_time.assign(nc, 0.0);
+  class_seed.assign(nc, {-1, -1});
+  active_mask.assign(nc, 0);
+  probe_mask.assign(nc, 0);
   if (model.ik_model()) {
     ik.emplace(*model.ik_model());
     ik_pose = model.neutral();
@@ -214,12 +226,21 @@ void reset(const Model& model, State& s) {
   s.have_ik_distance = false;
   s.ik_distance = 0;
   s.ik_share = 0;
+  s.active_class = s.challenger = -1;
+  s.challenger_seconds = 0;
+  s.probe_next = 0;
+  s.next_probe = 0;
+  s.class_switches = 0;
+  std::fill(s.class_cost.begin(), s.class_cost.end(), -1.0);
+  std::fill(s.class_seed.begin(), s.class_seed.end(), std::array<int, 2>{-1, -1});
+  std::fill(s.active_mask.begin(), s.active_mask.end(), 0);
 }
 
 std::size_t State::bytes() const {
   const auto nj = spring_rot.size();
   return sizeof(*this) + 3 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Quat) + sizeof(Vec3)) +
-         nj * (sizeof(Transform) + sizeof(Quat));
+         nj * (sizeof(Transform) + sizeof(Quat)) +
+         class_cost.size() * (2 * sizeof(double) + sizeof(std::array<int, 2>) + 2);
 }
 
 std::span<const Match> last_matches(const State& s, int hand) {
@@ -265,6 +286,20 @@ void window_at(const Model& model, const State& st, int hand, HandWindow& out) {
   }
 }
 
+// Head-tilt gate: keeps (in order, at the front) the candidates whose head is
+// about as upright as the user's (yaw-free test). Returns the number kept.
+int tilt_gate(const Model& model, const State& st, std::span<Match> m) {
+  const Database& db = model.database();
+  const double user_tilt = std::acos(std::clamp((st.last_head_rot * Vec3::UnitY()).y(), -1.0, 1.0));
+  const double limit = deg2rad(model.settings().max_head_tilt_deg);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const Vec3 up = db.head_up(static_cast<int>(db.source(m[i].window).pose));
+    if (std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) <= limit) m[kept++] = m[i];
+  }
+  return static_cast<int>(kept);
+}
+
 // Gather: each hand's k nearest windows within the threshold, seeded by the
 // last frame's matches. Gate: drop candidates whose head tilt differs from the
 // user's. Returns the number kept.
@@ -279,21 +314,12 @@ int gather_matches(const Model& model, State& st, int h, double threshold) {
   for (int i = 0; i < ns; ++i) seeds[static_cast<std::size_t>(i)] = m[static_cast<std::size_t>(i)].window;
   // With the head-tilt gate, look further so k candidates usually survive it.
   const int k_search = cfg.max_head_tilt_deg > 0 ? std::min(kMaxK, k + std::max(3, k / 3)) : k;
-  int got = search_knn(db, h, st.live[hu], k_search, cfg.search, cfg.fast_eps, model.class_mask(), m,
+  const std::span<const unsigned char> mask = st.active_class >= 0 ? std::span<const unsigned char>(st.active_mask) : model.class_mask();
+  int got = search_knn(db, h, st.live[hu], k_search, cfg.search, cfg.fast_eps, mask, m,
                        std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)), cfg.fast_max_checks);
   if (threshold > 0)
     while (got > 0 && m[static_cast<std::size_t>(got - 1)].distance > threshold) --got;
-  if (cfg.max_head_tilt_deg > 0) {
-    // Keep candidates whose head is about as upright as the user's (yaw-free test).
-    const double user_tilt = std::acos(std::clamp((st.last_head_rot * Vec3::UnitY()).y(), -1.0, 1.0));
-    const double limit = deg2rad(cfg.max_head_tilt_deg);
-    int kept = 0;
-    for (int i = 0; i < got; ++i) {
-      const Vec3 up = db.head_up(static_cast<int>(db.source(m[static_cast<std::size_t>(i)].window).pose));
-      if (std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) <= limit) m[static_cast<std::size_t>(kept++)] = m[static_cast<std::size_t>(i)];
-    }
-    got = std::min(kept, k);
-  }
+  if (cfg.max_head_tilt_deg > 0) got = std::min(tilt_gate(model, st, std::span<Match>(m.data(), static_cast<std::size_t>(got))), k);
   return got;
 }
 
@@ -404,18 +430,121 @@ void blend_contacts(const Model& model, State& st) {
   }
 }
 
+// ---- class recognition (Settings::recognize_class) ----
+
+// A hand without a match counts this far (typical distances).
+double far_cost(const Settings& cfg) { return cfg.threshold > 0 ? cfg.threshold : 10.0; }
+
+// Folds a new cost of class c (typical distances) into its smoothed cost.
+void update_class_cost(const Model& model, State& st, int c, double cost, double now) {
+  const auto cu = static_cast<std::size_t>(c);
+  const double tau = model.settings().class_seconds;
+  if (st.class_cost[cu] < 0 || tau <= 0) {
+    st.class_cost[cu] = cost;
+  } else {
+    const double a = 1.0 - std::exp(-std::max(0.0, now - st.class_time[cu]) / tau);
+    st.class_cost[cu] += a * (cost - st.class_cost[cu]);
+  }
+  st.class_time[cu] = now;
+}
+
+// Probes class c: each hand's nearest gated window in that class alone
+// (seeded by the class's last best), the same search mode as the frame's.
+double probe_class(const Model& model, State& st, int c) {
+  const Settings& cfg = model.settings();
+  const Database& db = model.database();
+  const auto cu = static_cast<std::size_t>(c);
+  std::fill(st.probe_mask.begin(), st.probe_mask.end(), 0);
+  st.probe_mask[cu] = 1;
+  const double far = far_cost(cfg), typical = db.typical_distance();
+  double cost = 0;
+  for (int h = 0; h < 2; ++h) {
+    const auto hu = static_cast<std::size_t>(h);
+    std::array<Match, 6> m;
+    const int seed = st.class_seed[cu][hu];
+    // A probe needs the nearest window only: a quarter of the frame's check budget.
+    const int n = search_knn(db, h, st.live[hu], cfg.max_head_tilt_deg > 0 ? 6 : 1, cfg.search, cfg.fast_eps, st.probe_mask, m,
+                             std::span<const int>(&seed, seed >= 0 ? 1 : 0),
+                             cfg.fast_max_checks > 0 ? std::max(100, cfg.fast_max_checks / 4) : 0);
+    const int kept = cfg.max_head_tilt_deg > 0 ? tilt_gate(model, st, std::span<Match>(m.data(), static_cast<std::size_t>(n))) : n;
+    if (n > 0) st.class_seed[cu][hu] = m[0].window;
+    cost += kept > 0 ? std::min(far, m[0].distance / typical) : far;
+  }
+  return cost / 2;
+}
+
+// Before the frame's search: probe one class (all of them while none is
+// active), then switch the active class when another has been better by the
+// margin for the hold time.
+void recognize_class(const Model& model, State& st, double dt) {
+  const Settings& cfg = model.settings();
+  const auto allowed = model.allowed_classes();
+  const double now = st.ring[static_cast<std::size_t>(st.ring_head)].t;
+  if (st.active_class < 0) {
+    int best = allowed[0];
+    for (int c : allowed) {
+      update_class_cost(model, st, c, probe_class(model, st, c), now);
+      if (st.class_cost[static_cast<std::size_t>(c)] < st.class_cost[static_cast<std::size_t>(best)]) best = c;
+    }
+    st.active_class = best;
+    st.next_probe = now;
+  } else {
+    if (now >= st.next_probe) {
+      // Each other class about twice per smoothing time (a probe costs about a frame's search).
+      st.next_probe = now + cfg.class_seconds / (2.0 * static_cast<double>(allowed.size() - 1));
+      int c = allowed[static_cast<std::size_t>(st.probe_next % static_cast<int>(allowed.size()))];
+      if (c == st.active_class) c = allowed[static_cast<std::size_t>(++st.probe_next % static_cast<int>(allowed.size()))];
+      ++st.probe_next;
+      update_class_cost(model, st, c, probe_class(model, st, c), now);
+    }
+    int best = st.active_class;
+    for (int k : allowed)
+      if (st.class_cost[static_cast<std::size_t>(k)] >= 0 && st.class_cost[static_cast<std::size_t>(k)] < st.class_cost[static_cast<std::size_t>(best)]) best = k;
+    const bool better = best != st.active_class &&
+                        st.class_cost[static_cast<std::size_t>(best)] < (1.0 - cfg.class_margin) * st.class_cost[static_cast<std::size_t>(st.active_class)];
+    if (!better) {
+      st.challenger = -1;
+      st.challenger_seconds = 0;
+    } else {
+      st.challenger_seconds = st.challenger == best ? st.challenger_seconds + dt : dt;
+      st.challenger = best;
+      if (st.challenger_seconds >= cfg.class_hold_seconds) {
+        st.active_class = best;
+        st.challenger = -1;
+        st.challenger_seconds = 0;
+        ++st.class_switches;
+      }
+    }
+  }
+  std::fill(st.active_mask.begin(), st.active_mask.end(), 0);
+  st.active_mask[static_cast<std::size_t>(st.active_class)] = 1;
+}
+
+// After the frame's search: its best gated distances are the active class's cost.
+void score_active_class(const Model& model, State& st) {
+  const double far = far_cost(model.settings()), typical = model.database().typical_distance();
+  double cost = 0;
+  for (std::size_t h = 0; h < 2; ++h) {
+    cost += st.match_count[h] > 0 ? std::min(far, st.matches[h][0].distance / typical) : far;
+    if (st.match_count[h] > 0) st.class_seed[static_cast<std::size_t>(st.active_class)][h] = st.matches[h][0].window;
+  }
+  update_class_cost(model, st, st.active_class, cost / 2, st.ring[static_cast<std::size_t>(st.ring_head)].t);
+}
+
 // Gather, gate, align and blend the candidates of both hands into st.synth.
-bool blend_candidates(const Model& model, State& st, double threshold) {
+bool blend_candidates(const Model& model, State& st, double threshold, double dt) {
   HandWindow w[2];
   window_at(model, st, 0, w[0]);
   window_at(model, st, 1, w[1]);
   AlignXZ query_xz;
   fill_align(w[0], w[1], query_xz);
+  for (int h = 0; h < 2; ++h) model.database().feature_space().project(w[h], st.live[static_cast<std::size_t>(h)]);
+  if (model.recognizes_class()) recognize_class(model, st, dt);
   for (int h = 0; h < 2; ++h) {
-    model.database().feature_space().project(w[h], st.live[static_cast<std::size_t>(h)]);
     st.match_count[static_cast<std::size_t>(h)] = gather_matches(model, st, h, threshold);
     align_matches(model, st, h, threshold, query_xz);
   }
+  if (model.recognizes_class()) score_active_class(model, st);
   if (st.match_count[0] == 0 && st.match_count[1] == 0) return false;
   blend_matches(model, st);
   blend_contacts(model, st);
@@ -641,7 +770,7 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
   const bool lost = take_devices(model, in, st);
 
   const double threshold = cfg.threshold > 0 ? cfg.threshold * model.database().typical_distance() : 0.0;
-  const bool matched = st.have_head && !cfg.direct_only && blend_candidates(model, st, threshold);
+  const bool matched = st.have_head && !cfg.direct_only && blend_candidates(model, st, threshold, dt);
   if (!matched) {
     st.match_count = {0, 0};
     st.contact = {0, 0};
@@ -690,6 +819,7 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
       info->foot_locked[f] = st.foot[f].locked;
     }
     info->ik_share = st.ik_share;
+    info->active_class = st.active_class;
     const double typical = model.database().typical_distance();
     for (int h = 0; h < 2; ++h)
       info->best_distance[static_cast<std::size_t>(h)] = st.match_count[static_cast<std::size_t>(h)]

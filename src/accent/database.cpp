@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -216,9 +217,24 @@ const T* section(const Database::Impl& d, std::uint64_t offset, std::uint64_t co
 }
 
 void validate_contents(const Database::Impl& d, const std::string& source, bool scan_data);
+void build_trees(Database::Impl& d, int leaf_size);
 
-// Validates the block in d.base/d.size and fills the views.
-void open_block(Database::Impl& d, const std::string& source, bool verify) {
+// Maps the pages of [offset, offset + bytes) of a mapped file in one call
+// (instead of one fault per page as they are first read); a hint only.
+void prefault(const Database::Impl& d, std::uint64_t offset, std::uint64_t bytes) {
+#ifdef MADV_POPULATE_READ
+  if (!d.map || offset >= d.size) return;
+  const std::uint64_t page = 4096, start = offset & ~(page - 1);
+  const std::uint64_t end = std::min<std::uint64_t>(d.size, offset + std::min<std::uint64_t>(bytes, d.size - offset));
+  (void)::madvise(static_cast<char*>(d.map) + start, end - start, MADV_POPULATE_READ);
+#else
+  (void)d, (void)offset, (void)bytes;
+#endif
+}
+
+// Validates the block in d.base/d.size and fills the views; with `index`,
+// also the stored search index (rebuilt when another nanoflann wrote it).
+void open_block(Database::Impl& d, const std::string& source, bool verify, bool index) {
   if (d.size < sizeof(FileHeader)) fail(source, "file is " + std::to_string(d.size) + " bytes, shorter than the header (truncated or not a database)");
   std::memcpy(&d.header, d.base, sizeof(FileHeader));
   const FileHeader& h = d.header;
@@ -234,6 +250,7 @@ void open_block(Database::Impl& d, const std::string& source, bool verify) {
     fail(source, "feature layout (" + std::to_string(h.feature_dim) + " dims, window " + std::to_string(h.window) +
                      ") differs from this build's");
   if (verify) {
+    prefault(d, 0, d.size);  // every byte is read
     const std::uint64_t sum = block_checksum({d.base, d.size});
     if (sum != h.checksum) fail(source, "checksum mismatch: the file is corrupted");
   }
@@ -250,10 +267,14 @@ void open_block(Database::Impl& d, const std::string& source, bool verify) {
   d.poses = section<float>(d, h.pose_offset, std::uint64_t{h.pose_count} * h.joint_count * 4, source, "poses");
   d.head_up = section<float>(d, h.head_up_offset, std::uint64_t{h.pose_count} * 3, source, "head up axes");
   d.contacts = section<std::uint8_t>(d, h.contact_offset, std::uint64_t{h.pose_count} * 2, source, "foot contacts");
+  if (!verify) prefault(d, h.source_offset, std::uint64_t{h.window_count} * sizeof(WindowSource));
   for (std::uint32_t w = 0; w < h.window_count; ++w)
     if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count)
       fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
   validate_contents(d, source, verify);
+  const std::byte* section_at = section<std::byte>(d, h.index_offset, h.index_bytes, source, "search index");
+  if (index && !verify) prefault(d, h.index_offset, h.index_bytes);
+  if (index && !load_index(d, {section_at, h.index_bytes}, source)) build_trees(d, kIndexLeafSize);
 }
 
 // Contents beyond the checksum: a checksum-valid file can still hold values
@@ -293,6 +314,29 @@ void validate_contents(const Database::Impl& d, const std::string& source, bool 
     for (std::uint32_t w = 0; w < d.header.window_count; ++w)
       for (float v : d.features[hand][w])
         if (!std::isfinite(v)) fail(source, "feature of window " + std::to_string(w) + " is not finite");
+}
+
+// Builds the KD-trees from the features (files of another nanoflann node
+// layout, or another leaf size asked for).
+void build_trees(Database::Impl& d, int leaf_size) {
+  d.index.clear();
+  d.index.resize(d.meta.classes.size());
+  d.all = ClassIndex{};
+  d.leaf_size = leaf_size;
+  const auto params = nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(leaf_size));
+  for (int hand = 0; hand < 2; ++hand) {
+    d.all.cloud[hand] = {reinterpret_cast<const float*>(d.features[hand]), d.header.window_count};
+    if (d.header.window_count) d.all.tree[hand] = std::make_unique<KdTree>(kTreeDim, d.all.cloud[hand], params);
+  }
+  if (d.meta.classes.size() == 1) return;  // the class tree would equal the whole-database tree
+  for (std::size_t c = 0; c < d.meta.classes.size(); ++c) {
+    const auto [a, b] = d.meta.ranges[c];
+    for (int hand = 0; hand < 2; ++hand) {
+      auto& ci = d.index[c];
+      ci.cloud[hand] = {reinterpret_cast<const float*>(d.features[hand] + a), static_cast<std::size_t>(b - a)};
+      if (b > a) ci.tree[hand] = std::make_unique<KdTree>(kTreeDim, ci.cloud[hand], params);
+    }
+  }
 }
 
 }  // namespace
@@ -349,6 +393,10 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   h.pose_offset = place(p.poses.size() * sizeof(float));
   h.head_up_offset = place(p.head_up.size() * sizeof(float));
   h.contact_offset = place(p.contacts.size());
+  const std::vector<std::byte> index =
+      serialize_index({p.features[0].data(), p.features[1].data()}, nw, p.meta.ranges);
+  h.index_offset = place(index.size());
+  h.index_bytes = index.size();
   h.file_bytes = at;
   std::vector<std::byte> block(at);
   auto put = [&block](std::size_t off, const void* src, std::size_t bytes) {
@@ -361,6 +409,7 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   put(h.pose_offset, p.poses.data(), p.poses.size() * sizeof(float));
   put(h.head_up_offset, p.head_up.data(), p.head_up.size() * sizeof(float));
   put(h.contact_offset, p.contacts.data(), p.contacts.size());
+  put(h.index_offset, index.data(), index.size());
   put(0, &h, sizeof(h));
   h.checksum = block_checksum(block);
   put(0, &h, sizeof(h));
@@ -419,27 +468,8 @@ bool Database::is_mapped() const { return impl_->map != nullptr; }
 bool Database::has_index() const { return impl_->all.tree[0] != nullptr; }
 
 void Database::build_index(int leaf_size) {
-  Impl& d = *impl_;
-  d.index.clear();
-  d.index.resize(d.meta.classes.size());
-  d.all = ClassIndex{};
-  for (int hand = 0; hand < 2; ++hand) {
-    d.all.cloud[hand].data = reinterpret_cast<const float*>(d.features[hand]);
-    d.all.cloud[hand].count = d.header.window_count;
-    d.all.tree[hand] = std::make_unique<KdTree>(kTreeDim, d.all.cloud[hand],
-                                                nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(leaf_size)));
-  }
-  if (d.meta.classes.size() == 1) return;  // the class tree would equal the whole-database tree
-  for (std::size_t c = 0; c < d.meta.classes.size(); ++c) {
-    const auto [a, b] = d.meta.ranges[c];
-    for (int hand = 0; hand < 2; ++hand) {
-      auto& ci = d.index[c];
-      ci.cloud[hand].data = reinterpret_cast<const float*>(d.features[hand] + a);
-      ci.cloud[hand].count = static_cast<std::size_t>(b - a);
-      ci.tree[hand] = std::make_unique<KdTree>(kTreeDim, ci.cloud[hand],
-                                               nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(leaf_size)));
-    }
-  }
+  if (has_index() && impl_->leaf_size == leaf_size) return;  // stored in the block
+  build_trees(*impl_, leaf_size);
 }
 
 Database Database::from_bytes(std::vector<std::byte> block, const std::string& source) {
@@ -447,7 +477,7 @@ Database Database::from_bytes(std::vector<std::byte> block, const std::string& s
   db.impl_->owned = std::move(block);
   db.impl_->base = db.impl_->owned.data();
   db.impl_->size = db.impl_->owned.size();
-  open_block(*db.impl_, source, true);
+  open_block(*db.impl_, source, true, true);
   return db;
 }
 
@@ -481,8 +511,7 @@ Database load_database(const std::string& path, const LoadOptions& opt) {
     d.base = d.owned.data();
   }
   d.size = bytes;
-  open_block(d, path, opt.verify_checksum);
-  if (opt.build_index) db.build_index();
+  open_block(d, path, opt.verify_checksum, opt.build_index);
   return db;
 }
 

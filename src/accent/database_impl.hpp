@@ -19,7 +19,7 @@ namespace legwork::accent {
 inline constexpr char kMagic[8] = {'L', 'W', 'A', 'C', 'C', 'E', 'N', 'T'};
 inline constexpr std::uint32_t kEndianTag = 0x01020304u;
 
-// Fixed header at offset 0 (little-endian; 128 bytes).
+// Fixed header at offset 0 (little-endian; 144 bytes).
 struct FileHeader {
   char magic[8];
   std::uint32_t version;
@@ -35,8 +35,9 @@ struct FileHeader {
   std::uint64_t pose_offset;                   // float[pose_count][joint_count][4]
   std::uint64_t head_up_offset;                // float[pose_count][3]: the head's up axis, model space
   std::uint64_t contact_offset;                // uint8[pose_count][2]: foot in contact (left, right), 0/1
+  std::uint64_t index_offset, index_bytes;     // the stored KD-trees (version 3; layout in database_index.cpp)
 };
-static_assert(sizeof(FileHeader) == 128);
+static_assert(sizeof(FileHeader) == 144);
 
 std::uint64_t block_checksum(std::span<const std::byte> block);
 
@@ -61,6 +62,21 @@ struct ClassIndex {
   std::array<FeatureCloud, 2> cloud;
   std::array<std::unique_ptr<KdTree>, 2> tree;
 };
+
+// The stored index (database_index.cpp). Trees in order: the whole database's
+// (left, right hand), then per class (left, right) when there is more than one
+// class. Each tree is nanoflann's own serialization (saveIndex) of a tree
+// over kTreeDim dimensions with leaves of kIndexLeafSize points.
+inline constexpr int kIndexLeafSize = 16;
+// Serializes the trees over `features` (per hand, window-major) and the class ranges.
+std::vector<std::byte> serialize_index(const std::array<const Feature*, 2>& features, std::size_t windows,
+                                       const std::vector<std::pair<int, int>>& ranges);
+// Validates the section (sizes, counts, every node and point index; declared
+// sizes are never trusted) and fills d.all / d.index from it. Returns false,
+// leaving no trees, when the section was written by another nanoflann node
+// layout (the caller rebuilds); throws legwork::Error naming `source` when it
+// is malformed.
+bool load_index(Database::Impl& d, std::span<const std::byte> section, const std::string& source);
 
 // What the block's JSON metadata section holds; shared by the builder's parts
 // and the opened database.
@@ -94,6 +110,7 @@ struct Database::Impl {
 
   std::vector<ClassIndex> index;  // per class, empty until build_index()
   ClassIndex all;                 // over every window (sessions that allow every class)
+  int leaf_size = kIndexLeafSize; // of the trees above
 
   ~Impl();
 };

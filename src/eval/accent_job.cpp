@@ -32,6 +32,22 @@ namespace {
 const char* mode_name(SearchMode m) { return m == SearchMode::Fast ? "fast" : m == SearchMode::Exact ? "exact" : "brute"; }
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Settings::recognize_class: frames per recognised class and the switches
+// between them (empty when the run did not recognise classes).
+json recognized_classes(const AccentRun& run, const Database& db) {
+  json frames = json::object();
+  int switches = 0, last = -1;
+  for (const auto& info : run.info) {
+    if (info.active_class < 0) continue;
+    const std::string& name = db.classes()[static_cast<std::size_t>(info.active_class)];
+    frames[name] = frames.value(name, 0) + 1;
+    switches += last >= 0 && info.active_class != last;
+    last = info.active_class;
+  }
+  if (frames.empty()) return json::object();
+  return {{"frames", frames}, {"switches", switches}};
+}
 }  // namespace
 
 void run_accent_job(const AccentJob& a) {
@@ -53,6 +69,9 @@ void run_accent_job(const AccentJob& a) {
   cfg.classes = io::split_commas(a.classes);
   cfg.hand_ik = a.hand_ik;
   cfg.max_head_tilt_deg = a.max_tilt;
+  cfg.recognize_class = !a.no_class_recognition;
+  cfg.class_hold_seconds = a.class_hold;
+  cfg.class_margin = a.class_margin;
   const double fps = db.feature_space().fps;
   std::vector<TrackerFrame> frames;
   Motion truth;
@@ -80,6 +99,8 @@ void run_accent_job(const AccentJob& a) {
   std::printf("frames: %d at %.4g Hz; %.0f frames/s in update() (%s search); mean match weight %.2f\n", run.output.frame_count(), fps,
               fig.frames_per_second, mode_name(cfg.search), fig.mean_match_weight);
   for (const auto& [s, n] : fig.statuses) std::printf("  %-14s %d frames\n", s.c_str(), n);
+  const json recognized = recognized_classes(run, db);
+  if (!recognized.empty()) std::printf("recognised classes: %s\n", recognized.dump().c_str());
   Motion result = run.output;
   if (!a.target.empty()) {
     Motion tgt = io::load_bvh(a.target, io::BvhReadOptions{});
@@ -99,6 +120,7 @@ void run_accent_job(const AccentJob& a) {
   j["frames_per_second"] = fig.frames_per_second;
   j["load_ms"] = load_s * 1e3;
   j["statuses"] = fig.statuses;
+  if (!recognized.empty()) j["recognized_classes"] = recognized;
   if (!truth.skeleton.names.empty()) {
     std::printf("vs ground truth:\n");
     j["accent_error"] = truth_error(run.output, truth);

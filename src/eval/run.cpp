@@ -1,7 +1,9 @@
 #include <legwork/eval/run.hpp>
 
+#include <legwork/accent/search.hpp>
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/core/measure.hpp>
 #include <legwork/core/stats.hpp>
 #include <legwork/ik/full_body.hpp>
 #include <legwork/io/bvh.hpp>
@@ -11,9 +13,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
 #include <mutex>
 #include <set>
+#include <tuple>
 #include <thread>
+#include <unistd.h>
 
 namespace legwork::eval {
 namespace {
@@ -121,9 +127,122 @@ std::string leak_in_database(const Fold& f, const accent::Database& db, const st
   return "";
 }
 
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Members of a fold's no-class database: every trial of the catalogue except
+// the held-out subject's (cross-subject) and the fold's test trials.
+std::vector<int> no_class_members(const Fold& f, const Catalogue& data) {
+  std::vector<int> out;
+  for (int i = 0; i < static_cast<int>(data.trials.size()); ++i) {
+    if (f.protocol == Protocol::CrossSubject && data.trials[static_cast<std::size_t>(i)].subject == f.held_out_subject) continue;
+    if (std::find(f.test.begin(), f.test.end(), i) != f.test.end()) continue;
+    out.push_back(i);
+  }
+  return out;
+}
+
+accent::Settings no_class_settings(accent::Settings cfg) {
+  cfg.classes.clear();
+  cfg.recognize_class = true;
+  return cfg;
+}
+
+// Fast-mode recall@k against brute force on a motion's live queries (the
+// engine's k, eps and check budget), within class `cls` (-1 = all): {without
+// seeds, seeded with the previous frame's fast results as the engine does}.
+std::pair<double, double> fast_recall(const accent::Database& db, const accent::Settings& cfg, const Motion& m, int cls) {
+  const auto frames = tracker_frames_from_motion(m);
+  const double scale = db.height() / measure_body(m.skeleton).standing_height;
+  std::vector<unsigned char> mask;
+  if (cls >= 0) {
+    mask.assign(static_cast<std::size_t>(db.class_count()), 0);
+    mask[static_cast<std::size_t>(cls)] = 1;
+  }
+  std::array<accent::Match, accent::kMaxK> brute{}, fast{};
+  std::array<std::array<int, accent::kMaxK>, 2> seeds{};
+  std::array<int, 2> seeded_n{0, 0};
+  std::size_t hits = 0, seeded_hits = 0, total = 0;
+  for (std::size_t f = accent::kWindow - 1; f < frames.size(); ++f)
+    for (int h = 0; h < 2; ++h) {
+      accent::HandWindow w;
+      for (int i = 0; i < accent::kWindow; ++i) {
+        const auto& fr = frames[f - static_cast<std::size_t>(accent::kWindow - 1 - i)];
+        w[static_cast<std::size_t>(i)] = (fr.hand(h).position - fr.head().position) * scale;
+      }
+      accent::Feature q;
+      db.feature_space().project(w, q);
+      const int k = h == 0 ? cfg.k_left : cfg.k_right;
+      const int nb = accent::search_knn(db, h, q, k, accent::SearchMode::BruteForce, 0, mask, brute);
+      const auto hu = static_cast<std::size_t>(h);
+      auto count = [&](int nf) {
+        std::size_t c = 0;
+        for (int x = 0; x < nf; ++x)
+          for (int y = 0; y < nb; ++y) c += fast[static_cast<std::size_t>(x)].window == brute[static_cast<std::size_t>(y)].window;
+        return c;
+      };
+      hits += count(accent::search_knn(db, h, q, k, accent::SearchMode::Fast, cfg.fast_eps, mask, fast, {}, cfg.fast_max_checks));
+      const int ns = accent::search_knn(db, h, q, k, accent::SearchMode::Fast, cfg.fast_eps, mask, fast,
+                                        std::span<const int>(seeds[hu].data(), static_cast<std::size_t>(seeded_n[hu])),
+                                        cfg.fast_max_checks);
+      seeded_hits += count(ns);
+      for (int x = 0; x < ns; ++x) seeds[hu][static_cast<std::size_t>(x)] = fast[static_cast<std::size_t>(x)].window;
+      seeded_n[hu] = ns;
+      total += static_cast<std::size_t>(nb);
+    }
+  if (!total) return {0.0, 0.0};
+  return {static_cast<double>(hits) / static_cast<double>(total), static_cast<double>(seeded_hits) / static_cast<double>(total)};
+}
+
+// Saves the database and times loading it with its index (best of 5), with
+// and without the checksum pass: {verified ms, unverified ms, file bytes}.
+std::tuple<double, double, std::size_t> time_load(const accent::Database& db) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("legwork_eval_load_" + std::to_string(::getpid()) + ".lwdb")).string();
+  accent::save_database(path, db);
+  double best[2] = {1e30, 1e30};
+  for (int pass = 0; pass < 5; ++pass)
+    for (int verify = 0; verify < 2; ++verify) {
+      accent::LoadOptions lo;
+      lo.verify_checksum = verify == 0;
+      const auto t0 = Clock::now();
+      const accent::Database loaded = accent::load_database(path, lo);
+      best[verify] = std::min(best[verify], since(t0) * 1e3);
+    }
+  std::filesystem::remove(path);
+  return {best[0], best[1], db.bytes().size()};
+}
+
+// Best of three passes: {wall frames/s, CPU frames/s, p99 us} and the first pass's output.
+struct SpeedPass {
+  double fps = 0, cpu_fps = 0, p99_us = 0;
+  Motion output;
+};
+SpeedPass speed_pass(const accent::Database& db, const accent::Settings& cfg, const Motion& motion) {
+  SpeedPass out;
+  double best = 1e30, best_cpu = 1e30;
+  for (int pass = 0; pass < 3; ++pass) {
+    const double c0 = thread_cpu_seconds();
+    accent::AccentRun run = accent::accentuate_motion(db, cfg, motion);
+    best_cpu = std::min(best_cpu, thread_cpu_seconds() - c0);
+    if (run.seconds < best) {
+      const std::vector<double> us(run.frame_seconds.begin(), run.frame_seconds.end());
+      out.p99_us = 1e6 * percentile(us, 0.99);
+      best = run.seconds;
+    }
+    if (pass == 0) out.output = std::move(run.output);
+  }
+  out.fps = best > 0 ? motion.frame_count() / best : 0;
+  out.cpu_fps = best_cpu > 0 ? motion.frame_count() / best_cpu : 0;
+  return out;
+}
+
 // See SpeedResult: the first protocol's fold with the longest test trial.
 void measure_speed(EvalResult& res, const std::vector<accent::PreparedTrial>& prepared, const Skeleton& reference,
-                   const std::vector<TestTrack>& tests, const RunOptions& opt) {
+                   const std::vector<TestTrack>& tests, const Catalogue& data, const RunOptions& opt) {
   const FoldResult* best = nullptr;
   int best_test = -1;
   for (const auto& p : res.protocols)
@@ -138,34 +257,43 @@ void measure_speed(EvalResult& res, const std::vector<accent::PreparedTrial>& pr
         }
     }
   if (!best) return;
+  SpeedResult& sp = res.speed;
   std::vector<const accent::PreparedTrial*> members;
   for (int d : best->fold.database) members.push_back(&prepared[static_cast<std::size_t>(d)]);
   accent::Database db = accent::assemble_database(members, reference, opt.build);
-  db.build_index();
   const TestTrack& tt = tests[static_cast<std::size_t>(best_test)];
-  double a = 1e30, k = 1e30;
-  for (int pass = 0; pass < 3; ++pass) {
-    accent::AccentRun run = accent::accentuate_motion(db, opt.config, tt.motion);
-    if (run.seconds < a) {
-      const std::vector<double> us(run.frame_seconds.begin(), run.frame_seconds.end());
-      res.speed.accent_p99_us = 1e6 * percentile(us, 0.99);
-    }
-    a = std::min(a, run.seconds);
+  SpeedPass pass = speed_pass(db, opt.config, tt.motion);
+  double k = 1e30;
+  for (int i = 0; i < 3; ++i) {
     double s = 0;
     Motion ik = run_ik_baseline(tt.motion, &s);
     k = std::min(k, s);
-    if (pass == 0) {
-      res.speed.accent = std::move(run.output);
-      res.speed.ik = std::move(ik);
-    }
+    if (i == 0) sp.ik = std::move(ik);
   }
-  res.speed.truth = tt.motion;
-  res.speed.trial = tt.id;
-  res.speed.fold = std::string(protocol_key(best->fold.protocol)) + " " + best->fold.cls + " " + best->fold.held_out;
-  res.speed.frames = tt.motion.frame_count();
-  res.speed.database_windows = db.window_count();
-  res.speed.accent_frames_per_second = a > 0 ? tt.motion.frame_count() / a : 0;
-  res.speed.ik_frames_per_second = k > 0 ? tt.motion.frame_count() / k : 0;
+  sp.accent = std::move(pass.output);
+  sp.accent_frames_per_second = pass.fps;
+  sp.accent_cpu_frames_per_second = pass.cpu_fps;
+  sp.accent_p99_us = pass.p99_us;
+  std::tie(sp.fast_recall_unseeded, sp.fast_recall) = fast_recall(db, opt.config, tt.motion, -1);
+  std::tie(sp.load_ms, sp.load_ms_unverified, sp.database_bytes) = time_load(db);
+  sp.truth = tt.motion;
+  sp.trial = tt.id;
+  sp.fold = std::string(protocol_key(best->fold.protocol)) + " " + best->fold.cls + " " + best->fold.held_out;
+  sp.frames = tt.motion.frame_count();
+  sp.database_windows = db.window_count();
+  sp.ik_frames_per_second = k > 0 ? tt.motion.frame_count() / k : 0;
+  if (!opt.no_class || best->fold.protocol == Protocol::CrossDataset) return;
+  members.clear();
+  for (int d : no_class_members(best->fold, data)) members.push_back(&prepared[static_cast<std::size_t>(d)]);
+  const accent::Database all = accent::assemble_database(members, reference, opt.build);
+  const SpeedPass nc = speed_pass(all, no_class_settings(opt.config), tt.motion);
+  sp.no_class_windows = all.window_count();
+  sp.no_class_frames_per_second = nc.fps;
+  sp.no_class_cpu_frames_per_second = nc.cpu_fps;
+  sp.no_class_p99_us = nc.p99_us;
+  std::tie(sp.no_class_fast_recall_unseeded, sp.no_class_fast_recall) =
+      fast_recall(all, opt.config, tt.motion, all.find_class(best->fold.cls));
+  std::tie(sp.no_class_load_ms, sp.no_class_load_ms_unverified, sp.no_class_database_bytes) = time_load(all);
 }
 
 }  // namespace
@@ -311,6 +439,7 @@ void plan_protocols(EvalResult& res, const Catalogue& data, const Catalogue* tes
       pr.folds.push_back(std::move(fr));
     }
     if (opt.ik) pr.methods.push_back("ik");
+    if (opt.no_class && p != Protocol::CrossDataset) pr.methods.push_back("no_class");
     for (const auto& v : res.variants)
       if (v.key == "accent" || p == Protocol::CrossSubject) pr.methods.push_back(v.key);
     res.protocols.push_back(std::move(pr));
@@ -339,6 +468,7 @@ std::vector<Task> plan_tasks(const EvalResult& res, const std::vector<accent::Tr
 
 // What one fold needs to score its methods.
 struct FoldContext {
+  const Catalogue& data;
   const std::vector<Variant>& variants;
   const Prepared& prepared;
   const Skeleton& reference;
@@ -383,6 +513,43 @@ void score_accent(const FoldContext& c, const ProtocolResult& pr, const std::vec
       mf.ok = true;
     }
   }
+}
+
+// The no-class setting on a fold: one database of every class (held-out
+// subject / test trials left out), the engine recognising the class.
+void score_no_class(const FoldContext& c, const std::vector<std::string>& test_files, FoldResult& fr) {
+  MethodFold& mf = fr.methods["no_class"];
+  const auto& set = c.prepared.at(prepare_key(c.opt.build));
+  std::vector<const accent::PreparedTrial*> members;
+  for (int d : no_class_members(fr.fold, c.data)) members.push_back(&set[static_cast<std::size_t>(d)]);
+  accent::Database db;
+  try {
+    db = accent::assemble_database(members, c.reference, c.opt.build);
+  } catch (const Error& e) {
+    mf.error = e.what();
+    return;
+  }
+  const std::string leak = leak_in_database(fr.fold, db, test_files);
+  if (!leak.empty()) throw Error("fold leak (no-class database): " + leak);
+  const accent::Settings cfg = no_class_settings(c.opt.config);
+  const int want = db.find_class(fr.fold.cls);
+  mf.database_windows = db.window_count();
+  std::vector<TrialMetrics> per;
+  for (int t : fr.fold.test) {
+    const TestTrack& tt = c.tests[static_cast<std::size_t>(t)];
+    const accent::AccentRun run = accent::accentuate_motion(db, cfg, tt.motion);
+    per.push_back(evaluate_trial(role_track(run.output), tt.truth, c.opt.metrics));
+    mf.frames += tt.motion.frame_count();
+    mf.seconds += run.seconds;
+    int last = -1;
+    for (const auto& info : run.info) {
+      mf.class_frames_right += info.active_class == want;
+      mf.class_switches += last >= 0 && info.active_class >= 0 && info.active_class != last;
+      if (info.active_class >= 0) last = info.active_class;
+    }
+  }
+  mf.metrics = combine(per);
+  mf.ok = true;
 }
 
 // The IK baseline on a fold's test trials.
@@ -455,7 +622,7 @@ EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const Ru
     return tasks[static_cast<std::size_t>(a)].cost > tasks[static_cast<std::size_t>(b)].cost;
   });
 
-  const FoldContext context{res.variants, prepared, reference, tests, opt};
+  const FoldContext context{data, res.variants, prepared, reference, tests, opt};
   std::atomic<int> done{0};
   std::mutex say_mutex;
   parallel_for(order, res.threads, [&](int k) {
@@ -466,13 +633,14 @@ EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const Ru
     std::vector<std::string> test_files;
     for (int t : fr.fold.test) test_files.push_back(tc.trials[static_cast<std::size_t>(t)].file);
     score_accent(context, pr, test_files, fr);
+    if (opt.no_class && pr.protocol != Protocol::CrossDataset) score_no_class(context, test_files, fr);
     if (opt.ik) score_ik(context, fr);
     const int d = ++done;
     const std::string line = fold_line(d, tasks.size(), pr, fr, since(t_start));
     std::lock_guard<std::mutex> lock(say_mutex);
     say(line);
   });
-  measure_speed(res, prepared.at(prepare_key(opt.build)), reference, tests, opt);
+  measure_speed(res, prepared.at(prepare_key(opt.build)), reference, tests, data, opt);
   res.seconds = since(t_start);
   return res;
 }

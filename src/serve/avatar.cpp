@@ -122,6 +122,7 @@ void Avatar::apply_options(const OptionsUpdate& o) {
   MethodOptions next = options_;
   if (o.exaggeration) next.exaggeration = *o.exaggeration;
   if (o.classes) next.classes = *o.classes;
+  if (o.recognize_class) next.recognize_class = *o.recognize_class;
   try {
     std::unique_ptr<Method> m = make_method(res_, next);
     if (m->skeleton().joint_count() != method_->skeleton().joint_count())

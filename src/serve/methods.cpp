@@ -113,10 +113,12 @@ struct AccentRuntime : Contract<accent::Model, accent::State, accent::Info, &acc
     out.add("fallback", i.fallback);
     out.add("matches_left", i.matches[0]);
     out.add("matches_right", i.matches[1]);
+    out.add("active_class", i.active_class);
   }
   static Model model(const Resources& res, const MethodOptions& opt) {
     accent::Settings c;
     c.classes = opt.classes;
+    c.recognize_class = opt.recognize_class;
     c.exaggeration = opt.exaggeration;
     c.user_height = opt.user_height;
     return accent::make_model(*res.db, c);
@@ -144,6 +146,7 @@ struct CombinedRuntime : Contract<combined::Model, combined::State, combined::In
     const wip::LearnedMapping* learned = leg_mapping(res, opt, c.wip);
     if (!res.db) return combined::make_model(avatar_skeleton(res, opt.user_height), c, learned);
     c.accent.classes = opt.classes;
+    c.accent.recognize_class = opt.recognize_class;
     c.accent.exaggeration = opt.exaggeration;
     c.accent.user_height = opt.user_height;
     return combined::make_model(*res.db, c, learned);

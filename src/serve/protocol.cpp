@@ -62,6 +62,11 @@ TrackerFrame parse_frame(const json& j) {
   return f;
 }
 
+bool boolean(const json& v, const std::string& where) {
+  if (!v.is_boolean()) fail("bad_message", where + " must be true or false");
+  return v.get<bool>();
+}
+
 std::vector<std::string> string_list(const json& v, const char* field) {
   if (!v.is_array()) fail("bad_message", std::string(field) + " must be an array of strings");
   std::vector<std::string> out;
@@ -84,6 +89,7 @@ Hello parse_hello(const json& j) {
   }
   if (auto c = j.find("classes"); c != j.end() && !c->is_null()) h.method.classes = string_list(*c, "hello.classes");
   if (auto e = j.find("exaggeration"); e != j.end()) h.method.exaggeration = number(*e, "hello.exaggeration");
+  if (auto rc = j.find("recognize_class"); rc != j.end()) h.method.recognize_class = boolean(*rc, "hello.recognize_class");
   if (auto u = j.find("user_height"); u != j.end() && !u->is_null()) h.method.user_height = number(*u, "hello.user_height");
   if (auto mp = j.find("mapping"); mp != j.end() && !mp->is_null()) {
     if (!mp->is_string()) fail("bad_message", "hello.mapping must be a string (\"document\" or \"learned\")");
@@ -191,6 +197,7 @@ ClientMessage parse_text(std::string_view text) {
   } else if (t == "options") {
     m.type = MessageType::Options;
     if (auto e = j.find("exaggeration"); e != j.end()) m.options.exaggeration = number(*e, "options.exaggeration");
+    if (auto rc = j.find("recognize_class"); rc != j.end()) m.options.recognize_class = boolean(*rc, "options.recognize_class");
     if (auto c = j.find("classes"); c != j.end()) m.options.classes = c->is_null() ? std::vector<std::string>{} : string_list(*c, "options.classes");
   } else {
     fail("bad_message", "unknown message type '" + t + "' (expected hello, frame or options)");

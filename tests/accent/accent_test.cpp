@@ -84,6 +84,49 @@ TEST_F(HeldOut, HandsFollowTheInputAndThePoseIsSane) {
   }
 }
 
+// "No class given": the database holds walking, running and boxing; the
+// engine recognises the held-out walking trial's class from the input, never
+// switches faster than the hold time allows, and its body stays within 1 cm
+// of the session told "walking". Off (or one class allowed), nothing is recognised.
+TEST_F(HeldOut, NoClassGivenRecognisesTheActivityWithHysteresis) {
+  const int walking = db_->find_class("walking");
+  ASSERT_GE(walking, 0);
+  Settings told;
+  told.classes = {"walking"};
+  const AccentRun per_class = accentuate_motion(*db_, told, *input_);
+  Settings none;  // no class given: recognise_class is the default
+  ASSERT_TRUE(none.recognize_class);
+  const AccentRun recognised = accentuate_motion(*db_, none, *input_);
+  none.recognize_class = false;
+  const AccentRun searched_all = accentuate_motion(*db_, none, *input_);
+  int right = 0, switches = 0;
+  double last_switch = -1e9, min_gap = 1e9;
+  for (std::size_t f = 0; f < recognised.info.size(); ++f) {
+    const int c = recognised.info[f].active_class;
+    ASSERT_GE(c, 0) << "frame " << f;
+    right += c == walking;
+    if (f > 0 && c != recognised.info[f - 1].active_class) {
+      ++switches;
+      const double t = static_cast<double>(f) / 90.0;
+      min_gap = std::min(min_gap, t - last_switch);
+      last_switch = t;
+    }
+    EXPECT_EQ(per_class.info[f].active_class, -1);
+    EXPECT_EQ(searched_all.info[f].active_class, -1);
+  }
+  const double e_told = measure(*input_, per_class.output).body, e_rec = measure(*input_, recognised.output).body,
+               e_all = measure(*input_, searched_all.output).body;
+  std::printf("[ figures  ] no class given: walking recognised on %d/%zu frames, %d switches; role joints %.2f cm "
+              "(told walking %.2f cm, all classes searched %.2f cm); %.0f vs %.0f frames/s (all searched)\n",
+              right, recognised.info.size(), switches, 100 * e_rec, 100 * e_told, 100 * e_all,
+              recognised.output.frame_count() / recognised.seconds, searched_all.output.frame_count() / searched_all.seconds);
+  EXPECT_GT(right, static_cast<int>(recognised.info.size()) / 2);
+  if (switches > 1) {
+    EXPECT_GE(min_gap, Settings{}.class_hold_seconds - 1.5 / 90.0);
+  }
+  EXPECT_LT(e_rec, e_told + 0.01);
+}
+
 // Horizontal slide of each ankle from frame f to f + 1 (metres), per foot.
 std::array<std::vector<double>, 2> ankle_slides(const Motion& m) {
   std::array<std::vector<double>, 2> out;

@@ -285,6 +285,15 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_ERROR_FORMAT);
   EXPECT_NE(std::string(lw_last_error()).find("class 'dancing' is not in the database"), std::string::npos) << lw_last_error();
   s.classes = nullptr;
+  EXPECT_EQ(s.recognize_class, 1);  // the engine's default: recognise the class when several are allowed
+  s.recognize_class = 2;
+  EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("recognize_class must be 0 or 1, got 2"), std::string::npos) << lw_last_error();
+  s.recognize_class = 0;
+  EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
+  lw_model_destroy(model);
+  model = nullptr;
+  s.recognize_class = 1;
   s.k = 99;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(lw_last_error()).find("k must be 1..32, got 99"), std::string::npos) << lw_last_error();

@@ -82,6 +82,16 @@ TEST(Protocol, BinaryPoseLayout) {
   EXPECT_EQ(b.positions[1], Vec3(1, 2, 3));
 }
 
+// The no-class setting (accent::Settings::recognize_class) is a hello and an options field.
+TEST(Protocol, RecognizeClassIsAHelloAndOptionsField) {
+  EXPECT_TRUE(parse_text(R"({"type":"hello","version":1})").hello.method.recognize_class);  // the engine's default
+  EXPECT_FALSE(parse_text(R"({"type":"hello","version":1,"recognize_class":false})").hello.method.recognize_class);
+  const ClientMessage o = parse_text(R"({"type":"options","recognize_class":false})");
+  ASSERT_TRUE(o.options.recognize_class.has_value());
+  EXPECT_FALSE(*o.options.recognize_class);
+  EXPECT_FALSE(parse_text(R"({"type":"options","exaggeration":2})").options.recognize_class.has_value());
+}
+
 TEST(Protocol, BadMessagesNameTheProblem) {
   const auto message = [](const std::string& text) {
     try {
@@ -94,6 +104,9 @@ TEST(Protocol, BadMessagesNameTheProblem) {
   EXPECT_EQ(message("[1,2]"), "bad_json: message must be a JSON object with a \"type\"");
   EXPECT_EQ(message(R"({"type":"hello"})"), "bad_version: unsupported protocol version (missing): this server speaks version 1");
   EXPECT_EQ(message(R"({"type":"hello","version":1,"format":"xml"})"), "bad_value: hello.format must be \"json\" or \"binary\"");
+  EXPECT_EQ(message(R"({"type":"hello","version":1,"recognize_class":"yes"})"),
+            "bad_message: hello.recognize_class must be true or false");
+  EXPECT_EQ(message(R"({"type":"options","recognize_class":1})"), "bad_message: options.recognize_class must be true or false");
   EXPECT_EQ(message(R"({"type":"frame"})"), "bad_message: frame without \"t\" (seconds)");
   EXPECT_EQ(message(R"({"type":"frame","t":1,"left":{"p":[0,1,0],"q":[0,0,0,0]}})"),
             "bad_value: frame.left.q is not a rotation (zero length)");

@@ -23,8 +23,9 @@
 
 namespace legwork::accent {
 
-// 2: per-pose foot contacts (version 1 files are refused with a "rebuild" message).
-inline constexpr std::uint32_t kFormatVersion = 2;
+// 2: per-pose foot contacts; 3: the KD-tree search index is stored in the file
+// (older files are refused with a "rebuild" message).
+inline constexpr std::uint32_t kFormatVersion = 3;
 
 // Where a window came from (for reports and leave-one-out checks).
 struct WindowSource {
@@ -103,7 +104,9 @@ class Database {
   bool is_mapped() const;
 
   // KD-trees per class and hand (nanoflann) for the Exact and Fast search
-  // modes. Not thread-safe; call once before sharing the database.
+  // modes. A database from the builder or a file already has them (they are
+  // stored in the block); this rebuilds them only when missing or when
+  // another leaf size is asked for. Not thread-safe; call before sharing.
   void build_index(int leaf_size = 16);
   bool has_index() const;
 
@@ -120,7 +123,7 @@ class Database {
 
 struct LoadOptions {
   bool verify_checksum = true;  // hash the whole file (about 10 ms per 100 MB)
-  bool build_index = true;      // KD-trees for the Exact/Fast search modes
+  bool build_index = true;      // KD-trees for the Exact/Fast search modes (read from the file's index section)
   bool use_mmap = true;         // false: read into memory
 };
 // Maps a database file. Throws legwork::Error naming the file when it is

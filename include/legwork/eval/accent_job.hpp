@@ -16,7 +16,8 @@ namespace legwork::eval {
 struct AccentJob {
   std::string input, db, out, video, json_path, classes, mode = "fast", target, save_session;
   io::MotionReadOptions input_options;  // of a .bvh input
-  bool compare_ik = false, no_align = false, no_smooth = false, no_limits = false;
+  bool compare_ik = false, no_align = false, no_smooth = false, no_limits = false, no_class_recognition = false;
+  double class_hold = accent::Settings{}.class_hold_seconds, class_margin = accent::Settings{}.class_margin;
   int k = accent::Settings{}.k_left, k_left = -1, k_right = -1;
   double threshold = 6.0, height = 0, exaggerate = 1.0, hand_ik = accent::Settings{}.hand_ik, max_tilt = accent::Settings{}.max_head_tilt_deg;
   double smooth_halflife = accent::Settings{}.smooth_halflife;

@@ -36,6 +36,11 @@ struct RunOptions {
   bool ablation = true;         // ablation variants, on the cross-subject protocol
   bool quick_ablation = false;  // only the document's three ablation steps
   bool ik = true;               // the IK baseline
+  // The "no class given" setting (method "no_class"): per fold one database of
+  // every class (the fold's held-out subject or trials left out), the engine
+  // recognising the class (accent::Settings::recognize_class). Not for
+  // cross-dataset folds.
+  bool no_class = true;
   int threads = 0;              // 0 = std::thread::hardware_concurrency()
   double max_test_seconds = 0;  // > 0: score only the first seconds of each test trial
   bool drop_first_frame = true; // CMU files start with a synthetic T-pose
@@ -51,6 +56,10 @@ struct MethodFold {
   long frames = 0;
   double seconds = 0;         // time in the per-frame solver only
   int database_windows = 0;   // accent variants
+  // "no_class": frames whose recognised class is the fold's, and class
+  // switches (both over the fold's test trials).
+  long class_frames_right = 0;
+  int class_switches = 0;
 };
 
 struct FoldResult {
@@ -81,6 +90,21 @@ struct SpeedResult {
   int frames = 0, database_windows = 0;
   double accent_frames_per_second = 0, ik_frames_per_second = 0;
   double accent_p99_us = 0;  // 99th percentile of the engine's per-frame update time (fastest pass)
+  double accent_cpu_frames_per_second = 0;  // the same pass in thread CPU time (what one core delivers)
+  // Fast-mode search recall@k against brute force on that trial's live
+  // queries (the engine's k, eps and check budget): seeded with the previous
+  // frame's results as the engine searches, and without seeds.
+  double fast_recall = 0, fast_recall_unseeded = 0;
+  // The fold's database saved to a file and loaded with its search index
+  // (default LoadOptions: checksum verified; and without the checksum), best of 5.
+  double load_ms = 0, load_ms_unverified = 0;
+  std::size_t database_bytes = 0;
+  // The same trial in the no-class setting (a database of every class but the
+  // held-out subject's/trials, class recognised): speed, recall, load.
+  int no_class_windows = 0;
+  double no_class_frames_per_second = 0, no_class_cpu_frames_per_second = 0, no_class_p99_us = 0;
+  double no_class_fast_recall = 0, no_class_fast_recall_unseeded = 0, no_class_load_ms = 0, no_class_load_ms_unverified = 0;
+  std::size_t no_class_database_bytes = 0;
   // That trial's ground truth and both methods' outputs (for a comparison video).
   Motion truth, accent, ik;
 };

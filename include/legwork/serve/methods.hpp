@@ -35,6 +35,9 @@ struct MethodOptions {
   double exaggeration = 1.0;         // accent: hand-motion exaggeration about the head
   double user_height = 0;            // metres; 0 = the avatar skeleton's own height
   std::string mapping = "document";  // wip / combined legs' depths: document (equations 1-4) | learned
+  // accent: with several classes allowed, recognise the activity and search
+  // only its class (accent::Settings::recognize_class); false: search all.
+  bool recognize_class = true;
 };
 
 // Per-frame diagnostics as a flat list of name -> number or name -> text

@@ -44,6 +44,7 @@ struct Hello {
 struct OptionsUpdate {
   std::optional<double> exaggeration;
   std::optional<std::vector<std::string>> classes;
+  std::optional<bool> recognize_class;
 };
 
 enum class MessageType : std::uint8_t { Hello, Frame, Options };

@@ -1,0 +1,225 @@
+// The KD-tree search index stored in the database block (format version 3),
+// so a database loads with its index in milliseconds instead of rebuilding
+// the trees at every load.
+//
+// Section layout (little-endian, 64-bit), at FileHeader::index_offset:
+//   IndexSection (32 bytes): tag "LWKDTREE", u32 nanoflann version, u32 node
+//     bytes, u32 tree dimensions, u32 leaf size, u32 tree count, u32 0
+//   TreeEntry[tree count]: u64 offset (from the section start), u64 bytes,
+//     u64 points
+//   the trees, 8-aligned: each nanoflann's saveIndex() output (point count,
+//     dimensions, bounding box, leaf size, the point permutation, the nodes
+//     in pre-order).
+// Nothing declared in the section is trusted: every size is checked against
+// the section's bytes and the class ranges, every point index and node is
+// checked before nanoflann reads the tree (so a damaged file is refused with
+// a message even when the checksum is not verified).
+#include "database_impl.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <istream>
+#include <sstream>
+#include <streambuf>
+
+namespace legwork::accent {
+namespace {
+
+static_assert(sizeof(std::size_t) == 8, "the stored index assumes a 64-bit size_t");
+
+constexpr char kIndexTag[8] = {'L', 'W', 'K', 'D', 'T', 'R', 'E', 'E'};
+constexpr int kMaxTreeDepth = 64;  // a balanced tree of 2^32 points is about 32 deep
+
+struct IndexSection {
+  char tag[8];
+  std::uint32_t nanoflann_version, node_bytes, tree_dim, leaf_size, tree_count, reserved;
+};
+static_assert(sizeof(IndexSection) == 32);
+struct TreeEntry {
+  std::uint64_t offset, bytes, points;
+};
+static_assert(sizeof(TreeEntry) == 24);
+
+using Node = KdTree::Node;
+constexpr std::uint32_t kNodeBytes = sizeof(Node);
+
+[[noreturn]] void bad(const std::string& source, const std::string& what) {
+  throw Error("accent database '" + source + "': search index " + what + "; rebuild it with 'legwork accent build'");
+}
+
+// The point ranges of the stored trees, in section order.
+std::vector<std::pair<std::size_t, std::size_t>> tree_ranges(std::size_t windows,
+                                                             const std::vector<std::pair<int, int>>& ranges) {
+  std::vector<std::pair<std::size_t, std::size_t>> out(2, {0, windows});
+  if (ranges.size() > 1)
+    for (auto [a, b] : ranges)
+      for (int hand = 0; hand < 2; ++hand) out.emplace_back(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
+  return out;
+}
+
+// Reads the stream over a span without copying it.
+struct SpanBuf : std::streambuf {
+  explicit SpanBuf(std::span<const std::byte> s) {
+    char* b = const_cast<char*>(reinterpret_cast<const char*>(s.data()));
+    setg(b, b, b + s.size());
+  }
+};
+
+// A bounded reader over one tree's bytes.
+class Cursor {
+ public:
+  Cursor(std::span<const std::byte> s, const std::string& source, std::size_t tree)
+      : s_(s), source_(source), tree_(tree) {}
+  template <class T>
+  T read(const char* what) {
+    if (sizeof(T) > s_.size() - pos_) fail(std::string(what) + " runs past its end");
+    T v;
+    std::memcpy(&v, s_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return v;
+  }
+  std::size_t left() const { return s_.size() - pos_; }
+  std::size_t pos() const { return pos_; }
+  void skip(std::size_t n) { pos_ += n; }
+  const std::byte* here() const { return s_.data() + pos_; }
+  [[noreturn]] void fail(const std::string& what) const { bad(source_, "tree " + std::to_string(tree_) + ": " + what); }
+
+ private:
+  std::span<const std::byte> s_;
+  std::size_t pos_ = 0;
+  const std::string& source_;
+  std::size_t tree_;
+};
+
+// The nodes in pre-order: children both present or both absent, leaves
+// inside the point range, split dimensions inside the tree's, bounded depth,
+// and the nodes end exactly at the tree's last byte.
+void check_nodes(Cursor& c, std::size_t points) {
+  std::vector<int> depth{0};  // stack of the depths of nodes still to read
+  std::size_t nodes = 0;
+  while (!depth.empty()) {
+    const int at = depth.back();
+    depth.pop_back();
+    if (at > kMaxTreeDepth) c.fail("deeper than " + std::to_string(kMaxTreeDepth) + " levels");
+    if (++nodes > 2 * points + 1) c.fail("has more nodes than its points allow");
+    const Node n = c.read<Node>("node list");
+    const bool c1 = n.child1 != nullptr, c2 = n.child2 != nullptr;
+    if (c1 != c2) c.fail("node " + std::to_string(nodes - 1) + " has one child");
+    if (!c1) {
+      if (!(n.node_type.lr.left <= n.node_type.lr.right && n.node_type.lr.right <= points))
+        c.fail("leaf " + std::to_string(nodes - 1) + " points outside the tree's " + std::to_string(points) + " points");
+      continue;
+    }
+    if (n.node_type.sub.divfeat < 0 || n.node_type.sub.divfeat >= kTreeDim || !std::isfinite(n.node_type.sub.divlow) ||
+        !std::isfinite(n.node_type.sub.divhigh))
+      c.fail("node " + std::to_string(nodes - 1) + " has an invalid split");
+    depth.push_back(at + 1);  // child2, read after child1's subtree
+    depth.push_back(at + 1);  // child1
+  }
+  if (c.left() != 0) c.fail(std::to_string(c.left()) + " bytes after its last node");
+}
+
+// One tree's serialization, checked field by field against `points`.
+void check_tree(std::span<const std::byte> blob, std::size_t points, const std::string& source, std::size_t tree) {
+  Cursor c(blob, source, tree);
+  if (c.read<std::uint64_t>("point count") != points) c.fail("point count differs from its class's windows");
+  if (c.read<std::int32_t>("dimensions") != kTreeDim) c.fail("dimension count differs");
+  for (int i = 0; i < 2 * kTreeDim; ++i)
+    if (!std::isfinite(c.read<float>("bounding box"))) c.fail("bounding box is not finite");
+  const auto leaf = c.read<std::uint64_t>("leaf size");
+  if (leaf == 0 || leaf > points + 1) c.fail("leaf size " + std::to_string(leaf) + " is invalid");
+  if (c.read<std::uint64_t>("permutation size") != points) c.fail("permutation size differs from its point count");
+  if (c.left() / 4 < points) c.fail("permutation runs past its end");
+  std::vector<bool> seen(points, false);
+  for (std::size_t i = 0; i < points; ++i) {
+    std::uint32_t v;
+    std::memcpy(&v, c.here() + 4 * i, 4);
+    if (v >= points || seen[v]) c.fail("permutation entry " + std::to_string(i) + " is out of range or repeated");
+    seen[v] = true;
+  }
+  c.skip(4 * points);
+  check_nodes(c, points);
+}
+
+}  // namespace
+
+std::vector<std::byte> serialize_index(const std::array<const Feature*, 2>& features, std::size_t windows,
+                                       const std::vector<std::pair<int, int>>& ranges) {
+  const auto trees = tree_ranges(windows, ranges);
+  std::vector<std::string> blobs;
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    const auto [a, b] = trees[t];
+    if (a == b) {
+      blobs.emplace_back();
+      continue;
+    }
+    FeatureCloud cloud{reinterpret_cast<const float*>(features[t % 2] + a), b - a};
+    KdTree tree(kTreeDim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kIndexLeafSize));
+    std::ostringstream out(std::ios::binary);
+    tree.saveIndex(out);
+    blobs.push_back(std::move(out).str());
+  }
+  IndexSection h{};
+  std::memcpy(h.tag, kIndexTag, sizeof kIndexTag);
+  h.nanoflann_version = NANOFLANN_VERSION;
+  h.node_bytes = kNodeBytes;
+  h.tree_dim = kTreeDim;
+  h.leaf_size = kIndexLeafSize;
+  h.tree_count = static_cast<std::uint32_t>(trees.size());
+  std::vector<TreeEntry> entries(trees.size());
+  std::size_t at = sizeof h + entries.size() * sizeof(TreeEntry);
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    at = (at + 7) & ~std::size_t{7};
+    entries[t] = {at, blobs[t].size(), trees[t].second - trees[t].first};
+    at += blobs[t].size();
+  }
+  std::vector<std::byte> out(at);
+  std::memcpy(out.data(), &h, sizeof h);
+  for (std::size_t t = 0; t < trees.size(); ++t)
+    std::memcpy(out.data() + sizeof h + t * sizeof(TreeEntry), &entries[t], sizeof(TreeEntry));
+  for (std::size_t t = 0; t < trees.size(); ++t)
+    if (!blobs[t].empty()) std::memcpy(out.data() + entries[t].offset, blobs[t].data(), blobs[t].size());
+  return out;
+}
+
+bool load_index(Database::Impl& d, std::span<const std::byte> section, const std::string& source) {
+  IndexSection h;
+  if (section.size() < sizeof h) bad(source, "section is " + std::to_string(section.size()) + " bytes (truncated)");
+  std::memcpy(&h, section.data(), sizeof h);
+  if (std::memcmp(h.tag, kIndexTag, sizeof kIndexTag) != 0) bad(source, "section has no index tag");
+  if (h.nanoflann_version != NANOFLANN_VERSION || h.node_bytes != kNodeBytes || h.tree_dim != kTreeDim) return false;
+  const auto trees = tree_ranges(d.header.window_count, d.meta.ranges);
+  if (h.tree_count != trees.size())
+    bad(source, "holds " + std::to_string(h.tree_count) + " trees, expected " + std::to_string(trees.size()));
+  if ((section.size() - sizeof h) / sizeof(TreeEntry) < trees.size()) bad(source, "tree table runs past the section");
+  std::vector<TreeEntry> entries(trees.size());
+  for (std::size_t t = 0; t < trees.size(); ++t)
+    std::memcpy(&entries[t], section.data() + sizeof h + t * sizeof(TreeEntry), sizeof(TreeEntry));
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    const TreeEntry& e = entries[t];
+    const std::size_t points = trees[t].second - trees[t].first;
+    if (e.points != points) bad(source, "tree " + std::to_string(t) + " declares " + std::to_string(e.points) + " points, its class has " + std::to_string(points));
+    if (e.offset > section.size() || e.bytes > section.size() - e.offset)
+      bad(source, "tree " + std::to_string(t) + " lies outside the section (truncated?)");
+    if ((points == 0) != (e.bytes == 0)) bad(source, "tree " + std::to_string(t) + " is empty but its class is not, or the reverse");
+    if (points) check_tree(section.subspan(e.offset, e.bytes), points, source, t);
+  }
+  d.index.clear();
+  d.index.resize(d.meta.classes.size());
+  d.all = ClassIndex{};
+  d.leaf_size = static_cast<int>(h.leaf_size);
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    const std::size_t hand = t % 2;
+    ClassIndex& ci = t < 2 ? d.all : d.index[(t - 2) / 2];
+    ci.cloud[hand] = {reinterpret_cast<const float*>(d.features[hand] + trees[t].first), trees[t].second - trees[t].first};
+    if (entries[t].bytes == 0) continue;
+    ci.tree[hand] = std::make_unique<KdTree>(kTreeDim, ci.cloud[hand],
+                                             nanoflann::KDTreeSingleIndexAdaptorParams(h.leaf_size, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex));
+    SpanBuf buf(section.subspan(entries[t].offset, entries[t].bytes));
+    std::istream in(&buf);
+    ci.tree[hand]->loadIndex(in);
+  }
+  return true;
+}
+
+}  // namespace legwork::accent
