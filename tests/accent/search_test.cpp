@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <unistd.h>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -159,7 +161,14 @@ TEST_F(SearchDb, KIsCappedByTheOutputAndMasksCanExcludeEverything) {
 
 TEST(AccentSearch, WithoutAnIndexEveryModeFallsBackToTheScan) {
   BuildConfig cfg;
-  const Database db = build_database(testing::sample_trials({"walking/07_01", "boxing/13_18"}), cfg);
+  // The builder stores the index in the database; a file loaded without it has none.
+  const auto path = std::filesystem::temp_directory_path() / ("legwork-search-noindex-" + std::to_string(::getpid()) + ".lwdb");
+  save_database(path.string(), build_database(testing::sample_trials({"walking/07_01", "boxing/13_18"}), cfg));
+  LoadOptions no_index;
+  no_index.build_index = false;
+  no_index.use_mmap = false;
+  const Database db = load_database(path.string(), no_index);
+  std::filesystem::remove(path);
   ASSERT_FALSE(db.has_index());
   const Feature& f = db.feature(1, db.window_count() / 2);
   const auto oracle = scan_distances(db, 1, f);
