@@ -6,17 +6,17 @@ add_test(NAME cli.eval_quick_report
          COMMAND ${CMAKE_COMMAND} -DREPORT_DIR=${O}/eval-quick -P ${CMAKE_CURRENT_LIST_DIR}/check_eval_report.cmake)
 set_tests_properties(cli.eval_quick_report PROPERTIES FIXTURES_REQUIRED eval_quick)
 legwork_cli_test(eval_help eval accent --help)
-legwork_cli_fail(eval_missing_data eval accent --data ${O}/no-such-folder --quick)
-legwork_cli_fail(eval_unknown_class eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing --quick)
-legwork_cli_fail(eval_bad_protocol eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols leave_one_out --quick)
-legwork_cli_fail(eval_cross_dataset_needs_test eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols cross_dataset)
+legwork_cli_error(eval_missing_data "error: .*no-such-folder: not a directory" eval accent --data ${O}/no-such-folder --quick)
+legwork_cli_error(eval_unknown_class "error: .*no class 'dancing' \\(classes present: basketball" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing --quick)
+legwork_cli_error(eval_bad_protocol "error: --protocols: unknown protocol 'leave_one_out' \\(cross_subject, cross_trial, cross_dataset\\)" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols leave_one_out --quick)
+legwork_cli_error(eval_cross_dataset_needs_test "error: --protocols cross_dataset needs --test DIR" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols cross_dataset)
 # --out is checked before the evaluation runs (it used to fail with a raw "filesystem error" at the end).
 legwork_cli_error(eval_out_is_a_file "error: --out '.*README.md': is a file, not a folder"
                  eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --out ${PROJECT_SOURCE_DIR}/README.md)
 legwork_cli_error(eval_out_under_a_file "error: --out '.*README.md/report': cannot write in '.*README.md' \\(it is a file, not a folder\\)"
                  eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --out ${PROJECT_SOURCE_DIR}/README.md/report)
 set_tests_properties(cli.eval_out_is_a_file cli.eval_out_under_a_file PROPERTIES TIMEOUT 20)
-legwork_cli_fail(eval_bad_manifest eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --manifest ${PROJECT_SOURCE_DIR}/data/cmu/bvh/walking/07_01.bvh)
+legwork_cli_error(eval_bad_manifest "error: .*07_01.bvh:1: no 'file' column \\(need file, class, subject, trial; tab-separated\\)" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --manifest ${PROJECT_SOURCE_DIR}/data/cmu/bvh/walking/07_01.bvh)
 # Cross-dataset: a fixed database (manifest subset) scoring other subjects' trials;
 # boxing has no database trial and is listed as not evaluable.
 legwork_cli_test(eval_cross_dataset eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu
