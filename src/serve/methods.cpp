@@ -88,13 +88,19 @@ struct IkRuntime : Contract<ik::Model, ik::State, ik::Info, &ik::update> {
   static Model model(const Resources& res, const MethodOptions& opt) { return ik::make_model(avatar_skeleton(res, opt.user_height)); }
 };
 
+// The walking figures both leg-driving runtimes report (wip::Info, combined::Info).
+template <typename WalkingInfo>
+void add_walking(const WalkingInfo& i, MethodInfo& out) {
+  out.add("walking", i.walking ? 1.0 : 0.0);
+  out.add("speed", i.speed);
+  out.add("distance", i.distance);
+  out.add("heading", i.heading);
+}
+
 // Walking-in-place legs from the ankles (the head's yaw is the walking heading).
 struct WipRuntime : Contract<wip::Model, wip::State, wip::Info, &wip::update> {
   static void describe(const Info& i, MethodInfo& out) {
-    out.add("walking", i.walking ? 1.0 : 0.0);
-    out.add("speed", i.speed);
-    out.add("distance", i.distance);
-    out.add("heading", i.heading);
+    add_walking(i, out);
     out.add("phase_left", wip::phase_name(i.phase[0]).data());  // static, NUL-terminated literals
     out.add("phase_right", wip::phase_name(i.phase[1]).data());
   }
@@ -134,10 +140,7 @@ std::unique_ptr<Method> runtime_method(const Resources& res, const MethodOptions
 // a database), legs from walking-in-place, faded over blend_time.
 struct CombinedRuntime : Contract<combined::Model, combined::State, combined::Info, &combined::update> {
   static void describe(const Info& i, MethodInfo& out) {
-    out.add("walking", i.walking ? 1.0 : 0.0);
-    out.add("speed", i.speed);
-    out.add("distance", i.distance);
-    out.add("heading", i.heading);
+    add_walking(i, out);
     out.add("legs", i.feet_tracked ? "wip" : "upper");
     out.add("legs_weight", i.legs_weight);
   }
