@@ -489,6 +489,15 @@ TEST(ServeWip, LearnedMappingIsASessionOption) {
   Client bad(srv.port());
   bad.send_text(R"({"type":"hello","version":1,"method":"wip","mapping":"magic"})");
   EXPECT_EQ(bad.expect("error")["message"], "mapping 'magic' is not one of: document, learned");
+  // A --wip-table that is not a table stops the server at start, naming the file and line.
+  ServeOptions wrong = test_options();
+  wrong.wip_table = source_dir() + "/data/cmu/MANIFEST.tsv";
+  try {
+    Server refused(wrong);
+    ADD_FAILURE() << "a server started with a bad --wip-table";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("MANIFEST.tsv:1: not a learned walking-in-place mapping"), std::string::npos) << e.what();
+  }
   RunningServer plain;  // no --wip-table
   Client none(plain.port());
   none.send_text(R"({"type":"hello","version":1,"method":"combined","mapping":"learned"})");
