@@ -105,7 +105,7 @@ TEST(BvhWriter, StreamedFileOfManyPiecesEqualsTheFormattedText) {
   Motion m(f.motion.skeleton, f.motion.fps, 8 * f.motion.frame_count());
   for (int i = 0; i < m.frame_count(); ++i) m.set_frame(i, f.motion.frame(i % f.motion.frame_count()));
   const std::string text = io::format_bvh(m);
-  ASSERT_GT(text.size(), std::size_t{3} << 20);  // more than three pieces
+  ASSERT_GT(text.size(), std::size_t{2} << 20);  // three pieces of 1 MB or more
   const auto path = (std::filesystem::temp_directory_path() / ("legwork_bvh_stream_test_" + std::to_string(::getpid()) + ".bvh")).string();
   io::write_bvh(path, m);
   EXPECT_TRUE(io::read_text_file(path) == text);

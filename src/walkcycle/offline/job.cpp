@@ -183,13 +183,13 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkJob& a, const std::s
   if (path) {
     check_walk_size(model, *path, wo, a);
     const auto t0 = std::chrono::steady_clock::now();
-    const wc::WalkResult w = wc::walk_path(model, *path, wo);
+    wc::WalkResult w = wc::walk_path(model, *path, wo);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     std::string text;
     wc::add_walk_report(model, w, ms, report, text);
     std::printf("%s", text.c_str());
     if (!a.top.empty()) write_top(w, path.get(), a.top, name);
-    result = w.motion;
+    result = std::move(w.motion);  // (not a copy: a long walk's motion is hundreds of MB)
   } else {
     result = wc::bake_cycle(model);
     wc::add_in_place_report(result, report);
