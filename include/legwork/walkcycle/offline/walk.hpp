@@ -46,8 +46,8 @@ enum class RootMotion : unsigned char {
 };
 
 // Longest walk walk_path() makes (frames): it holds the whole motion with
-// its labels and headings (about 2.7 KB a frame for the 31-joint CMU
-// skeleton), so this bounds a walk near 1.4 GB: 500,000 frames are 5.8 hours
+// its labels and headings (about 2.1 KB a frame for the 31-joint CMU
+// skeleton), so this bounds a walk near 1.1 GB: 500,000 frames are 5.8 hours
 // at 24 fps, about 41,000 steps of the shipped walks.
 inline constexpr int kMaxWalkFrames = 500'000;
 
