@@ -24,8 +24,16 @@ if [ "${1:-}" = "--ci" ]; then ci=1; shift; fi
 #    at -O0 on a loaded machine does not;
 #  - BvhSharedData.*: every file of ../shared/data/cmu (230 s of test time
 #    under ASan -O0); the sample files (BvhReader.*, data/cmu) and the BVH
-#    fuzz target run the same reader code.
-ci_exclude='^(Serve\.RateLimitDropsFramesAboveMaxRateWithAnError|BvhSharedData\..*)$'
+#    fuzz target run the same reader code;
+#  - the other tests over the whole shared CMU set, each with a sample-data
+#    test running the same code: Extract.EverySharedCmuWalkingTrial (637 s
+#    under ASan at load 10; Extract.* on data/cmu),
+#    AccentShared.Table1DatabaseOnAHeldOutRunningTrial and
+#    HeldOutSubject.* (a database of the shared set; AccentLive.*, HeldOut.*
+#    on data/cmu), RealWalking.FullSharedSetKeepsStepF1Above90Percent (every
+#    shared walking trial; tests/eval/wip_test.cpp and tests/wip/run_test.cpp on data/cmu).
+ci_exclude='^(Serve\.RateLimitDropsFramesAboveMaxRateWithAnError|BvhSharedData\..*|Extract\.EverySharedCmuWalkingTrial'
+ci_exclude+='|AccentShared\.Table1DatabaseOnAHeldOutRunningTrial|HeldOutSubject\..*|RealWalking\.FullSharedSetKeepsStepF1Above90Percent)$'
 tsan_exclude='^(Serve\.RateLimitDropsFramesAboveMaxRateWithAnError)$'
 jobs="${LEGWORK_SANITIZE_JOBS:-$(nproc)}"
 
