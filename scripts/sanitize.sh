@@ -74,7 +74,8 @@ fi
 CXX=$cxx cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O0 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O0 -g1 -DNDEBUG" \
-  -DLEGWORK_WERROR=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_HEADER_CHECK=OFF -DLEGWORK_SANITIZER_PRELOAD="$preload" >/dev/null
+  -DLEGWORK_WERROR=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_HEADER_CHECK=OFF -DLEGWORK_SANITIZER_PRELOAD="$preload" \
+  -DLEGWORK_TEST_TIMEOUT_SCALE=10 >/dev/null
 
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
