@@ -51,9 +51,12 @@ if [ "$mode" = asan ]; then
   build="${LEGWORK_SANITIZE_BUILD:-$root/build-asan}"
   flags="-fsanitize=address,undefined${extra} -fno-sanitize-recover=all -fno-omit-frame-pointer"
   # python3 and mono are not built with ASan: the runtime is preloaded into
-  # them for the Python and C# binding tests (CMakeLists.txt, legwork_interpreter_tests).
-  preload="$("$cxx" -print-file-name=libasan.so)"
-  [ -f "$preload" ] || preload=""
+  # them for the Python and C# binding tests (CMakeLists.txt, legwork_interpreter_tests),
+  # with libstdc++ (neither links it: ASan's __cxa_throw interceptor finds
+  # nothing to forward to at start-up, and the first exception legwork throws
+  # inside mono stops with "CHECK failed: ... real___cxa_throw").
+  asan_rt="$("$cxx" -print-file-name=libasan.so)" cxx_rt="$("$cxx" -print-file-name=libstdc++.so.6)"
+  if [ -f "$asan_rt" ] && [ -f "$cxx_rt" ]; then preload="$asan_rt $cxx_rt"; fi
 else
   build="${LEGWORK_SANITIZE_BUILD:-$root/build-tsan}"
   flags="-fsanitize=thread -fno-omit-frame-pointer -g"
