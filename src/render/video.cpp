@@ -239,6 +239,7 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
   for (int k = 0; k < frames; ++k) {
     const double time = k / opt.fps;
     canvas.clear();
+    if (detail::layout_recording()) detail::layout_begin(cr, path + " frame " + std::to_string(k), W, H);
     for (int i = 0; i < n; ++i) {
       const auto& t = tracks[static_cast<std::size_t>(i)];
       const Scene s = frame_scene_of(t, time, opt, poses[static_cast<std::size_t>(i)], titled);

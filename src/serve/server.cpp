@@ -180,9 +180,10 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     if (!avatar_) throw ProtocolError("bad_message", "send hello before frames");
     ++seq_;
     ++srv_.frames;
-    // Rate limit: a token bucket at max_rate_hz with a burst of a tenth of a second.
+    // Rate limit: a token bucket at max_rate_hz with a burst of a quarter second: frames a
+    // network hiccup (or this thread's own stall) delivered together are not dropped.
     const auto now = SteadyClock::now();
-    const double burst = std::max(4.0, srv_.opt.max_rate_hz * 0.1);
+    const double burst = std::max(4.0, srv_.opt.max_rate_hz * 0.25);
     tokens_ = std::min(burst, tokens_ + std::chrono::duration<double>(now - last_token_).count() * srv_.opt.max_rate_hz);
     last_token_ = now;
     if (tokens_ < 1) {

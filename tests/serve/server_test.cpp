@@ -294,7 +294,8 @@ TEST(Serve, RateLimitDropsFramesAboveMaxRateWithAnError) {
   Client c(srv.port());
   c.hello();
   const auto frames = trial_frames();
-  for (std::size_t i = 0; i < 100; ++i) c.send_text(json_frame(frames[i]));  // as fast as the socket takes them
+  ASSERT_GE(frames.size(), 200U);
+  for (std::size_t i = 0; i < 200; ++i) c.send_text(json_frame(frames[i]));  // as fast as the socket takes them
   int poses = 0;
   json rate;
   while (auto m = c.read(std::chrono::milliseconds(500))) {
@@ -304,8 +305,10 @@ TEST(Serve, RateLimitDropsFramesAboveMaxRateWithAnError) {
   }
   EXPECT_EQ(rate["code"], "rate") << rate.dump();
   EXPECT_NE(rate["message"].get<std::string>().find("frames above 120 Hz are dropped"), std::string::npos);
+  // at most the quarter-second burst (30 frames) and what 120 Hz refills while the 200
+  // arrive; fewer come back, as a client that does not read keeps only its newest poses
   EXPECT_GE(poses, 1);
-  EXPECT_LT(poses, 50);
+  EXPECT_LT(poses, 100);
 }
 
 TEST(Serve, SessionLimitRefusesWithBusy) {
