@@ -1,6 +1,8 @@
 // Smooth root motion with the feet held by leg IK (see root_motion.hpp).
 #include "root_motion.hpp"
 
+#include <legwork/walkcycle/legs.hpp>
+
 #include <legwork/core/fk.hpp>
 #include <legwork/core/rotation.hpp>
 #include <legwork/ik/two_bone.hpp>
@@ -51,77 +53,6 @@ struct Extended {
   }
 };
 
-struct LegIk {
-  ik::TwoBoneChain chain;
-  double length = 0;  // thigh + shin, metres
-};
-
-LegIk leg_of(const Skeleton& s, bool left, std::span<const Transform> g) {
-  LegIk leg{left ? ik::left_leg(s) : ik::right_leg(s), 0.0};
-  auto pos = [&](int j) { return g[static_cast<std::size_t>(j)].translation; };
-  leg.length = (pos(leg.chain.mid) - pos(leg.chain.root)).norm() + (pos(leg.chain.end) - pos(leg.chain.mid)).norm();
-  return leg;
-}
-
-// Where the leg can put the ankle: the target pulled towards the hip so the
-// leg never straightens fully. Up to `soft` of its length the target is kept;
-// beyond, the distance approaches the full length exponentially (the knee
-// straightens smoothly instead of snapping). Returns the distance asked for,
-// as a fraction of the leg's length.
-double soften_reach(const Vec3& hip, const LegIk& leg, double soft, Vec3& target) {
-  const Vec3 d = target - hip;
-  const double dist = d.norm(), start = soft * leg.length, room = leg.length - start;
-  if (dist > start && room > 0) {
-    const double reached = start + room * (1.0 - std::exp(-(dist - start) / room));
-    target = hip + d * (reached / dist);
-  }
-  return leg.length > 0 ? dist / leg.length : 0.0;
-}
-
-// A foot whose ankle is out of the leg's reach rolls on the floor instead of
-// dragging: the stance foot about its ball once it pivots on the ball (the
-// heel rises; while it pivots on the heel it does not roll: rolling would
-// move the ball it is about to pivot on); the other foot about its ball when
-// it trails the hip (the heel rises, as at toe-off), about its heel when it
-// leads (the toes rise, as at heel strike). The rolling point stays where it
-// was; the smallest roll (at most 60 degrees either way) that brings the
-// ankle back to `reach` of the hip, or if none does the one that brings it
-// closest. `ankle` is updated in place. Returns the angle, radians.
-//
-// Rolling by a about the side axis k through the pivot P takes the ankle to
-// P + R(a) v (v = ankle - P), whose squared distance from the hip H is
-// C + A cos a + B sin a = C + M cos(a - phi) with u = P - H,
-// A = 2 u.v_perp, B = 2 u.(k x v), C = |u|^2 + |v|^2 + 2 u.v_par: solved in
-// closed form.
-double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Vec3& forward, const Pivot* stance,
-                 Transform& ankle) {
-  const Vec3 to_ankle = ankle.translation - hip;
-  if (!(to_ankle.norm() > reach) || (stance && *stance == Pivot::Heel)) return 0.0;
-  const bool on_ball = stance || to_ankle.dot(forward) < 0;
-  const Vec3 pivot = ankle.apply(on_ball ? foot.ball_local : foot.heel_local);
-  const Vec3 k = Vec3::UnitY().cross(forward).normalized();  // the foot's side axis
-  const Vec3 u = pivot - hip, v = ankle.translation - pivot;
-  const Vec3 v_par = k.dot(v) * k, v_perp = v - v_par;
-  const double A = 2 * u.dot(v_perp), B = 2 * u.dot(k.cross(v)), C = u.squaredNorm() + v.squaredNorm() + 2 * u.dot(v_par);
-  const double M = std::hypot(A, B), phi = std::atan2(B, A), limit = deg2rad(60.0);
-  auto wrap = [](double a) { return std::remainder(a, 2 * kPi); };
-  auto f = [&](double a) { return C + M * std::cos(a - phi); };
-  double angle = 0;
-  const double c = M > 1e-15 ? (reach * reach - C) / M : -2.0;
-  if (c >= -1.0) {  // within reach on the arc of angles around phi + pi; the nearest edge of it
-    const double a1 = wrap(phi + std::acos(std::min(c, 1.0))), a2 = wrap(phi - std::acos(std::min(c, 1.0)));
-    angle = std::abs(a1) < std::abs(a2) ? a1 : a2;
-  }
-  if (c < -1.0 || std::abs(angle) > limit) {  // out of reach: the closest within the limits
-    angle = std::clamp(wrap(phi + kPi), -limit, limit);
-    if (std::abs(wrap(phi + kPi)) > limit) angle = f(limit) < f(-limit) ? limit : -limit;
-  }
-  const Quat q(Eigen::AngleAxisd(angle, k));
-  ankle.translation = pivot + q * v;
-  ankle.rotation = (q * ankle.rotation).normalized();
-  return angle;
-}
-
 // The foot of the flat plan put on the ground: placed on `anchor` (the point
 // it pivots on; the heel for a free foot) raised by the ground height under
 // it, and turned rigidly towards the line between its heel and ball each
@@ -144,25 +75,6 @@ Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_bal
   ankle.translation = a + ground.height(a) * up + q * (ankle.translation - a);
   ankle.rotation = (q * ankle.rotation).normalized();
   return q;
-}
-
-// The toe's model transform after the leg's IK moved the ankle (the IK
-// updates the chain only; full FK if the toe does not hang from the ankle).
-void update_toe(const Skeleton& s, const FootPivots& foot, ConstPoseRef pose, std::span<Transform> g) {
-  if (foot.toe < 0) return;
-  const auto t = static_cast<std::size_t>(foot.toe);
-  if (s.parents[t] != foot.ankle) return forward_kinematics(s, pose, g);
-  g[t] = g[static_cast<std::size_t>(foot.ankle)] * Transform{pose.rotations[t], pose.translations[t]};
-}
-
-// How far the foot's lowest point (heel, ball, toe tip) is below the ground,
-// metres (0 if none is); `g` holds the pose's FK.
-double depth_below(const Ground& ground, const FootPivots& foot, const Skeleton& s, std::span<const Transform> g) {
-  const Transform& a = g[static_cast<std::size_t>(foot.ankle)];
-  auto below = [&](const Vec3& p) { return ground.height(p) - p.y(); };
-  double d = std::max(below(a.apply(foot.heel_local)), below(a.apply(foot.ball_local)));
-  if (foot.toe >= 0) d = std::max(d, below(end_site_position(s, g, foot.toe)));
-  return std::max(0.0, d);
 }
 
 }  // namespace
@@ -382,13 +294,6 @@ struct FrameSolver {
                WalkResult* r);
 };
 
-// Pelvis drop that brings `hip` within `reach` of `target`.
-double drop_to_reach(const Vec3& hip, const Vec3& target, double reach) {
-  const double side = horizontal(target - hip).norm(), above = hip.y() - target.y();
-  if (side >= reach) return std::max(0.0, above);
-  return std::max(0.0, above - std::sqrt(reach * reach - side * side));
-}
-
 double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label,
                           const std::array<FootHold, 2>& hold, WalkResult* r) {
   const Skeleton& s = m.skeleton;
@@ -433,7 +338,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     // A foot point below the ground (the plan goes without the floor lift,
     // and its blend into the standing pose can dip) lifts the foot straight
     // up: no slip, no penetration.
-    const double below = depth_below(ground, foot, s, g);
+    const double below = depth_below(s, foot, std::span<const Transform>(g), [&](const Vec3& p) { return ground.height(p); });
     if (below > 0) {
       t.position.y() += below;
       solve_leg();
