@@ -7,6 +7,43 @@
 
 namespace legwork::walkcycle {
 
+LegJoints leg_joints(const CycleModel& m) {
+  LegJoints l;
+  for (const FootPivots* f : {&m.right, &m.left}) {
+    for (int i = 0; i < f->chain_length && l.count + 1 < static_cast<int>(l.joints.size()); ++i)
+      l.joints[static_cast<std::size_t>(l.count++)] = f->chain[static_cast<std::size_t>(i)];
+    if (f->toe >= 0) {
+      if (m.skeleton.parents[static_cast<std::size_t>(f->toe)] != f->ankle) l.all = true;
+      l.joints[static_cast<std::size_t>(l.count++)] = f->toe;
+    }
+  }
+  if (l.all) l.count = 0;
+  return l;
+}
+
+void leg_kinematics(const Skeleton& s, const LegJoints& legs, ConstPoseRef pose, std::span<Transform> g) {
+  if (legs.all) return forward_kinematics(s, pose, g);
+  for (int j : legs.list()) {
+    const auto u = static_cast<std::size_t>(j);
+    const int p = s.parents[u];
+    if (p < 0) {
+      g[u] = {pose.rotations[u], pose.translations[u]};
+    } else {
+      const Transform& gp = g[static_cast<std::size_t>(p)];
+      g[u].rotation = gp.rotation * pose.rotations[u];
+      g[u].translation = gp.rotation * pose.translations[u] + gp.translation;
+    }
+  }
+}
+
+void shift_legs(const LegJoints& legs, std::span<const Transform> before, const Vec3& shift, std::span<Transform> g) {
+  auto move = [&](std::size_t j) { g[j] = {before[j].rotation, before[j].translation + shift}; };
+  if (legs.all)
+    for (std::size_t j = 0; j < g.size(); ++j) move(j);
+  else
+    for (int j : legs.list()) move(static_cast<std::size_t>(j));
+}
+
 LegIk leg_of(const Skeleton& s, bool left, std::span<const Transform> g) {
   LegIk leg{left ? ik::left_leg(s) : ik::right_leg(s), 0.0};
   auto pos = [&](int j) { return g[static_cast<std::size_t>(j)].translation; };

@@ -15,8 +15,11 @@ namespace {
 int foot_index(bool left, Pivot p) { return (left ? 2 : 0) + (p == Pivot::Ball ? 1 : 0); }
 
 void feet_of(const CycleModel& m, ConstPoseRef pose, std::array<Vec3, 4>& feet) {
-  for (int side = 0; side < 2; ++side)
-    for (Pivot p : {Pivot::Heel, Pivot::Ball}) feet[static_cast<std::size_t>(foot_index(side == 1, p))] = foot_point(m, pose, side == 1, p);
+  for (int side = 0; side < 2; ++side) {
+    const std::array<Vec3, 2> hb = heel_and_ball(m, pose, side == 1);
+    feet[static_cast<std::size_t>(foot_index(side == 1, Pivot::Heel))] = hb[0];
+    feet[static_cast<std::size_t>(foot_index(side == 1, Pivot::Ball))] = hb[1];
+  }
 }
 
 void place(const State& s, PoseRef out) {
@@ -105,9 +108,9 @@ double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double he
                   std::span<Transform> before, std::span<Transform> g, bool apply, Info* info) {
   const CycleModel& m = model.cycle();
   const Skeleton& sk = m.skeleton;
-  forward_kinematics(sk, pose, before);
+  leg_kinematics(sk, model.smooth_root().joints, pose, before);
   if (apply) pose.translations[0] += shift;
-  for (std::size_t j = 0; j < g.size(); ++j) g[j] = {before[j].rotation, before[j].translation + shift};
+  shift_legs(model.smooth_root().joints, before, shift, g);
   const Vec3 forward = yaw_rotation(heading) * Vec3::UnitZ();
   double drop = 0, roll_max = 0;
   bool limited = false;
@@ -162,26 +165,6 @@ void smooth_frame(const Model& model, State& s, double frames, const StanceAt& s
   solve_legs(model, out, s.smooth - s.offset - Vec3(0, drop, 0), s.heading, st, s.plan_space, s.model_space, true, info);
 }
 
-// Straight-walk pivoting plan over one cycle, `samples_per_frame` per frame:
-// its floor offsets (entry n = one cycle on).
-std::vector<Vec3> plan_offsets(const CycleModel& m, Pose& pose) {
-  const int n = m.frames_per_cycle * Model::samples_per_frame;
-  std::vector<Vec3> o(static_cast<std::size_t>(n) + 1, Vec3::Zero());
-  std::array<Vec3, 4> prev, feet;
-  sample_cycle(m, 0.0, pose.ref());
-  feet_of(m, pose.ref(), prev);
-  for (int i = 1; i <= n; ++i) {
-    const double t = static_cast<double>(i) / Model::samples_per_frame;
-    sample_cycle(m, t, pose.ref());
-    feet_of(m, pose.ref(), feet);
-    const StanceAt st = stance_at(m, t - 0.5 / Model::samples_per_frame);
-    const auto k = static_cast<std::size_t>(foot_index(st.left, st.pivot));
-    o[static_cast<std::size_t>(i)] = horizontal(o[static_cast<std::size_t>(i) - 1] + prev[k] - feet[k]);
-    prev = feet;
-  }
-  return o;
-}
-
 // Periodic running maximum over +-`half_width` samples, then a periodic mean over as many.
 std::vector<double> spread_drop(const std::vector<double>& need, int half_width) {
   const int n = static_cast<int>(need.size());
@@ -211,7 +194,8 @@ Model::SmoothRoot tabulate_smooth_root(const Model& model) {
   sample_cycle(m, 0.0, pose.ref());
   forward_kinematics(m.skeleton, pose.ref(), before);
   sr.legs = {leg_of(m.skeleton, false, before), leg_of(m.skeleton, true, before)};
-  const std::vector<Vec3> o = plan_offsets(m, pose);
+  sr.joints = leg_joints(m);
+  const std::vector<Vec3> o = straight_pivot_travel(m, Model::samples_per_frame);
   sr.velocity = o.back() / m.frames_per_cycle;
   sr.drag.resize(o.size());
   Vec3 mean = Vec3::Zero();
@@ -229,7 +213,7 @@ std::vector<double> tabulate_drop(const Model& model) {
   const int n = m.frames_per_cycle * Model::samples_per_frame;
   Pose pose(m.skeleton);
   std::vector<Transform> before(static_cast<std::size_t>(m.skeleton.joint_count())), g(before.size());
-  const std::vector<Vec3> o = plan_offsets(m, pose);
+  const std::vector<Vec3> o = straight_pivot_travel(m, Model::samples_per_frame);
   std::vector<double> need(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / Model::samples_per_frame;

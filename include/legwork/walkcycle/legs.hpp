@@ -9,6 +9,7 @@
 #include <legwork/walkcycle/cycle.hpp>
 
 #include <algorithm>
+#include <array>
 #include <span>
 
 namespace legwork::walkcycle {
@@ -29,6 +30,24 @@ struct LegIk {
   ik::TwoBoneChain chain;
   double length = 0;  // thigh + shin, metres
 };
+
+// The joints the legs' IK reads and writes in model space: both feet's
+// chains (root ... ankle) and their toes, parents first; `all` when a toe
+// does not hang from its ankle (then every joint).
+struct LegJoints {
+  std::array<int, 34> joints{};
+  int count = 0;
+  bool all = false;
+  std::span<const int> list() const { return {joints.data(), static_cast<std::size_t>(count)}; }
+};
+LegJoints leg_joints(const CycleModel& m);
+
+// FK of those joints only, to the same values forward_kinematics gives them
+// (the other entries of `g` are left as they were).
+void leg_kinematics(const Skeleton& s, const LegJoints& legs, ConstPoseRef pose, std::span<Transform> g);
+
+// g[j] = before[j] moved by `shift` for those joints (the moved pose's FK).
+void shift_legs(const LegJoints& legs, std::span<const Transform> before, const Vec3& shift, std::span<Transform> g);
 
 // The left or right leg's chain and length from a pose's FK `g`.
 LegIk leg_of(const Skeleton& s, bool left, std::span<const Transform> g);

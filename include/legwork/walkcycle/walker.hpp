@@ -68,6 +68,7 @@ class Model {
     std::vector<Vec3> drag;        // the plan's floor offset minus its mean travel, character frame, metres
     std::vector<double> drop;      // pelvis drop, metres (>= 0)
     std::array<LegIk, 2> legs;     // right, left
+    LegJoints joints;              // the joints the legs' IK needs
   };
   const SmoothRoot& smooth_root() const { return smooth_; }
 

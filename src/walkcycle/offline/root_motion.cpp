@@ -143,8 +143,9 @@ std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const 
     FootHold hold;
   } sides[2];
   const double rise = 0.02;  // metres of heel lift over which the foot turns on its ball
+  const LegJoints legs = leg_joints(m);
   for (int f = 0; f < n; ++f) {
-    forward_kinematics(plan.skeleton, plan.frame(f), g);
+    leg_kinematics(plan.skeleton, legs, plan.frame(f), g);
     const FrameLabel& l = labels[static_cast<std::size_t>(f)];
     for (int side = 0; side < 2; ++side) {
       Side& sd = sides[side];
@@ -228,8 +229,9 @@ void plant_on_treads(const CycleModel& m, const Motion& plan, std::span<const Fr
   };
   std::vector<Plant> plants[2];
   auto along = [&](const Vec3& p) { return (p - ground.origin).dot(ground.direction); };
+  const LegJoints legs = leg_joints(m);
   for (int f = 0; f < n; ++f) {
-    forward_kinematics(plan.skeleton, plan.frame(f), g);
+    leg_kinematics(plan.skeleton, legs, plan.frame(f), g);
     for (int side = 0; side < 2; ++side) {
       const bool stance = labels[static_cast<std::size_t>(f)].left_stance == (side == 1);
       auto& list = plants[side];
@@ -280,10 +282,12 @@ struct FrameSolver {
   const CycleModel& m;
   const Ground& ground;
   const WalkOptions& opt;
-  std::vector<Transform> before, g;  // FK of the plan's pose, of the moved pose
+  std::vector<Transform> before, g;  // FK of the plan's pose, of the moved pose (the legs' joints)
   LegIk legs[2];
+  LegJoints leg_joints_;
   FrameSolver(const CycleModel& model, const Ground& gr, const WalkOptions& o, const Motion& motion)
-      : m(model), ground(gr), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()) {
+      : m(model), ground(gr), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()),
+        leg_joints_(leg_joints(model)) {
     forward_kinematics(motion.skeleton, motion.frame(0), before);
     legs[0] = leg_of(motion.skeleton, false, before);
     legs[1] = leg_of(motion.skeleton, true, before);
@@ -297,9 +301,9 @@ struct FrameSolver {
 double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label,
                           const std::array<FootHold, 2>& hold, WalkResult* r) {
   const Skeleton& s = m.skeleton;
-  forward_kinematics(s, pose, before);
+  leg_kinematics(s, leg_joints_, pose, before);
   if (r) pose.translations[0] += shift;
-  for (std::size_t j = 0; j < g.size(); ++j) g[j] = {before[j].rotation, before[j].translation + shift};  // (FK of the moved pose)
+  shift_legs(leg_joints_, before, shift, g);  // (FK of the moved pose)
   bool limited = false;
   double drop = 0;
   const Vec3 forward = yaw_rotation(heading) * Vec3::UnitZ();
