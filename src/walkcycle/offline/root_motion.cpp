@@ -100,6 +100,9 @@ struct FootHold {
   Vec3 pivot = Vec3::Zero();
   Vec3 offset = Vec3::Zero();
   double lift = 0;  // stairs: the height the foot is planted at (or carried at in the swing), metres
+  // A stance foot already pivoting on its ball (its heel up before the pass
+  // key): the ground's slope turns it about the ball, not the heel.
+  bool on_ball = false;
   Vec3 apply(const Vec3& x) const { return pivot + yaw_rotation(angle) * (x - pivot) + offset + Vec3(0, lift, 0); }
   Transform apply(const Transform& t) const { return {(yaw_rotation(angle) * t.rotation).normalized(), apply(t.translation)}; }
 };
@@ -172,6 +175,7 @@ std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const 
           if (!l.stopping) sd.turned = std::max(sd.turned, smoothstep((frac[static_cast<std::size_t>(f)] - 0.75) / 0.25));
         }
         sd.hold.angle = std::remainder(sd.landed_yaw - yaw, 2 * kPi) * (1.0 - sd.turned);
+        sd.hold.on_ball = pv == Pivot::Ball;
       } else {
         if (sd.stance) sd.left_ground = f, sd.lift_off = horizontal(sd.hold.apply(sd.heel) - sd.heel);
         const double u = sd.left_ground < 0 ? 1.0 : ((f - sd.left_ground) / step_frames - 0.25) / 0.6;
@@ -318,7 +322,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     const double soft = std::max(opt.soft_reach, keyed);
     const bool stance = label.left_stance == (side == 1);
     Quat slope;  // the ground's turn under the foot (its toes follow it)
-    fit_to_ground(ground, foot, stance && label.pivot == Pivot::Ball, ankle, slope);
+    fit_to_ground(ground, foot, stance && (label.pivot == Pivot::Ball || hold[side].on_ball), ankle, slope);
     const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &label.pivot : nullptr, ankle);
     drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
     ik::TwoBoneTarget t;
