@@ -402,15 +402,7 @@ std::vector<Vec3> straight_pivot_travel(const CycleModel& m, int samples_per_fra
 }
 
 Vec3 foot_point(const CycleModel& m, ConstPoseRef pose, bool left_foot, Pivot which) {
-  const FootPivots& f = m.foot(left_foot);
-  Quat r = Quat::Identity();
-  Vec3 t = Vec3::Zero();
-  for (int i = 0; i < f.chain_length; ++i) {
-    const auto j = static_cast<std::size_t>(f.chain[static_cast<std::size_t>(i)]);
-    t = r * pose.translations[j] + t;
-    r = r * pose.rotations[j];
-  }
-  return r * (which == Pivot::Heel ? f.heel_local : f.ball_local) + t;
+  return heel_and_ball(m, pose, left_foot)[which == Pivot::Heel ? 0 : 1];
 }
 
 StanceAt stance_at(const CycleModel& m, double frame) {
