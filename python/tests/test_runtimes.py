@@ -138,6 +138,32 @@ def test_walker_walks_forward_and_turns_to_the_head():
         walkcycle.load_walk(str(SOURCE / "data/walks/missing.json"))
 
 
+def test_walker_root_is_smooth_by_default_and_pivot_on_request():
+    walk = walkcycle.load_walk(str(SOURCE / "data/walks/normal.json"))
+    cycle = walkcycle.build_cycle(walk.skeleton, walk.keys)
+    assert walkcycle.Settings().root == walkcycle.RootMotion.Smooth
+    spread = {}
+    for root in (walkcycle.RootMotion.Smooth, walkcycle.RootMotion.Pivot):
+        settings = walkcycle.Settings()
+        settings.root = root
+        model = walkcycle.make_model(cycle, settings)
+        state, pose, info = walkcycle.State(model), core.Pose(model.skeleton()), walkcycle.Info()
+        roots = []
+        for i in range(180):  # 3 s at 60 Hz, straight
+            f = core.TrackerFrame(i / 60.0)
+            f.set(core.Device.Head, np.array([0.0, 1.7, 0.0]), np.array([1.0, 0, 0, 0]))
+            assert walkcycle.update(model, f, state, pose, info) == core.UpdateStatus.Ok
+            roots.append(np.array(pose.translations[0])[[0, 2]])
+        speed = np.linalg.norm(np.diff(np.array(roots[60:]), axis=0), axis=1) * 60.0
+        spread[root] = (speed.max() - speed.min()) / speed.mean()
+        assert not info.reach_limited
+    assert spread[walkcycle.RootMotion.Smooth] < 0.4 < spread[walkcycle.RootMotion.Pivot]  # within +-20 % / lunging
+    bad = walkcycle.Settings()
+    bad.soft_reach = 1.5
+    with pytest.raises(legwork.Error, match=r"soft_reach must be in \(0, 1\]"):
+        walkcycle.make_model(cycle, bad)
+
+
 def test_step_f1_equals_cli_wip_eval(cli, tmp_path):
     """Walking in place driven frame by frame from Python, scored by legwork.eval, against `legwork wip eval`."""
     folder = SOURCE / "data/cmu/bvh/walking"

@@ -130,6 +130,7 @@ Scene frame_scene_of(const Track& t, double time, const VideoOptions& opt, Pose&
     s.curves.push_back(std::move(done));
   }
   if (with_title) s.title = t.label;
+  if (!opt.follow) s.ground = opt.ground;
   return s;
 }
 
@@ -175,6 +176,7 @@ std::vector<Track> panel_tracks(const std::vector<const Motion*>& motions, const
       if (opt.trace_joint >= 0) t.trace.push_back(model[static_cast<std::size_t>(opt.trace_joint)].translation);
     }
     s.curves.push_back(std::move(everything));
+    if (!opt.follow) s.ground = opt.ground;
     if (titled) s.title = t.label.empty() ? " " : t.label;
     if (opt.camera.metres_per_pixel <= 0) mpp = std::max(mpp, frame_scene(s, cam).metres_per_pixel);
   }

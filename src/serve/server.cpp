@@ -328,6 +328,9 @@ Server::Impl::Impl(ServeOptions o) : opt(std::move(o)), workers(opt.workers) {
     wip_learned = wip::read_learned_mapping(opt.wip_table);
     api.resources.wip_learned = &*wip_learned;
   }
+  if (!opt.walks_dir.empty() && !std::filesystem::is_directory(opt.walks_dir))
+    throw Error("--walks '" + opt.walks_dir + "' is not a folder (walk files for the walker method, e.g. data/walks)");
+  api.resources.walks_dir = opt.walks_dir;
   if (!api.resources.db && !api.resources.skeleton)
     throw Error("legwork serve needs an avatar: --db FILE.lwdb (all methods) or --skeleton FILE.bvh (ik only)");
   api.web_dir = opt.web_dir;

@@ -269,6 +269,53 @@ TEST(CApi, CombinedWithTheLearnedMappingMovesOnlyTheLegsOtherwise) {
   }
 }
 
+// The walker's root through the C API: smooth by default (even speed), the
+// pivoting root on request (lunges and stalls), bad settings named.
+TEST(CApi, WalkerRootIsSmoothByDefaultAndPivotOnRequest) {
+  const std::string walk = sample("walks/normal.json");
+  lw_walker_settings s;
+  lw_walker_settings_default(&s);
+  EXPECT_EQ(s.root, LW_WALKER_ROOT_SMOOTH);
+  lw_model* models[2] = {nullptr, nullptr};
+  ASSERT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &models[0]), LW_OK) << lw_last_error();
+  s.root = LW_WALKER_ROOT_PIVOT;
+  ASSERT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &models[1]), LW_OK) << lw_last_error();
+  double spread[2] = {0, 0};  // (max - min) / mean of the root's horizontal speed after the first second
+  for (int k = 0; k < 2; ++k) {
+    lw_avatar* avatar = nullptr;
+    ASSERT_EQ(lw_avatar_create(models[k], &avatar), LW_OK);
+    lw_frame f{};
+    f.devices[LW_HEAD] = {{0, 1.7, 0}, {1, 0, 0, 0}, 1};
+    double prev[3] = {0, 0, 0}, lo = 1e9, hi = 0, sum = 0;
+    int n = 0;
+    for (int i = 0; i < 180; ++i) {
+      f.time = i / 30.0;
+      ASSERT_EQ(lw_avatar_update(avatar, &f), LW_OK);
+      double root[3];
+      ASSERT_EQ(lw_avatar_pose(avatar, nullptr, root, nullptr, 0), LW_OK);
+      const double speed = std::hypot(root[0] - prev[0], root[2] - prev[2]) * 30.0;
+      if (i > 30) lo = std::min(lo, speed), hi = std::max(hi, speed), sum += speed, ++n;
+      std::copy(root, root + 3, prev);
+    }
+    spread[k] = (hi - lo) / (sum / n);
+    lw_avatar_destroy(avatar);
+    lw_model_destroy(models[k]);
+  }
+  std::printf("[capi] walker root speed spread: smooth %.3f, pivot %.3f of the mean\n", spread[0], spread[1]);
+  EXPECT_LT(spread[0], 0.4);  // within +-20 %
+  EXPECT_GT(spread[1], 0.4);
+  lw_model* bad = nullptr;
+  s.root = 7;
+  EXPECT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &bad), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("root must be LW_WALKER_ROOT_SMOOTH (0) or LW_WALKER_ROOT_PIVOT (1), got 7"),
+            std::string::npos) << lw_last_error();
+  lw_walker_settings_default(&s);
+  s.soft_reach = 0;
+  EXPECT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &bad), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("soft_reach must be in (0, 1]"), std::string::npos) << lw_last_error();
+  EXPECT_EQ(bad, nullptr);
+}
+
 TEST(CApi, BadInputGivesAStatusAndAMessage) {
   lw_database* db = nullptr;
   EXPECT_EQ(lw_database_load(nullptr, &db), LW_ERROR_INVALID_ARGUMENT);

@@ -163,7 +163,7 @@ TEST(Serve, UnknownMethodAndMissingDatabaseAreExplained) {
   RunningServer srv;
   Client c(srv.port());
   expect_error(c, R"({"type":"hello","version":1,"method":"teleport"})", "bad_value",
-               "unknown method 'teleport' (known: accent, ik, wip, combined)");
+               "unknown method 'teleport' (known: accent, ik, wip, combined, walker)");
   expect_error(c, R"({"type":"hello","version":1,"method":"accent"})", "bad_value",
                "method 'accent' needs a database: start the server with --db FILE");
 }
