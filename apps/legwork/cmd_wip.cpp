@@ -104,6 +104,9 @@ void register_wip(CLI::App& app) {
                                       "3 cm over a rolling floor)")
       ->check(CLI::IsMember({"learned", "fixed"}));
   ev->add_option("--limit", a->limit, "evaluate only the first N trials")->check(CLI::PositiveNumber);
+  ev->add_flag("--cross-validate-detector", a->cross_validate_detector,
+               "also choose the adaptive detector's parameters by cross-validation by subject (as `wip tune`) and "
+               "report the held-out figures");
   ev->add_option("--rate", a->rate, "tracker rate, Hz (default 30)")->check(CLI::Range(10.0, 1000.0));
   add_method_options(ev, *a);
   ev->callback([a] { eval::run_wip_eval_job(*a); });

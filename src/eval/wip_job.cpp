@@ -278,6 +278,7 @@ void run_wip_eval_job(const WipJob& a) {
   run.options.drop_rate = a.drop_rate;
   run.options.seed = a.seed;
   run.options.truth.learned = a.truth == "learned";
+  run.cross_validate_detector = a.cross_validate_detector;
   run.log = [](const std::string& s) { std::cerr << s << std::flush; };
   const auto s = run_wip_evaluation(run);
   std::printf("%d trials, strict foot-offs +-200 ms: %s\nnoisy F1 %.3f; lenient overlap F1 %.3f (secondary); depth r %.3f / "

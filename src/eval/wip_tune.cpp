@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <sstream>
 
@@ -39,11 +38,6 @@ std::string DetectorParams::describe() const {
 
 std::vector<DetectorParams> default_detector_grid() {
   std::vector<DetectorParams> g;
-  if (std::getenv("LEGWORK_TUNE_ONE")) {  // DEBUG-REMOVE
-    double v[7];
-    std::sscanf(std::getenv("LEGWORK_TUNE_ONE"), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6]);
-    return {{v[0], v[1], v[2], v[3], v[4], v[5], v[6]}};
-  }
   for (double dc : {6.0, 8.0, 10.0})
     for (double lf : {0.1, 0.15, 0.2})
       for (double ml : {0.01, 0.015})
@@ -81,39 +75,30 @@ DetectionCounts score_detection(const DetectionTrial& t, const wip::Settings& se
   const auto clean = detected_swings(wip::run_wip(model, t.clean, ro).frames);
   const auto noisy = detected_swings(wip::run_wip(model, t.noisy, ro).frames);
   c.strict = match_foot_offs(clean, t.truth, 0.2, t.t_begin, t.t_end);
-  if (std::getenv("LEGWORK_TUNE_DEBUG")) {  // DEBUG-REMOVE
-    for (const auto& tr : t.truth) {
-      if (tr.off < t.t_begin || tr.off > t.t_end) continue;
-      double best = 1e9, bapex = 0;
-      for (const auto& d : clean) if (d.foot == tr.foot && std::abs(d.off - tr.off) < std::abs(best)) best = d.off - tr.off, bapex = d.apex;
-      std::fprintf(stderr, "TRUE %s foot %d off %.2f apex %.3f nearest %+.0f ms (det apex %.3f)%s\n", t.name.c_str(), tr.foot, tr.off, tr.apex, 1000 * best, bapex, std::abs(best) > 0.2 ? " MISS" : "");
-    }
-    for (const auto& d : clean) {
-      double best = 1e9;
-      for (const auto& tr : t.truth) if (d.foot == tr.foot && std::abs(d.off - tr.off) < std::abs(best)) best = d.off - tr.off;
-      if (std::abs(best) > 0.2 && d.off >= t.t_begin && d.off <= t.t_end) std::fprintf(stderr, "FP %s foot %d off %.2f apex %.3f nearest true %+.0f ms\n", t.name.c_str(), d.foot, d.off, d.apex, 1000 * best);
-    }
-  }
+  c.strict_100 = match_foot_offs(clean, t.truth, 0.1, t.t_begin, t.t_end);
   c.noisy = match_foot_offs(noisy, t.truth, 0.2, t.t_begin, t.t_end);
+  const auto false_clean = unmatched_detections(clean, t.truth, 0.2), false_noisy = unmatched_detections(noisy, t.truth, 0.2);
   for (const auto& g : t.still) {
     c.still_minutes += (g.end - g.begin) / 60;
-    for (const auto& d : clean) c.false_steps += d.off >= g.begin && d.off <= g.end ? 1 : 0;
-    for (const auto& d : noisy) c.false_steps_noisy += d.off >= g.begin && d.off <= g.end ? 1 : 0;
+    for (const auto& d : false_clean) c.false_steps += d.off >= g.begin && d.off <= g.end ? 1 : 0;
+    for (const auto& d : false_noisy) c.false_steps_noisy += d.off >= g.begin && d.off <= g.end ? 1 : 0;
   }
   return c;
 }
 
 DetectionCounts pool(std::span<const DetectionCounts> parts) {
   DetectionCounts c;
-  std::vector<StrictScore> s, n;
+  std::vector<StrictScore> s, s100, n;
   for (const auto& p : parts) {
     s.push_back(p.strict);
+    s100.push_back(p.strict_100);
     n.push_back(p.noisy);
     c.false_steps += p.false_steps;
     c.false_steps_noisy += p.false_steps_noisy;
     c.still_minutes += p.still_minutes;
   }
   c.strict = combine(s);
+  c.strict_100 = combine(s100);
   c.noisy = combine(n);
   return c;
 }

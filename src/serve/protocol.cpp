@@ -95,6 +95,10 @@ Hello parse_hello(const json& j) {
     if (!mp->is_string()) fail("bad_message", "hello.mapping must be a string (\"document\" or \"learned\")");
     h.method.mapping = mp->get<std::string>();
   }
+  if (auto d = j.find("detector"); d != j.end() && !d->is_null()) {
+    if (!d->is_string()) fail("bad_message", "hello.detector must be a string (\"document\" or \"adaptive\")");
+    h.method.detector = d->get<std::string>();
+  }
   if (auto js = j.find("joints"); js != j.end() && !(js->is_string() && js->get<std::string>() == "all"))
     h.joints = string_list(*js, "hello.joints (\"all\" or joint names)");
   if (auto f = j.find("format"); f != j.end()) {

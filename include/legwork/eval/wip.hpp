@@ -54,6 +54,10 @@ struct StrictScore {
 };
 StrictScore match_foot_offs(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth, double tolerance,
                             double t_begin, double t_end);
+// The detections that match_foot_offs (+-tolerance) leaves without a true
+// partner: the false steps, wherever they are.
+std::vector<SwingEvent> unmatched_detections(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth,
+                                             double tolerance);
 StrictScore combine(std::span<const StrictScore> scores);
 // "precision 0.950, recall n/a, F1 ..., foot-off latency median 55 ms, p90 90 ms".
 std::string format_strict(const StrictScore& s);
@@ -66,7 +70,9 @@ struct StillSegment {
   int false_steps_noisy = 0;  // the same in the noisy run
 };
 // Still stretches of at least `min_duration` s within [t_begin, t_end], from
-// the true contacts of both feet; false steps counted from `detected`.
+// the true contacts of both feet; false steps counted from `detected` (pass
+// the unmatched detections: a detection matched to the true foot-off that
+// ends the stretch is an early step, not a false one).
 std::vector<StillSegment> still_segments(const Motion& m, const std::string& name, const ContactOptions& truth,
                                          std::span<const SwingEvent> detected, double min_duration, double t_begin,
                                          double t_end);
@@ -140,6 +146,14 @@ struct WipEvalRun {
   std::string out;                 // output folder (created)
   WipEvalOptions options;
   std::function<void(const std::string&)> log;  // progress and skipped trials (may be empty)
+  bool cross_validate_detector = false;  // also choose the adaptive detector's parameters by subject (wip_tune.hpp)
+};
+// Step detection of one detector over all trials (strict scores, false steps).
+struct DetectorSummary {
+  std::string name;  // "document" or "adaptive"
+  StrictScore strict, strict_100, strict_noisy;
+  int false_steps = 0, false_steps_noisy = 0;
+  double false_steps_per_minute = NAN, false_steps_per_minute_noisy = NAN;
 };
 struct WipEvalSummary {
   int trials = 0, skipped = 0;
@@ -152,6 +166,11 @@ struct WipEvalSummary {
   // mapping and the learned one cross-validated by subject.
   Agreement depth_normal, depth_turning, learned, learned_normal, learned_turning;
   int learned_trials = 0;
+  DetectorSummary detectors[2];      // [0] the document's detector (before), [1] the adaptive one (after)
+  bool cross_validated = false;      // the adaptive detector's parameters were also chosen by subject (below)
+  StrictScore cv_strict, cv_noisy;   // held-out subjects pooled
+  double cv_false_per_minute = NAN, cv_false_per_minute_noisy = NAN;
+  std::string tuning_markdown, tuning_json;  // the cross-validation's report section and JSON
   std::vector<std::string> written;  // report.md, report.json
 };
 // Evaluates every trial (with the adaptive and the document's fixed

@@ -30,6 +30,7 @@ struct WipJob {
   double noise = 0.015, drop_rate = 0.02;
   unsigned long long seed = 1;
   int limit = 0;
+  bool cross_validate_detector = false;  // eval: also choose the adaptive detector's parameters by subject
 };
 
 // The method's settings from the job's options at tracker rate `rate` (Hz).

@@ -18,8 +18,8 @@ namespace legwork::eval {
 // One point of the detector's parameter grid (wip::SignalSettings /
 // wip::GaitSettings fields of the adaptive detector).
 struct DetectorParams {
-  double detect_cutoff = 8, lift_fraction = 0.2, min_lift = 0.015, min_rise = 0.05;
-  double noise_factor = 4, rise_noise_factor = 10, rise_fraction = 0.15;
+  double detect_cutoff = 10, lift_fraction = 0.2, min_lift = 0.01, min_rise = 0.05;
+  double noise_factor = 2.5, rise_noise_factor = 20, rise_fraction = 0.2;
   void apply(wip::Settings& s) const;  // sets the adaptive detector and these fields
   static DetectorParams of(const wip::Settings& s);
   std::string describe() const;  // "cutoff 8 Hz, lift 0.2 x apex, ..."
@@ -42,7 +42,7 @@ DetectionTrial prepare_detection_trial(const Motion& trial, const std::string& n
 
 // Counts of one setting on a set of trials (pooled).
 struct DetectionCounts {
-  StrictScore strict, noisy;
+  StrictScore strict, strict_100, noisy;
   int false_steps = 0, false_steps_noisy = 0;
   double still_minutes = 0;
   double false_per_minute() const { return still_minutes > 0 ? false_steps / still_minutes : NAN; }
