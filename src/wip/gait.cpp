@@ -99,17 +99,17 @@ void GaitMachine::init(const GaitSettings& p) {
 
 double GaitMachine::h1(const GaitSettings& p) const {
   if (p.detector == StepDetector::Adaptive)
-    return std::clamp(std::max(p.lift_fraction * apex_estimate, p.noise_factor * noise), p.min_lift, p.h1);
+    return std::min(std::max({p.lift_fraction * apex_estimate, p.noise_factor * noise, p.min_lift}), p.h1);
   return p.adaptive ? std::clamp(p.height_fraction * apex_estimate, p.min_h1, p.h1) : p.h1;
 }
 double GaitMachine::v1(const GaitSettings& p) const {
   if (p.detector == StepDetector::Adaptive)
-    return std::clamp(std::max(p.rise_fraction * up_estimate, p.rise_noise_factor * noise), p.min_rise, p.v1);
+    return std::min(std::max({p.rise_fraction * up_estimate, p.rise_noise_factor * noise, p.min_rise}), p.v1);
   return p.adaptive ? std::clamp(p.velocity_fraction * up_estimate, p.min_v1, p.v1) : p.v1;
 }
 double GaitMachine::v2(const GaitSettings& p) const {
   if (p.detector == StepDetector::Adaptive)
-    return std::clamp(std::max(p.velocity_fraction * down_estimate, p.rise_noise_factor * noise), p.min_rise, p.v2);
+    return std::min(std::max({p.velocity_fraction * down_estimate, p.rise_noise_factor * noise, p.min_rise}), p.v2);
   return p.adaptive ? std::clamp(p.velocity_fraction * down_estimate, p.min_v1, p.v2) : p.v2;
 }
 
