@@ -243,7 +243,7 @@ std::string tuning_markdown(const DetectorTuning& t) {
      << fmt(c.strict.median_ms, "%.0f") << "** | " << c.false_steps << " / " << c.false_steps_noisy << " ("
      << fmt(c.false_per_minute(), "%.2f") << " / " << fmt(c.false_per_minute_noisy(), "%.2f") << " per min) |\n";
   if (t.chosen_all >= 0)
-    md << "\nChosen on all subjects (the defaults): " << t.grid[static_cast<std::size_t>(t.chosen_all)].describe()
+    md << "\nChosen on all subjects (the adaptive detector's shipped parameters): " << t.grid[static_cast<std::size_t>(t.chosen_all)].describe()
        << ".\n";
   return md.str();
 }
