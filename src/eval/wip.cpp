@@ -470,22 +470,18 @@ void plot_wip_phases(const std::string& path, const std::string& title, std::spa
   std::filesystem::remove(tmp_strip);
 }
 
-namespace {
-
-std::string fmt_or_na(double v, const char* f) {
+std::string format_or_na(double v, const char* f) {
   if (!std::isfinite(v)) return "n/a";
   char b[64];
   std::snprintf(b, sizeof b, f, v);
   return b;
 }
 
-}  // namespace
-
 std::string format_strict(const StrictScore& s) {
-  return "precision " + fmt_or_na(s.precision, "%.3f") + ", recall " + fmt_or_na(s.recall, "%.3f") + ", F1 " +
-         fmt_or_na(s.f1, "%.3f") + " (" + std::to_string(s.matched) + " of " + std::to_string(s.true_steps) +
+  return "precision " + format_or_na(s.precision, "%.3f") + ", recall " + format_or_na(s.recall, "%.3f") + ", F1 " +
+         format_or_na(s.f1, "%.3f") + " (" + std::to_string(s.matched) + " of " + std::to_string(s.true_steps) +
          " true, " + std::to_string(s.detected) + " detected), foot-off latency median " +
-         fmt_or_na(s.median_ms, "%.0f ms") + ", p90 " + fmt_or_na(s.p90_ms, "%.0f ms");
+         format_or_na(s.median_ms, "%.0f ms") + ", p90 " + format_or_na(s.p90_ms, "%.0f ms");
 }
 
 std::string describe_wip_run(std::span<const wip::Info> frames, double rate, std::span<const SwingEvent> truth) {
@@ -553,12 +549,7 @@ nlohmann::json strict_json(const StrictScore& s) {
           {"latency_p90_ms", num(s.p90_ms)},   {"latency_mean_ms", num(s.mean_ms)}};
 }
 
-std::string na(double v, const char* f) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+std::string na(double v, const char* f) { return format_or_na(v, f); }
 
 void write_trial_plot(const WipTrialEval& e, const std::string& path) {
   render::LinePlot p;
@@ -675,6 +666,19 @@ struct Goal {
   bool met = false, known = true;
 };
 
+// The four step-detection goals for one detector's figures.
+void detector_goals(const std::string& who, const DetectorSummary& d, std::vector<Goal>& g) {
+  g.push_back({"strict step F1 >= 0.97" + who, na(d.strict.f1, "%.3f"), d.strict.f1 >= 0.97, std::isfinite(d.strict.f1)});
+  g.push_back({"strict step F1 >= 0.95 with noise" + who, na(d.strict_noisy.f1, "%.3f"), d.strict_noisy.f1 >= 0.95,
+               std::isfinite(d.strict_noisy.f1)});
+  g.push_back({"median foot-off latency <= 60 ms" + who, na(d.strict.median_ms, "%.0f ms"), d.strict.median_ms <= 60,
+               std::isfinite(d.strict.median_ms)});
+  g.push_back({"<= 1 false step per minute on still segments (clean and noisy)" + who,
+               na(d.false_steps_per_minute, "%.2f") + " / " + na(d.false_steps_per_minute_noisy, "%.2f") + " /min",
+               d.false_steps_per_minute <= 1 && d.false_steps_per_minute_noisy <= 1,
+               std::isfinite(d.false_steps_per_minute)});
+}
+
 std::vector<Goal> goals(const WipEvalSummary& s) {
   std::vector<Goal> g;
   g.push_back({"strict step F1 (+-200 ms) >= 0.97 over all " + std::to_string(s.trials) + " trials (the default settings)",
@@ -686,29 +690,15 @@ std::vector<Goal> goals(const WipEvalSummary& s) {
   g.push_back({"<= 1 false step per minute on still segments",
                na(s.false_steps_per_minute, "%.2f /min") + " over " + na(s.still_minutes, "%.2f") + " min",
                s.false_steps_per_minute <= 1, std::isfinite(s.false_steps_per_minute)});
-  for (const auto& d : s.detectors) {
-    if (d.name.empty()) continue;
-    const std::string who = " (" + d.name + " detector)";
-    g.push_back({"strict step F1 >= 0.97" + who, na(d.strict.f1, "%.3f"), d.strict.f1 >= 0.97, std::isfinite(d.strict.f1)});
-    g.push_back({"strict step F1 >= 0.95 with noise" + who, na(d.strict_noisy.f1, "%.3f"), d.strict_noisy.f1 >= 0.95,
-                 std::isfinite(d.strict_noisy.f1)});
-    g.push_back({"median foot-off latency <= 60 ms" + who, na(d.strict.median_ms, "%.0f ms"), d.strict.median_ms <= 60,
-                 std::isfinite(d.strict.median_ms)});
-    g.push_back({"<= 1 false step per minute on still segments (clean and noisy)" + who,
-                 na(d.false_steps_per_minute, "%.2f") + " / " + na(d.false_steps_per_minute_noisy, "%.2f") + " /min",
-                 d.false_steps_per_minute <= 1 && d.false_steps_per_minute_noisy <= 1,
-                 std::isfinite(d.false_steps_per_minute)});
-  }
+  for (const auto& d : s.detectors)
+    if (!d.name.empty()) detector_goals(" (" + d.name + " detector)", d, g);
   if (s.cross_validated) {
-    const std::string who = " (adaptive detector, parameters cross-validated by subject)";
-    g.push_back({"strict step F1 >= 0.97" + who, na(s.cv_strict.f1, "%.3f"), s.cv_strict.f1 >= 0.97, std::isfinite(s.cv_strict.f1)});
-    g.push_back({"strict step F1 >= 0.95 with noise" + who, na(s.cv_noisy.f1, "%.3f"), s.cv_noisy.f1 >= 0.95,
-                 std::isfinite(s.cv_noisy.f1)});
-    g.push_back({"median foot-off latency <= 60 ms" + who, na(s.cv_strict.median_ms, "%.0f ms"), s.cv_strict.median_ms <= 60,
-                 std::isfinite(s.cv_strict.median_ms)});
-    g.push_back({"<= 1 false step per minute on still segments (clean and noisy)" + who,
-                 na(s.cv_false_per_minute, "%.2f") + " / " + na(s.cv_false_per_minute_noisy, "%.2f") + " /min",
-                 s.cv_false_per_minute <= 1 && s.cv_false_per_minute_noisy <= 1, std::isfinite(s.cv_false_per_minute)});
+    DetectorSummary cv;
+    cv.strict = s.cv_strict;
+    cv.strict_noisy = s.cv_noisy;
+    cv.false_steps_per_minute = s.cv_false_per_minute;
+    cv.false_steps_per_minute_noisy = s.cv_false_per_minute_noisy;
+    detector_goals(" (adaptive detector, parameters cross-validated by subject)", cv, g);
   }
   g.push_back({"IK-target depth r >= 0.9 and RMS <= 8 cm (the document's mapping)",
                "r " + na(s.depth.correlation, "%.3f") + ", RMS " + na(100 * s.depth.rms, "%.1f cm"),

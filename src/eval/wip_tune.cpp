@@ -173,13 +173,6 @@ DetectorTuning tune_detector(std::span<const DetectionTrial> trials, const wip::
 
 namespace {
 
-std::string fmt(double v, const char* f) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-
 nlohmann::json counts_json(const DetectionCounts& c) {
   auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   return {{"f1", num(c.strict.f1)},
@@ -236,12 +229,12 @@ std::string tuning_markdown(const DetectorTuning& t) {
         "|---|---|---|---|---|---|---|\n";
   for (const auto& f : t.folds)
     md << "| " << f.subject << " | " << f.trials << " | " << t.grid[static_cast<std::size_t>(f.chosen)].describe() << " | "
-       << fmt(f.held_out.strict.f1, "%.3f") << " | " << fmt(f.held_out.noisy.f1, "%.3f") << " | "
-       << fmt(f.held_out.strict.median_ms, "%.0f") << " | " << f.held_out.false_steps << " / "
+       << format_or_na(f.held_out.strict.f1, "%.3f") << " | " << format_or_na(f.held_out.noisy.f1, "%.3f") << " | "
+       << format_or_na(f.held_out.strict.median_ms, "%.0f") << " | " << f.held_out.false_steps << " / "
        << f.held_out.false_steps_noisy << " |\n";
-  md << "| **all, held out** | | | **" << fmt(c.strict.f1, "%.3f") << "** | **" << fmt(c.noisy.f1, "%.3f") << "** | **"
-     << fmt(c.strict.median_ms, "%.0f") << "** | " << c.false_steps << " / " << c.false_steps_noisy << " ("
-     << fmt(c.false_per_minute(), "%.2f") << " / " << fmt(c.false_per_minute_noisy(), "%.2f") << " per min) |\n";
+  md << "| **all, held out** | | | **" << format_or_na(c.strict.f1, "%.3f") << "** | **" << format_or_na(c.noisy.f1, "%.3f") << "** | **"
+     << format_or_na(c.strict.median_ms, "%.0f") << "** | " << c.false_steps << " / " << c.false_steps_noisy << " ("
+     << format_or_na(c.false_per_minute(), "%.2f") << " / " << format_or_na(c.false_per_minute_noisy(), "%.2f") << " per min) |\n";
   if (t.chosen_all >= 0)
     md << "\nChosen on all subjects (the adaptive detector's shipped parameters): " << t.grid[static_cast<std::size_t>(t.chosen_all)].describe()
        << ".\n";

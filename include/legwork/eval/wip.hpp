@@ -59,6 +59,8 @@ StrictScore match_foot_offs(std::span<const SwingEvent> detected, std::span<cons
 std::vector<SwingEvent> unmatched_detections(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth,
                                              double tolerance);
 StrictScore combine(std::span<const StrictScore> scores);
+// A number printed with `printf_format`, or "n/a" when it is not finite.
+std::string format_or_na(double v, const char* printf_format);
 // "precision 0.950, recall n/a, F1 ..., foot-off latency median 55 ms, p90 90 ms".
 std::string format_strict(const StrictScore& s);
 
