@@ -344,6 +344,36 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
 
 std::string subject_of(const std::string& trial) { return trial.substr(0, trial.find('_')); }
 
+std::vector<wip::LearnSample> trial_learning_samples(const Motion& trial, const WipEvalOptions& opt) {
+  wip::Settings settings = opt.settings;
+  settings.mapping.depth = wip::DepthMapping::Document;
+  const wip::Model model = wip::make_model(trial.skeleton, settings);
+  wip::RunOptions ro;
+  ro.calibrate = false;
+  ro.keep_poses = false;
+  const auto frames = wip::run_wip(model, tracker_frames_from_motion(trial, settings.signal.rate), ro).frames;
+  const DepthTrack truth = true_depths(trial, settings.signal.rate);
+  return wip::learning_samples(frames, truth.z[0], truth.z[1], model.leg_length(), opt.settle);
+}
+
+std::map<std::string, std::optional<wip::LearnedMapping>> learned_tables_by_subject(
+    const std::map<std::string, std::vector<wip::LearnSample>>& samples_by_subject,
+    const std::function<void(const std::string&)>& log) {
+  std::map<std::string, std::optional<wip::LearnedMapping>> tables;
+  for (const auto& [subject, own] : samples_by_subject) {
+    std::vector<wip::LearnSample> train;
+    for (const auto& [other, samples] : samples_by_subject)
+      if (other != subject) train.insert(train.end(), samples.begin(), samples.end());
+    try {
+      tables[subject] = wip::build_learned_mapping(train);
+    } catch (const Error& err) {
+      tables[subject] = std::nullopt;
+      if (log) log("learned mapping without subject " + subject + ": " + err.what() + "\n");
+    }
+  }
+  return tables;
+}
+
 void evaluate_learned_depth(const Motion& trial, const wip::LearnedMapping& table, const WipEvalOptions& opt,
                             WipTrialEval& e) {
   wip::Settings settings = opt.settings;
@@ -919,24 +949,11 @@ void finish_summary(const Totals& t, WipEvalSummary& s) {
 // The learned mapping, cross-validated by subject: each trial is scored with
 // a table built only from the other subjects' walks (n/a when they are too few).
 void cross_validate_learned(const std::vector<Motion>& motions, std::vector<WipTrialEval>& evals, const WipEvalRun& run) {
-  std::map<std::string, std::optional<wip::LearnedMapping>> tables;
-  for (std::size_t i = 0; i < evals.size(); ++i) {
-    WipTrialEval& e = evals[i];
-    auto it = tables.find(e.subject);
-    if (it == tables.end()) {
-      std::vector<wip::LearnSample> train;
-      for (const auto& o : evals)
-        if (o.subject != e.subject) train.insert(train.end(), o.learn.begin(), o.learn.end());
-      std::optional<wip::LearnedMapping> table;
-      try {
-        table = wip::build_learned_mapping(train);
-      } catch (const Error& err) {
-        if (run.log) run.log("legwork wip eval: learned mapping without subject " + e.subject + ": " + err.what() + "\n");
-      }
-      it = tables.emplace(e.subject, std::move(table)).first;
-    }
-    if (it->second) evaluate_learned_depth(motions[i], *it->second, run.options, e);
-  }
+  std::map<std::string, std::vector<wip::LearnSample>> by_subject;
+  for (const auto& e : evals) by_subject[e.subject].insert(by_subject[e.subject].end(), e.learn.begin(), e.learn.end());
+  const auto tables = learned_tables_by_subject(by_subject, run.log);
+  for (std::size_t i = 0; i < evals.size(); ++i)
+    if (const auto& table = tables.at(evals[i].subject)) evaluate_learned_depth(motions[i], *table, run.options, evals[i]);
 }
 
 // Both step detectors on the prepared trials and, if asked, the adaptive

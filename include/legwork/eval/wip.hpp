@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -131,6 +133,16 @@ struct WipTrialEval {
 };
 // The CMU subject of a trial name ("105_02" -> "105").
 std::string subject_of(const std::string& trial);
+// The learned mapping's training samples of one trial: its own ankles through
+// the method (the document's mapping, opt's settings and rate) paired with
+// its real foot depths after opt.settle, as `wip eval` collects them.
+std::vector<wip::LearnSample> trial_learning_samples(const Motion& trial, const WipEvalOptions& opt);
+// One learned table per held-out subject, each built only from the samples of
+// the other subjects (nullopt, logged, when they are too few): the tables the
+// learned mapping is scored with, in `wip eval` and `eval combined`.
+std::map<std::string, std::optional<wip::LearnedMapping>> learned_tables_by_subject(
+    const std::map<std::string, std::vector<wip::LearnSample>>& samples_by_subject,
+    const std::function<void(const std::string&)>& log = {});
 // Runs the trial again with the learned mapping `table` and scores its depths
 // against e.true_depth (fills e.depth_learned, e.learned_z).
 void evaluate_learned_depth(const Motion& trial, const wip::LearnedMapping& table, const WipEvalOptions& opt,
