@@ -160,6 +160,20 @@ LW_API lw_status lw_model_create_wip(const lw_skeleton* skeleton, lw_model** out
  * (the repository ships data/wip/learned_mapping.txt); read once, copied. */
 LW_API lw_status lw_model_create_wip_learned(const lw_skeleton* skeleton, const char* table_path, lw_model** out);
 
+/* Walking-in-place options (legwork::wip::Settings, the rest at their defaults). */
+typedef enum lw_wip_detector {
+  LW_WIP_DETECTOR_DEFAULT = 0,   /* the library's default detector */
+  LW_WIP_DETECTOR_DOCUMENT = 1,  /* the document's H1/V1/V2 on the 4 Hz height (the reference) */
+  LW_WIP_DETECTOR_ADAPTIVE = 2   /* lighter filter, per-foot stance baseline, jitter-scaled thresholds (docs/wip.md) */
+} lw_wip_detector;
+typedef struct lw_wip_settings {
+  const char* table_path;  /* NULL: the document's depth mapping; else the learned table (as lw_model_create_wip_learned) */
+  int32_t detector;        /* lw_wip_detector */
+} lw_wip_settings;
+LW_API void lw_wip_settings_default(lw_wip_settings* s);
+/* Walking-in-place legs with these options (s NULL = defaults). */
+LW_API lw_status lw_model_create_wip_with(const lw_skeleton* skeleton, const lw_wip_settings* s, lw_model** out);
+
 /* A walk-cycle walker from a key-pose JSON file (skeleton found next to it);
  * steered frame by frame by the head device's yaw. Default settings. */
 LW_API lw_status lw_model_create_walker(const char* keys_json_path, lw_model** out);

@@ -115,6 +115,24 @@ def test_wip_learned_mapping_swings_the_feet_and_needs_its_table():
         assert z[:, foot].min() < -0.1 * model.leg_length < 0.1 * model.leg_length < z[:, foot].max()
 
 
+def test_wip_step_detector_is_a_setting_and_the_adaptive_one_lifts_earlier():
+    walk = legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/05_01.bvh"), drop_first=True)
+    assert wip.Settings().gait.detector in (wip.StepDetector.Document, wip.StepDetector.Adaptive)
+    first_swing = {}
+    for detector in (wip.StepDetector.Document, wip.StepDetector.Adaptive):
+        settings = wip.Settings()
+        settings.gait.detector = detector
+        model = wip.make_model(walk.skeleton, settings)
+        state, pose, info = wip.State(model), core.Pose(model.skeleton()), wip.Info()
+        for i, f in enumerate(core.tracker_frames_from_motion(walk, 30.0)):
+            wip.update(model, f, state, pose, info)
+            if info.phase[0] != wip.GaitPhase.DoubleSupport:
+                first_swing[detector] = i
+                break
+    assert wip.StepDetector.Document in first_swing and wip.StepDetector.Adaptive in first_swing
+    assert first_swing[wip.StepDetector.Adaptive] < first_swing[wip.StepDetector.Document]
+
+
 def test_walker_walks_forward_and_turns_to_the_head():
     walk = walkcycle.load_walk(str(SOURCE / "data/walks/normal.json"))
     cycle = walkcycle.build_cycle(walk.skeleton, walk.keys)

@@ -379,6 +379,30 @@ lw_status lw_model_create_wip_learned(const lw_skeleton* skeleton, const char* t
   });
 }
 
+void lw_wip_settings_default(lw_wip_settings* s) {
+  if (s) *s = lw_wip_settings{nullptr, LW_WIP_DETECTOR_DEFAULT};
+}
+
+lw_status lw_model_create_wip_with(const lw_skeleton* skeleton, const lw_wip_settings* s, lw_model** out) {
+  if (!skeleton || !out) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_wip_with: skeleton and out must not be NULL");
+  *out = nullptr;
+  const int32_t detector = s ? s->detector : LW_WIP_DETECTOR_DEFAULT;
+  if (detector < LW_WIP_DETECTOR_DEFAULT || detector > LW_WIP_DETECTOR_ADAPTIVE)
+    return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_wip_with: detector must be 0 (default), 1 (document) or "
+                                           "2 (adaptive), got " + std::to_string(detector));
+  return guarded("lw_model_create_wip_with", [&] {
+    wip::Settings settings;
+    if (detector == LW_WIP_DETECTOR_DOCUMENT) settings.gait.detector = wip::StepDetector::Document;
+    if (detector == LW_WIP_DETECTOR_ADAPTIVE) settings.gait.detector = wip::StepDetector::Adaptive;
+    wip::LearnedMapping table;
+    if (s && s->table_path) {
+      settings.mapping.depth = wip::DepthMapping::Learned;
+      table = wip::read_learned_mapping(s->table_path);
+    }
+    return store_model(LW_METHOD_WIP, wip::make_model(skeleton->skeleton, settings, {}, &table), out);
+  });
+}
+
 lw_status lw_model_create_walker(const char* keys_json_path, lw_model** out) {
   if (!keys_json_path || !out) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_walker: path and out must not be NULL");
   return lw_model_create_walker_with_settings(keys_json_path, nullptr, out);

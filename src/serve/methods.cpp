@@ -39,9 +39,13 @@ Skeleton avatar_skeleton(const Resources& res, double user_height) {
   return skel;
 }
 
-// The legs' depth mapping named in the session's options (document | learned)
-// and the learned table it needs (null for the document's).
+// The legs' foot-off detector and depth mapping named in the session's
+// options (detector document | adaptive, mapping document | learned) and the
+// learned table the mapping needs (null for the document's).
 const wip::LearnedMapping* leg_mapping(const Resources& res, const MethodOptions& opt, wip::Settings& s) {
+  if (opt.detector == "document") s.gait.detector = wip::StepDetector::Document;
+  else if (opt.detector == "adaptive") s.gait.detector = wip::StepDetector::Adaptive;
+  else if (!opt.detector.empty()) throw Error("detector '" + opt.detector + "' is not one of: document, adaptive");
   if (opt.mapping == "document") return nullptr;
   if (opt.mapping != "learned")
     throw Error("mapping '" + opt.mapping + "' is not one of: document, learned");

@@ -224,6 +224,56 @@ TEST(CApi, WipWithTheLearnedMappingWalksOnARealWalk) {
 
 // The combined avatar with the learned legs: its leg joints differ from the
 // document's mapping on the same real walk, its upper body does not.
+// The step detector through lw_wip_settings: on a real walk the adaptive
+// detector lifts the avatar's left foot earlier than the document's
+// thresholds; defaults equal lw_model_create_wip; a bad value is refused, named.
+TEST(CApi, WipStepDetectorIsASetting) {
+  lw_skeleton* skel = nullptr;
+  ASSERT_EQ(lw_skeleton_load_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), &skel), LW_OK) << lw_last_error();
+  Frames f;
+  ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), 30, 1, &f.data, &f.count), LW_OK);
+  lw_wip_settings settings;
+  lw_wip_settings_default(&settings);
+  EXPECT_EQ(settings.detector, LW_WIP_DETECTOR_DEFAULT);
+  EXPECT_EQ(settings.table_path, nullptr);
+  settings.detector = 7;
+  lw_model* model = nullptr;
+  EXPECT_EQ(lw_model_create_wip_with(skel, &settings, &model), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_STREQ(lw_last_error(), "lw_model_create_wip_with: detector must be 0 (default), 1 (document) or 2 (adaptive), got 7");
+  // First frame where the left foot is 2 cm above where it stood, per model.
+  auto first_lift = [&](lw_model* m) {
+    lw_avatar* avatar = nullptr;
+    EXPECT_EQ(lw_avatar_create(m, &avatar), LW_OK);
+    const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(m));
+    const int foot = humanoid_joint(m, "LeftFoot");
+    std::vector<double> world(3 * static_cast<std::size_t>(n));
+    double rest = NAN;
+    int lift = -1;
+    for (int32_t i = 0; i < f.count && lift < 0; ++i) {
+      EXPECT_GE(lw_avatar_update(avatar, &f.data[i]), 0);
+      EXPECT_EQ(lw_avatar_pose(avatar, nullptr, nullptr, world.data(), n), LW_OK);
+      const double y = world[3 * static_cast<std::size_t>(foot) + 1];
+      if (i == 0) rest = y;
+      else if (y > rest + 0.02) lift = i;
+    }
+    lw_avatar_destroy(avatar);
+    lw_model_destroy(m);
+    return lift;
+  };
+  int lift[3];
+  for (int d = 0; d < 3; ++d) {
+    settings.detector = d;
+    ASSERT_EQ(lw_model_create_wip_with(skel, &settings, &model), LW_OK) << lw_last_error();
+    lift[d] = first_lift(model);
+  }
+  ASSERT_EQ(lw_model_create_wip(skel, &model), LW_OK);
+  EXPECT_EQ(first_lift(model), lift[LW_WIP_DETECTOR_DEFAULT]);
+  lw_skeleton_destroy(skel);
+  ASSERT_GT(lift[LW_WIP_DETECTOR_DOCUMENT], 0) << "the document's detector never lifted the foot";
+  ASSERT_GT(lift[LW_WIP_DETECTOR_ADAPTIVE], 0) << "the adaptive detector never lifted the foot";
+  EXPECT_LT(lift[LW_WIP_DETECTOR_ADAPTIVE], lift[LW_WIP_DETECTOR_DOCUMENT]);
+}
+
 TEST(CApi, CombinedWithTheLearnedMappingMovesOnlyTheLegsOtherwise) {
   lw_skeleton* skel = nullptr;
   ASSERT_EQ(lw_skeleton_load_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), &skel), LW_OK) << lw_last_error();

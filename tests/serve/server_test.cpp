@@ -507,6 +507,30 @@ TEST(ServeWip, LearnedMappingIsASessionOption) {
   EXPECT_EQ(none.expect("error")["message"].get<std::string>().rfind("mapping 'learned' needs the learned table: start the server with --wip-table FILE", 0), 0u);
 }
 
+// The step detector (issue 13 item 2) is a session option: on the same real
+// walk the adaptive detector lifts the left foot (leaves double support)
+// earlier than the document's thresholds; an unknown name is refused, named.
+TEST(ServeWip, StepDetectorIsASessionOption) {
+  RunningServer srv;
+  const auto frames = trial_frames("walking/07_02.bvh", true);
+  int first_swing[2] = {-1, -1};
+  for (int adaptive = 0; adaptive < 2; ++adaptive) {
+    Client c(srv.port());
+    c.hello({{"method", "wip"}, {"detector", adaptive ? "adaptive" : "document"}});
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      c.send_text(json_frame(frames[i]));
+      const json p = c.expect("pose");
+      if (first_swing[adaptive] < 0 && p["info"]["phase_left"] != "double_support") first_swing[adaptive] = static_cast<int>(i);
+    }
+  }
+  ASSERT_GE(first_swing[0], 0) << "the document's detector saw no left step";
+  ASSERT_GE(first_swing[1], 0) << "the adaptive detector saw no left step";
+  EXPECT_LT(first_swing[1], first_swing[0]) << "the adaptive detector did not lift the foot earlier";
+  Client bad(srv.port());
+  bad.send_text(R"({"type":"hello","version":1,"method":"wip","detector":"psychic"})");
+  EXPECT_EQ(bad.expect("error")["message"], "detector 'psychic' is not one of: document, adaptive");
+}
+
 TEST(ServeCombined, UpperBodyFollowsTheHandsAndTheLegsComeFromWip) {
   RunningServer srv;
   Client c(srv.port());

@@ -36,6 +36,7 @@ struct MethodOptions {
   double exaggeration = 1.0;         // accent: hand-motion exaggeration about the head
   double user_height = 0;            // metres; 0 = the avatar skeleton's own height
   std::string mapping = "document";  // wip / combined legs' depths: document (equations 1-4) | learned
+  std::string detector;              // wip / combined legs' foot-off detector: document | adaptive ("" = the default)
   // accent: with several classes allowed, recognise the activity and search
   // only its class (accent::Settings::recognize_class); false: search all.
   bool recognize_class = true;
