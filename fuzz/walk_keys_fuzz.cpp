@@ -6,6 +6,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/walkcycle/cycle.hpp>
+#include <legwork/walkcycle/keys.hpp>
 #include <legwork/walkcycle/offline/keys.hpp>
 #include <legwork/walkcycle/offline/walk.hpp>
 
@@ -30,7 +31,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Skeleton& skel = fuzz::sample_skeleton();
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
-    const walkcycle::WalkKeys keys = walkcycle::parse_walk_keys(text, skel, "fuzz.json");
+    walkcycle::WalkKeys keys = walkcycle::parse_walk_keys(text, skel, "fuzz.json");
+    // The harness's cap (not the reader's): a cycle of up to 1000 frames (the
+    // file limit) made every execution bake and walk thousands of frames,
+    // 135 exec/s. Longer cycles are retimed to kMaxFuzzCycleFrames, the same
+    // code `walkcycle --frames` runs; the parser still sees the full range.
+    constexpr int kMaxFuzzCycleFrames = 64;
+    if (keys.frames_per_cycle > kMaxFuzzCycleFrames) keys = walkcycle::retime(keys, kMaxFuzzCycleFrames);
     const walkcycle::CycleModel cycle = walkcycle::build_cycle(skel, keys);
     check_motion(walkcycle::bake_cycle(cycle));
     walkcycle::WalkOptions o;

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -48,6 +49,21 @@ json recognized_classes(const AccentRun& run, const Database& db) {
   if (frames.empty()) return json::object();
   return {{"frames", frames}, {"switches", switches}};
 }
+
+// `legwork accent run` makes its run in memory (input frames, the accentuated
+// motion, per-frame figures: about 5 KB a frame), so a run is refused above
+// this many frames before the database is searched: 69 minutes at 120 Hz.
+// (The runtime itself, accent::update, keeps no history.)
+constexpr double kMaxRunFrames = 500'000;
+
+void check_run_frames(double frames, const std::string& input, double fps) {
+  if (frames <= kMaxRunFrames) return;
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "--input '%s' makes %.0f frames at the database's %g Hz; the limit is %.0f frames (a run is made in memory)",
+                input.c_str(), std::min(frames, 1e18), fps, kMaxRunFrames);
+  throw Error(buf);
+}
+
 }  // namespace
 
 void run_accent_job(const AccentJob& a) {
@@ -77,7 +93,9 @@ void run_accent_job(const AccentJob& a) {
   Motion truth;
   const auto in_ext = io::extension_of(a.input);
   if (in_ext == ".bvh") {
-    truth = resample(io::read_motion(a.input, a.input_options).motion, fps);
+    Motion file = io::read_motion(a.input, a.input_options).motion;
+    check_run_frames(std::floor(file.duration() * fps) + 1, a.input, fps);
+    truth = resample(file, fps);
     frames = tracker_frames_from_motion(truth);
     cfg.user_height = a.height > 0 ? a.height : measure_body(truth.skeleton).standing_height;
   } else if (in_ext == ".csv") {
@@ -88,6 +106,7 @@ void run_accent_job(const AccentJob& a) {
     throw Error("--input '" + a.input + "' must be a .bvh trial or a .csv headset session");
   }
   if (frames.empty()) throw Error("--input '" + a.input + "' has no samples");
+  check_run_frames(static_cast<double>(frames.size()), a.input, fps);
   if (!a.save_session.empty()) {
     io::write_tracker_csv(a.save_session, io::table_from_frames(frames));
     io::announce("headset session", a.save_session);

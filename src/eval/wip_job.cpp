@@ -14,6 +14,7 @@
 #include <legwork/wip/offline/walk_cycle.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -88,16 +89,47 @@ wip::Settings wip_settings(const WipJob& a, double rate) {
 
 namespace {
 
+// `legwork wip` makes its run in memory (tracker frames, per-frame figures,
+// the legs' motion: about 4 KB a frame, 450 MB for an hour at 30 Hz), so a
+// run is refused above this many tracker frames before any work: 4.6 hours
+// at 30 Hz. (The runtime itself, wip::update, keeps no history.)
+constexpr double kMaxRunFrames = 500'000;
+
+void check_run_frames(double frames, const std::string& what) {
+  if (frames <= kMaxRunFrames) return;
+  char buf[300];
+  std::snprintf(buf, sizeof buf, "%s makes %.0f tracker frames; the limit is %.0f frames (a run is made in memory)",
+                what.c_str(), std::min(frames, 1e18), kMaxRunFrames);
+  throw Error(buf);
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 TrackerInput load_input(const WipJob& a) {
   if (a.synthetic == !a.input.empty()) throw Error("give exactly one of --input FILE (.csv or .bvh) and --synthetic");
   if (a.synthetic) {
+    check_run_frames(std::floor(a.syn.duration * a.rate) + 1,
+                     "--duration " + number(a.syn.duration) + " s at --rate " + number(a.rate) + " Hz");
     SyntheticOptions o = a.syn;
     o.rate = a.rate;
     return tracker_input_synthetic(o);
   }
   const std::string ext = io::extension_of(a.input);
-  if (ext == ".csv") return tracker_input_from_csv(a.input);
-  if (ext == ".bvh") return tracker_input_from_motion(load_bvh_motion(a.input, a.keep_first), a.input, a.rate);
+  if (ext == ".csv") {
+    TrackerInput in = tracker_input_from_csv(a.input);
+    check_run_frames(static_cast<double>(in.frames.size()), "--input '" + a.input + "'");
+    return in;
+  }
+  if (ext == ".bvh") {
+    const Motion m = load_bvh_motion(a.input, a.keep_first);
+    check_run_frames(std::floor(m.duration() * a.rate) + 1, "--input '" + a.input + "' (" + number(m.duration()) +
+                                                                 " s) at --rate " + number(a.rate) + " Hz");
+    return tracker_input_from_motion(m, a.input, a.rate);
+  }
   throw Error("--input '" + a.input + "' must be a tracker .csv or a .bvh motion");
 }
 

@@ -1,4 +1,5 @@
 #include <legwork/io/bvh.hpp>
+#include <legwork/io/file_writer.hpp>
 #include <legwork/io/text.hpp>
 
 #include <algorithm>
@@ -100,10 +101,11 @@ void quat_to_euler(const Quat& q, const Channel* order, double* degrees) {
   degrees[2] = rad2deg(c);
 }
 
-std::string format_bvh(const Motion& m, const BvhWriteOptions& opt) {
+namespace {
+
+// Refuses a motion the file could not hold faithfully (before anything is written).
+void check_writable(const Motion& m, const std::vector<JointChannels>& layout) {
   const Skeleton& s = m.skeleton;
-  s.validate();
-  const auto layout = opt.channels.empty() ? default_layout(m) : opt.channels;
   if (!(m.fps > 0) || !std::isfinite(m.fps)) throw Error("write_bvh: frame rate must be positive, got " + std::to_string(m.fps));
   for (const Vec3& t : m.all_translations())
     if (!t.allFinite()) throw Error("write_bvh: the motion has a non-finite joint translation");
@@ -113,61 +115,101 @@ std::string format_bvh(const Motion& m, const BvhWriteOptions& opt) {
     throw Error("write_bvh: channel layout has " + std::to_string(layout.size()) + " joints, skeleton has " +
                 std::to_string(s.joint_count()));
   for (int j = 0; j < s.joint_count(); ++j) {
-    int rot = 0;
-    for (Channel c : layout[static_cast<std::size_t>(j)].channels) rot += c >= Channel::Xrotation;
-    if (rot != 3 && rot != 0)
-      throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] +
-                  "' has a layout with " + std::to_string(rot) + " rotation channels; legwork writes 0 or 3");
-    // A layout that cannot hold the motion would lose data silently.
+    const std::string& name = s.names[static_cast<std::size_t>(j)];
     const auto& ch = layout[static_cast<std::size_t>(j)].channels;
+    int rot = 0;
+    for (Channel c : ch) rot += c >= Channel::Xrotation;
+    if (rot != 3 && rot != 0)
+      throw Error("write_bvh: joint '" + name + "' has a layout with " + std::to_string(rot) + " rotation channels; legwork writes 0 or 3");
+    // A layout that cannot hold the motion would lose data silently.
     const int pos = static_cast<int>(ch.size()) - rot;
     if (pos != 0 && pos != 3)
-      throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] + "' has a layout with " +
-                  std::to_string(pos) + " position channels; legwork writes 0 or 3");
+      throw Error("write_bvh: joint '" + name + "' has a layout with " + std::to_string(pos) + " position channels; legwork writes 0 or 3");
     if (pos == 0 && translates(m, j))
-      throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] +
-                  "' moves away from its rest offset but its layout has no position channels");
+      throw Error("write_bvh: joint '" + name + "' moves away from its rest offset but its layout has no position channels");
     if (rot == 0) {
       for (int f = 0; f < m.frame_count(); ++f)
         if (m.frame(f).rotations[static_cast<std::size_t>(j)].angularDistance(Quat::Identity()) > 1e-9)
-          throw Error("write_bvh: joint '" + s.names[static_cast<std::size_t>(j)] +
-                      "' rotates but its layout has no rotation channels");
+          throw Error("write_bvh: joint '" + name + "' rotates but its layout has no rotation channels");
     }
   }
+}
+
+// HIERARCHY ... "Frame Time: x\n".
+std::string bvh_header(const Motion& m, const std::vector<JointChannels>& layout, double scale) {
   std::string out = "HIERARCHY\n";
-  write_joint(out, s, layout, children_lists(s), 0, 0, opt.scale);
+  write_joint(out, m.skeleton, layout, children_lists(m.skeleton), 0, 0, scale);
   out += "MOTION\nFrames: " + std::to_string(m.frame_count()) + "\nFrame Time: ";
   char buf[64];
   auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, 1.0 / m.fps, std::chars_format::general, 10);
   out.append(buf, ptr);
   out += '\n';
-  out.reserve(out.size() + static_cast<std::size_t>(m.frame_count()) * static_cast<std::size_t>(s.joint_count()) * 40);
-  for (int f = 0; f < m.frame_count(); ++f) {
-    auto pose = m.frame(f);
-    bool first = true;
-    for (int j = 0; j < s.joint_count(); ++j) {
-      const auto& ch = layout[static_cast<std::size_t>(j)].channels;
-      Channel rot_order[3];
-      int nr = 0;
-      for (Channel c : ch)
-        if (c >= Channel::Xrotation) rot_order[nr++] = c;
-      double euler[3] = {0, 0, 0};
-      if (nr == 3) quat_to_euler(pose.rotations[static_cast<std::size_t>(j)], rot_order, euler);
-      int r = 0;
-      for (Channel c : ch) {
-        if (!first) out += ' ';
-        first = false;
-        if (c >= Channel::Xrotation) append_number(out, euler[r++]);
-        else append_number(out, pose.translations[static_cast<std::size_t>(j)][static_cast<int>(c)] * opt.scale);
-      }
-    }
-    out += '\n';
-  }
   return out;
 }
 
+// One motion line.
+void append_frame(std::string& out, const Motion& m, int f, const std::vector<JointChannels>& layout, double scale) {
+  auto pose = m.frame(f);
+  bool first = true;
+  for (int j = 0; j < m.skeleton.joint_count(); ++j) {
+    const auto& ch = layout[static_cast<std::size_t>(j)].channels;
+    Channel rot_order[3];
+    int nr = 0;
+    for (Channel c : ch)
+      if (c >= Channel::Xrotation) rot_order[nr++] = c;
+    double euler[3] = {0, 0, 0};
+    if (nr == 3) quat_to_euler(pose.rotations[static_cast<std::size_t>(j)], rot_order, euler);
+    int r = 0;
+    for (Channel c : ch) {
+      if (!first) out += ' ';
+      first = false;
+      if (c >= Channel::Xrotation) append_number(out, euler[r++]);
+      else append_number(out, pose.translations[static_cast<std::size_t>(j)][static_cast<int>(c)] * scale);
+    }
+  }
+  out += '\n';
+}
+
+// The file text in pieces of about kChunkBytes, each passed to `sink` (the
+// whole text never has to be held: a long walk's file is ~100 MB).
+constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+
+template <class Sink>
+void emit_bvh(const Motion& m, const BvhWriteOptions& opt, std::string header, const std::vector<JointChannels>& layout,
+              Sink&& sink) {
+  std::string out = std::move(header);
+  for (int f = 0; f < m.frame_count(); ++f) {
+    append_frame(out, m, f, layout, opt.scale);
+    if (out.size() >= kChunkBytes) sink(out), out.clear();
+  }
+  sink(out);
+}
+
+std::vector<JointChannels> checked_layout(const Motion& m, const BvhWriteOptions& opt) {
+  m.skeleton.validate();
+  auto layout = opt.channels.empty() ? default_layout(m) : opt.channels;
+  check_writable(m, layout);
+  return layout;
+}
+
+}  // namespace
+
+std::string format_bvh(const Motion& m, const BvhWriteOptions& opt) {
+  const auto layout = checked_layout(m, opt);
+  std::string header = bvh_header(m, layout, opt.scale);
+  std::string all;
+  all.reserve(header.size() + static_cast<std::size_t>(m.frame_count()) * static_cast<std::size_t>(m.skeleton.joint_count()) * 40);
+  emit_bvh(m, opt, std::move(header), layout, [&](const std::string& piece) { all += piece; });
+  return all;
+}
+
 void write_bvh(const std::string& path, const Motion& m, const BvhWriteOptions& opt) {
-  write_text_file(path, format_bvh(m, opt));
+  // Everything that can refuse the motion runs before the file is opened.
+  const auto layout = checked_layout(m, opt);
+  std::string header = bvh_header(m, layout, opt.scale);
+  TextFileWriter file(path);
+  emit_bvh(m, opt, std::move(header), layout, [&](const std::string& piece) { file.write(piece); });
+  file.close();
 }
 
 }  // namespace legwork::io

@@ -1,4 +1,5 @@
 #include <legwork/io/text.hpp>
+#include <legwork/io/file_writer.hpp>
 
 #include <legwork/core/files.hpp>
 
@@ -63,14 +64,36 @@ std::string read_text_file(const std::string& path) {
   return text;
 }
 
-void write_text_file(const std::string& path, const std::string& text) {
+TextFileWriter::TextFileWriter(const std::string& path) : path_(path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a directory, not a file");
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error(path + ": cannot write file (" + std::strerror(errno) + ")");
-  out << text;
-  out.flush();
-  if (!out) throw Error(path + ": write failed (" + std::strerror(errno) + ")");
+  file_ = std::fopen(path.c_str(), "wb");
+  if (!file_) throw Error(path + ": cannot write file (" + std::strerror(errno) + ")");
+}
+
+TextFileWriter::~TextFileWriter() {
+  if (file_) std::fclose(file_);
+}
+
+void TextFileWriter::write(std::string_view piece) {
+  if (!file_) throw Error(path_ + ": write after close");
+  if (!piece.empty() && std::fwrite(piece.data(), 1, piece.size(), file_) != piece.size())
+    throw Error(path_ + ": write failed (" + std::strerror(errno) + ")");
+}
+
+void TextFileWriter::close() {
+  if (!file_) return;
+  const bool ok = std::fflush(file_) == 0;
+  const int err = errno;
+  const bool closed = std::fclose(file_) == 0;
+  file_ = nullptr;
+  if (!ok || !closed) throw Error(path_ + ": write failed (" + std::strerror(ok ? errno : err) + ")");
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  TextFileWriter out(path);
+  out.write(text);
+  out.close();
 }
 
 std::string extension_of(const std::string& path) { return legwork::extension_of(path); }

@@ -16,10 +16,12 @@ legwork_cli_test(accent_run_glb_exact accent run --db ${ACC_DB} --input ${D}/wal
                  --out ${O}/accent_07_02.glb --mode exact --k 3 --no-align --no-smooth --exaggerate 1.3)
 legwork_cli_test(accent_run_target accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
                  --out ${O}/accent_07_02_daz.bvh --target ${PROJECT_SOURCE_DIR}/data/cmu/bvh_daz/climbing_ladder/14_33.bvh)
-add_test(NAME cli.accent_speed COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
-         --json ${O}/accent_speed.json)
-set_tests_properties(cli.accent_run cli.accent_run_glb_exact cli.accent_run_target cli.accent_speed
-                     PROPERTIES FIXTURES_REQUIRED accent_db)
+set_tests_properties(cli.accent_run cli.accent_run_glb_exact cli.accent_run_target PROPERTIES FIXTURES_REQUIRED accent_db)
+if(LEGWORK_BENCH)  # accent_speed is a benchmark program (bench/); the sanitizer builds have none
+  add_test(NAME cli.accent_speed COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
+           --json ${O}/accent_speed.json)
+  set_tests_properties(cli.accent_speed PROPERTIES FIXTURES_REQUIRED accent_db)
+endif()
 legwork_cli_error(accent_build_unknown_class "error: .*no class 'dancing' \\(classes present: basketball, boxing" accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing
                  --out ${O}/x.lwdb)
 legwork_cli_error(accent_build_bad_ext "error: --out '.*x.db' must end in .lwdb" accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --out ${O}/x.db)

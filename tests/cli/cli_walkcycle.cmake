@@ -66,3 +66,7 @@ legwork_cli_error(walkcycle_stance_turn "stance foot \\(heel / ball down within 
                   walkcycle --keys ${W}/normal.json --path ${W}/paths/quarter-turn.json --report ${O}/wc_turn.json)
 legwork_cli_error(walkcycle_stance_turn_bad "--stance-turn: nope not in \\{ball,twist\\}"
                   walkcycle --keys ${W}/normal.json --path ${W}/paths/quarter-turn.json --stance-turn nope --out ${O}/x.bvh)
+# A walk is made in memory: one longer than the frame limit is refused before any work, naming the option.
+legwork_cli_error(walkcycle_steps_over_frame_limit
+                  "error: --steps 100000 makes a walk of about 1200036 frames at 24 fps; the limit is 500000 frames"
+                  walkcycle --keys ${W}/normal.json --steps 100000 --out ${O}/x.bvh)

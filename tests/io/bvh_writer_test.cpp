@@ -97,6 +97,29 @@ TEST(BvhWriter, WriteBvhStoresTheFormattedText) {
   std::filesystem::remove(path);
 }
 
+// write_bvh streams the text in pieces of about 1 MB (a long walk is never
+// held whole as text): a motion of several pieces is written byte for byte
+// as format_bvh makes it, and nothing is written for a refused motion.
+TEST(BvhWriter, StreamedFileOfManyPiecesEqualsTheFormattedText) {
+  const auto f = io::read_bvh(testdata::sample("cmu/bvh/walking/07_01.bvh").string());
+  Motion m(f.motion.skeleton, f.motion.fps, 8 * f.motion.frame_count());
+  for (int i = 0; i < m.frame_count(); ++i) m.set_frame(i, f.motion.frame(i % f.motion.frame_count()));
+  const std::string text = io::format_bvh(m);
+  ASSERT_GT(text.size(), std::size_t{2} << 20);  // three pieces of 1 MB or more
+  const auto path = (std::filesystem::temp_directory_path() / ("legwork_bvh_stream_test_" + std::to_string(::getpid()) + ".bvh")).string();
+  io::write_bvh(path, m);
+  EXPECT_TRUE(io::read_text_file(path) == text);
+  std::filesystem::remove(path);
+  m.frame(m.frame_count() - 1).rotations[3] = Quat(std::numeric_limits<double>::quiet_NaN(), 0, 0, 0);
+  try {
+    io::write_bvh(path, m);
+    ADD_FAILURE() << "a NaN rotation was written";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "write_bvh: the motion has a non-finite joint rotation");
+  }
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
 TEST(BvhWriter, RefusalsNameTheProblem) {
   const auto f = io::parse_bvh(kBase, "base.bvh", metres());
   Motion m = f.motion;

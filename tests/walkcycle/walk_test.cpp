@@ -194,6 +194,24 @@ TEST(Walk, StepCountIsExactAndTheReportTellsTheLengthWalked) {
             "walk: steps must be at least 1 (a walk of 0 steps is the standing pose)");
 }
 
+// A walk is made in memory: one expected to be longer than max_frames is
+// refused before anything is allocated, with the figures.
+TEST(Walk, LongerThanTheFrameLimitIsRefusedWithTheFigures) {
+  const CycleModel m = shipped("normal");
+  WalkOptions o;
+  o.steps = 100000;
+  const double frames = expected_walk_frames(m, 1e6, o);
+  EXPECT_NEAR(frames, (100002 + 1) * m.half_cycle(), 1e-6);  // 24 fps cycle, output at the cycle's rate
+  EXPECT_EQ(expect_error([&] { walk_path(m, straight_path(1e6), o); }),
+            "walk: about " + std::to_string(std::llround(frames)) + " frames, more than the limit of 500000 frames a walk is made with");
+  // The expectation covers the walk: a limit of exactly the expected frames lets it through.
+  o.steps = 2;
+  o.max_frames = static_cast<int>(expected_walk_frames(m, 1e6, o));
+  const WalkResult two = walk_path(m, straight_path(1e6), o);
+  EXPECT_LE(two.motion.frame_count(), o.max_frames);
+  EXPECT_EQ(two.steps, 2);
+}
+
 TEST(Walk, RootMotionReportMatchesTheWalk) {
   const CycleModel m = shipped("normal");
   const WalkResult w = walk_path(m, straight_path(8.0));

@@ -146,6 +146,25 @@ wc::WalkKeys prepared_keys(const WalkJob& a, Skeleton& skel) {
   return keys;
 }
 
+// A walk is held in memory while it is made: one longer than
+// WalkOptions::max_frames is refused before any work, naming the option.
+void check_walk_size(const wc::CycleModel& model, const wc::Path& path, const wc::WalkOptions& wo, const WalkJob& a) {
+  const double frames = wc::expected_walk_frames(model, path.length(), wo);
+  if (frames <= wo.max_frames) return;
+  auto num = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return std::string(buf);
+  };
+  const std::string option = a.steps >= 0 ? "--steps " + std::to_string(a.steps)
+                             : a.straight > 0 ? "--straight " + num(a.straight)
+                             : !a.path.empty() ? "--path '" + a.path + "'" : "--svg-path";
+  const double fps = wo.fps > 0 ? wo.fps : model.fps;
+  throw Error(option + " makes a walk of about " + std::to_string(std::llround(std::min(frames, 1e18))) + " frames at " +
+              num(fps) + " fps; the limit is " + std::to_string(wo.max_frames) +
+              " frames (a walk is made in memory): walk fewer steps or at a lower --fps");
+}
+
 // The walk (along a path, straight, a number of steps) or the in-place
 // cycle; its figures printed and added to the report.
 Motion walk_or_cycle(const wc::CycleModel& model, const WalkJob& a, const std::string& name, json& report, bool& walked,
@@ -164,14 +183,15 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkJob& a, const std::s
   }
   Motion result;
   if (path) {
+    check_walk_size(model, *path, wo, a);
     const auto t0 = std::chrono::steady_clock::now();
-    const wc::WalkResult w = wc::walk_path(model, *path, wo);
+    wc::WalkResult w = wc::walk_path(model, *path, wo);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     std::string text;
     wc::add_walk_report(model, w, ms, report, text);
     std::printf("%s", text.c_str());
     if (!a.top.empty()) write_top(w, path.get(), a.top, name);
-    result = w.motion;
+    result = std::move(w.motion);  // (not a copy: a long walk's motion is hundreds of MB)
     ground = path->ground;
   } else {
     result = wc::bake_cycle(model);

@@ -44,6 +44,13 @@ double step_length(const CycleModel& m) {
 
 namespace {
 
+// Output frames of a walk of `steps` steps (or, steps < 0, of `path_length`
+// metres at `stride` metres a step), with the stop and the final hold.
+double expected_frames(double half, double dt, int steps, double path_length, double stride) {
+  const double expected_steps = steps >= 0 ? steps + 2.0 : path_length / std::max(stride, 0.01) + 3.0;
+  return (expected_steps * half + half) / dt;
+}
+
 // Weight of the standing pose in the final two steps of a walk that ends:
 // step k0 = stop_step - 1 shortens the stride to `amp` of the cycle's
 // (weight rising to 1 - amp), the stop step settles into the standing pose
@@ -451,8 +458,11 @@ WalkResult PathWalk::take() {
 void PathWalk::run() {
   // Frames are written into a motion sized from the expected walk (grown by
   // doubling if needed, trimmed at the end) instead of appended one by one.
-  const double expected_steps = opt.steps >= 0 ? opt.steps + 2.0 : path.length() / std::max(L, 0.01) + 3.0;
-  r.motion = Motion(m.skeleton, out_fps, static_cast<int>(std::min(1e6, (expected_steps * half + half) / dt)) + 2);
+  const double expected = expected_frames(half, dt, opt.steps, path.length(), L);
+  if (!(expected <= opt.max_frames))
+    throw Error("walk: about " + std::to_string(std::llround(std::min(expected, 1e18))) + " frames, more than the limit of " +
+                std::to_string(opt.max_frames) + " frames a walk is made with");
+  r.motion = Motion(m.skeleton, out_fps, static_cast<int>(expected) + 2);
   r.labels.reserve(static_cast<std::size_t>(r.motion.frame_count()));
   r.heading.reserve(static_cast<std::size_t>(r.motion.frame_count()));
   for (int f = 0;; ++f) {
@@ -461,6 +471,8 @@ void PathWalk::run() {
     if (end_time >= 0 && t > end_time + 1e-9) break;
     if (f > 0 && t / half > opt.max_steps + 2)
       throw Error("walk: more than " + std::to_string(opt.max_steps) + " steps; is the path reachable?");
+    if (f >= opt.max_frames)
+      throw Error("walk: more than the limit of " + std::to_string(opt.max_frames) + " frames; is the path reachable?");
     decide_headings(f, t);
     const bool stopping = local_pose(t);
     const FootPoints cur = foot_points(m, local);
@@ -475,6 +487,11 @@ void PathWalk::run() {
 }
 
 }  // namespace
+
+double expected_walk_frames(const CycleModel& m, double path_length, const WalkOptions& opt) {
+  const double dt = m.fps / (opt.fps > 0 ? opt.fps : m.fps);  // cycle frames per output frame
+  return expected_frames(m.half_cycle(), dt, opt.steps, path_length, opt.steps >= 0 ? 0.0 : step_length(m));
+}
 
 // The final steps are planned from a prediction (straight travel, turned by
 // the headings); on a path that still turns there the walk can stop a few

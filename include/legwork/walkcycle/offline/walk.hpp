@@ -33,6 +33,12 @@
 
 namespace legwork::walkcycle {
 
+// Longest walk walk_path() makes (frames): it holds the whole motion with
+// its labels and headings (about 2.1 KB a frame for the 31-joint CMU
+// skeleton), so this bounds a walk near 1.1 GB: 500,000 frames are 5.8 hours
+// at 24 fps, about 41,000 steps of the shipped walks.
+inline constexpr int kMaxWalkFrames = 500'000;
+
 struct WalkOptions {
   double fps = 0;              // output rate; 0 = the walk's own rate
   RootMotion root = RootMotion::Smooth;
@@ -47,6 +53,7 @@ struct WalkOptions {
   double lookahead_steps = 1.0;  // heading lead along the path, in step lengths
   bool stop = true;            // end in the standing pose at the path's end
   int max_steps = 100000;      // safety limit
+  int max_frames = kMaxWalkFrames;  // longer walks are refused before anything is allocated
   // Walks again aiming past a miss of the path's end (> 1 cm), at most this
   // many times; the closest walk is kept (0: walk once).
   int end_iterations = 6;
@@ -109,6 +116,11 @@ struct WalkResult {
 
 // Straight-walk advance per step of the cycle (metres); the walk's stride.
 double step_length(const CycleModel& m);
+
+// Output frames a walk is expected to have (opt.steps steps, or the path's
+// length at the cycle's stride), before it is made; walk_path() refuses one
+// above opt.max_frames with this figure.
+double expected_walk_frames(const CycleModel& m, double path_length, const WalkOptions& opt = {});
 
 WalkResult walk_path(const CycleModel& m, const Path& path, const WalkOptions& opt = {});
 
