@@ -72,6 +72,8 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: foot contact thresholds need 0 <= contact_off <= contact_on <= 1");
   if (!std::isfinite(cfg.foot_release_seconds) || cfg.foot_release_seconds < 0)
     throw Error("accent: foot_release_seconds must be >= 0");
+  if (!std::isfinite(cfg.foot_lift_height) || cfg.foot_lift_height < 0 || cfg.foot_lift_height > 0.5)
+    throw Error("accent: foot_lift_height must be between 0 and 0.5 metres");
   if (!(cfg.ik_blend_min >= 0 && cfg.ik_blend_min <= cfg.ik_blend_max && cfg.ik_blend_max <= 1))
     throw Error("accent: IK blend shares need 0 <= ik_blend_min <= ik_blend_max <= 1");
   if (!(cfg.class_seconds >= 0) || !(cfg.class_hold_seconds >= 0) || !(cfg.class_margin >= 0 && cfg.class_margin < 1) ||
@@ -590,10 +592,15 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     }
     lock.weight = lock.locked ? 1.0 : std::max(0.0, lock.weight - fade);
     if (lock.weight <= 0) continue;
+    const double w = smooth01(lock.weight);
+    // A released foot travels from the lock to the synthesized ankle on a lifted
+    // arc (sin^2: no velocity step at either end) instead of along the floor.
+    const double arc = std::sin(kPi * (1.0 - lock.weight));
     ik::TwoBoneTarget target;
-    target.position = lock.position;
+    target.position = ankle.translation + w * (lock.position - ankle.translation) + Vec3::UnitY() * (cfg.foot_lift_height * arc * arc);
     target.rotation = lock.rotation;
-    target.position_weight = target.rotation_weight = smooth01(lock.weight);
+    target.position_weight = 1.0;
+    target.rotation_weight = w;
     target.hint_weight = 0;  // keep the synthesized knee's bend plane
     ik::solve_two_bone(model.skeleton(), chain, target, out, st.model_space);
   }

@@ -232,6 +232,54 @@ TEST_F(HeldOut, PlantedFeetStayPutAndSlideLess) {
   EXPECT_LT(c, a);
 }
 
+// A foot let go at the end of a contact travels back to the synthesized foot
+// on a lifted arc: where the avatar's feet are near the floor they slide less
+// (the evaluation's foot-skating measure: horizontal ankle travel between
+// frames within 3 cm of the ankle's own floor level) than when released along
+// the floor, and released feet rise by about the lift.
+TEST_F(HeldOut, ReleasedFeetLiftInsteadOfSliding) {
+  auto run_with = [&](double lift) {
+    Settings s;
+    s.foot_lift_height = lift;
+    return accentuate_motion(*db_, s, *input_);
+  };
+  const AccentRun flat = run_with(0.0), lifted = run_with(0.05);
+  auto floor_slide = [](const Motion& m) {
+    const auto& r = m.skeleton.roles;
+    double slide = 0;
+    int pairs = 0;
+    for (Role a : {Role::LeftAnkle, Role::RightAnkle}) {
+      std::vector<Vec3> p;
+      for (int f = 0; f < m.frame_count(); ++f) p.push_back(joint_positions(m.skeleton, m.frame(f))[static_cast<std::size_t>(r[a])]);
+      std::vector<double> h;
+      for (const auto& x : p) h.push_back(x.y());
+      std::sort(h.begin(), h.end());
+      const double floor = h[h.size() / 20] + 0.03;
+      for (std::size_t f = 0; f + 1 < p.size(); ++f)
+        if (p[f].y() < floor && p[f + 1].y() < floor) {
+          slide += std::hypot(p[f + 1].x() - p[f].x(), p[f + 1].z() - p[f].z());
+          ++pairs;
+        }
+    }
+    return slide / std::max(pairs, 1);
+  };
+  double rise = 0;  // highest ankle difference lifted - flat
+  for (int f = 0; f < lifted.output.frame_count(); ++f) {
+    const auto a = joint_positions(lifted.output.skeleton, lifted.output.frame(f));
+    const auto b = joint_positions(flat.output.skeleton, flat.output.frame(f));
+    for (Role ankle : {Role::LeftAnkle, Role::RightAnkle}) {
+      const auto j = static_cast<std::size_t>(lifted.output.skeleton.roles[ankle]);
+      rise = std::max(rise, a[j].y() - b[j].y());
+    }
+  }
+  const double s_flat = floor_slide(flat.output), s_lifted = floor_slide(lifted.output);
+  std::printf("[ figures  ] ankle slide near the floor: %.2f cm/frame released along the floor, %.2f lifted 5 cm; "
+              "highest rise %.1f cm\n", 100 * s_flat, 100 * s_lifted, 100 * rise);
+  EXPECT_LT(s_lifted, s_flat);
+  EXPECT_GT(rise, 0.03);
+  EXPECT_LT(rise, 0.05 + 1e-6);
+}
+
 // The IK blend follows coverage: a walk matched against boxing only is far
 // from everything and takes more of the IK body than matched against walking;
 // with the blend off the share is 0.
@@ -477,6 +525,16 @@ TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
   ac.classes = {};
   ac.k_left = 1000;
   EXPECT_THROW(make_model(db, ac), Error);
+  for (double lift : {-0.01, 0.6, std::numeric_limits<double>::quiet_NaN()}) {
+    Settings bad;
+    bad.foot_lift_height = lift;
+    try {
+      (void)make_model(db, bad);
+      ADD_FAILURE() << "foot_lift_height " << lift;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("foot_lift_height must be between 0 and 0.5 metres"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

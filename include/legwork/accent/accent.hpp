@@ -104,6 +104,10 @@ struct Settings {
   double foot_lock_follow_seconds = 0.15;
   double contact_on = 0.6, contact_off = 0.4;
   double foot_release_seconds = 0.15;
+  // A released foot (contact ended) travels back to the synthesized foot
+  // lifted by up to foot_lift_height (metres, a sin^2 arc over the release),
+  // instead of sliding along the floor; 0 = no lift.
+  double foot_lift_height = 0.05;
   // Confidence blend toward the full-body IK body (legwork::ik on the same
   // skeleton, run beside the synthesis): share of the IK pose in the output =
   // ik_blend_min, rising smoothly to ik_blend_max as the match distance

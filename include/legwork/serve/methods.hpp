@@ -38,6 +38,9 @@ struct MethodOptions {
   // accent: with several classes allowed, recognise the activity and search
   // only its class (accent::Settings::recognize_class); false: search all.
   bool recognize_class = true;
+  // accent (and combined's upper body): metres a foot released at the end of
+  // a contact is lifted on its way back (accent::Settings::foot_lift_height).
+  double foot_lift_height = 0.05;
 };
 
 // Per-frame diagnostics as a flat list of name -> number or name -> text
