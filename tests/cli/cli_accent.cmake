@@ -19,7 +19,7 @@ legwork_cli_test(accent_run_target accent run --db ${ACC_DB} --input ${D}/walkin
 # Every runtime setting of the engine is an option: the released feet's lift (accent::Settings::foot_lift_height).
 legwork_cli_test(accent_run_foot_lift accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
                  --foot-lift-height 0.08 --out ${O}/accent_07_02_lift.bvh)
-legwork_cli_error(accent_run_foot_lift_range "--foot-lift-height: Value 0.9 not in range 0 to 0.5"
+legwork_cli_error(accent_run_foot_lift_range "--foot-lift-height: Value 0.9 not in range 0\\.0+ to 0\\.50*"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --foot-lift-height 0.9 --out ${O}/x.bvh)
 set_tests_properties(cli.accent_run_foot_lift cli.accent_run_foot_lift_range PROPERTIES FIXTURES_REQUIRED accent_db)
 add_test(NAME cli.accent_speed COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
