@@ -71,9 +71,12 @@ void BM_Walk100StepsCurved(benchmark::State& st) {
 BENCHMARK(BM_Walk100StepsCurved)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // One character steered live: one walkcycle::update per frame at 30 Hz,
-// the heading asked for as the head's yaw.
+// the heading asked for as the head's yaw. Arg 0: the smooth root (default:
+// legs by IK); 1: document 001's pivoting root.
 void BM_WalkerUpdate(benchmark::State& st) {
-  const Model model = make_model(build_cycle(skeleton(), keys()));
+  Settings settings;
+  settings.root = st.range(0) == 1 ? RootMotion::Pivot : RootMotion::Smooth;
+  const Model model = make_model(build_cycle(skeleton(), keys()), settings);
   State s(model);
   Pose p(model.skeleton());
   TrackerFrame frame;
@@ -87,7 +90,7 @@ void BM_WalkerUpdate(benchmark::State& st) {
     benchmark::DoNotOptimize(p.translations.data());
   }
 }
-BENCHMARK(BM_WalkerUpdate);
+BENCHMARK(BM_WalkerUpdate)->Arg(0)->Arg(1);
 
 }  // namespace
 

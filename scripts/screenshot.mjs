@@ -3,8 +3,9 @@
 // in headless Chromium (Debian's /usr/bin/chromium, driven by web/'s playwright-core).
 //   node scripts/screenshot.mjs --url http://127.0.0.1:8080 [--out shot.png] [--trial walking/07_02]
 //        [--seq N --interval-ms 100] [--width 1280 --height 720] [--wait-poses 60] [--timeout-ms 120000] [--query "quality=high&a=accent&b=ik"]
-// --seq N writes N PNGs (out-000.png, ...) spaced --interval-ms apart instead of one.
-import { mkdirSync } from 'node:fs';
+// --seq N writes N PNGs (out-000.png, ...) spaced --interval-ms apart instead of one, and out-fps.txt:
+// the frames per second they were taken at (for a video at the replay's real speed).
+import { mkdirSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { launch } from '../web/test/browser.mjs'; // needs `npm ci` in web/ (scripts/setup.sh does it)
@@ -34,12 +35,18 @@ async function main() {
     const out = resolve(a.out);
     mkdirSync(dirname(out), { recursive: true });
     if (a.seq > 0) {
+      // A software-rendered page takes ~1 s per screenshot: the real times are written
+      // beside the frames (<out>-fps.txt: frames per second of the page's own clock), so a
+      // video made of them plays at the replay's speed, not faster.
+      const t0 = Date.now();
       for (let i = 0; i < a.seq; ++i) {
         const f = out.replace(/\.png$/, '') + `-${String(i).padStart(3, '0')}.png`;
         await page.screenshot({ path: f });
         console.log(f);
-        await page.waitForTimeout(a.intervalMs);
+        if (i + 1 < a.seq) await page.waitForTimeout(a.intervalMs);
       }
+      const fps = a.seq > 1 ? (a.seq - 1) / ((Date.now() - t0) / 1000) : 1;
+      writeFileSync(out.replace(/\.png$/, '') + '-fps.txt', `${fps.toFixed(3)}\n`);
     } else {
       await page.waitForTimeout(300);
       await page.screenshot({ path: out });

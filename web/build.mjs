@@ -1,5 +1,5 @@
-// Bundles src/main.js (and the three.js it imports) into dist/app.js and copies
-// the static page. `node build.mjs --watch` rebuilds on change.
+// Bundles src/main.js (and the three.js it imports) into dist/app.js, the
+// replay's stream worker into dist/stream-worker.js, and copies the static page. `node build.mjs --watch` rebuilds on change.
 import * as esbuild from 'esbuild';
 import { copyFileSync, mkdirSync } from 'node:fs';
 import { dirname, join } from 'node:path';
@@ -11,13 +11,13 @@ mkdirSync(dist, { recursive: true });
 for (const f of ['index.html', 'style.css']) copyFileSync(join(here, 'src', f), join(dist, f));
 
 const options = {
-  entryPoints: [join(here, 'src', 'main.js')],
+  entryPoints: { app: join(here, 'src', 'main.js'), 'stream-worker': join(here, 'src', 'stream-worker.js') },
   bundle: true,
   format: 'esm',
   target: 'es2020',
   minify: true,
   sourcemap: true,
-  outfile: join(dist, 'app.js'),
+  outdir: dist,
   logLevel: 'info',
 };
 if (process.argv.includes('--watch')) {

@@ -30,6 +30,8 @@ void register_serve(CLI::App& app) {
   cmd->add_option("--wip-table", o->wip_table,
                   "learned walking-in-place mapping for sessions asking \"mapping\": \"learned\" (default: "
                   "data/wip/learned_mapping.txt when present; `legwork wip learn` makes one)");
+  cmd->add_option("--walks", o->walks_dir,
+                  "walk files (legwork-walk/1) for sessions of method \"walker\" (default: data/walks when present)");
   cmd->add_option("--skeleton", o->skeleton_path, "BVH whose skeleton the ik/wip/combined avatars use when there is no --db (default: data/cmu/bvh/walking/07_01.bvh)");
   cmd->add_option("--host", o->host, "address to bind (127.0.0.1 = this machine only; 0.0.0.0 = every interface)")->capture_default_str();
   cmd->add_option("--port", o->port, "HTTP + WebSocket port (0 = any free port, printed)")->capture_default_str()->check(CLI::Range(0, 65535));
@@ -37,7 +39,7 @@ void register_serve(CLI::App& app) {
   cmd->add_option("--trials", o->trials_dir, "BVH trials for /api/trials and replay (default: data/cmu/bvh)");
   cmd->add_option("--vmc-in", o->vmc_in_port, "receive VMC trackers (/VMC/Ext/Hmd|Con|Tra/Pos) on this UDP port")->check(CLI::Range(1, 65535));
   cmd->add_option("--vmc-out", o->vmc_out, "send the body as a VMC Performer to HOST:PORT (Marionette default port 39539)");
-  cmd->add_option("--vmc-method", o->vmc_method, "method of the VMC-driven avatar (accent, ik, wip, combined)")->capture_default_str();
+  cmd->add_option("--vmc-method", o->vmc_method, "method of the VMC-driven avatar (accent, ik, wip, combined, walker)")->capture_default_str();
   cmd->add_option("--vmc-left", o->vmc_left_serial, "serial of the left controller (default: by side of the headset when tracking starts)");
   cmd->add_option("--vmc-right", o->vmc_right_serial, "serial of the right controller");
   cmd->add_option("--vmc-rate", o->vmc_rate_hz, "VMC input sampling rate, Hz")->capture_default_str()->check(CLI::Range(1.0, 240.0));
@@ -51,6 +53,7 @@ void register_serve(CLI::App& app) {
     if (o->web_dir.empty()) o->web_dir = default_path("web/dist");
     if (o->trials_dir.empty()) o->trials_dir = default_path("data/cmu/bvh");
     if (o->wip_table.empty()) o->wip_table = default_path("data/wip/learned_mapping.txt");
+    if (o->walks_dir.empty()) o->walks_dir = default_path("data/walks");
     if (o->db_path.empty() && o->skeleton_path.empty() && !o->trials_dir.empty()) {
       const auto p = std::filesystem::path(o->trials_dir) / "walking" / "07_01.bvh";
       if (std::filesystem::exists(p)) o->skeleton_path = p.string();

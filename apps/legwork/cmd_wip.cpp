@@ -18,6 +18,24 @@ void add_method_options(CLI::App* cmd, eval::WipJob& a) {
   cmd->add_option("--v2", a.v2, "descent velocity threshold V2, m/s (default 0.6)")->check(CLI::PositiveNumber);
   cmd->add_flag("--no-adaptive", a.no_adaptive,
                 "use H1/V1/V2 as fixed thresholds (default: they shrink toward the user's own step)");
+  cmd->add_option("--detector", a.detector,
+                  "foot-off detection: document (H1/V1/V2 on the 4 Hz height) or adaptive (lighter filter, stance baseline, "
+                  "noise-scaled thresholds; default " + a.detector + ")")
+      ->check(CLI::IsMember({"document", "adaptive"}));
+  cmd->add_option("--detect-cutoff", a.detect_cutoff, "adaptive detector: low-pass of its signal, Hz")->check(CLI::PositiveNumber);
+  cmd->add_option("--baseline-tau", a.baseline_tau, "adaptive detector: stance baseline time constant, s")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--noise-factor", a.noise_factor, "adaptive detector: foot-off height >= this x the tracker jitter")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--rise-noise-factor", a.rise_noise_factor,
+                  "adaptive detector: foot-off speed >= this (1/s) x the tracker jitter")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--lift-fraction", a.lift_fraction, "adaptive detector: foot-off height >= this x the apex estimate")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--rise-fraction", a.rise_fraction, "adaptive detector: foot-off speed >= this x the peak rise estimate")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--min-lift", a.min_lift, "adaptive detector: lowest foot-off height, m")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--min-rise", a.min_rise, "adaptive detector: lowest foot-off speed, m/s")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--raw-height", a.raw_height,
                 "feed the raw height into the equations (default: normalised by the user's step apex)");
   cmd->add_option("--stop-time", a.stop_time, "double support longer than this stops the legs, s (default 1.5)")
@@ -86,6 +104,9 @@ void register_wip(CLI::App& app) {
                                       "3 cm over a rolling floor)")
       ->check(CLI::IsMember({"learned", "fixed"}));
   ev->add_option("--limit", a->limit, "evaluate only the first N trials")->check(CLI::PositiveNumber);
+  ev->add_flag("--cross-validate-detector", a->cross_validate_detector,
+               "also choose the adaptive detector's parameters by cross-validation by subject (as `wip tune`) and "
+               "report the held-out figures");
   ev->add_option("--rate", a->rate, "tracker rate, Hz (default 30)")->check(CLI::Range(10.0, 1000.0));
   add_method_options(ev, *a);
   ev->callback([a] { eval::run_wip_eval_job(*a); });
@@ -101,8 +122,21 @@ void register_wip(CLI::App& app) {
   learn->add_option("--rate", a->rate, "tracker rate, Hz (default 30)")->check(CLI::Range(10.0, 1000.0));
   add_method_options(learn, *a);
   learn->callback([a] { eval::run_wip_learn_job(*a); });
-  cmd->callback([a, ev, learn] {
-    if (ev->parsed() || learn->parsed()) return;
+  auto* tune = cmd->add_subcommand(
+      "tune",
+      "Choose the adaptive step detector's parameters by cross-validation by subject: every parameter set of a grid\n"
+      "scored (strict F1 clean and with noise, latency, false steps on still segments) on every walking trial; each\n"
+      "subject scored with the set chosen on the other subjects. Writes report.md and report.json.\n"
+      "Example: legwork wip tune --data ../shared/data/cmu/bvh/walking --out wip-tune");
+  tune->add_option("--data", a->data, "folder of walking BVH trials (default ../shared/data/cmu/bvh/walking)");
+  tune->add_option("--out", a->eval_out, "output folder")->required();
+  tune->add_option("--limit", a->limit, "use only the first N trials")->check(CLI::PositiveNumber);
+  tune->add_option("--noise", a->noise, "jitter of the noisy run, m (default 0.015)")->check(CLI::NonNegativeNumber);
+  tune->add_option("--drop-rate", a->drop_rate, "dropped samples in the noisy run (default 0.02)")->check(CLI::Range(0.0, 0.9));
+  tune->add_option("--seed", a->seed, "noise seed (default 1)");
+  tune->callback([a] { eval::run_wip_tune_job(*a); });
+  cmd->callback([a, ev, learn, tune] {
+    if (ev->parsed() || learn->parsed() || tune->parsed()) return;
     if (a->syn.pause_start < 0) a->syn.pause_length = 0;
     eval::run_wip_job(*a);
   });

@@ -162,9 +162,37 @@ LW_API lw_status lw_model_create_wip(const lw_skeleton* skeleton, lw_model** out
  * (the repository ships data/wip/learned_mapping.txt); read once, copied. */
 LW_API lw_status lw_model_create_wip_learned(const lw_skeleton* skeleton, const char* table_path, lw_model** out);
 
+/* Walking-in-place options (legwork::wip::Settings, the rest at their defaults). */
+typedef enum lw_wip_detector {
+  LW_WIP_DETECTOR_DEFAULT = 0,   /* the library's default detector */
+  LW_WIP_DETECTOR_DOCUMENT = 1,  /* the document's H1/V1/V2 on the 4 Hz height (the reference) */
+  LW_WIP_DETECTOR_ADAPTIVE = 2   /* lighter filter, per-foot stance baseline, jitter-scaled thresholds (docs/wip.md) */
+} lw_wip_detector;
+typedef struct lw_wip_settings {
+  const char* table_path;  /* NULL: the document's depth mapping; else the learned table (as lw_model_create_wip_learned) */
+  int32_t detector;        /* lw_wip_detector */
+} lw_wip_settings;
+LW_API void lw_wip_settings_default(lw_wip_settings* s);
+/* Walking-in-place legs with these options (s NULL = defaults). */
+LW_API lw_status lw_model_create_wip_with(const lw_skeleton* skeleton, const lw_wip_settings* s, lw_model** out);
+
 /* A walk-cycle walker from a key-pose JSON file (skeleton found next to it);
- * steered frame by frame by the head device's yaw. */
+ * steered frame by frame by the head device's yaw. Default settings. */
 LW_API lw_status lw_model_create_walker(const char* keys_json_path, lw_model** out);
+
+typedef enum lw_walker_root {
+  LW_WALKER_ROOT_SMOOTH = 0, /* the root travels evenly, the legs (two-bone IK) hold the planted feet (default) */
+  LW_WALKER_ROOT_PIVOT = 1   /* document 001: the root is pushed so the planted foot's pivot stays put */
+} lw_walker_root;
+typedef struct lw_walker_settings {
+  int32_t root;              /* lw_walker_root */
+  double max_turn_per_step;  /* radians of heading change per step, >= 0 */
+  double soft_reach;         /* smooth root: fraction of a leg's length it may straighten to, (0, 1] */
+} lw_walker_settings;
+LW_API void lw_walker_settings_default(lw_walker_settings* s);
+/* The walker with settings (`s` NULL = defaults); a bad value is
+ * LW_ERROR_INVALID_ARGUMENT naming the field. */
+LW_API lw_status lw_model_create_walker_with_settings(const char* keys_json_path, const lw_walker_settings* s, lw_model** out);
 
 /* One avatar, two sources (legwork::combined): the upper body from head and
  * hands by accentuation over `db` (settings `s`, NULL = defaults), or, with

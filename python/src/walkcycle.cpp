@@ -23,6 +23,9 @@ void bind_walkcycle(pb::module_& m) {
         "naming the file and field at fault.");
   m.def("build_cycle", &build_cycle, "skeleton"_a, "keys"_a, "The mirrored walk cycle of four key poses.");
   pb::enum_<Pivot>(m, "Pivot").value("Heel", Pivot::Heel).value("Ball", Pivot::Ball);
+  pb::enum_<RootMotion>(m, "RootMotion", "How the root travels: Smooth (even speed, legs by IK) or Pivot (document 001).")
+      .value("Smooth", RootMotion::Smooth)
+      .value("Pivot", RootMotion::Pivot);
   pb::class_<Settings>(m, "Settings", "Walker options (legwork::walkcycle::Settings).")
       .def(pb::init<>())
       .def_readwrite("max_turn_per_step", &Settings::max_turn_per_step, "radians of heading change per step")
@@ -33,7 +36,9 @@ void bind_walkcycle(pb::module_& m) {
             s.start_position = Vec3(a.at(0), a.at(1), a.at(2));
           },
           "floor point under the root at the start, metres (y ignored)")
-      .def_readwrite("start_heading", &Settings::start_heading, "radians about y, 0 = facing +z");
+      .def_readwrite("start_heading", &Settings::start_heading, "radians about y, 0 = facing +z")
+      .def_readwrite("root", &Settings::root, "RootMotion.Smooth (default: even travel, legs by IK) or RootMotion.Pivot")
+      .def_readwrite("soft_reach", &Settings::soft_reach, "smooth root: fraction of a leg's length it may straighten to, (0, 1]");
   def_model_state<Model, State>(m, static_cast<void (*)(const Model&, State&)>(&reset), "Immutable walker model (owns its cycle).",
                                 "One walker's memory between frames.")
       .first.def("cycle", &Model::cycle, pb::return_value_policy::reference_internal);
@@ -45,7 +50,10 @@ void bind_walkcycle(pb::module_& m) {
       .def_readonly("heading", &Info::heading, "radians")
       .def_readonly("desired_heading", &Info::desired_heading, "radians")
       .def_readonly("left_planted", &Info::left_planted)
-      .def_readonly("pivot", &Info::pivot);
+      .def_readonly("pivot", &Info::pivot)
+      .def_readonly("pelvis_drop", &Info::pelvis_drop, "smooth root: metres the pelvis is lowered so the legs reach")
+      .def_readonly("foot_roll", &Info::foot_roll, "smooth root: largest roll of a foot out of reach, radians")
+      .def_readonly("reach_limited", &Info::reach_limited, "smooth root: a leg needed more than soft_reach");
   def_update(m, &update,
              "One frame: the head device's yaw steers (held when not usable); the walk advances by the frame's dt;\n"
              "`out` (a legwork.core.Pose of model.skeleton()) gets the world pose; returns legwork.core.UpdateStatus.");

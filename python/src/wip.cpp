@@ -24,7 +24,13 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("order", &SignalSettings::order)
       .def_readwrite("buffer_seconds", &SignalSettings::buffer_seconds)
       .def_readwrite("confidence_tau", &SignalSettings::confidence_tau, "seconds")
-      .def_readwrite("floor_tau", &SignalSettings::floor_tau, "seconds; 0 = fixed floor");
+      .def_readwrite("floor_tau", &SignalSettings::floor_tau, "seconds; 0 = fixed floor")
+      .def_readwrite("detect_cutoff", &SignalSettings::detect_cutoff, "adaptive detector: low-pass of its signal, Hz")
+      .def_readwrite("baseline_tau", &SignalSettings::baseline_tau, "adaptive detector: stance baseline, seconds")
+      .def_readwrite("noise_tau", &SignalSettings::noise_tau, "adaptive detector: tracker jitter estimate, seconds");
+  pb::enum_<StepDetector>(m, "StepDetector", "Foot-off detection: the document's thresholds or the adaptive detector.")
+      .value("Document", StepDetector::Document)
+      .value("Adaptive", StepDetector::Adaptive);
   pb::class_<GaitSettings>(m, "GaitSettings", "Gait-phase thresholds (metres, m/s, seconds).")
       .def(pb::init<>())
       .def_readwrite("h1", &GaitSettings::h1)
@@ -34,7 +40,14 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("min_stance_time", &GaitSettings::min_stance_time)
       .def_readwrite("max_ascent_time", &GaitSettings::max_ascent_time)
       .def_readwrite("lost_confidence", &GaitSettings::lost_confidence)
-      .def_readwrite("adaptive", &GaitSettings::adaptive);
+      .def_readwrite("adaptive", &GaitSettings::adaptive)
+      .def_readwrite("detector", &GaitSettings::detector, "legwork.wip.StepDetector")
+      .def_readwrite("lift_fraction", &GaitSettings::lift_fraction)
+      .def_readwrite("rise_fraction", &GaitSettings::rise_fraction)
+      .def_readwrite("noise_factor", &GaitSettings::noise_factor)
+      .def_readwrite("rise_noise_factor", &GaitSettings::rise_noise_factor)
+      .def_readwrite("min_lift", &GaitSettings::min_lift, "metres")
+      .def_readwrite("min_rise", &GaitSettings::min_rise, "m/s");
   pb::enum_<SpeedModel>(m, "SpeedModel").value("StepSpeed", SpeedModel::StepSpeed).value("StepFrequency", SpeedModel::StepFrequency);
   pb::enum_<DepthMapping>(m, "DepthMapping", "Fore-aft IK-target depths: the document's equations or the learned table.")
       .value("Document", DepthMapping::Document)

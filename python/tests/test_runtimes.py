@@ -115,6 +115,24 @@ def test_wip_learned_mapping_swings_the_feet_and_needs_its_table():
         assert z[:, foot].min() < -0.1 * model.leg_length < 0.1 * model.leg_length < z[:, foot].max()
 
 
+def test_wip_step_detector_is_a_setting_and_the_adaptive_one_lifts_earlier():
+    walk = legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/05_01.bvh"), drop_first=True)
+    assert wip.Settings().gait.detector in (wip.StepDetector.Document, wip.StepDetector.Adaptive)
+    first_swing = {}
+    for detector in (wip.StepDetector.Document, wip.StepDetector.Adaptive):
+        settings = wip.Settings()
+        settings.gait.detector = detector
+        model = wip.make_model(walk.skeleton, settings)
+        state, pose, info = wip.State(model), core.Pose(model.skeleton()), wip.Info()
+        for i, f in enumerate(core.tracker_frames_from_motion(walk, 30.0)):
+            wip.update(model, f, state, pose, info)
+            if info.phase[0] != wip.GaitPhase.DoubleSupport:
+                first_swing[detector] = i
+                break
+    assert wip.StepDetector.Document in first_swing and wip.StepDetector.Adaptive in first_swing
+    assert first_swing[wip.StepDetector.Adaptive] < first_swing[wip.StepDetector.Document]
+
+
 def test_walker_walks_forward_and_turns_to_the_head():
     walk = walkcycle.load_walk(str(SOURCE / "data/walks/normal.json"))
     cycle = walkcycle.build_cycle(walk.skeleton, walk.keys)
@@ -136,6 +154,32 @@ def test_walker_walks_forward_and_turns_to_the_head():
     assert steps.max() <= settings.max_turn_per_step + 1e-9
     with pytest.raises(legwork.Error, match="missing.json"):
         walkcycle.load_walk(str(SOURCE / "data/walks/missing.json"))
+
+
+def test_walker_root_is_smooth_by_default_and_pivot_on_request():
+    walk = walkcycle.load_walk(str(SOURCE / "data/walks/normal.json"))
+    cycle = walkcycle.build_cycle(walk.skeleton, walk.keys)
+    assert walkcycle.Settings().root == walkcycle.RootMotion.Smooth
+    spread = {}
+    for root in (walkcycle.RootMotion.Smooth, walkcycle.RootMotion.Pivot):
+        settings = walkcycle.Settings()
+        settings.root = root
+        model = walkcycle.make_model(cycle, settings)
+        state, pose, info = walkcycle.State(model), core.Pose(model.skeleton()), walkcycle.Info()
+        roots = []
+        for i in range(180):  # 3 s at 60 Hz, straight
+            f = core.TrackerFrame(i / 60.0)
+            f.set(core.Device.Head, np.array([0.0, 1.7, 0.0]), np.array([1.0, 0, 0, 0]))
+            assert walkcycle.update(model, f, state, pose, info) == core.UpdateStatus.Ok
+            roots.append(np.array(pose.translations[0])[[0, 2]])
+        speed = np.linalg.norm(np.diff(np.array(roots[60:]), axis=0), axis=1) * 60.0
+        spread[root] = (speed.max() - speed.min()) / speed.mean()
+        assert not info.reach_limited
+    assert spread[walkcycle.RootMotion.Smooth] < 0.4 < spread[walkcycle.RootMotion.Pivot]  # within +-20 % / lunging
+    bad = walkcycle.Settings()
+    bad.soft_reach = 1.5
+    with pytest.raises(legwork.Error, match=r"soft_reach must be in \(0, 1\]"):
+        walkcycle.make_model(cycle, bad)
 
 
 def test_step_f1_equals_cli_wip_eval(cli, tmp_path):

@@ -42,12 +42,20 @@ pivot_video=()
 
 # Uneven ground (issue 14, item 3): the three walks over a hill, up a ramp and
 # up a flight of stairs (height field, slope and stairs in the path files; the
-# feet put on the ground by the legs' IK). The video's floor is drawn flat:
-# read the feet's heights in the reports.
+# feet put on the ground by the legs' IK). The videos draw the ground under
+# the walk (treads and risers, the ramp, the hill) - the normal walk in three
+# quarter view and from the side, with a still of each from the side.
 for w in normal sneak double-bounce; do
   for g in hill ramp stairs; do
+    ground_video=()
+    if [ "$have_ffmpeg" = 1 ] && [ "$w" = normal ]; then
+      ground_video=(--video "$out/${w}_${g}.mp4")
+      "$LEGWORK" walkcycle --keys "$walks/$w.json" --path "$walks/paths/$g.json" --video "$out/${w}_${g}_side.mp4" \
+        --video-view side >/dev/null
+      ffmpeg -loglevel error -y -ss 3.2 -i "$out/${w}_${g}_side.mp4" -frames:v 1 "$out/${w}_${g}_side.png"
+    fi
     "$LEGWORK" walkcycle --keys "$walks/$w.json" --path "$walks/paths/$g.json" --out "$out/${w}_${g}.bvh" \
-      --report "$out/${w}_${g}_report.json" >/dev/null
+      --report "$out/${w}_${g}_report.json" "${ground_video[@]}" >/dev/null
   done
 done
 
@@ -103,6 +111,10 @@ fi
     echo "${w}_hill.bvh / ${w}_hill_report.json: '$w' over a hill (height field, 10 % grades): feet on the ground, slip and penetration in the report"
     echo "${w}_ramp.bvh / ${w}_ramp_report.json: '$w' up a 12 % ramp"
     echo "${w}_stairs.bvh / ${w}_stairs_report.json: '$w' up five stairs (0.15 m rise, 0.36 m run): feet planted flat on the treads"
+  done
+  for g in hill ramp stairs; do
+    echo "normal_${g}.mp4 / normal_${g}_side.mp4: the normal walk on the $g with the ground drawn (three-quarter view / from the side)"
+    echo "normal_${g}_side.png: a still of it from the side (3.2 s in): the feet on the ground, the toe's path (green)"
   done
   echo "16_15_keys.png: key poses extracted from CMU 16_15 (a real walk), averaged over its steady steps"
   echo "16_15_keys.json: the extracted key-pose file, ready to stylise"

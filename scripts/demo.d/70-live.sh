@@ -34,6 +34,8 @@ echo "live demo: legwork serve at $url"
 node "$root/scripts/screenshot.mjs" --url "$url" --trial walking/07_02 --out "$out/replay_07_02.png"
 node "$root/scripts/screenshot.mjs" --url "$url" --trial walking/07_02 --seq 40 --interval-ms 80 --out "$tmp/frame.png"
 if command -v ffmpeg >/dev/null 2>&1; then
+  # A time-lapse: software WebGL takes about a second (more on a busy machine) per screenshot;
+  # played at 10 fps, and the README says how far apart the frames really were.
   ffmpeg -loglevel error -y -framerate 10 -i "$tmp/frame-%03d.png" -pix_fmt yuv420p -vf "scale=trunc(iw/2)*2:trunc(ih/2)*2" \
     "$out/replay_07_02.mp4"
 fi
@@ -42,7 +44,9 @@ wait "$pid" 2>/dev/null || true
 pid=
 cat > "$out/README.txt" <<'TXT'
 replay_07_02.png: the browser viewer served by `legwork serve`, replaying held-out CMU walk 07_02's head and hands through the server's WebSocket: accentuated body (left), IK baseline (middle), ground truth (right)
-replay_07_02.mp4: the same replay over a few seconds (headless Chromium frames)
 recordings/: what the server recorded of those sessions (input as tracker CSV, output as BVH)
 TXT
+if [ -f "$tmp/frame-fps.txt" ] && [ -f "$out/replay_07_02.mp4" ]; then
+  echo "replay_07_02.mp4: the same replay as a time-lapse: 40 headless-Chromium screenshots taken $(awk '{printf "%.1f", 1 / $1}' "$tmp/frame-fps.txt") s apart (software WebGL), played at 10 fps" >>"$out/README.txt"
+fi
 echo "live demo: wrote $out"

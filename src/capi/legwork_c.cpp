@@ -381,13 +381,63 @@ lw_status lw_model_create_wip_learned(const lw_skeleton* skeleton, const char* t
   });
 }
 
+void lw_wip_settings_default(lw_wip_settings* s) {
+  if (s) *s = lw_wip_settings{nullptr, LW_WIP_DETECTOR_DEFAULT};
+}
+
+lw_status lw_model_create_wip_with(const lw_skeleton* skeleton, const lw_wip_settings* s, lw_model** out) {
+  if (!skeleton || !out) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_wip_with: skeleton and out must not be NULL");
+  *out = nullptr;
+  const int32_t detector = s ? s->detector : LW_WIP_DETECTOR_DEFAULT;
+  if (detector < LW_WIP_DETECTOR_DEFAULT || detector > LW_WIP_DETECTOR_ADAPTIVE)
+    return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_wip_with: detector must be 0 (default), 1 (document) or "
+                                           "2 (adaptive), got " + std::to_string(detector));
+  return guarded("lw_model_create_wip_with", [&] {
+    wip::Settings settings;
+    if (detector == LW_WIP_DETECTOR_DOCUMENT) settings.gait.detector = wip::StepDetector::Document;
+    if (detector == LW_WIP_DETECTOR_ADAPTIVE) settings.gait.detector = wip::StepDetector::Adaptive;
+    wip::LearnedMapping table;
+    if (s && s->table_path) {
+      settings.mapping.depth = wip::DepthMapping::Learned;
+      table = wip::read_learned_mapping(s->table_path);
+    }
+    return store_model(LW_METHOD_WIP, wip::make_model(skeleton->skeleton, settings, {}, &table), out);
+  });
+}
+
 lw_status lw_model_create_walker(const char* keys_json_path, lw_model** out) {
   if (!keys_json_path || !out) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_model_create_walker: path and out must not be NULL");
+  return lw_model_create_walker_with_settings(keys_json_path, nullptr, out);
+}
+
+void lw_walker_settings_default(lw_walker_settings* s) {
+  if (!s) return;
+  const walkcycle::Settings d;
+  *s = lw_walker_settings{d.root == walkcycle::RootMotion::Pivot ? LW_WALKER_ROOT_PIVOT : LW_WALKER_ROOT_SMOOTH, d.max_turn_per_step,
+                          d.soft_reach};
+}
+
+lw_status lw_model_create_walker_with_settings(const char* keys_json_path, const lw_walker_settings* s, lw_model** out) {
+  const char* where = "lw_model_create_walker_with_settings";
+  if (!keys_json_path || !out) return fail(LW_ERROR_INVALID_ARGUMENT, std::string(where) + ": path and out must not be NULL");
   *out = nullptr;
-  return guarded("lw_model_create_walker", [&] {
+  walkcycle::Settings settings;
+  if (s) {
+    if (s->root != LW_WALKER_ROOT_SMOOTH && s->root != LW_WALKER_ROOT_PIVOT)
+      return fail(LW_ERROR_INVALID_ARGUMENT, std::string(where) + ": root must be LW_WALKER_ROOT_SMOOTH (0) or LW_WALKER_ROOT_PIVOT (1), got " +
+                                                 std::to_string(s->root));
+    if (!std::isfinite(s->max_turn_per_step) || s->max_turn_per_step < 0)
+      return fail(LW_ERROR_INVALID_ARGUMENT, std::string(where) + ": max_turn_per_step must be a finite angle >= 0 (radians)");
+    if (!(s->soft_reach > 0 && s->soft_reach <= 1))
+      return fail(LW_ERROR_INVALID_ARGUMENT, std::string(where) + ": soft_reach must be in (0, 1]");
+    settings.root = s->root == LW_WALKER_ROOT_PIVOT ? walkcycle::RootMotion::Pivot : walkcycle::RootMotion::Smooth;
+    settings.max_turn_per_step = s->max_turn_per_step;
+    settings.soft_reach = s->soft_reach;
+  }
+  return guarded(where, [&] {
     const walkcycle::WalkFile walk = walkcycle::load_walk(keys_json_path);
     const walkcycle::CycleModel cycle = walkcycle::build_cycle(walk.skeleton, walk.keys);
-    return store_model(LW_METHOD_WALKER, walkcycle::make_model(cycle, walkcycle::Settings{}), out);
+    return store_model(LW_METHOD_WALKER, walkcycle::make_model(cycle, settings), out);
   });
 }
 

@@ -8,6 +8,7 @@
 #include <legwork/eval/metrics.hpp>
 #include <legwork/eval/run.hpp>
 #include <legwork/eval/session.hpp>
+#include <legwork/eval/wip.hpp>
 #include <legwork/io/bvh.hpp>
 #include <legwork/render/render.hpp>
 
@@ -49,6 +50,54 @@ struct Sum {
   }
 };
 
+Motion load_truth(const std::string& file, double rate) {
+  io::BvhReadOptions o;
+  o.drop_first_frame = true;
+  return resample(io::load_bvh(file, o), rate);
+}
+
+// The learned leg mapping for each held-out subject, built the way `wip eval`
+// builds it: from the other subjects' trials only (unreadable trials are
+// left out here and listed as skipped by the main loop).
+std::map<std::string, std::optional<wip::LearnedMapping>> held_out_tables(const CombinedEvalRun& run, double rate) {
+  WipEvalOptions opt;
+  opt.settings.signal.rate = rate;
+  std::map<std::string, std::vector<wip::LearnSample>> by_subject;
+  for (const auto& file : run.files) {
+    const std::string name = std::filesystem::path(file).stem().string();
+    try {
+      const auto samples = trial_learning_samples(load_truth(file, rate), opt);
+      auto& all = by_subject[subject_of(name)];
+      all.insert(all.end(), samples.begin(), samples.end());
+    } catch (const Error&) {
+    }
+  }
+  return learned_tables_by_subject(by_subject);
+}
+
+// The first trial as a video: truth beside each method, in place.
+void write_video(const std::string& path, const std::string& name, const Motion& truth,
+                 const std::map<std::string, Motion>& outputs) {
+  const int n = truth.frame_count();
+  std::vector<Motion> shown{truth};
+  std::vector<std::string> labels{"capture (truth)"};
+  for (const auto& [method, motion] : outputs) shown.push_back(motion), labels.push_back(method);
+  for (Motion& m : shown)
+    for (int f = 0; f < n; ++f) {
+      const Vec3 travel = truth.frame(f).translations[0];
+      m.frame(f).translations[0] -= Vec3(travel.x(), 0, travel.z());
+    }
+  std::vector<const Motion*> panels;
+  for (const Motion& m : shown) panels.push_back(&m);
+  render::VideoOptions vo;
+  vo.fps = 30;
+  vo.camera.width = 1280;
+  vo.camera.height = 540;
+  vo.camera.view = render::View::ThreeQuarter;
+  vo.title = "one avatar, two sources: " + name;
+  render::render_video_side_by_side(panels, labels, vo, path);
+}
+
 }  // namespace
 
 json evaluate_combined(const CombinedEvalRun& run) {
@@ -63,45 +112,33 @@ json evaluate_combined(const CombinedEvalRun& run) {
   double truth_skating = 0;
   long truth_frames = 0;
   int done = 0;
+  const auto tables = held_out_tables(run, rate);
   for (const auto& file : run.files) {
     const std::string name = std::filesystem::path(file).stem().string();
     if (run.progress) run.progress(done++, static_cast<int>(run.files.size()), name);
     try {
-      io::BvhReadOptions o;
-      o.drop_first_frame = true;
-      const Motion truth = resample(io::load_bvh(file, o), rate);
+      const Motion truth = load_truth(file, rate);
       const auto frames = tracker_frames_from_motion(truth);
       const int n = truth.frame_count();
       json row{{"trial", name}, {"frames", n}};
       std::map<std::string, Motion> outputs;
+      // The learned legs: a table built without this trial's subject (none when the others are too few).
+      const auto held = tables.find(subject_of(name));
+      const wip::LearnedMapping* table = held != tables.end() && held->second ? &*held->second : nullptr;
+      combined::Settings learned = settings;
+      learned.wip.mapping.depth = wip::DepthMapping::Learned;
       outputs.emplace("ik", run_ik_baseline(truth.skeleton, frames, rate));
       outputs.emplace("combined_ik", run_combined(combined::make_model(truth.skeleton, settings), frames, rate));
+      if (table)
+        outputs.emplace("combined_ik_learned", run_combined(combined::make_model(truth.skeleton, learned, table), frames, rate));
       if (db) {
         combined::Settings s = settings;
-        s.accent.user_height = measure_body(truth.skeleton).standing_height;
+        s.accent.user_height = learned.accent.user_height = measure_body(truth.skeleton).standing_height;
         outputs.emplace("accent", accent::accentuate(accent::make_model(*db, s.accent), frames, rate).output);
         outputs.emplace("combined_accent", run_combined(combined::make_model(*db, s), frames, rate));
+        if (table) outputs.emplace("combined_accent_learned", run_combined(combined::make_model(*db, learned, table), frames, rate));
       }
-      if (!run.video.empty() && trials.empty()) {
-        // In place: every panel minus the capture's horizontal travel, so the bodies fill their panels.
-        std::vector<Motion> shown{truth};
-        std::vector<std::string> labels{"capture (truth)"};
-        for (const auto& [method, motion] : outputs) shown.push_back(motion), labels.push_back(method);
-        for (Motion& m : shown)
-          for (int f = 0; f < n; ++f) {
-            const Vec3 travel = truth.frame(f).translations[0];
-            m.frame(f).translations[0] -= Vec3(travel.x(), 0, travel.z());
-          }
-        std::vector<const Motion*> panels;
-        for (const Motion& m : shown) panels.push_back(&m);
-        render::VideoOptions vo;
-        vo.fps = 30;
-        vo.camera.width = 1280;
-        vo.camera.height = 540;
-        vo.camera.view = render::View::ThreeQuarter;
-        vo.title = "one avatar, two sources: " + name;
-        render::render_video_side_by_side(panels, labels, vo, run.video);
-      }
+      if (!run.video.empty() && trials.empty()) write_video(run.video, name, truth, outputs);
       for (const auto& [method, motion] : outputs) {
         row[method] = truth_error(motion, truth);
         sums[method].add(row[method], n);
@@ -130,13 +167,17 @@ json evaluate_combined(const CombinedEvalRun& run) {
 }
 
 std::string combined_table(const json& report) {
-  static const std::map<std::string, std::string> label{{"ik", "IK avatar alone"},
-                                                        {"combined_ik", "combined: IK upper body + walking-in-place legs"},
-                                                        {"accent", "accentuation alone"},
-                                                        {"combined_accent", "combined: accentuated upper body + walking-in-place legs"}};
+  static const std::map<std::string, std::string> label{
+      {"ik", "IK avatar alone"},
+      {"combined_ik", "combined: IK upper body + walking-in-place legs (document's mapping)"},
+      {"combined_ik_learned", "combined: IK upper body + walking-in-place legs (learned mapping, without the trial's subject)"},
+      {"accent", "accentuation alone"},
+      {"combined_accent", "combined: accentuated upper body + walking-in-place legs (document's mapping)"},
+      {"combined_accent_learned",
+       "combined: accentuated upper body + walking-in-place legs (learned mapping, without the trial's subject)"}};
   std::string s = "| method | full body cm | lower body cm | hands cm (L / R) | foot skating cm/frame |\n|---|---|---|---|---|\n";
   char buf[256];
-  for (const char* m : {"ik", "combined_ik", "accent", "combined_accent"}) {
+  for (const char* m : {"ik", "combined_ik", "combined_ik_learned", "accent", "combined_accent", "combined_accent_learned"}) {
     if (!report["methods"].contains(m)) continue;
     const json& e = report["methods"][m];
     std::snprintf(buf, sizeof buf, "| %s | %.1f | %.1f | %.1f / %.1f | %.2f |\n", label.at(m).c_str(), e["full_body_cm"].get<double>(),

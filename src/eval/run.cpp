@@ -359,27 +359,10 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
 }
 
 Motion run_ik_baseline(const Motion& truth, double* seconds) {
-  const Skeleton& skel = truth.skeleton;
-  const ik::Model model = ik::make_model(skel);
-  ik::State state(model);
-  Motion out(skel, truth.fps, truth.frame_count());
-  std::vector<Transform> g(static_cast<std::size_t>(skel.joint_count()));
-  const auto at = [&](Role r) -> const Transform& { return g[static_cast<std::size_t>(skel.roles[r])]; };
-  const auto device = [&](Role r) { return DevicePose{at(r).translation, at(r).rotation, true}; };
-  double solver = 0;
-  for (int f = 0; f < truth.frame_count(); ++f) {
-    forward_kinematics(skel, truth.frame(f), g);
-    legwork::TrackerFrame in;
-    in.time = f * truth.frame_time();
-    in.head() = device(Role::Head);
-    in.hand(kLeft) = device(Role::LeftHand);
-    in.hand(kRight) = device(Role::RightHand);
-    const auto t0 = Clock::now();
-    ik::update(model, in, state, out.frame(f));
-    solver += since(t0);
-  }
-  if (seconds) *seconds += solver;
-  return out;
+  // Head and hands only: the baseline, like the engine, sees no foot trackers.
+  std::vector<TrackerFrame> frames = tracker_frames_from_motion(truth);
+  for (TrackerFrame& f : frames) f.foot(kLeft) = f.foot(kRight) = DevicePose{};
+  return run_ik_baseline(truth.skeleton, frames, truth.fps, seconds);
 }
 
 namespace {

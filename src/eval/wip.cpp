@@ -1,6 +1,7 @@
 // Walking-in-place evaluation: detected vs true swings, depth agreement,
 // the key-frame baseline, and the `legwork wip eval` report.
 #include <legwork/eval/wip.hpp>
+#include <legwork/eval/wip_tune.hpp>
 
 #include <legwork/io/progress.hpp>
 #include <legwork/core/stats.hpp>
@@ -127,10 +128,11 @@ void StrictScore::finish() {
   }
 }
 
-StrictScore match_foot_offs(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth, double tolerance,
-                            double t_begin, double t_end) {
-  StrictScore s;
-  s.tolerance_ms = 1000 * tolerance;
+namespace {
+
+// One-to-one pairs (detection, truth) within +-tolerance, closest first.
+std::vector<std::pair<std::size_t, std::size_t>> match_pairs(std::span<const SwingEvent> detected,
+                                                             std::span<const SwingEvent> truth, double tolerance) {
   struct Pair {
     double gap;
     std::size_t d, t;
@@ -142,13 +144,38 @@ StrictScore match_foot_offs(std::span<const SwingEvent> detected, std::span<cons
         pairs.push_back({std::abs(detected[d].off - truth[t].off), d, t});
   std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.gap < b.gap; });
   std::vector<char> used_d(detected.size(), 0), used_t(truth.size(), 0);
-  auto inside = [&](double t) { return t >= t_begin && t <= t_end; };
+  std::vector<std::pair<std::size_t, std::size_t>> out;
   for (const auto& p : pairs) {
     if (used_d[p.d] || used_t[p.t]) continue;
     used_d[p.d] = used_t[p.t] = 1;
-    if (!inside(truth[p.t].off)) continue;  // partner of a true step outside the window: not scored
+    out.emplace_back(p.d, p.t);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<SwingEvent> unmatched_detections(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth,
+                                             double tolerance) {
+  std::vector<char> used(detected.size(), 0);
+  for (const auto& [d, t] : match_pairs(detected, truth, tolerance)) used[d] = 1;
+  std::vector<SwingEvent> out;
+  for (std::size_t d = 0; d < detected.size(); ++d)
+    if (!used[d]) out.push_back(detected[d]);
+  return out;
+}
+
+StrictScore match_foot_offs(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth, double tolerance,
+                            double t_begin, double t_end) {
+  StrictScore s;
+  s.tolerance_ms = 1000 * tolerance;
+  std::vector<char> used_d(detected.size(), 0);
+  auto inside = [&](double t) { return t >= t_begin && t <= t_end; };
+  for (const auto& [d, t] : match_pairs(detected, truth, tolerance)) {
+    used_d[d] = 1;
+    if (!inside(truth[t].off)) continue;  // partner of a true step outside the window: not scored
     ++s.matched;
-    s.latencies_ms.push_back(1000 * (detected[p.d].off - truth[p.t].off));
+    s.latencies_ms.push_back(1000 * (detected[d].off - truth[t].off));
   }
   for (const auto& t : truth) s.true_steps += inside(t.off) ? 1 : 0;
   s.detected = s.matched;
@@ -281,15 +308,17 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
   e.steps = score_steps(e.detected, e.truth, opt.settle, t_end);
   e.strict = match_foot_offs(e.detected, e.truth, 0.2, opt.settle, t_end);
   e.strict_100 = match_foot_offs(e.detected, e.truth, 0.1, opt.settle, t_end);
-  e.still = still_segments(trial, name, opt.truth, e.detected, opt.min_still, opt.settle, t_end);
+  e.still = still_segments(trial, name, opt.truth, unmatched_detections(e.detected, e.truth, 0.2), opt.min_still,
+                           opt.settle, t_end);
 
   wip::add_tracker_noise(samples, opt.noise, opt.drop_rate, opt.seed * 1000003ULL + static_cast<std::uint64_t>(trial_index));
   const auto noisy = wip::run_wip(model, samples, ro).frames;
   e.detected_noisy = detected_swings(noisy);
   e.steps_noisy = score_steps(e.detected_noisy, e.truth, opt.settle, t_end);
   e.strict_noisy = match_foot_offs(e.detected_noisy, e.truth, 0.2, opt.settle, t_end);
+  const auto false_noisy = unmatched_detections(e.detected_noisy, e.truth, 0.2);
   for (auto& g : e.still)
-    for (const auto& d : e.detected_noisy) g.false_steps_noisy += d.off >= g.begin && d.off <= g.end ? 1 : 0;
+    for (const auto& d : false_noisy) g.false_steps_noisy += d.off >= g.begin && d.off <= g.end ? 1 : 0;
 
   e.true_depth = true_depths(trial, rate);
   e.turning = e.true_depth.heading_range_deg > kTurningDegrees;
@@ -314,6 +343,36 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
 }
 
 std::string subject_of(const std::string& trial) { return trial.substr(0, trial.find('_')); }
+
+std::vector<wip::LearnSample> trial_learning_samples(const Motion& trial, const WipEvalOptions& opt) {
+  wip::Settings settings = opt.settings;
+  settings.mapping.depth = wip::DepthMapping::Document;
+  const wip::Model model = wip::make_model(trial.skeleton, settings);
+  wip::RunOptions ro;
+  ro.calibrate = false;
+  ro.keep_poses = false;
+  const auto frames = wip::run_wip(model, tracker_frames_from_motion(trial, settings.signal.rate), ro).frames;
+  const DepthTrack truth = true_depths(trial, settings.signal.rate);
+  return wip::learning_samples(frames, truth.z[0], truth.z[1], model.leg_length(), opt.settle);
+}
+
+std::map<std::string, std::optional<wip::LearnedMapping>> learned_tables_by_subject(
+    const std::map<std::string, std::vector<wip::LearnSample>>& samples_by_subject,
+    const std::function<void(const std::string&)>& log) {
+  std::map<std::string, std::optional<wip::LearnedMapping>> tables;
+  for (const auto& [subject, own] : samples_by_subject) {
+    std::vector<wip::LearnSample> train;
+    for (const auto& [other, samples] : samples_by_subject)
+      if (other != subject) train.insert(train.end(), samples.begin(), samples.end());
+    try {
+      tables[subject] = wip::build_learned_mapping(train);
+    } catch (const Error& err) {
+      tables[subject] = std::nullopt;
+      if (log) log("learned mapping without subject " + subject + ": " + err.what() + "\n");
+    }
+  }
+  return tables;
+}
 
 void evaluate_learned_depth(const Motion& trial, const wip::LearnedMapping& table, const WipEvalOptions& opt,
                             WipTrialEval& e) {
@@ -441,22 +500,18 @@ void plot_wip_phases(const std::string& path, const std::string& title, std::spa
   std::filesystem::remove(tmp_strip);
 }
 
-namespace {
-
-std::string fmt_or_na(double v, const char* f) {
+std::string format_or_na(double v, const char* f) {
   if (!std::isfinite(v)) return "n/a";
   char b[64];
   std::snprintf(b, sizeof b, f, v);
   return b;
 }
 
-}  // namespace
-
 std::string format_strict(const StrictScore& s) {
-  return "precision " + fmt_or_na(s.precision, "%.3f") + ", recall " + fmt_or_na(s.recall, "%.3f") + ", F1 " +
-         fmt_or_na(s.f1, "%.3f") + " (" + std::to_string(s.matched) + " of " + std::to_string(s.true_steps) +
+  return "precision " + format_or_na(s.precision, "%.3f") + ", recall " + format_or_na(s.recall, "%.3f") + ", F1 " +
+         format_or_na(s.f1, "%.3f") + " (" + std::to_string(s.matched) + " of " + std::to_string(s.true_steps) +
          " true, " + std::to_string(s.detected) + " detected), foot-off latency median " +
-         fmt_or_na(s.median_ms, "%.0f ms") + ", p90 " + fmt_or_na(s.p90_ms, "%.0f ms");
+         format_or_na(s.median_ms, "%.0f ms") + ", p90 " + format_or_na(s.p90_ms, "%.0f ms");
 }
 
 std::string describe_wip_run(std::span<const wip::Info> frames, double rate, std::span<const SwingEvent> truth) {
@@ -524,12 +579,7 @@ nlohmann::json strict_json(const StrictScore& s) {
           {"latency_p90_ms", num(s.p90_ms)},   {"latency_mean_ms", num(s.mean_ms)}};
 }
 
-std::string na(double v, const char* f) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+std::string na(double v, const char* f) { return format_or_na(v, f); }
 
 void write_trial_plot(const WipTrialEval& e, const std::string& path) {
   render::LinePlot p;
@@ -646,9 +696,22 @@ struct Goal {
   bool met = false, known = true;
 };
 
+// The four step-detection goals for one detector's figures.
+void detector_goals(const std::string& who, const DetectorSummary& d, std::vector<Goal>& g) {
+  g.push_back({"strict step F1 >= 0.97" + who, na(d.strict.f1, "%.3f"), d.strict.f1 >= 0.97, std::isfinite(d.strict.f1)});
+  g.push_back({"strict step F1 >= 0.95 with noise" + who, na(d.strict_noisy.f1, "%.3f"), d.strict_noisy.f1 >= 0.95,
+               std::isfinite(d.strict_noisy.f1)});
+  g.push_back({"median foot-off latency <= 60 ms" + who, na(d.strict.median_ms, "%.0f ms"), d.strict.median_ms <= 60,
+               std::isfinite(d.strict.median_ms)});
+  g.push_back({"<= 1 false step per minute on still segments (clean and noisy)" + who,
+               na(d.false_steps_per_minute, "%.2f") + " / " + na(d.false_steps_per_minute_noisy, "%.2f") + " /min",
+               d.false_steps_per_minute <= 1 && d.false_steps_per_minute_noisy <= 1,
+               std::isfinite(d.false_steps_per_minute)});
+}
+
 std::vector<Goal> goals(const WipEvalSummary& s) {
   std::vector<Goal> g;
-  g.push_back({"strict step F1 (+-200 ms) >= 0.97 over all " + std::to_string(s.trials) + " trials",
+  g.push_back({"strict step F1 (+-200 ms) >= 0.97 over all " + std::to_string(s.trials) + " trials (the default settings)",
                na(s.strict.f1, "%.3f"), s.strict.f1 >= 0.97, std::isfinite(s.strict.f1)});
   g.push_back({"strict step F1 >= 0.95 with Kinect-like noise", na(s.strict_noisy.f1, "%.3f"),
                s.strict_noisy.f1 >= 0.95, std::isfinite(s.strict_noisy.f1)});
@@ -657,6 +720,16 @@ std::vector<Goal> goals(const WipEvalSummary& s) {
   g.push_back({"<= 1 false step per minute on still segments",
                na(s.false_steps_per_minute, "%.2f /min") + " over " + na(s.still_minutes, "%.2f") + " min",
                s.false_steps_per_minute <= 1, std::isfinite(s.false_steps_per_minute)});
+  for (const auto& d : s.detectors)
+    if (!d.name.empty()) detector_goals(" (" + d.name + " detector)", d, g);
+  if (s.cross_validated) {
+    DetectorSummary cv;
+    cv.strict = s.cv_strict;
+    cv.strict_noisy = s.cv_noisy;
+    cv.false_steps_per_minute = s.cv_false_per_minute;
+    cv.false_steps_per_minute_noisy = s.cv_false_per_minute_noisy;
+    detector_goals(" (adaptive detector, parameters cross-validated by subject)", cv, g);
+  }
   g.push_back({"IK-target depth r >= 0.9 and RMS <= 8 cm (the document's mapping)",
                "r " + na(s.depth.correlation, "%.3f") + ", RMS " + na(100 * s.depth.rms, "%.1f cm"),
                s.depth.correlation >= 0.9 && s.depth.rms <= 0.08, s.depth.samples > 1});
@@ -685,6 +758,42 @@ nlohmann::json depth_mapping_json(const WipEvalSummary& s) {
           {"turning_if_heading_range_deg_over", kTurningDegrees}};
 }
 
+// Both step detectors side by side (document = before, adaptive = after) and
+// the adaptive one's cross-validation by subject when it ran.
+nlohmann::json detectors_json(const WipEvalSummary& s) {
+  nlohmann::json j;
+  for (const auto& d : s.detectors) {
+    if (d.name.empty()) continue;
+    j[d.name] = {{"strict_200ms", strict_json(d.strict)},
+                 {"strict_100ms", strict_json(d.strict_100)},
+                 {"strict_200ms_noisy", strict_json(d.strict_noisy)},
+                 {"false_steps", d.false_steps},
+                 {"false_steps_noisy", d.false_steps_noisy},
+                 {"false_steps_per_minute", num(d.false_steps_per_minute)},
+                 {"false_steps_per_minute_noisy", num(d.false_steps_per_minute_noisy)}};
+  }
+  if (s.cross_validated) j["adaptive_cross_validated_by_subject"] = nlohmann::json::parse(s.tuning_json);
+  return j;
+}
+
+std::string detectors_markdown(const WipEvalRun& run, const WipEvalSummary& s) {
+  std::ostringstream md;
+  md << "\n## Step detectors side by side (document = before, adaptive = after)\n\nThe default settings use the "
+     << (run.options.settings.gait.detector == wip::StepDetector::Adaptive ? "adaptive" : "document") << " detector. "
+     << "The adaptive detector's parameters are the ones chosen on all subjects (`legwork wip tune`): its rows here are "
+        "in-sample; the cross-validated figures are below when the run was asked for them (`--cross-validate-detector`).\n\n"
+        "| detector | F1 +-200 ms | F1 +-100 ms | F1 noisy | precision / recall | latency median / p90 ms | "
+        "false steps on still segments (clean / noisy) |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& d : s.detectors)
+    md << "| " << d.name << " | **" << na(d.strict.f1, "%.3f") << "** | " << na(d.strict_100.f1, "%.3f") << " | **"
+       << na(d.strict_noisy.f1, "%.3f") << "** | " << na(d.strict.precision, "%.3f") << " / " << na(d.strict.recall, "%.3f")
+       << " | " << na(d.strict.median_ms, "%.0f") << " / " << na(d.strict.p90_ms, "%.0f") << " | " << d.false_steps
+       << " / " << d.false_steps_noisy << " (" << na(d.false_steps_per_minute, "%.2f") << " / "
+       << na(d.false_steps_per_minute_noisy, "%.2f") << " per min) |\n";
+  if (s.cross_validated) md << s.tuning_markdown;
+  return md.str();
+}
+
 nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, const Totals& t) {
   const auto& a = run.options.settings;
   nlohmann::json j;
@@ -709,6 +818,7 @@ nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, cons
   j["baseline_depth_correlation"] = num(s.baseline_depth.correlation);
   j["baseline_depth_rms_cm"] = 100 * s.baseline_depth.rms;
   j["depth_by_mapping"] = depth_mapping_json(s);
+  j["detectors"] = detectors_json(s);
   j["trials"] = s.trials;
   j["trials_skipped"] = s.skipped;
   j["data"] = run.data;
@@ -717,6 +827,8 @@ nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, cons
   j["settings"] = {{"tracker_rate_hz", a.signal.rate}, {"cutoff_hz", a.signal.cutoff},
                    {"h1_m", a.gait.h1},                {"v1_mps", a.gait.v1},
                    {"v2_mps", a.gait.v2},              {"adaptive", a.gait.adaptive},
+                   {"detector", a.gait.detector == wip::StepDetector::Adaptive ? "adaptive" : "document"},
+                   {"detector_parameters", DetectorParams::of(a).describe()},
                    {"noise_m", run.options.noise},     {"drop_rate", run.options.drop_rate},
                    {"seed", run.options.seed},         {"min_still_s", run.options.min_still},
                    {"truth", run.options.truth.learned ? "learned" : "fixed"}};
@@ -771,6 +883,7 @@ std::string summary_markdown(const WipEvalRun& run, const WipEvalSummary& s, con
                        na(100 * run.options.drop_rate, "%.0f") + "% drops",
                    s.strict_noisy)
      << strict_row("+-200 ms, the document's fixed H1/V1/V2", s.strict_fixed);
+  md << detectors_markdown(run, s);
   md << "\nFalse steps on still segments (both feet in true contact for >= " << run.options.min_still
      << " s): " << na(s.false_steps_per_minute, "%.2f") << " per minute over " << na(s.still_minutes, "%.2f")
      << " min (" << s.still.size() << " segments, listed below); with noise "
@@ -836,24 +949,45 @@ void finish_summary(const Totals& t, WipEvalSummary& s) {
 // The learned mapping, cross-validated by subject: each trial is scored with
 // a table built only from the other subjects' walks (n/a when they are too few).
 void cross_validate_learned(const std::vector<Motion>& motions, std::vector<WipTrialEval>& evals, const WipEvalRun& run) {
-  std::map<std::string, std::optional<wip::LearnedMapping>> tables;
-  for (std::size_t i = 0; i < evals.size(); ++i) {
-    WipTrialEval& e = evals[i];
-    auto it = tables.find(e.subject);
-    if (it == tables.end()) {
-      std::vector<wip::LearnSample> train;
-      for (const auto& o : evals)
-        if (o.subject != e.subject) train.insert(train.end(), o.learn.begin(), o.learn.end());
-      std::optional<wip::LearnedMapping> table;
-      try {
-        table = wip::build_learned_mapping(train);
-      } catch (const Error& err) {
-        if (run.log) run.log("legwork wip eval: learned mapping without subject " + e.subject + ": " + err.what() + "\n");
-      }
-      it = tables.emplace(e.subject, std::move(table)).first;
-    }
-    if (it->second) evaluate_learned_depth(motions[i], *it->second, run.options, e);
+  std::map<std::string, std::vector<wip::LearnSample>> by_subject;
+  for (const auto& e : evals) by_subject[e.subject].insert(by_subject[e.subject].end(), e.learn.begin(), e.learn.end());
+  const auto tables = learned_tables_by_subject(by_subject, run.log);
+  for (std::size_t i = 0; i < evals.size(); ++i)
+    if (const auto& table = tables.at(evals[i].subject)) evaluate_learned_depth(motions[i], *table, run.options, evals[i]);
+}
+
+// Both step detectors on the prepared trials and, if asked, the adaptive
+// detector's parameters chosen by cross-validation by subject.
+void score_detectors(const std::vector<DetectionTrial>& trials, const WipEvalRun& run, WipEvalSummary& s) {
+  for (int d = 0; d < 2; ++d) {
+    wip::Settings settings = run.options.settings;
+    settings.gait.detector = d == 0 ? wip::StepDetector::Document : wip::StepDetector::Adaptive;
+    std::vector<DetectionCounts> parts;
+    for (const auto& t : trials) parts.push_back(score_detection(t, settings));
+    const DetectionCounts c = pool(parts);
+    DetectorSummary& out = s.detectors[d];
+    out.name = d == 0 ? "document" : "adaptive";
+    out.strict = c.strict;
+    out.strict_100 = c.strict_100;
+    out.strict_noisy = c.noisy;
+    out.false_steps = c.false_steps;
+    out.false_steps_noisy = c.false_steps_noisy;
+    out.false_steps_per_minute = c.false_per_minute();
+    out.false_steps_per_minute_noisy = c.false_per_minute_noisy();
   }
+  if (!run.cross_validate_detector) return;
+  const auto progress = io::progress_printer("legwork wip eval: detector parameter set");
+  const DetectorTuning t = tune_detector(trials, run.options.settings, default_detector_grid(), [&](int i, int n) {
+    if (run.log) progress(i, n, "");
+  });
+  if (run.log) run.log("\n");
+  s.cross_validated = true;
+  s.cv_strict = t.cross_validated.strict;
+  s.cv_noisy = t.cross_validated.noisy;
+  s.cv_false_per_minute = t.cross_validated.false_per_minute();
+  s.cv_false_per_minute_noisy = t.cross_validated.false_per_minute_noisy();
+  s.tuning_markdown = tuning_markdown(t);
+  s.tuning_json = tuning_json(t);
 }
 
 }  // namespace
@@ -871,6 +1005,7 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
   Totals t;
   std::vector<Motion> motions;
   std::vector<WipTrialEval> evals, evals_fixed;
+  std::vector<DetectionTrial> detection;
   int index = 0;
   const auto progress = io::progress_printer("legwork wip eval: trial");
   for (const auto& file : run.files) {
@@ -881,6 +1016,7 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
       Motion m = load_trial(file, run);
       e = evaluate_wip_trial(m, name, cycle, run.options, index);
       ef = evaluate_wip_trial(m, name, cycle, fixed, index);
+      detection.push_back(prepare_detection_trial(m, name, run.options, index));
       motions.push_back(std::move(m));
     } catch (const Error& err) {
       if (run.log) run.log("legwork wip eval: skipping " + file + ": " + err.what() + "\n");
@@ -901,6 +1037,7 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
   if (t.clean.empty()) throw Error("no trial in '" + run.data + "' could be evaluated");
   WipEvalSummary s;
   finish_summary(t, s);
+  score_detectors(detection, run, s);
   io::write_text_file((out / "report.json").string(), summary_json(run, s, t).dump(2) + "\n");
   io::write_text_file((out / "report.md").string(), summary_markdown(run, s, t));
   summary_chart(s, (out / "summary.png").string());

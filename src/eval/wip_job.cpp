@@ -1,9 +1,11 @@
 #include <legwork/eval/wip_job.hpp>
 
 #include <legwork/eval/wip.hpp>
+#include <legwork/eval/wip_tune.hpp>
 #include <legwork/io/bvh.hpp>
 #include <legwork/io/data_files.hpp>
 #include <legwork/io/gltf.hpp>
+#include <legwork/io/progress.hpp>
 #include <legwork/io/text.hpp>
 #include <legwork/io/tracker_csv.hpp>
 #include <legwork/wip/offline/input.hpp>
@@ -56,6 +58,17 @@ wip::Settings wip_settings(const WipJob& a, double rate) {
   p.gait.v1 = a.v1;
   p.gait.v2 = a.v2;
   p.gait.adaptive = !a.no_adaptive;
+  if (a.detector == "document") p.gait.detector = StepDetector::Document;
+  else if (a.detector == "adaptive") p.gait.detector = StepDetector::Adaptive;
+  else throw Error("--detector '" + a.detector + "': expected 'document' (the document's thresholds) or 'adaptive'");
+  p.signal.detect_cutoff = a.detect_cutoff;
+  p.signal.baseline_tau = a.baseline_tau;
+  p.gait.noise_factor = a.noise_factor;
+  p.gait.lift_fraction = a.lift_fraction;
+  p.gait.rise_fraction = a.rise_fraction;
+  p.gait.min_lift = a.min_lift;
+  p.gait.min_rise = a.min_rise;
+  p.gait.rise_noise_factor = a.rise_noise_factor;
   p.mapping.normalise_height = !a.raw_height;
   p.mapping.stop_time = a.stop_time;
   p.mapping.max_speed = a.max_speed;
@@ -66,9 +79,10 @@ wip::Settings wip_settings(const WipJob& a, double rate) {
   if (a.speed_model == "step") p.mapping.speed_model = SpeedModel::StepSpeed;
   else if (a.speed_model == "frequency") p.mapping.speed_model = SpeedModel::StepFrequency;
   else throw Error("--speed-model '" + a.speed_model + "': expected 'step' (Bruno et al.) or 'frequency' (GUD-WIP)");
-  if (!(rate > 0) || !(a.cutoff > 0) || a.cutoff >= rate / 2)
-    throw Error("--cutoff " + std::to_string(a.cutoff) + " Hz must be between 0 and half the sample rate (" +
-                std::to_string(rate) + " Hz)");
+  for (const auto& [name, hz] : {std::pair{"--cutoff", a.cutoff}, std::pair{"--detect-cutoff", a.detect_cutoff}})
+    if (!(rate > 0) || !(hz > 0) || hz >= rate / 2)
+      throw Error(std::string(name) + " " + std::to_string(hz) + " Hz must be between 0 and half the sample rate (" +
+                  std::to_string(rate) + " Hz)");
   return p;
 }
 
@@ -218,6 +232,40 @@ void run_wip_learn_job(const WipJob& a) {
   io::announce("learned mapping", a.out);
 }
 
+void run_wip_tune_job(const WipJob& a) {
+  if (a.eval_out.empty()) throw Error("--out DIR is required");
+  std::string data, note;
+  const auto files = walking_files(a, data, note, "wip tune");
+  WipEvalOptions opt;
+  opt.settings = wip_settings(a, a.rate);
+  opt.noise = a.noise;
+  opt.drop_rate = a.drop_rate;
+  opt.seed = a.seed;
+  std::vector<DetectionTrial> trials;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    trials.push_back(prepare_detection_trial(load_bvh_motion(files[i], false), fs::path(files[i]).stem().string(), opt,
+                                             static_cast<int>(i)));
+  const auto progress = io::progress_printer("legwork wip tune: parameter set");
+  const DetectorTuning t = tune_detector(trials, opt.settings, default_detector_grid(), [&](int i, int n) { progress(i, n, ""); });
+  std::cerr << "\n";
+  std::error_code ec;
+  fs::create_directories(a.eval_out, ec);
+  if (ec || !fs::is_directory(a.eval_out)) throw Error("cannot create the output folder '" + a.eval_out + "'");
+  const std::string md = (fs::path(a.eval_out) / "report.md").string(), js = (fs::path(a.eval_out) / "report.json").string();
+  io::write_text_file(md, "# Adaptive step detector: parameters by cross-validation by subject\n\nData: `" + data + "` (" +
+                              std::to_string(trials.size()) + " trials).\n" + tuning_markdown(t));
+  io::write_text_file(js, tuning_json(t));
+  const auto& c = t.cross_validated;
+  std::printf("%zu trials, %zu parameter sets; held out by subject: F1 %.3f, noisy F1 %.3f, latency median %.0f ms, false "
+              "steps %d / %d (clean / noisy) over %.2f min\n",
+              trials.size(), t.grid.size(), c.strict.f1, c.noisy.f1, c.strict.median_ms, c.false_steps,
+              c.false_steps_noisy, c.still_minutes);
+  if (t.chosen_all >= 0)
+    std::printf("chosen on all subjects: %s\n", t.grid[static_cast<std::size_t>(t.chosen_all)].describe().c_str());
+  io::announce("report", md);
+  io::announce("report", js);
+}
+
 void run_wip_eval_job(const WipJob& a) {
   if (a.eval_out.empty()) throw Error("--out DIR is required");
   WipEvalRun run;
@@ -230,6 +278,7 @@ void run_wip_eval_job(const WipJob& a) {
   run.options.drop_rate = a.drop_rate;
   run.options.seed = a.seed;
   run.options.truth.learned = a.truth == "learned";
+  run.cross_validate_detector = a.cross_validate_detector;
   run.log = [](const std::string& s) { std::cerr << s << std::flush; };
   const auto s = run_wip_evaluation(run);
   std::printf("%d trials, strict foot-offs +-200 ms: %s\nnoisy F1 %.3f; lenient overlap F1 %.3f (secondary); depth r %.3f / "

@@ -128,6 +128,7 @@ void for_each_content_point(const Scene& scene, const std::function<void(const V
     for (const auto& p : c.points) fn(p);
   for (const auto& fp : scene.footprints)
     for (const auto& p : footprint_outline(fp)) fn(p);
+  for (const auto& p : scene.ground.profile) fn(p);
 }
 
 Layout layout_of(const Scene& scene) {

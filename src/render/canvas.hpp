@@ -57,6 +57,8 @@ void set_color(cairo_t* cr, const Rgb& c, double alpha = 1.0);
 // text() records its ink box; charts record their data areas and legends.
 // No-ops unless a LayoutRecorder is alive on this thread.
 void layout_begin(cairo_t* cr, const std::string& path, int width, int height);
+// Whether a LayoutRecorder is alive on this thread (names of video frames are built only then).
+bool layout_recording();
 void layout_text(cairo_t* cr, const std::string& s, double x, double y, double w, double h);
 void layout_area(cairo_t* cr, double x, double y, double w, double h, bool legend);
 // A "nice" step (1, 2, 2.5 or 5 x 10^k) close to span / target_count.

@@ -77,6 +77,34 @@ void draw_floor(cairo_t* cr, const Scene& scene, const Framing& fr) {
   cairo_restore(cr);
 }
 
+// The ground strip: one quad per profile segment (light grey, treads and
+// slopes; risers show as their edges), far edge first, then the near edge.
+void draw_ground(cairo_t* cr, const Scene& scene, const Framing& fr) {
+  const GroundStrip& g = scene.ground;
+  if (g.profile.size() < 2) return;
+  const Vec3 side = g.across.normalized() * g.half_width;
+  cairo_save(cr);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_width(cr, 1.0);
+  for (std::size_t i = 0; i + 1 < g.profile.size(); ++i) {
+    const Vec3 &a = g.profile[i], &b = g.profile[i + 1];
+    move_to(cr, fr.to_pixel(a - side));
+    line_to(cr, fr.to_pixel(b - side));
+    line_to(cr, fr.to_pixel(b + side));
+    line_to(cr, fr.to_pixel(a + side));
+    cairo_close_path(cr);
+  }
+  cairo_set_source_rgba(cr, kGrid[0], kGrid[1], kGrid[2], 0.55);
+  cairo_fill(cr);
+  set_color(cr, kFloor);
+  for (const Vec3& edge : {side, Vec3(-side)}) {
+    move_to(cr, fr.to_pixel(g.profile.front() + edge));
+    for (const Vec3& p : g.profile) line_to(cr, fr.to_pixel(p + edge));
+    cairo_stroke(cr);
+  }
+  cairo_restore(cr);
+}
+
 void draw_footprints(cairo_t* cr, const Scene& scene, const Framing& fr) {
   cairo_save(cr);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
@@ -415,6 +443,7 @@ void draw_scene(cairo_t* cr, const Scene& scene, const Framing& fr) {
   cairo_rectangle(cr, 0, 0, fr.width, fr.height);
   cairo_clip(cr);
   if (scene.floor) draw_floor(cr, scene, fr);
+  draw_ground(cr, scene, fr);
   draw_footprints(cr, scene, fr);
   // Inactive (translucent) figures first so the active one stays on top.
   std::vector<const Figure*> order;

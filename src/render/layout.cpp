@@ -76,6 +76,7 @@ std::vector<std::string> layout_problems(const PictureLayout& p, double toleranc
 namespace detail {
 
 void layout_begin(cairo_t* cr, const std::string& path, int width, int height) { LayoutAccess::begin(cr, path, width, height); }
+bool layout_recording() { return g_recorder != nullptr; }
 
 // The device-space box around a user-space rectangle (handles rotation).
 Box device_box(cairo_t* cr, double x, double y, double w, double h) {

@@ -130,6 +130,7 @@ Scene frame_scene_of(const Track& t, double time, const VideoOptions& opt, Pose&
     s.curves.push_back(std::move(done));
   }
   if (with_title) s.title = t.label;
+  if (!opt.follow) s.ground = opt.ground;
   return s;
 }
 
@@ -175,6 +176,7 @@ std::vector<Track> panel_tracks(const std::vector<const Motion*>& motions, const
       if (opt.trace_joint >= 0) t.trace.push_back(model[static_cast<std::size_t>(opt.trace_joint)].translation);
     }
     s.curves.push_back(std::move(everything));
+    if (!opt.follow) s.ground = opt.ground;
     if (titled) s.title = t.label.empty() ? " " : t.label;
     if (opt.camera.metres_per_pixel <= 0) mpp = std::max(mpp, frame_scene(s, cam).metres_per_pixel);
   }
@@ -239,6 +241,7 @@ void render_video_side_by_side(const std::vector<const Motion*>& motions, const 
   for (int k = 0; k < frames; ++k) {
     const double time = k / opt.fps;
     canvas.clear();
+    if (detail::layout_recording()) detail::layout_begin(cr, path + " frame " + std::to_string(k), W, H);
     for (int i = 0; i < n; ++i) {
       const auto& t = tracks[static_cast<std::size_t>(i)];
       const Scene s = frame_scene_of(t, time, opt, poses[static_cast<std::size_t>(i)], titled);

@@ -7,11 +7,14 @@
 #include <legwork/core/limits.hpp>
 #include <legwork/core/measure.hpp>
 #include <legwork/ik/full_body.hpp>
+#include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/walker.hpp>
 #include <legwork/wip/wip.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 namespace legwork::serve {
 namespace {
@@ -36,9 +39,13 @@ Skeleton avatar_skeleton(const Resources& res, double user_height) {
   return skel;
 }
 
-// The legs' depth mapping named in the session's options (document | learned)
-// and the learned table it needs (null for the document's).
+// The legs' foot-off detector and depth mapping named in the session's
+// options (detector document | adaptive, mapping document | learned) and the
+// learned table the mapping needs (null for the document's).
 const wip::LearnedMapping* leg_mapping(const Resources& res, const MethodOptions& opt, wip::Settings& s) {
+  if (opt.detector == "document") s.gait.detector = wip::StepDetector::Document;
+  else if (opt.detector == "adaptive") s.gait.detector = wip::StepDetector::Adaptive;
+  else if (!opt.detector.empty()) throw Error("detector '" + opt.detector + "' is not one of: document, adaptive");
   if (opt.mapping == "document") return nullptr;
   if (opt.mapping != "learned")
     throw Error("mapping '" + opt.mapping + "' is not one of: document, learned");
@@ -158,10 +165,43 @@ struct CombinedRuntime : Contract<combined::Model, combined::State, combined::In
   }
 };
 
+// The walk-cycle walker (walkcycle::update) on a walk file of the server's
+// --walks folder, steered by the head's yaw; its own skeleton (user_height
+// does not apply).
+struct WalkerRuntime : Contract<walkcycle::Model, walkcycle::State, walkcycle::Info, &walkcycle::update> {
+  static void describe(const Info& i, MethodInfo& out) {
+    out.add("step", i.step);
+    out.add("heading", i.heading);
+    out.add("desired_heading", i.desired_heading);
+    out.add("planted", i.left_planted ? "left" : "right");
+    out.add("pivot", i.pivot == walkcycle::Pivot::Heel ? "heel" : "ball");
+    out.add("pelvis_drop", i.pelvis_drop);
+    out.add("reach_limited", i.reach_limited ? 1.0 : 0.0);
+  }
+  static std::vector<std::string> walks(const Resources& res) {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(res.walks_dir, ec))
+      if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  static Model model(const Resources& res, const MethodOptions& opt) {
+    walkcycle::Settings s;
+    if (opt.root != "smooth" && opt.root != "pivot") throw Error("root '" + opt.root + "' is not one of: smooth, pivot");
+    s.root = opt.root == "pivot" ? walkcycle::RootMotion::Pivot : walkcycle::RootMotion::Smooth;
+    const auto names = walks(res);
+    if (std::find(names.begin(), names.end(), opt.walk) == names.end())
+      throw Error("walk '" + opt.walk + "' is not one of this server's walks (" + join(names) + ")");
+    const walkcycle::WalkFile w = walkcycle::load_walk((std::filesystem::path(res.walks_dir) / (opt.walk + ".json")).string());
+    return walkcycle::make_model(walkcycle::build_cycle(w.skeleton, w.keys), s);
+  }
+};
+
 }  // namespace
 
 const std::vector<std::string>& known_methods() {
-  static const std::vector<std::string> m{"accent", "ik", "wip", "combined"};
+  static const std::vector<std::string> m{"accent", "ik", "wip", "combined", "walker"};
   return m;
 }
 
@@ -173,6 +213,7 @@ std::vector<std::string> available_methods(const Resources& res) {
     out.push_back("wip");
     out.push_back("combined");
   }
+  if (!res.walks_dir.empty()) out.push_back("walker");
   return out;
 }
 
@@ -199,6 +240,7 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
   if (opt.method == "ik") return runtime_method<IkRuntime>(res, opt);
   if (opt.method == "wip") return runtime_method<WipRuntime>(res, opt);
   if (opt.method == "combined") return runtime_method<CombinedRuntime>(res, opt);
+  if (opt.method == "walker") return runtime_method<WalkerRuntime>(res, opt);
   return runtime_method<AccentRuntime>(res, opt);
 }
 

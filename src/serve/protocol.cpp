@@ -96,6 +96,15 @@ Hello parse_hello(const json& j) {
     if (!mp->is_string()) fail("bad_message", "hello.mapping must be a string (\"document\" or \"learned\")");
     h.method.mapping = mp->get<std::string>();
   }
+  for (const char* key : {"walk", "root"})
+    if (auto w = j.find(key); w != j.end() && !w->is_null()) {
+      if (!w->is_string()) fail("bad_message", std::string("hello.") + key + " must be a string");
+      (std::string(key) == "walk" ? h.method.walk : h.method.root) = w->get<std::string>();
+    }
+  if (auto d = j.find("detector"); d != j.end() && !d->is_null()) {
+    if (!d->is_string()) fail("bad_message", "hello.detector must be a string (\"document\" or \"adaptive\")");
+    h.method.detector = d->get<std::string>();
+  }
   if (auto js = j.find("joints"); js != j.end() && !(js->is_string() && js->get<std::string>() == "all"))
     h.joints = string_list(*js, "hello.joints (\"all\" or joint names)");
   if (auto f = j.find("format"); f != j.end()) {

@@ -180,9 +180,10 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     if (!avatar_) throw ProtocolError("bad_message", "send hello before frames");
     ++seq_;
     ++srv_.frames;
-    // Rate limit: a token bucket at max_rate_hz with a burst of a tenth of a second.
+    // Rate limit: a token bucket at max_rate_hz with a burst of a quarter second: frames a
+    // network hiccup (or this thread's own stall) delivered together are not dropped.
     const auto now = SteadyClock::now();
-    const double burst = std::max(4.0, srv_.opt.max_rate_hz * 0.1);
+    const double burst = std::max(4.0, srv_.opt.max_rate_hz * 0.25);
     tokens_ = std::min(burst, tokens_ + std::chrono::duration<double>(now - last_token_).count() * srv_.opt.max_rate_hz);
     last_token_ = now;
     if (tokens_ < 1) {
@@ -327,6 +328,9 @@ Server::Impl::Impl(ServeOptions o) : opt(std::move(o)), workers(opt.workers) {
     wip_learned = wip::read_learned_mapping(opt.wip_table);
     api.resources.wip_learned = &*wip_learned;
   }
+  if (!opt.walks_dir.empty() && !std::filesystem::is_directory(opt.walks_dir))
+    throw Error("--walks '" + opt.walks_dir + "' is not a folder (walk files for the walker method, e.g. data/walks)");
+  api.resources.walks_dir = opt.walks_dir;
   if (!api.resources.db && !api.resources.skeleton)
     throw Error("legwork serve needs an avatar: --db FILE.lwdb (all methods) or --skeleton FILE.bvh (ik only)");
   api.web_dir = opt.web_dir;

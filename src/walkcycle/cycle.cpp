@@ -366,7 +366,7 @@ Motion bake_cycle(const CycleModel& m) {
   return out;
 }
 
-Vec3 foot_point(const CycleModel& m, ConstPoseRef pose, bool left_foot, Pivot which) {
+std::array<Vec3, 2> heel_and_ball(const CycleModel& m, ConstPoseRef pose, bool left_foot) {
   const FootPivots& f = m.foot(left_foot);
   Quat r = Quat::Identity();
   Vec3 t = Vec3::Zero();
@@ -375,7 +375,34 @@ Vec3 foot_point(const CycleModel& m, ConstPoseRef pose, bool left_foot, Pivot wh
     t = r * pose.translations[j] + t;
     r = r * pose.rotations[j];
   }
-  return r * (which == Pivot::Heel ? f.heel_local : f.ball_local) + t;
+  return {r * f.heel_local + t, r * f.ball_local + t};
+}
+
+std::vector<Vec3> straight_pivot_travel(const CycleModel& m, int samples_per_frame) {
+  const int n = m.frames_per_cycle * samples_per_frame;
+  std::vector<Vec3> o(static_cast<std::size_t>(n) + 1, Vec3::Zero());
+  Pose pose(m.skeleton);
+  auto points = [&](std::array<Vec3, 4>& p) {  // [right heel, right ball, left heel, left ball]
+    const auto r = heel_and_ball(m, pose.ref(), false), l = heel_and_ball(m, pose.ref(), true);
+    p = {r[0], r[1], l[0], l[1]};
+  };
+  std::array<Vec3, 4> prev, cur;
+  sample_cycle(m, 0.0, pose.ref());
+  points(prev);
+  for (int i = 1; i <= n; ++i) {
+    const double t = static_cast<double>(i) / samples_per_frame;
+    sample_cycle(m, t, pose.ref());
+    points(cur);
+    const StanceAt s = stance_at(m, t - 0.5 / samples_per_frame);
+    const auto k = static_cast<std::size_t>((s.left ? 2 : 0) + (s.pivot == Pivot::Ball ? 1 : 0));
+    o[static_cast<std::size_t>(i)] = horizontal(prev[k] + o[static_cast<std::size_t>(i) - 1] - cur[k]);
+    prev = cur;
+  }
+  return o;
+}
+
+Vec3 foot_point(const CycleModel& m, ConstPoseRef pose, bool left_foot, Pivot which) {
+  return heel_and_ball(m, pose, left_foot)[which == Pivot::Heel ? 0 : 1];
 }
 
 StanceAt stance_at(const CycleModel& m, double frame) {

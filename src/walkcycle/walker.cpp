@@ -1,4 +1,5 @@
 #include <legwork/walkcycle/walker.hpp>
+#include <legwork/core/fk.hpp>
 #include <legwork/core/rotation.hpp>
 
 #include <algorithm>
@@ -14,8 +15,11 @@ namespace {
 int foot_index(bool left, Pivot p) { return (left ? 2 : 0) + (p == Pivot::Ball ? 1 : 0); }
 
 void feet_of(const CycleModel& m, ConstPoseRef pose, std::array<Vec3, 4>& feet) {
-  for (int side = 0; side < 2; ++side)
-    for (Pivot p : {Pivot::Heel, Pivot::Ball}) feet[static_cast<std::size_t>(foot_index(side == 1, p))] = foot_point(m, pose, side == 1, p);
+  for (int side = 0; side < 2; ++side) {
+    const std::array<Vec3, 2> hb = heel_and_ball(m, pose, side == 1);
+    feet[static_cast<std::size_t>(foot_index(side == 1, Pivot::Heel))] = hb[0];
+    feet[static_cast<std::size_t>(foot_index(side == 1, Pivot::Ball))] = hb[1];
+  }
 }
 
 void place(const State& s, PoseRef out) {
@@ -23,8 +27,24 @@ void place(const State& s, PoseRef out) {
   out.translations[0] = yaw_rotation(s.heading) * out.translations[0] + s.offset;
 }
 
+// A smooth-root table at cycle time t (periodic, linear between samples).
+template <class T>
+T table_at(const std::vector<T>& v, const CycleModel& m, double t) {
+  const double x = std::fmod(t, m.frames_per_cycle) * Model::samples_per_frame;
+  const double xi = std::clamp(std::floor(x), 0.0, static_cast<double>(v.size() - 2));
+  const auto i = static_cast<std::size_t>(xi);
+  const double u = std::clamp(x - xi, 0.0, 1.0);
+  return (1 - u) * v[i] + u * v[i + 1];
+}
+
+// The smooth root's floor offset the plan asks for now: its offset less its drag.
+Vec3 smooth_target(const Model& model, const State& s) {
+  return horizontal(s.offset - yaw_rotation(s.heading) * table_at(model.smooth_root().drag, model.cycle(), s.time));
+}
+
 // The walk's first pose: a contact with the root above the start point.
-void start_walk(const CycleModel& m, State& s, PoseRef out) {
+void start_walk(const Model& model, State& s, PoseRef out) {
+  const CycleModel& m = model.cycle();
   s.started = true;
   s.time = 0;
   s.decided_step = 0;
@@ -32,6 +52,10 @@ void start_walk(const CycleModel& m, State& s, PoseRef out) {
   sample_cycle(m, 0.0, out);
   feet_of(m, out, s.feet);
   s.offset = horizontal(s.start_position - yaw_rotation(s.heading) * horizontal(out.translations[0]));
+  if (model.settings().root == RootMotion::Smooth) {  // (the smooth root, not the plan, starts above the start point)
+    s.offset += horizontal(yaw_rotation(s.heading) * model.smooth_root().drag.front());
+    s.smooth = smooth_target(model, s);
+  }
   place(s, out);
 }
 
@@ -74,6 +98,134 @@ bool head_heading(const DevicePose& head, double& heading) {
   return true;
 }
 
+// The plan's pose (world, in `pose`; its FK in `before`) moved by `shift`
+// with both legs solved so each ankle is where the plan had it (rolled, then
+// pulled in by the soft limit if out of reach; lifted if a foot point would
+// go below the floor). With `apply` false only measures: returns the pelvis
+// drop that would bring every ankle within reach (0 if none is needed) and
+// leaves `pose` alone.
+double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double heading, const StanceAt& st,
+                  std::span<Transform> before, std::span<Transform> g, bool apply, Info* info) {
+  const CycleModel& m = model.cycle();
+  const Skeleton& sk = m.skeleton;
+  leg_kinematics(sk, model.smooth_root().joints, pose, before);
+  if (apply) pose.translations[0] += shift;
+  shift_legs(model.smooth_root().joints, before, shift, g);
+  const Vec3 forward = yaw_rotation(heading) * Vec3::UnitZ();
+  double drop = 0, roll_max = 0;
+  bool limited = false;
+  for (int side = 0; side < 2; ++side) {
+    const LegIk& leg = model.smooth_root().legs[static_cast<std::size_t>(side)];
+    const FootPivots& foot = m.foot(side == 1);
+    const auto end = static_cast<std::size_t>(leg.chain.end);
+    const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
+    Transform ankle = before[end];
+    // As straight as the keys had it, or soft_reach, whichever is more.
+    const double keyed = (before[end].translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
+    const double soft = std::max(model.settings().soft_reach, keyed);
+    const bool stance = st.left == (side == 1);
+    const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &st.pivot : nullptr, ankle);
+    drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
+    if (!apply) continue;
+    ik::TwoBoneTarget t;
+    t.position = ankle.translation;
+    t.rotation = ankle.rotation;
+    t.rotation_weight = 1.0;
+    t.hint = before[static_cast<std::size_t>(leg.chain.mid)].translation + shift;  // the knee points where it did
+    limited = limited || soften_reach(hip, leg, soft, t.position) > soft + 1e-6;
+    auto solve_leg = [&] {
+      ik::solve_two_bone(sk, leg.chain, t, pose, g);
+      if (roll != 0.0 && foot.toe >= 0)  // a rolled foot's toes keep their world rotation (flat on the floor)
+        pose.rotations[static_cast<std::size_t>(foot.toe)] =
+            (t.rotation.conjugate() * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
+      update_toe(sk, foot, pose, g);
+    };
+    solve_leg();
+    const double below = depth_below(sk, foot, std::span<const Transform>(g), [](const Vec3&) { return 0.0; });
+    if (below > 0) {
+      t.position.y() += below;
+      solve_leg();
+    }
+    roll_max = std::max(roll_max, std::abs(roll));
+  }
+  if (info) info->foot_roll = roll_max, info->reach_limited = limited;
+  return drop;
+}
+
+// Smooth root, per frame (`frames` cycle frames advanced): the root follows
+// the plan's offset less its drag; the legs reach the plan's ankles.
+void smooth_frame(const Model& model, State& s, double frames, const StanceAt& st, PoseRef out, Info* info) {
+  const CycleModel& m = model.cycle();
+  const Model::SmoothRoot& sr = model.smooth_root();
+  const double follow = 0.5 * m.half_cycle();  // cycle frames: half a step
+  s.smooth += horizontal(yaw_rotation(s.heading) * sr.velocity * frames);
+  s.smooth += (1.0 - std::exp(-frames / follow)) * (smooth_target(model, s) - s.smooth);
+  const double drop = table_at(sr.drop, m, s.time);
+  if (info) info->pelvis_drop = drop;
+  solve_legs(model, out, s.smooth - s.offset - Vec3(0, drop, 0), s.heading, st, s.plan_space, s.model_space, true, info);
+}
+
+// Periodic running maximum over +-`half_width` samples, then a periodic mean over as many.
+std::vector<double> spread_drop(const std::vector<double>& need, int half_width) {
+  const int n = static_cast<int>(need.size());
+  auto at = [&](const std::vector<double>& v, int i) { return v[static_cast<std::size_t>(((i % n) + n) % n)]; };
+  std::vector<double> env(need.size()), out(need.size() + 1);
+  for (int i = 0; i < n; ++i) {
+    double mx = 0;
+    for (int k = -half_width; k <= half_width; ++k) mx = std::max(mx, at(need, i + k));
+    env[static_cast<std::size_t>(i)] = mx;
+  }
+  for (int i = 0; i < n; ++i) {
+    double sum = 0;
+    for (int k = -half_width; k <= half_width; ++k) sum += at(env, i + k);
+    out[static_cast<std::size_t>(i)] = sum / (2 * half_width + 1);
+  }
+  out.back() = out.front();
+  return out;
+}
+
+// The smooth root's tables (Model::SmoothRoot) from a straight walk of the plan.
+Model::SmoothRoot tabulate_smooth_root(const Model& model) {
+  const CycleModel& m = model.cycle();
+  const int n = m.frames_per_cycle * Model::samples_per_frame;
+  Model::SmoothRoot sr;
+  Pose pose(m.skeleton);
+  std::vector<Transform> before(static_cast<std::size_t>(m.skeleton.joint_count())), g(before.size());
+  sample_cycle(m, 0.0, pose.ref());
+  forward_kinematics(m.skeleton, pose.ref(), before);
+  sr.legs = {leg_of(m.skeleton, false, before), leg_of(m.skeleton, true, before)};
+  sr.joints = leg_joints(m);
+  const std::vector<Vec3> o = straight_pivot_travel(m, Model::samples_per_frame);
+  sr.velocity = o.back() / m.frames_per_cycle;
+  sr.drag.resize(o.size());
+  Vec3 mean = Vec3::Zero();
+  for (int i = 0; i <= n; ++i) {
+    sr.drag[static_cast<std::size_t>(i)] = o[static_cast<std::size_t>(i)] - sr.velocity * (static_cast<double>(i) / Model::samples_per_frame);
+    if (i < n) mean += sr.drag[static_cast<std::size_t>(i)] / n;
+  }
+  for (Vec3& d : sr.drag) d -= mean;
+  return sr;
+}
+
+// The drop the straight walk needs at each sample, spread (needs the legs and drag of `model`).
+std::vector<double> tabulate_drop(const Model& model) {
+  const CycleModel& m = model.cycle();
+  const int n = m.frames_per_cycle * Model::samples_per_frame;
+  Pose pose(m.skeleton);
+  std::vector<Transform> before(static_cast<std::size_t>(m.skeleton.joint_count())), g(before.size());
+  const std::vector<Vec3> o = straight_pivot_travel(m, Model::samples_per_frame);
+  std::vector<double> need(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / Model::samples_per_frame;
+    sample_cycle(m, t, pose.ref());
+    pose.translations[0] += o[static_cast<std::size_t>(i)];
+    const Vec3 shift = -model.smooth_root().drag[static_cast<std::size_t>(i)];
+    need[static_cast<std::size_t>(i)] = solve_legs(model, pose.ref(), shift, 0.0, stance_at(m, t), before, g, false, nullptr);
+  }
+  const int quarter = static_cast<int>(std::ceil(m.half_cycle() / 4 * Model::samples_per_frame));
+  return spread_drop(need, quarter);
+}
+
 }  // namespace
 
 Model make_model(const CycleModel& cycle, const Settings& settings) {
@@ -85,13 +237,25 @@ Model make_model(const CycleModel& cycle, const Settings& settings) {
                 std::to_string(settings.max_turn_per_step));
   if (!settings.start_position.allFinite() || !std::isfinite(settings.start_heading))
     throw Error("walker: the start position and heading must be finite");
+  if (!(settings.soft_reach > 0 && settings.soft_reach <= 1))
+    throw Error("walker: soft_reach must be in (0, 1] (a fraction of the leg's length), got " + std::to_string(settings.soft_reach));
+  if (settings.root != RootMotion::Smooth && settings.root != RootMotion::Pivot)
+    throw Error("walker: root must be RootMotion::Smooth or RootMotion::Pivot, got " + std::to_string(static_cast<int>(settings.root)));
   Model m;
   m.cycle_ = cycle;
   m.settings_ = settings;
+  if (settings.root == RootMotion::Smooth) {
+    m.cycle_.floor_clamp = false;  // (the legs keep the feet above the floor)
+    m.smooth_ = tabulate_smooth_root(m);
+    m.smooth_.drop = tabulate_drop(m);
+  }
   return m;
 }
 
-State::State(const Model& model) { reset(model, *this); }
+State::State(const Model& model)
+    : plan_space(static_cast<std::size_t>(model.skeleton().joint_count())), model_space(plan_space.size()) {
+  reset(model, *this);
+}
 
 void reset(const Model& model, State& s) { reset(model, s, model.settings().start_position, model.settings().start_heading); }
 
@@ -100,7 +264,7 @@ void reset(const Model&, State& s, const Vec3& position, double heading) {
   s.started = false;
   s.time = 0;
   s.decided_step = 0;
-  s.offset = Vec3::Zero();
+  s.offset = s.smooth = Vec3::Zero();
   s.feet = {};
   s.start_position = horizontal(position);
   s.start_heading = s.desired_heading = s.heading = s.heading_from = s.heading_to = heading;
@@ -113,14 +277,18 @@ UpdateStatus update(const Model& model, const TrackerFrame& frame, State& s, Pos
   if (step.verdict == FrameClock::Verdict::Reject) return UpdateStatus::Rejected;
   const bool steered = head_heading(frame.head(), s.desired_heading);
   StanceAt stance;
+  double frames = 0;  // cycle frames advanced
   if (!s.started) {
-    start_walk(m, s, out);
+    start_walk(model, s, out);
     stance = stance_at(m, 0.0);
   } else {
     // A restarted clock keeps walking from here, without advancing.
     const double seconds = step.verdict == FrameClock::Verdict::Restart ? 0.0 : step.dt;
+    const double was = s.time;
     stance = advance(m, model.settings().max_turn_per_step, s, seconds, out);
+    frames = s.time - was;
   }
+  if (model.settings().root == RootMotion::Smooth) smooth_frame(model, s, frames, stance, out, info);
   if (info) {
     info->step = stance.step;
     info->cycle_time = s.time;

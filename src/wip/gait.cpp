@@ -7,6 +7,8 @@ namespace legwork::wip {
 
 void FootSignal::init(const SignalSettings& p) {
   filter = Butterworth(p.order, p.cutoff, p.rate);
+  detect_filter = Butterworth(p.order, p.detect_cutoff, p.rate);
+  hd = vd = baseline = noise = 0;
   capacity = std::clamp(static_cast<int>(std::lround(p.buffer_seconds * p.rate)), 2, kCapacity);
   head = -1;
   size = 0;
@@ -32,6 +34,7 @@ void FootSignal::push(const SignalSettings& p, double y, bool valid, double dt, 
     if (!has_floor) return;  // nothing seen yet
   }
   const double yf = filter.step(raw);  // holds the last value over dropouts
+  const double yd = detect_filter.step(raw);
   if (p.floor_tau > 0) {
     if (yf < floor) floor = yf;
     else if (in_support && valid) floor += (yf - floor) * (1 - std::exp(-dt / p.floor_tau));
@@ -44,6 +47,25 @@ void FootSignal::push(const SignalSettings& p, double y, bool valid, double dt, 
   // Velocity of the filtered height: the raw one is too noisy at 30 Hz and has
   // often fallen below V1 by the time the (delayed) filtered height crosses H1.
   v = dt > 0 ? (h - prev) / dt : 0;
+  update_detection(p, yd - floor, raw - yf, valid, dt, in_support);
+}
+
+void FootSignal::update_detection(const SignalSettings& p, double height, double jitter, bool valid, double dt,
+                                  bool in_support) {
+  const bool first = size <= 1;
+  const double d = height - baseline;
+  vd = first || !(dt > 0) ? 0 : (d - hd) / dt;
+  if (in_support && valid) {
+    // The baseline is the running mean of the stance height (not its minimum:
+    // jitter would pull a minimum down and fake a lift); the noise is the running RMS of the raw height's jitter about the 4 Hz
+    // signal (tracker noise, not the slow heel rise of real stance).
+    const double a = 1 - std::exp(-dt / std::max(p.baseline_tau, 1e-6));
+    const double b = 1 - std::exp(-dt / std::max(p.noise_tau, 1e-6));
+    if (first) baseline = height;
+    baseline += a * (height - baseline);
+    noise = std::sqrt(noise * noise + b * (jitter * jitter - noise * noise));
+  }
+  hd = height - baseline;
 }
 
 double FootSignal::recent(int back) const {
@@ -76,12 +98,18 @@ void GaitMachine::init(const GaitSettings& p) {
 }
 
 double GaitMachine::h1(const GaitSettings& p) const {
+  if (p.detector == StepDetector::Adaptive)
+    return std::min(std::max({p.lift_fraction * apex_estimate, p.noise_factor * noise, p.min_lift}), p.h1);
   return p.adaptive ? std::clamp(p.height_fraction * apex_estimate, p.min_h1, p.h1) : p.h1;
 }
 double GaitMachine::v1(const GaitSettings& p) const {
+  if (p.detector == StepDetector::Adaptive)
+    return std::min(std::max({p.rise_fraction * up_estimate, p.rise_noise_factor * noise, p.min_rise}), p.v1);
   return p.adaptive ? std::clamp(p.velocity_fraction * up_estimate, p.min_v1, p.v1) : p.v1;
 }
 double GaitMachine::v2(const GaitSettings& p) const {
+  if (p.detector == StepDetector::Adaptive)
+    return std::min(std::max({p.velocity_fraction * down_estimate, p.rise_noise_factor * noise, p.min_rise}), p.v2);
   return p.adaptive ? std::clamp(p.velocity_fraction * down_estimate, p.min_v1, p.v2) : p.v2;
 }
 

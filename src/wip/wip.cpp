@@ -330,8 +330,14 @@ bool track_feet(const Model& m, const TrackerFrame& frame, State& st, double dt,
     const bool ok = usable(d);
     all = all && ok;
     const bool support = !in_swing(st.gait[f].phase);
-    st.feet[f].push(p.signal, ok ? d.position.y() : 0.0, ok, dt, support);
-    ev[f] = st.gait[f].update(p.gait, st.feet[f].h, st.feet[f].v, st.feet[f].confidence, dt);
+    FootSignal& s = st.feet[f];
+    s.push(p.signal, ok ? d.position.y() : 0.0, ok, dt, support);
+    if (p.gait.detector == StepDetector::Adaptive) {
+      st.gait[f].noise = s.noise;
+      ev[f] = st.gait[f].update(p.gait, s.hd, s.vd, s.confidence, dt);
+    } else {
+      ev[f] = st.gait[f].update(p.gait, s.h, s.v, s.confidence, dt);
+    }
   }
   return all;
 }

@@ -224,6 +224,56 @@ TEST(CApi, WipWithTheLearnedMappingWalksOnARealWalk) {
 
 // The combined avatar with the learned legs: its leg joints differ from the
 // document's mapping on the same real walk, its upper body does not.
+// The step detector through lw_wip_settings: on a real walk the adaptive
+// detector lifts the avatar's left foot earlier than the document's
+// thresholds; defaults equal lw_model_create_wip; a bad value is refused, named.
+TEST(CApi, WipStepDetectorIsASetting) {
+  lw_skeleton* skel = nullptr;
+  ASSERT_EQ(lw_skeleton_load_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), &skel), LW_OK) << lw_last_error();
+  Frames f;
+  ASSERT_EQ(lw_frames_from_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), 30, 1, &f.data, &f.count), LW_OK);
+  lw_wip_settings settings;
+  lw_wip_settings_default(&settings);
+  EXPECT_EQ(settings.detector, LW_WIP_DETECTOR_DEFAULT);
+  EXPECT_EQ(settings.table_path, nullptr);
+  settings.detector = 7;
+  lw_model* model = nullptr;
+  EXPECT_EQ(lw_model_create_wip_with(skel, &settings, &model), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_STREQ(lw_last_error(), "lw_model_create_wip_with: detector must be 0 (default), 1 (document) or 2 (adaptive), got 7");
+  // First frame where the left foot is 2 cm above where it stood, per model.
+  auto first_lift = [&](lw_model* m) {
+    lw_avatar* avatar = nullptr;
+    EXPECT_EQ(lw_avatar_create(m, &avatar), LW_OK);
+    const int32_t n = lw_skeleton_joint_count(lw_model_skeleton(m));
+    const int foot = humanoid_joint(m, "LeftFoot");
+    std::vector<double> world(3 * static_cast<std::size_t>(n));
+    double rest = NAN;
+    int lift = -1;
+    for (int32_t i = 0; i < f.count && lift < 0; ++i) {
+      EXPECT_GE(lw_avatar_update(avatar, &f.data[i]), 0);
+      EXPECT_EQ(lw_avatar_pose(avatar, nullptr, nullptr, world.data(), n), LW_OK);
+      const double y = world[3 * static_cast<std::size_t>(foot) + 1];
+      if (i == 0) rest = y;
+      else if (y > rest + 0.02) lift = i;
+    }
+    lw_avatar_destroy(avatar);
+    lw_model_destroy(m);
+    return lift;
+  };
+  int lift[3];
+  for (int d = 0; d < 3; ++d) {
+    settings.detector = d;
+    ASSERT_EQ(lw_model_create_wip_with(skel, &settings, &model), LW_OK) << lw_last_error();
+    lift[d] = first_lift(model);
+  }
+  ASSERT_EQ(lw_model_create_wip(skel, &model), LW_OK);
+  EXPECT_EQ(first_lift(model), lift[LW_WIP_DETECTOR_DEFAULT]);
+  lw_skeleton_destroy(skel);
+  ASSERT_GT(lift[LW_WIP_DETECTOR_DOCUMENT], 0) << "the document's detector never lifted the foot";
+  ASSERT_GT(lift[LW_WIP_DETECTOR_ADAPTIVE], 0) << "the adaptive detector never lifted the foot";
+  EXPECT_LT(lift[LW_WIP_DETECTOR_ADAPTIVE], lift[LW_WIP_DETECTOR_DOCUMENT]);
+}
+
 TEST(CApi, CombinedWithTheLearnedMappingMovesOnlyTheLegsOtherwise) {
   lw_skeleton* skel = nullptr;
   ASSERT_EQ(lw_skeleton_load_bvh(sample("cmu/bvh/walking/05_01.bvh").c_str(), &skel), LW_OK) << lw_last_error();
@@ -267,6 +317,53 @@ TEST(CApi, CombinedWithTheLearnedMappingMovesOnlyTheLegsOtherwise) {
     lw_avatar_destroy(avatars[k]);
     lw_model_destroy(models[k]);
   }
+}
+
+// The walker's root through the C API: smooth by default (even speed), the
+// pivoting root on request (lunges and stalls), bad settings named.
+TEST(CApi, WalkerRootIsSmoothByDefaultAndPivotOnRequest) {
+  const std::string walk = sample("walks/normal.json");
+  lw_walker_settings s;
+  lw_walker_settings_default(&s);
+  EXPECT_EQ(s.root, LW_WALKER_ROOT_SMOOTH);
+  lw_model* models[2] = {nullptr, nullptr};
+  ASSERT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &models[0]), LW_OK) << lw_last_error();
+  s.root = LW_WALKER_ROOT_PIVOT;
+  ASSERT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &models[1]), LW_OK) << lw_last_error();
+  double spread[2] = {0, 0};  // (max - min) / mean of the root's horizontal speed after the first second
+  for (int k = 0; k < 2; ++k) {
+    lw_avatar* avatar = nullptr;
+    ASSERT_EQ(lw_avatar_create(models[k], &avatar), LW_OK);
+    lw_frame f{};
+    f.devices[LW_HEAD] = {{0, 1.7, 0}, {1, 0, 0, 0}, 1};
+    double prev[3] = {0, 0, 0}, lo = 1e9, hi = 0, sum = 0;
+    int n = 0;
+    for (int i = 0; i < 180; ++i) {
+      f.time = i / 30.0;
+      ASSERT_EQ(lw_avatar_update(avatar, &f), LW_OK);
+      double root[3];
+      ASSERT_EQ(lw_avatar_pose(avatar, nullptr, root, nullptr, 0), LW_OK);
+      const double speed = std::hypot(root[0] - prev[0], root[2] - prev[2]) * 30.0;
+      if (i > 30) lo = std::min(lo, speed), hi = std::max(hi, speed), sum += speed, ++n;
+      std::copy(root, root + 3, prev);
+    }
+    spread[k] = (hi - lo) / (sum / n);
+    lw_avatar_destroy(avatar);
+    lw_model_destroy(models[k]);
+  }
+  std::printf("[capi] walker root speed spread: smooth %.3f, pivot %.3f of the mean\n", spread[0], spread[1]);
+  EXPECT_LT(spread[0], 0.4);  // within +-20 %
+  EXPECT_GT(spread[1], 0.4);
+  lw_model* bad = nullptr;
+  s.root = 7;
+  EXPECT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &bad), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("root must be LW_WALKER_ROOT_SMOOTH (0) or LW_WALKER_ROOT_PIVOT (1), got 7"),
+            std::string::npos) << lw_last_error();
+  lw_walker_settings_default(&s);
+  s.soft_reach = 0;
+  EXPECT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &bad), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("soft_reach must be in (0, 1]"), std::string::npos) << lw_last_error();
+  EXPECT_EQ(bad, nullptr);
 }
 
 TEST(CApi, BadInputGivesAStatusAndAMessage) {

@@ -29,7 +29,7 @@ legwork_cli_test(eval_cross_dataset eval accent --data ${PROJECT_SOURCE_DIR}/dat
 # One avatar, two sources on two sample walks: the table names every method.
 add_test(NAME cli.eval_combined COMMAND legwork eval combined --data ${D}/walking --limit 2)
 set_tests_properties(cli.eval_combined PROPERTIES PASS_REGULAR_EXPRESSION
-  "2 trials at 30 Hz \\(0 skipped\\)\n.*\\| IK avatar alone \\| [0-9.]+ \\|.*\\| combined: IK upper body \\+ walking-in-place legs \\| [0-9.]+ \\|")
+  "2 trials at 30 Hz \\(0 skipped\\)\n.*\\| IK avatar alone \\| [0-9.]+ \\|.*\\| combined: IK upper body \\+ walking-in-place legs \\(document's mapping\\) \\| [0-9.]+ \\|.*\\| combined: IK upper body \\+ walking-in-place legs \\(learned mapping, without the trial's subject\\) \\| [0-9.]+ \\|")
 legwork_cli_error(eval_combined_not_a_folder "error: --data '${D}/walking/07_01.bvh' is not a directory"
                   eval combined --data ${D}/walking/07_01.bvh)
 legwork_cli_test(eval_prints_help eval)

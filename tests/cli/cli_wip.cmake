@@ -6,6 +6,9 @@ legwork_cli_test(wip_bvh wip --input ${D}/walking/16_15.bvh --out ${O}/wip_16_15
 legwork_cli_test(wip_keyframe wip --input ${D}/walking/07_02.bvh --out ${O}/wip_07_02_keyframe.glb --baseline keyframe
                  --avatar ${D}/walking/07_01.bvh)
 legwork_cli_test(wip_eval wip eval --data ${D}/walking --out ${O}/wip_eval --limit 3)
+# The step detector: the adaptive one on a real walk, and its parameters chosen by subject over the sample walks.
+legwork_cli_test(wip_adaptive wip --input ${D}/walking/16_15.bvh --detector adaptive --out ${O}/wip_16_15_adaptive.bvh)
+legwork_cli_test(wip_tune wip tune --data ${D}/walking --out ${O}/wip_tune)
 legwork_cli_test(wip_frequency wip --synthetic --duration 8 --speed-model frequency --rate 90 --out ${O}/wip_90hz.bvh)
 # The learned depth mapping: the shipped table, and a table learned from the sample walks.
 legwork_cli_test(wip_learned wip --input ${D}/walking/16_15.bvh --mapping learned --out ${O}/wip_16_15_learned.bvh)
@@ -42,6 +45,10 @@ legwork_cli_error(wip_avatar_without_legs "error: [^\n]*--avatar [^ ]*no_legs.bv
              wip --synthetic --avatar ${PROJECT_SOURCE_DIR}/tests/wip/data/no_legs.bvh --out ${O}/x.bvh)
 legwork_cli_error(wip_bad_mapping "--mapping: fancy not in \\{document,learned\\}" wip --synthetic --out ${O}/x.glb
              --mapping fancy)
+legwork_cli_error(wip_bad_detector "--detector: psychic not in \\{document,adaptive\\}" wip --synthetic --out ${O}/x.glb
+             --detector psychic)
+legwork_cli_error(wip_bad_detect_cutoff "error: [^\n]*--detect-cutoff 20.000000 Hz must be between 0 and half the sample rate"
+             wip --synthetic --out ${O}/x.glb --detect-cutoff 20)
 legwork_cli_error(wip_missing_table "error: [^\n]*--table '[^']*nope.txt' does not exist \\(make one with `legwork wip learn`\\)"
              wip --synthetic --out ${O}/x.glb --mapping learned --table ${O}/nope.txt)
 legwork_cli_error(wip_bad_table "error: [^\n]*CMakeLists.txt:1: not a learned walking-in-place mapping"
@@ -60,5 +67,6 @@ set_tests_properties(cli.wip_help cli.wip_synthetic cli.wip_bvh cli.wip_keyframe
                      cli.wip_not_still cli.wip_csv_missing_columns cli.wip_csv_time_backwards
                      cli.wip_avatar_without_legs cli.wip_eval_no_data cli.wip_eval_no_trials cli.wip_eval_out_is_a_file
                      cli.wip_learned cli.wip_learn cli.wip_learned_table cli.wip_bad_mapping cli.wip_missing_table
-                     cli.wip_bad_table PROPERTIES WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+                     cli.wip_bad_table cli.wip_adaptive cli.wip_tune cli.wip_bad_detector cli.wip_bad_detect_cutoff
+                     PROPERTIES WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 legwork_cli_error(serve_bad_wip_table "error: .*MANIFEST.tsv:1: not a learned walking-in-place mapping \\(expected the header 'legwork-wip-learned-mapping 1'\\)" serve --port 0 --wip-table ${PROJECT_SOURCE_DIR}/data/cmu/MANIFEST.tsv)

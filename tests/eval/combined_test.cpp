@@ -39,7 +39,25 @@ TEST(EvalCombined, ScoresEachMethodAgainstTheCaptureAndListsBadTrials) {
   EXPECT_NE(report["methods"]["ik"]["lower_body_cm"], report["methods"]["combined_ik"]["lower_body_cm"]);
   EXPECT_GT(report["truth_foot_skating_cm"].get<double>(), 0.0);
   const std::string table = eval::combined_table(report);
-  EXPECT_NE(table.find("| combined: IK upper body + walking-in-place legs |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| combined: IK upper body + walking-in-place legs (document's mapping) |"), std::string::npos) << table;
+}
+
+// The learned legs beside the document's mapping: each trial's table is built
+// from the other subjects' walks only (three subjects here), the upper body
+// is the same IK avatar's, only the legs differ.
+TEST(EvalCombined, LearnedLegsAreScoredWithATableWithoutTheTrialsSubject) {
+  eval::CombinedEvalRun run;
+  for (const char* t : {"05_01", "07_12", "16_15"})
+    run.files.push_back(testdata::sample(std::string("cmu/bvh/walking/") + t + ".bvh").string());
+  const auto report = eval::evaluate_combined(run);
+  ASSERT_TRUE(report["methods"].contains("combined_ik_learned")) << report["methods"].dump();
+  const auto& learned = report["methods"]["combined_ik_learned"];
+  const auto& document = report["methods"]["combined_ik"];
+  EXPECT_EQ(learned["frames"], document["frames"]);
+  EXPECT_DOUBLE_EQ(learned["left_hand_cm"].get<double>(), document["left_hand_cm"].get<double>());
+  EXPECT_NE(learned["lower_body_cm"], document["lower_body_cm"]);
+  EXPECT_TRUE(std::isfinite(learned["foot_skating_cm"].get<double>()));
+  EXPECT_NE(eval::combined_table(report).find("(learned mapping, without the trial's subject)"), std::string::npos);
 }
 
 TEST(EvalCombined, NoTrialsIsAnError) {

@@ -5,6 +5,7 @@
 
 #include <legwork/core/interpolate.hpp>
 #include <legwork/core/tracker.hpp>
+#include <legwork/render/layout.hpp>
 
 #include "cmu_sample.hpp"
 
@@ -112,4 +113,33 @@ TEST(Session, VideoIsWrittenOrAMissingEncoderIsNamed) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/ffmpeg"), std::string::npos) << e.what();
   }
   unsetenv("LEGWORK_FFMPEG");
+}
+
+// The session video's frames as drawn (title strip, a label per panel, the time
+// counter in its own strip): four panels, as `accent run --compare-ik --video` on a
+// trial with its truth draws them; no label over another, none outside the frame.
+TEST(Session, VideoFramesHaveNoOverlappingLabels) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg not installed; the video needs it";
+  const Motion truth = trim(walk(), 0, 59);
+  const auto frames = tracker_frames_from_motion(truth);
+  const auto path = (std::filesystem::temp_directory_path() / ("legwork_session_layout_" + std::to_string(getpid()) + ".mp4")).string();
+  render::LayoutRecorder rec;
+  eval::render_session_video(frames, truth.fps, truth, &truth, &truth, "legwork accent: 07_01.bvh", path);
+  std::filesystem::remove(path);
+  // 59 / 120 s at the video's 30 fps: frames 0..14
+  ASSERT_EQ(rec.pictures().size(), 15u);
+  for (const auto& frame : rec.pictures()) {
+    EXPECT_NE(frame.path.find(path + " frame "), std::string::npos) << frame.path;
+    int labels = 0;
+    bool title = false, counter = false;
+    for (const auto& t : frame.texts) {
+      labels += t.text == "input (head, hands)" || t.text == "accentuated" || t.text == "IK baseline" || t.text == "ground truth";
+      title = title || t.text == "legwork accent: 07_01.bvh";
+      counter = counter || t.text.rfind("t = ", 0) == 0;
+    }
+    EXPECT_EQ(labels, 4) << frame.path;
+    EXPECT_TRUE(title && counter) << frame.path;
+    for (const auto& problem : render::layout_problems(frame)) ADD_FAILURE() << problem;
+  }
+  EXPECT_EQ(rec.pictures().back().path, path + " frame 14");
 }

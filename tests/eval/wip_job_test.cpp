@@ -63,6 +63,28 @@ TEST(WipJob, OptionsAreCheckedByName) {
   EXPECT_NE(error_of(job).find("half the sample rate"), std::string::npos);
 }
 
+// The detector options: an unknown name and a detection cutoff above Nyquist
+// are refused by name; the adaptive detector is what the settings carry.
+TEST(WipJob, DetectorOptionsReachTheSettings) {
+  eval::WipJob job;
+  job.detector = "psychic";
+  try {
+    eval::wip_settings(job, 30);
+    ADD_FAILURE() << "an unknown detector was accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "--detector 'psychic': expected 'document' (the document's thresholds) or 'adaptive'");
+  }
+  job.detector = "adaptive";
+  job.detect_cutoff = 12;
+  job.min_lift = 0.02;
+  const wip::Settings s = eval::wip_settings(job, 30);
+  EXPECT_EQ(s.gait.detector, wip::StepDetector::Adaptive);
+  EXPECT_EQ(s.signal.detect_cutoff, 12);
+  EXPECT_EQ(s.gait.min_lift, 0.02);
+  job.detect_cutoff = 15;
+  EXPECT_THROW(eval::wip_settings(job, 30), Error);
+}
+
 TEST(WipJob, EvaluationOverTwoTrialsWritesItsReport) {
   eval::WipJob job;
   job.data = testdata::sample("cmu/bvh/walking").string();
@@ -83,4 +105,11 @@ TEST(WipJob, EvaluationOverTwoTrialsWritesItsReport) {
   const auto report = nlohmann::json::parse(io::read_text_file(job.eval_out + "/report.json"));
   EXPECT_EQ(report["trials"].get<int>(), 2);
   EXPECT_EQ(report["per_trial"].size(), 2u);
+  // Both detectors side by side; the default settings' detector is the one of the headline score.
+  const auto& det = report["detectors"];
+  ASSERT_TRUE(det.contains("document") && det.contains("adaptive")) << det.dump();
+  const std::string used = report["settings"]["detector"];
+  EXPECT_EQ(det[used]["strict_200ms"]["matched"], report["strict_200ms"]["matched"]);
+  EXPECT_EQ(det[used]["strict_200ms"]["detected"], report["strict_200ms"]["detected"]);
+  EXPECT_EQ(det[used]["strict_200ms_noisy"]["f1"], report["strict_200ms_noisy"]["f1"]);
 }

@@ -233,3 +233,37 @@ TEST(Footprints, OutlineIsASoleAlongTheHeadingMirroredForTheRightFoot) {
   for (std::size_t i = 0; i < l.size(); ++i)
     EXPECT_LT((turned[i] - (Vec3(0.5, 0, 1.0) + q * (l[i] - Vec3(0.5, 0, 1.0)))).norm(), 1e-12);
 }
+
+// Uneven ground (walk cycles on stairs): the strip's treads and risers are
+// drawn where the framing puts them, and nothing where there is no ground.
+TEST(Ground, StairsAreDrawnFromTheSideAndFromAbove) {
+  Scene s;
+  s.floor = false;
+  s.ground.profile = {Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(0, 0.3, 1.01), Vec3(0, 0.3, 2)};
+  s.ground.across = Vec3::UnitX();
+  s.ground.half_width = 0.45;
+  for (View v : {View::Side, View::Top}) {
+    const Camera cam = camera(v, 400, 300);
+    const auto file = out(std::string("ground_") + view_name(v) + ".png");
+    render_scene(s, cam, file);
+    Image img(file);
+    ASSERT_TRUE(img.ok());
+    const Framing fr = frame_scene(s, cam);
+    auto inked = [&](const Vec3& p) {  // any pixel within 1 px of p's projection is not background
+      const Eigen::Vector2d q = fr.to_pixel(p);
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          if (!is_background(img.at(static_cast<int>(q.x()) + dx, static_cast<int>(q.y()) + dy))) return true;
+      return false;
+    };
+    if (v == View::Side) {
+      EXPECT_TRUE(inked(Vec3(0, 0.3, 1.5)));    // the tread
+      EXPECT_TRUE(inked(Vec3(0, 0.15, 1.005)));  // the riser
+      EXPECT_TRUE(inked(Vec3(0, 0, 0.5)));      // the floor before the stairs
+      EXPECT_FALSE(inked(Vec3(0, 0.15, 0.5)));  // air under the tread's height before the riser
+    } else {
+      EXPECT_TRUE(inked(Vec3(0.2, 0.3, 1.5)));   // on the strip
+      EXPECT_FALSE(inked(Vec3(0.8, 0.3, 1.5)));  // beside it
+    }
+  }
+}

@@ -49,15 +49,18 @@ const MethodInfo::Item* find_info(const MethodInfo& info, const char* key) {
 }
 
 TEST(ServeMethods, AvailableMethodsFollowTheResources) {
-  EXPECT_EQ(known_methods(), (std::vector<std::string>{"accent", "ik", "wip", "combined"}));
+  EXPECT_EQ(known_methods(), (std::vector<std::string>{"accent", "ik", "wip", "combined", "walker"}));
   EXPECT_TRUE(available_methods(Resources{}).empty());
   EXPECT_EQ(available_methods(skeleton_only()), (std::vector<std::string>{"ik", "wip", "combined"}));
+  Resources walks;
+  walks.walks_dir = "walks";
+  EXPECT_EQ(available_methods(walks), (std::vector<std::string>{"walker"}));
 }
 
 TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   const Resources res = skeleton_only();
   EXPECT_EQ(message_of([&] { make_method(res, options("dance")); }),
-            "unknown method 'dance' (known: accent, ik, wip, combined)");
+            "unknown method 'dance' (known: accent, ik, wip, combined, walker)");
   EXPECT_EQ(message_of([&] { make_method(res, options("accent")); }),
             "method 'accent' needs a database: start the server with --db FILE");
   EXPECT_EQ(message_of([&] { make_method(Resources{}, options("ik")); }),
@@ -156,4 +159,47 @@ TEST(ServeMethods, WipAndCombinedDescribeTheirLegs) {
 }
 
 }  // namespace
+// The walker method: a shipped walk steered by the head's yaw, its root
+// smooth by default and pivoting on request (hello "walk", "root"), bad
+// names explained.
+TEST(ServeMethods, WalkerWalksAShippedWalkWithTheRootAsked) {
+  Resources res;
+  res.walks_dir = std::string(LEGWORK_SOURCE_DIR) + "/data/walks";
+  MethodOptions o = options("walker");
+  o.walk = "strut";
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "walk 'strut' is not one of this server's walks (double-bounce, normal, sneak)");
+  o.walk = "sneak";
+  o.root = "bouncy";
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "root 'bouncy' is not one of: smooth, pivot");
+  double spread[2] = {0, 0};  // (max - min) / mean of the root's horizontal speed after the first second
+  for (int k = 0; k < 2; ++k) {
+    o.root = k == 0 ? "smooth" : "pivot";
+    const auto method = make_method(res, o);
+    Pose pose(method->skeleton());
+    MethodInfo info;
+    Vec3 prev = Vec3::Zero();
+    double lo = 1e9, hi = 0, sum = 0;
+    int n = 0;
+    for (int f = 0; f < 150; ++f) {
+      TrackerFrame frame;
+      frame.time = f / 30.0;
+      frame.head() = {Vec3(0, 1.7, 0), Quat::Identity(), true};
+      info = MethodInfo{};
+      ASSERT_EQ(method->update(frame, pose.ref(), info), UpdateStatus::Ok);
+      const Vec3 root(pose.translations[0].x(), 0, pose.translations[0].z());
+      const double speed = (root - prev).norm() * 30.0;
+      if (f > 30) lo = std::min(lo, speed), hi = std::max(hi, speed), sum += speed, ++n;
+      prev = root;
+    }
+    spread[k] = (hi - lo) / (sum / n);
+    ASSERT_NE(find_info(info, "pivot"), nullptr);
+    ASSERT_NE(find_info(info, "reach_limited"), nullptr);
+    EXPECT_EQ(find_info(info, "reach_limited")->number, 0.0);
+    EXPECT_GT(prev.z(), 2.0);  // walked forward
+  }
+  std::printf("[serve] walker sneak root speed spread: smooth %.3f, pivot %.3f of the mean\n", spread[0], spread[1]);
+  EXPECT_LT(spread[0], 0.4);  // within +-20 %
+  EXPECT_GT(spread[1], 0.4);
+}
+
 }  // namespace legwork::serve

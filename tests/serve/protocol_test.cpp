@@ -100,6 +100,16 @@ TEST(Protocol, FootLiftHeightIsAHelloField) {
   EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"foot_lift_height":0})").hello.method.foot_lift_height, 0.0);
 }
 
+TEST(Protocol, WalkAndRootAreHelloFields) {
+  const Hello d = parse_text(R"({"type":"hello","version":1})").hello;
+  EXPECT_EQ(d.method.walk, "normal");
+  EXPECT_EQ(d.method.root, "smooth");
+  const Hello h = parse_text(R"({"type":"hello","version":1,"method":"walker","walk":"sneak","root":"pivot"})").hello;
+  EXPECT_EQ(h.method.method, "walker");
+  EXPECT_EQ(h.method.walk, "sneak");
+  EXPECT_EQ(h.method.root, "pivot");
+}
+
 TEST(Protocol, BadMessagesNameTheProblem) {
   const auto message = [](const std::string& text) {
     try {
@@ -114,6 +124,7 @@ TEST(Protocol, BadMessagesNameTheProblem) {
   EXPECT_EQ(message(R"({"type":"hello","version":1,"format":"xml"})"), "bad_value: hello.format must be \"json\" or \"binary\"");
   EXPECT_EQ(message(R"({"type":"hello","version":1,"recognize_class":"yes"})"),
             "bad_message: hello.recognize_class must be true or false");
+  EXPECT_EQ(message(R"({"type":"hello","version":1,"root":1})"), "bad_message: hello.root must be a string");
   EXPECT_EQ(message(R"({"type":"options","recognize_class":1})"), "bad_message: options.recognize_class must be true or false");
   EXPECT_EQ(message(R"({"type":"frame"})"), "bad_message: frame without \"t\" (seconds)");
   EXPECT_EQ(message(R"({"type":"frame","t":1,"left":{"p":[0,1,0],"q":[0,0,0,0]}})"),

@@ -100,8 +100,13 @@ TEST(Ground, EveryShippedWalkGoesUpTheRampAndOverTheHillOnItsFeet) {
       const WalkResult w = walk_path(m, path);
       const SlipReport slip = measure_stance_slip(m, w.motion, w.labels, w.ground);
       const GroundContactReport c = measure_ground_contact(m, w.motion, w.labels, path.ground);
+      // By contact: heel and ball while each is down (a foot rising early onto its ball turns on the slope about the ball).
+      const FootTurnReport feet = measure_foot_turning(m, w.motion, w.labels, path.ground);
       const Vec3 end = w.motion.frame(w.motion.frame_count() - 1).translations[0];
       const double accel = root_vertical_accel(w);
+      std::printf("[walkcycle] %-13s %-4s: heel / ball slip %.2f / %.2f mm\n", name.c_str(), p, feet.heel_slip_mm, feet.ball_slip_mm);
+      EXPECT_LE(feet.heel_slip_mm, 2.0) << name << " " << p;
+      EXPECT_LE(feet.ball_slip_mm, 2.0) << name << " " << p;
       std::printf("[walkcycle] %-13s %-4s: slip max %.2f mm, feet below the ground %.2f mm, stance foot above it %.1f mm "
                   "(flat floor %.1f mm), root vertical acceleration %.1f m/s^2 (flat %.1f), end height above the ground "
                   "%.3f m (standing %.3f m), pelvis drop %.0f mm, end %.3f m\n",

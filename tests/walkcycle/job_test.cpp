@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 
 using namespace legwork;
@@ -102,5 +103,29 @@ TEST(WalkJob, PicturesOfTheShippedWalksHaveNoOverlappingLabels) {
       EXPECT_GE(picture.texts.size(), 3u) << picture.path << ": its title and labels were recorded";
       for (const auto& problem : render::layout_problems(picture)) ADD_FAILURE() << problem;
     }
+  }
+}
+
+// A walk's video frames as drawn (the demo's walk videos): the time counter and
+// the labels stay apart and inside the frame.
+TEST(WalkJob, VideoFramesOfAShippedWalkHaveNoOverlappingLabels) {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg not installed; the video needs it";
+  walkcycle::WalkJob job;
+  job.keys = testdata::walk_keys_file("normal");
+  job.steps = 2;
+  job.video = temp("normal_layout.mp4");
+  testing::internal::CaptureStdout();
+  testing::internal::CaptureStderr();
+  render::LayoutRecorder layout;
+  walkcycle::run_walk_job(job);
+  testing::internal::GetCapturedStdout();
+  testing::internal::GetCapturedStderr();
+  ASSERT_GE(layout.pictures().size(), 10u) << "frames recorded";
+  for (const auto& frame : layout.pictures()) {
+    EXPECT_NE(frame.path.find(job.video + " frame "), std::string::npos) << frame.path;
+    bool counter = false;
+    for (const auto& t : frame.texts) counter = counter || t.text.rfind("t = ", 0) == 0;
+    EXPECT_TRUE(counter) << frame.path << ": the time counter was recorded";
+    for (const auto& problem : render::layout_problems(frame)) ADD_FAILURE() << problem;
   }
 }

@@ -212,3 +212,98 @@ TEST(Walker, MakeModelRejectsAnUnbuiltCycleOrBadSettings) {
     EXPECT_NE(std::string(e.what()).find("max_turn_per_step must be a finite angle"), std::string::npos) << e.what();
   }
 }
+
+namespace {
+
+// `seconds` of a live walk at `rate` Hz, asked to face `turn_to` (radians)
+// from `turn_at` seconds on; the world poses and the labels the measures need.
+struct LiveWalk {
+  Motion motion;
+  std::vector<FrameLabel> labels;
+  double pelvis_drop_max = 0, foot_roll_max = 0;
+  int reach_limited_frames = 0;
+};
+LiveWalk walk_live(const Model& model, double seconds, double rate, double turn_at, double turn_to) {
+  State s(model);
+  Pose pose(model.skeleton());
+  LiveWalk w{Motion(model.skeleton(), rate, 0), {}};
+  for (int f = 0; f < static_cast<int>(seconds * rate); ++f) {
+    Info info;
+    const double t = f / rate;
+    update(model, steer(50.0 + t, t < turn_at ? 0.0 : turn_to), s, pose.ref(), &info);
+    w.motion.push_back(pose);
+    w.labels.push_back({info.step, info.left_planted, info.pivot, false});
+    w.pelvis_drop_max = std::max(w.pelvis_drop_max, info.pelvis_drop);
+    w.foot_roll_max = std::max(w.foot_roll_max, info.foot_roll);
+    w.reach_limited_frames += info.reach_limited;
+  }
+  return w;
+}
+
+double lowest_foot_point(const CycleModel& m, const Motion& motion) {
+  double lo = 1e300;
+  for (int f = 0; f < motion.frame_count(); ++f) lo = std::min(lo, lowest_foot_height(m, motion.frame(f)));
+  return lo;
+}
+
+}  // namespace
+
+// Issue 14 item 1 for the live walker: the smooth root (the default) against
+// the pivoting root (document 001) on the same live input, 10 s straight and
+// 10 s with a 90-degree turn to the left, at 30 and 90 Hz.
+TEST(Walker, SmoothRootTravelsEvenlyWithTheFeetPlanted) {
+  for (const char* w : {"normal", "sneak", "double-bounce"}) {
+    Settings pivot_settings;
+    pivot_settings.root = RootMotion::Pivot;
+    const Model smooth = make_model(cycle(w)), pivot = make_model(cycle(w), pivot_settings);
+    ASSERT_EQ(smooth.settings().root, RootMotion::Smooth);
+    for (double rate : {30.0, 90.0}) {
+      const LiveWalk a = walk_live(smooth, 10.0, rate, 1e9, 0.0), b = walk_live(pivot, 10.0, rate, 1e9, 0.0);
+      const RootMotionReport ra = measure_root_motion(a.motion, a.labels), rb = measure_root_motion(b.motion, b.labels);
+      const SlipReport sa = measure_stance_slip(smooth.cycle(), a.motion, a.labels);
+      const SlipReport sb = measure_stance_slip(pivot.cycle(), b.motion, b.labels);
+      std::printf("[walkcycle] walker %-13s straight %2.0f Hz: root speed %.2f-%.2f m/s (mean %.2f, %+.1f %% / %+.1f %%), accel max %.1f m/s^2, "
+                  "slip %.2e mm | pivoting root: %.2f-%.2f m/s (mean %.2f), accel max %.1f m/s^2, slip %.2e mm | drop %.0f mm, roll %.1f deg, "
+                  "reach-limited frames %d\n",
+                  w, rate, ra.speed_min_mps, ra.speed_max_mps, ra.speed_mean_mps, 100 * (ra.speed_min_mps / ra.speed_mean_mps - 1),
+                  100 * (ra.speed_max_mps / ra.speed_mean_mps - 1), ra.accel_max_mps2, sa.max_mm, rb.speed_min_mps, rb.speed_max_mps,
+                  rb.speed_mean_mps, rb.accel_max_mps2, sb.max_mm, 1000 * a.pelvis_drop_max, rad2deg(a.foot_roll_max),
+                  a.reach_limited_frames);
+      EXPECT_GE(ra.speed_min_mps, 0.8 * ra.speed_mean_mps) << w << " " << rate;
+      EXPECT_LE(ra.speed_max_mps, 1.2 * ra.speed_mean_mps) << w << " " << rate;
+      EXPECT_LE(ra.accel_max_mps2, 10.0) << w << " " << rate;
+      EXPECT_LE(sa.max_mm, 1.0) << w << " " << rate;
+      EXPECT_EQ(a.reach_limited_frames, 0) << w << " " << rate;
+      EXPECT_GE(lowest_foot_point(smooth.cycle(), a.motion), -1e-6) << w << " " << rate;  // no foot below the floor
+      // Before: the pivoting root lunges and stalls (outside the goal), and both travel alike.
+      EXPECT_TRUE(rb.speed_min_mps < 0.8 * rb.speed_mean_mps || rb.speed_max_mps > 1.2 * rb.speed_mean_mps) << w;
+      const double da = a.motion.frame(a.motion.frame_count() - 1).translations[0].z(),
+                   db = b.motion.frame(b.motion.frame_count() - 1).translations[0].z();
+      EXPECT_NEAR(da, db, 0.25 * step_length(smooth.cycle())) << w;
+    }
+    const LiveWalk turn = walk_live(smooth, 10.0, 30.0, 3.0, kPi / 2), turn_pivot = walk_live(pivot, 10.0, 30.0, 3.0, kPi / 2);
+    const SlipReport st = measure_stance_slip(smooth.cycle(), turn.motion, turn.labels);
+    const RootMotionReport rt = measure_root_motion(turn.motion, turn.labels), rtp = measure_root_motion(turn_pivot.motion, turn_pivot.labels);
+    std::printf("[walkcycle] walker %-13s 90-degree turn: slip %.2e mm, root speed %.2f-%.2f m/s, accel max %.1f m/s^2 | pivoting root: "
+                "%.2f-%.2f m/s, accel max %.1f m/s^2 | reach-limited frames %d\n",
+                w, st.max_mm, rt.speed_min_mps, rt.speed_max_mps, rt.accel_max_mps2, rtp.speed_min_mps, rtp.speed_max_mps,
+                rtp.accel_max_mps2, turn.reach_limited_frames);
+    EXPECT_LE(st.max_mm, 2.0) << w;
+    EXPECT_LE(rt.accel_max_mps2, 10.0) << w;
+    const Vec3 end = turn.motion.frame(turn.motion.frame_count() - 1).translations[0];
+    EXPECT_GT(end.x(), 2.0) << w;  // walked off to the left (+x)
+  }
+}
+
+TEST(Walker, MakeModelRejectsABadSoftReach) {
+  for (double bad : {0.0, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+    Settings s;
+    s.soft_reach = bad;
+    try {
+      make_model(cycle("normal"), s);
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("walker: soft_reach must be in (0, 1]"), std::string::npos) << e.what();
+    }
+  }
+}

@@ -35,16 +35,27 @@ double bump(double t, double t0, double t1, double height) {
 
 using Heights = std::function<std::pair<double, double>(double)>;
 
-std::vector<Info> run(const Heights& h, double duration, double rate = 30.0, double floor_y = 0.1) {
-  State st(cmu_model());
+// The same avatar with the adaptive step detector.
+const Model& adaptive_model() {
+  static const Model m = [] {
+    Settings s;
+    s.gait.detector = StepDetector::Adaptive;
+    return make_model(testdata::sample_skeleton(), s);
+  }();
+  return m;
+}
+
+std::vector<Info> run(const Heights& h, double duration, double rate = 30.0, double floor_y = 0.1,
+                      const Model& model = cmu_model()) {
+  State st(model);
   set_floor(st, floor_y, floor_y);
-  Pose pose(cmu_model().skeleton());
+  Pose pose(model.skeleton());
   std::vector<Info> out;
   for (int i = 0; i <= static_cast<int>(duration * rate); ++i) {
     const double t = i / rate;
     const auto [l, r] = h(t);
     Info info;
-    EXPECT_NE(update(cmu_model(), feet(t, Vec3(0.1, floor_y + l, 0), Vec3(-0.1, floor_y + r, 0)), st, pose.ref(), &info),
+    EXPECT_NE(update(model, feet(t, Vec3(0.1, floor_y + l, 0), Vec3(-0.1, floor_y + r, 0)), st, pose.ref(), &info),
               UpdateStatus::Rejected);
     out.push_back(info);
   }
@@ -151,6 +162,69 @@ TEST(Gait, JitterAroundTheHeightThresholdGivesOneSwingNotMany) {
   const auto frames = run(h, 8.0);
   EXPECT_LE(count_events(frames, kLeft, kEventFootOff), 1);
   EXPECT_EQ(frames.back().phase[kLeft], P::DoubleSupport);
+}
+
+// ---- the adaptive step detector (issue 13 item 2) ---------------------------
+
+double first_event_time(const std::vector<Info>& frames, int foot, unsigned ev, double after = 0) {
+  for (const auto& f : frames)
+    if (f.time > after && (f.events[foot] & ev)) return f.time;
+  return NAN;
+}
+
+// Five 0.15 m steps per foot, then a 4.5 cm shuffle of the left foot: the
+// adaptive detector (foot-off above 20 % of the user's apex, 3 cm here) sees
+// the shuffle, the document's adaptive H1 (40 %, 6 cm) does not; both see
+// every normal step, and the adaptive one sees each of them earlier.
+TEST(Gait, AdaptiveDetectorSeesAShuffleTheDocumentsThresholdsMissAndFiresEarlier) {
+  auto h = [](double t) {
+    double l = 0, r = 0;
+    for (int k = 0; k < 5; ++k) {
+      l += bump(t, 1.0 + 1.2 * k, 1.5 + 1.2 * k, 0.15);
+      r += bump(t, 1.6 + 1.2 * k, 2.1 + 1.2 * k, 0.15);
+    }
+    l += bump(t, 8.0, 8.4, 0.045);
+    return std::pair{l, r};
+  };
+  const auto doc = run(h, 10.0), ada = run(h, 10.0, 30.0, 0.1, adaptive_model());
+  for (int foot : {0, 1}) {
+    EXPECT_EQ(count_events(ada, foot, kEventFootOff), foot == kLeft ? 6 : 5) << "foot " << foot;
+    EXPECT_EQ(count_events(doc, foot, kEventFootOff), 5) << "foot " << foot;
+  }
+  EXPECT_TRUE(std::isfinite(first_event_time(ada, kLeft, kEventFootOff, 7.9)));
+  EXPECT_FALSE(std::isfinite(first_event_time(doc, kLeft, kEventFootOff, 7.9)));
+  // Each normal step: the adaptive foot-off is at least one frame earlier.
+  for (int k = 0; k < 5; ++k) {
+    const double t0 = 0.9 + 1.2 * k;
+    EXPECT_LT(first_event_time(ada, kLeft, kEventFootOff, t0), first_event_time(doc, kLeft, kEventFootOff, t0) - 0.03)
+        << "step " << k;
+  }
+}
+
+// After a few steps the user stands on a jittery tracker (3 cm std): the
+// adaptive detector's height threshold rises with the measured jitter (it
+// was 3 cm on the clean track) and no step is invented while standing.
+TEST(Gait, AdaptiveThresholdRisesWithTrackerJitterAndInventsNoStep) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> jitter(0, 0.03);
+  std::vector<double> noise(900);
+  for (double& n : noise) n = jitter(rng);
+  auto walk = [](double t) {
+    double l = 0, r = 0;
+    for (int k = 0; k < 4; ++k) l += bump(t, 1.0 + 1.2 * k, 1.5 + 1.2 * k, 0.15), r += bump(t, 1.6 + 1.2 * k, 2.1 + 1.2 * k, 0.15);
+    return std::pair{l, r};
+  };
+  auto noisy = [&](double t) {
+    auto p = walk(t);
+    if (t > 6.5) p.first += noise[static_cast<std::size_t>(t * 30) % noise.size()], p.second += noise[static_cast<std::size_t>(t * 30 + 7) % noise.size()];
+    return p;
+  };
+  const auto clean = run(walk, 20.0, 30.0, 0.1, adaptive_model()), shaky = run(noisy, 20.0, 30.0, 0.1, adaptive_model());
+  EXPECT_NEAR(clean.back().h1[kLeft], 0.2 * clean.back().apex_estimate[kLeft], 1e-9);
+  EXPECT_GT(shaky.back().h1[kLeft], clean.back().h1[kLeft] + 0.02);
+  int false_steps = 0;
+  for (const auto& f : shaky) false_steps += f.time > 8 && ((f.events[0] | f.events[1]) & kEventFootOff) ? 1 : 0;
+  EXPECT_EQ(false_steps, 0);
 }
 
 TEST(Gait, LostTrackingPutsTheFootDownWithoutNan) {

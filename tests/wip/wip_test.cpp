@@ -68,17 +68,23 @@ int walking_frames(const Stream& s) {
 }
 
 TEST(Update, AllocatesNothingPerFrameOnRealWalking) {
-  const Model& m = walk_model();
-  State st(m);
-  Pose pose(m.skeleton());
-  Info info;
-  const auto& frames = walk_frames();
-  update(m, frames[0], st, pose.ref(), &info);
-  const long allocations = alloc_count::count_allocations([&] {
-    for (std::size_t i = 1; i < frames.size(); ++i) update(m, frames[i], st, pose.ref(), &info);
-  });
-  EXPECT_EQ(allocations, 0);
-  EXPECT_GT(info.distance, 1.0);  // it did walk
+  for (StepDetector detector : {StepDetector::Document, StepDetector::Adaptive}) {
+    Settings settings = walk_model().settings();
+    settings.gait.detector = detector;
+    const Model m = make_model(walk_model().skeleton(), settings);
+    State st(m);
+    Pose pose(m.skeleton());
+    Info info;
+    const auto& frames = walk_frames();
+    update(m, frames[0], st, pose.ref(), &info);
+    const long allocations = alloc_count::count_allocations([&] {
+      for (std::size_t i = 1; i < frames.size(); ++i) update(m, frames[i], st, pose.ref(), &info);
+    });
+    EXPECT_EQ(allocations, 0) << "detector " << int(detector);
+    // It did walk (the step-speed gain is calibrated on the document's phase timing: the adaptive
+    // detector's phases give a lower speed, docs/wip.md).
+    EXPECT_GT(info.distance, detector == StepDetector::Document ? 1.0 : 0.5) << "detector " << int(detector);
+  }
 }
 
 // The learned depth mapping (the shipped table, built from the shared CMU

@@ -198,7 +198,7 @@ function loop(now) {
   if (stage.renderer.xr.isPresenting) return;
   const dt = Math.min((now - last) / 1000, 0.1);
   last = now;
-  if (++frames, now - fpsStart > 500) { state.renderFps = (frames * 1000) / (now - fpsStart); frames = 0; fpsStart = now; $('fps').textContent = `${state.renderFps.toFixed(0)} fps`; }
+  if (++frames, now - fpsStart > 500) { state.renderFps = (frames * 1000) / (now - fpsStart); frames = 0; fpsStart = now; $('fps').textContent = `${state.renderFps.toFixed(state.renderFps < 10 ? 1 : 0)} fps`; }
   if (state.mode === 'glb' && !glbPaused) {
     glb.update(dt * +$('speed').value);
     if (glb.info.duration) {
@@ -210,7 +210,7 @@ function loop(now) {
     state.frame = replay.shown;
     if (document.activeElement !== $('scrub')) $('scrub').value = replay.shown;
     $('time').textContent = `${(replay.shown / replay.trial.fps).toFixed(2)} / ${replay.duration.toFixed(2)} s · frame ${replay.shown}`;
-    replay.updateLabels();
+    replay.update();
   }
   if (state.mode === 'xr') {
     const e = mirror.stats.lastHandError;

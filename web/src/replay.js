@@ -1,14 +1,14 @@
 // Replay mode: streams a trial's head + hands to two server sessions at the
-// trial's rate and shows their avatars beside the trial's ground truth.
+// trial's rate and shows their avatars beside the trial's ground truth. The
+// stream itself (clock, sending, sessions) runs in stream-worker.js, off the
+// render thread; this side keeps the latest pose per lane and draws it.
 // Display frame: each lane = R(yaw) * (p - anchor) + lane offset, where the
 // anchor follows the input head (follow mode) so the walkers stay in view, and
 // yaw turns the trial's walking direction towards the camera.
 import * as THREE from 'three';
 import { Body, DeviceMarkers } from './avatar.js';
-import { LiveSession } from './session.js';
 
 const LANE_X = [-1.6, 0, 1.6];
-const RESTART_GAP = 6; // seconds forward: more than the server's FrameClock::kMaxGap (5 s) -> restart
 
 export const LANE_COLORS = { accent: 0xff9a3c, ik: 0x4aa3ff, wip: 0xc792ea, combined: 0xffd166, truth: 0xb8c2cc };
 export const LANE_TITLES = { accent: 'Accentuated', ik: 'IK baseline', wip: 'Walking in place', combined: 'Combined', truth: 'Ground truth' };
@@ -26,15 +26,33 @@ export class Replay {
       return lane;
     });
     this.trial = null;
+    this.gen = 0;          // trial generation, as the worker counts it
     this.playing = true;
-    this.speed = 1;
     this.follow = true;
-    this.index = 0;        // next frame to send
     this.shown = 0;        // frame the truth shows
-    this.clockBase = 0;    // added to trial times so the stream's clock only moves forward
-    this.lastSentT = -RESTART_GAP; // first stream starts at t = 0
     this.options = { classes: undefined, exaggeration: 1, format: 'json' };
-    this._timer = null;
+    this._connects = new Map();
+    this._connectId = 0;
+    this.worker = new Worker(new URL('stream-worker.js', import.meta.url), { type: 'module' });
+    this.worker.onmessage = (ev) => this._message(ev.data);
+    this.worker.onerror = (e) => { for (const [, c] of this._connects) c.reject(new Error(`stream worker: ${e.message}`)); this._connects.clear(); };
+  }
+
+  _post(m) { this.worker.postMessage(m); }
+
+  _message(m) {
+    if (m.type === 'pose') { const lane = this.lanes[m.lane]; if (lane?.session) lane.pending = m; }
+    else if (m.type === 'shown') { if (m.gen === this.gen) this._pendingShown = m.i; }
+    else if (m.type === 'stats') m.stats.forEach((st, k) => { if (this.lanes[k]?.session) this.lanes[k].session.stats = st; });
+    else if (m.type === 'welcome') {
+      const lane = this.lanes[m.lane];
+      lane.session.open = true;
+      lane.body.setSkeleton(m.welcome.skeleton.names, m.welcome.skeleton.parents);
+    } else if (m.type === 'connected') {
+      const c = this._connects.get(m.id);
+      this._connects.delete(m.id);
+      if (c) (m.error ? c.reject(new Error(m.error)) : c.resolve());
+    }
   }
 
   _setLane(i, method) {
@@ -54,23 +72,20 @@ export class Replay {
     lane.label.at.set(LANE_X[i], 2.15, 0);
   }
 
-  // Opens (or reopens) the two method sessions.
+  // Opens (or reopens) the two method sessions (in the worker). lane.session is what the
+  // page knows of a session: its method, whether it is open, and its stats as last posted.
   async connect(methods) {
-    for (const lane of this.lanes) if (lane.session) lane.session.close();
-    const opened = methods.map((method, i) => {
+    methods.forEach((method, i) => {
       this._setLane(i, method);
-      const lane = this.lanes[i];
-      const session = new LiveSession(this.base, { method, ...this.options }, {
-        onWelcome: (w) => lane.body.setSkeleton(w.skeleton.names, w.skeleton.parents),
-        onPose: (pose, frame) => lane.session === session && this._pose(lane, pose, frame),
-      });
-      lane.session = session;
-      return lane.session.ready;
+      this.lanes[i].session = { method, open: false, stats: { method, state: 'connecting', posesReceived: 0, framesSent: 0, errors: 0, lastError: '' } };
+      this.lanes[i].pending = null;
     });
     this._setLane(2, 'truth');
     if (this.trial?.truth) this.lanes[2].body.setSkeleton(this.trial.truth.names, this.trial.truth.parents);
-    this.clockBase = this.lastSentT + RESTART_GAP;
-    await Promise.all(opened);
+    const id = ++this._connectId;
+    const done = new Promise((resolve, reject) => this._connects.set(id, { resolve, reject }));
+    this._post({ type: 'connect', id, base: this.base.href, methods, options: this.options });
+    await done;
   }
 
   async load(name, rate = 90) {
@@ -87,7 +102,11 @@ export class Replay {
     else if (truth.body) truth.body.group.visible = false;
     if (truth.label) truth.label.title.textContent = trial.truth ? LANE_TITLES.truth : 'Recorded input';
     this._frameOf(trial);
-    this.seek(0);
+    this.gen++;
+    for (const lane of this.lanes) lane.pending = null;
+    this._post({ type: 'trial', frames: trial.frames, fps: trial.fps });
+    this.shown = 0;
+    this._showTruth(0);
     return trial;
   }
 
@@ -108,55 +127,34 @@ export class Replay {
 
   seek(i) {
     if (!this.trial) return;
-    this.index = Math.max(0, Math.min(i, this.trial.frames.length - 1));
-    this.shown = this.index;
-    this.clockBase = this.lastSentT + RESTART_GAP - this.trial.frames[this.index].t; // jump = restart
-    this._playStart = performance.now();
-    this._playFrom = this.index;
-    this._showTruth(this.index);
+    this.shown = Math.max(0, Math.min(i, this.trial.frames.length - 1));
+    this._post({ type: 'seek', i: this.shown });
+    this._showTruth(this.shown);
   }
 
-  start() {
-    if (this._timer) return;
-    this._playStart = performance.now();
-    this._playFrom = this.index;
-    this._timer = setInterval(() => this.tick(), 4);
-  }
-
-  stop() { clearInterval(this._timer); this._timer = null; }
-
-  setPlaying(p) {
-    this.playing = p;
-    this._playStart = performance.now();
-    this._playFrom = this.index;
-  }
-
-  setSpeed(s) { this.speed = s; this._playStart = performance.now(); this._playFrom = this.index; }
+  start() { this._post({ type: 'run', on: true }); }
+  stop() { this._post({ type: 'run', on: false }); }
+  setPlaying(p) { this.playing = p; this._post({ type: 'playing', on: p }); }
+  setSpeed(s) { this._post({ type: 'speed', s }); }
 
   setOptions(o) {
     Object.assign(this.options, o);
-    for (const lane of this.lanes) if (lane.session) lane.session.setOptions(o);
+    this._post({ type: 'options', o });
   }
 
-  tick() {
-    const tr = this.trial;
-    if (!tr || !this.playing) return;
-    const due = this._playFrom + Math.floor(((performance.now() - this._playStart) / 1000) * this.speed * tr.fps);
-    if (due - this.index > 10) this.index = due - 1; // fell behind (background tab): skip, latest wins
-    while (this.index <= due) {
-      if (this.index >= tr.frames.length) { this.seek(0); return; } // loop: restart the stream
-      this._send(this.index++);
-    }
-  }
-
-  _send(i) {
-    const src = this.trial.frames[i];
-    const frame = { ...src, t: this.clockBase + src.t, _i: i, _trial: this.trial };
-    let sent = false;
-    for (const lane of this.lanes) if (lane.session && lane.session.send(frame)) sent = true;
-    if (sent) this.lastSentT = frame.t;
-    else this._showTruth(i); // no session answers: the truth alone keeps time
-    this.shown = i;
+  // Once per rendered frame: the latest pose of each lane, and the truth at the frame the
+  // middle lane answered (so all three bodies are in step), or where the stream is.
+  update() {
+    let truthAt = null;
+    this.lanes.slice(0, 2).forEach((lane, k) => {
+      const m = lane.pending;
+      lane.pending = null;
+      if (m && m.gen === this.gen && this._pose(lane, m.pose, m.i) && (k === 1 || !this.lanes[1].session?.open)) truthAt = m.i;
+    });
+    if (truthAt === null && this._pendingShown !== undefined) truthAt = this._pendingShown;
+    this._pendingShown = undefined;
+    if (truthAt !== null) { this.shown = truthAt; this._showTruth(truthAt); }
+    this.updateLabels();
   }
 
   _anchor(i) {
@@ -199,14 +197,12 @@ export class Replay {
     lane.body.setPositions(pts);
   }
 
-  _pose(lane, pose, frame) {
-    // late answers to a previous trial's frames (the lane has reconnected since) are dropped
-    if (!frame || frame._trial !== this.trial || pose.status === 'rejected' || !pose.positions || !lane.body.joints.length) return;
-    const anchor = this._anchor(frame._i);
+  _pose(lane, pose, i) {
+    if (pose.status === 'rejected' || !pose.positions || !lane.body.joints.length || !this.trial.frames[i]) return false;
+    const anchor = this._anchor(i);
     lane.body.setPositions(pose.positions.map((p) => this._display(p, anchor, lane)));
-    this._devices(this.trial.frames[frame._i], anchor, lane);
-    // the truth shows the frame the middle lane just answered, so all three bodies are in step
-    if (lane === this.lanes[1] || !this.lanes[1].session?.open) this._showTruth(frame._i);
+    this._devices(this.trial.frames[i], anchor, lane);
+    return true;
   }
 
   updateLabels() {

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -54,7 +56,13 @@ struct StrictScore {
 };
 StrictScore match_foot_offs(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth, double tolerance,
                             double t_begin, double t_end);
+// The detections that match_foot_offs (+-tolerance) leaves without a true
+// partner: the false steps, wherever they are.
+std::vector<SwingEvent> unmatched_detections(std::span<const SwingEvent> detected, std::span<const SwingEvent> truth,
+                                             double tolerance);
 StrictScore combine(std::span<const StrictScore> scores);
+// A number printed with `printf_format`, or "n/a" when it is not finite.
+std::string format_or_na(double v, const char* printf_format);
 // "precision 0.950, recall n/a, F1 ..., foot-off latency median 55 ms, p90 90 ms".
 std::string format_strict(const StrictScore& s);
 
@@ -66,7 +74,9 @@ struct StillSegment {
   int false_steps_noisy = 0;  // the same in the noisy run
 };
 // Still stretches of at least `min_duration` s within [t_begin, t_end], from
-// the true contacts of both feet; false steps counted from `detected`.
+// the true contacts of both feet; false steps counted from `detected` (pass
+// the unmatched detections: a detection matched to the true foot-off that
+// ends the stretch is an early step, not a false one).
 std::vector<StillSegment> still_segments(const Motion& m, const std::string& name, const ContactOptions& truth,
                                          std::span<const SwingEvent> detected, double min_duration, double t_begin,
                                          double t_end);
@@ -123,6 +133,16 @@ struct WipTrialEval {
 };
 // The CMU subject of a trial name ("105_02" -> "105").
 std::string subject_of(const std::string& trial);
+// The learned mapping's training samples of one trial: its own ankles through
+// the method (the document's mapping, opt's settings and rate) paired with
+// its real foot depths after opt.settle, as `wip eval` collects them.
+std::vector<wip::LearnSample> trial_learning_samples(const Motion& trial, const WipEvalOptions& opt);
+// One learned table per held-out subject, each built only from the samples of
+// the other subjects (nullopt, logged, when they are too few): the tables the
+// learned mapping is scored with, in `wip eval` and `eval combined`.
+std::map<std::string, std::optional<wip::LearnedMapping>> learned_tables_by_subject(
+    const std::map<std::string, std::vector<wip::LearnSample>>& samples_by_subject,
+    const std::function<void(const std::string&)>& log = {});
 // Runs the trial again with the learned mapping `table` and scores its depths
 // against e.true_depth (fills e.depth_learned, e.learned_z).
 void evaluate_learned_depth(const Motion& trial, const wip::LearnedMapping& table, const WipEvalOptions& opt,
@@ -140,6 +160,14 @@ struct WipEvalRun {
   std::string out;                 // output folder (created)
   WipEvalOptions options;
   std::function<void(const std::string&)> log;  // progress and skipped trials (may be empty)
+  bool cross_validate_detector = false;  // also choose the adaptive detector's parameters by subject (wip_tune.hpp)
+};
+// Step detection of one detector over all trials (strict scores, false steps).
+struct DetectorSummary {
+  std::string name;  // "document" or "adaptive"
+  StrictScore strict, strict_100, strict_noisy;
+  int false_steps = 0, false_steps_noisy = 0;
+  double false_steps_per_minute = NAN, false_steps_per_minute_noisy = NAN;
 };
 struct WipEvalSummary {
   int trials = 0, skipped = 0;
@@ -152,6 +180,11 @@ struct WipEvalSummary {
   // mapping and the learned one cross-validated by subject.
   Agreement depth_normal, depth_turning, learned, learned_normal, learned_turning;
   int learned_trials = 0;
+  DetectorSummary detectors[2];      // [0] the document's detector (before), [1] the adaptive one (after)
+  bool cross_validated = false;      // the adaptive detector's parameters were also chosen by subject (below)
+  StrictScore cv_strict, cv_noisy;   // held-out subjects pooled
+  double cv_false_per_minute = NAN, cv_false_per_minute_noisy = NAN;
+  std::string tuning_markdown, tuning_json;  // the cross-validation's report section and JSON
   std::vector<std::string> written;  // report.md, report.json
 };
 // Evaluates every trial (with the adaptive and the document's fixed

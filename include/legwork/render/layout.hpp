@@ -33,14 +33,15 @@ struct TextBox {
 };
 
 struct PictureLayout {
-  std::string path;  // the picture file ("" for in-memory frames, which are not recorded)
+  std::string path;  // the picture file; a video's frames: "<video> frame <k>" (k from 0)
   int width = 0, height = 0;
   std::vector<TextBox> texts;
   std::vector<Box> data_areas;  // chart panels (curves and bars are drawn inside)
   std::vector<Box> legends;     // legend boxes
 };
 
-// Records the layout of every picture file drawn on this thread while alive.
+// Records the layout of every picture file, and of every frame of every video,
+// drawn on this thread while alive.
 // One at a time per thread (a second one throws legwork::Error).
 class LayoutRecorder {
  public:

@@ -85,6 +85,16 @@ struct Footprint {
   bool left = true;
 };
 
+// Uneven ground under a walk (stairs, a ramp, a hill), drawn as a strip:
+// its profile along the walk (model space, heights included; a riser is two
+// points above each other) extended `half_width` metres to either side along
+// `across` (horizontal). An empty profile draws nothing.
+struct GroundStrip {
+  std::vector<Vec3> profile;
+  Vec3 across = Vec3::UnitX();
+  double half_width = 0.45;
+};
+
 // Everything drawn in one panel.
 struct Scene {
   std::vector<Figure> figures;
@@ -92,6 +102,7 @@ struct Scene {
   std::vector<Footprint> footprints;
   std::string title;
   bool floor = true;  // draw the y = 0 line / grid
+  GroundStrip ground;  // drawn over the floor, under everything else
 };
 
 struct Camera {
@@ -177,6 +188,7 @@ struct VideoOptions {
   // body fills its panel; the floor grid moves under it. Off: one framing
   // over the whole clip's path.
   bool follow = false;
+  GroundStrip ground;  // uneven ground under the motion (not with follow)
 };
 void render_video(const Motion& m, const VideoOptions& opt, const std::string& path);
 

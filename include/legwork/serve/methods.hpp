@@ -1,6 +1,6 @@
 #pragma once
 // The one place where `legwork serve` calls the runtimes (accent, ik, wip,
-// combined). Each live avatar owns one Method: built from the session's
+// combined, walker). Each live avatar owns one Method: built from the session's
 // options, fed one TrackerFrame per update, writing a pose on skeleton().
 // Adapting the server to a runtime API change touches only methods.cpp.
 #include <legwork/core/motion.hpp>
@@ -25,22 +25,26 @@ struct Resources {
   const accent::Database* db = nullptr;  // null: methods needing a database are unavailable
   const Skeleton* skeleton = nullptr;    // avatar skeleton for ik/wip when there is no database
   const wip::LearnedMapping* wip_learned = nullptr;  // null: the learned walking-in-place mapping is unavailable
+  std::string walks_dir;                 // walk files (legwork-walk/1) for the walker ("" = no walker)
   std::string database_name;             // for /api/info
 };
 
 // Session options (the hello message, later "options" messages).
 struct MethodOptions {
-  std::string method = "accent";     // accent | ik | wip | combined
+  std::string method = "accent";     // accent | ik | wip | combined | walker
   std::vector<std::string> classes;  // accent classes to match (empty = all)
   double exaggeration = 1.0;         // accent: hand-motion exaggeration about the head
   double user_height = 0;            // metres; 0 = the avatar skeleton's own height
   std::string mapping = "document";  // wip / combined legs' depths: document (equations 1-4) | learned
+  std::string detector;              // wip / combined legs' foot-off detector: document | adaptive ("" = the default)
   // accent: with several classes allowed, recognise the activity and search
   // only its class (accent::Settings::recognize_class); false: search all.
   bool recognize_class = true;
   // accent (and combined's upper body): metres a foot released at the end of
   // a contact is lifted on its way back (accent::Settings::foot_lift_height).
   double foot_lift_height = 0.05;
+  std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
+  std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
 };
 
 // Per-frame diagnostics as a flat list of name -> number or name -> text

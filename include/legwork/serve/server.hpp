@@ -13,6 +13,7 @@ struct ServeOptions {
   std::string db_path;        // accent database (.lwdb); empty: ik only (needs skeleton_path)
   std::string skeleton_path;  // BVH whose skeleton drives ik when there is no database
   std::string wip_table;      // learned walking-in-place mapping ("" = sessions cannot ask for mapping "learned")
+  std::string walks_dir;      // walk files for the walker method ("" = no walker)
   std::string host = "127.0.0.1";
   int port = 8080;            // 0: any free port (see Server::port())
   std::string web_dir;        // static files ("" = none)

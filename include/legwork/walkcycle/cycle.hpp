@@ -86,6 +86,14 @@ Motion bake_cycle(const CycleModel& m);
 // Model-space position of a foot's heel or ball for a pose (FK of the leg
 // chain only; no allocation).
 Vec3 foot_point(const CycleModel& m, ConstPoseRef pose, bool left_foot, Pivot which);
+// Both points of one foot at once ([heel, ball]; the same values as two foot_point calls).
+std::array<Vec3, 2> heel_and_ball(const CycleModel& m, ConstPoseRef pose, bool left_foot);
+
+// The pivoting walk straight ahead over one cycle, `samples_per_frame` steps
+// per cycle frame: its floor offset (world root = in-place root + offset)
+// after each step, entry 0 = zero, entry N * samples_per_frame one cycle on
+// (twice the step length). Allocates (a builder, not a per-frame call).
+std::vector<Vec3> straight_pivot_travel(const CycleModel& m, int samples_per_frame);
 
 // Height of the lowest foot point (heel, ball or toe tip of either foot)
 // above the floor for a pose, metres, model space (FK of the leg chains only).

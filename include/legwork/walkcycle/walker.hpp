@@ -17,10 +17,30 @@
 // step, limited to Settings::max_turn_per_step, and blended in over the next
 // step (document 001: no heading keys in the first half of step n and the
 // second half of step n-1); every turn is applied about the planted pivot.
+//
+// Root (Settings::root, issue 14 item 1). The pivoting walk above is the
+// plan: it keeps the stance foot still by dragging the root, which lunges and
+// stalls twice per step. With RootMotion::Smooth (the default) the root
+// instead travels at the cycle's mean velocity (its stride over its time,
+// turned with the heading) plus the pelvis's own offsets from the keys: the
+// plan's floor offset minus its drag, a function of the cycle's phase
+// tabulated by make_model from a straight walk, followed by a first-order
+// follower (time constant half a step) that absorbs what turns change; on a
+// straight walk the root is exactly the plan's mean travel. Both legs are
+// then solved by two-bone IK (legs.hpp) so each ankle is where the plan put
+// it (the stance foot stays planted, the swing foot keeps its path); a foot
+// out of reach rolls on its ball or heel, then the pelvis drops (the drop
+// the straight walk needs at that phase, spread over a quarter step and
+// averaged over half a step, tabulated), then the soft limit pulls the ankle
+// in (Info::reach_limited). No foot point goes below the floor (the plan is
+// walked without the cycle's floor lift; a dipping foot is lifted by its leg).
+// RootMotion::Pivot is document 001's root, unchanged.
 #include <legwork/core/tracker.hpp>
 #include <legwork/walkcycle/cycle.hpp>
+#include <legwork/walkcycle/legs.hpp>
 
 #include <array>
+#include <vector>
 
 namespace legwork::walkcycle {
 
@@ -28,23 +48,41 @@ struct Settings {
   double max_turn_per_step = deg2rad(30.0);  // radians of heading change per step, at most
   Vec3 start_position = Vec3::Zero();        // floor point under the root at the start (y ignored), metres
   double start_heading = 0;                  // radians about y at the start, 0 = facing +z
+  RootMotion root = RootMotion::Smooth;      // Smooth: even travel, legs by IK; Pivot: document 001's root
+  double soft_reach = 0.98;                  // smooth root: fraction of a leg's length it may straighten to, (0, 1]
 };
 
 class Model {
  public:
   const Skeleton& skeleton() const { return cycle_.skeleton; }  // the output pose's skeleton
   const Settings& settings() const { return settings_; }
+  // The walked cycle: a copy of make_model's, without its floor lift for the
+  // smooth root (its legs keep the feet above the floor).
   const CycleModel& cycle() const { return cycle_; }
+
+  // Smooth root tables over one cycle, `samples_per_frame` per cycle frame
+  // (entry i at cycle time i / samples_per_frame, the last equal to the first).
+  static constexpr int samples_per_frame = 8;
+  struct SmoothRoot {
+    Vec3 velocity = Vec3::Zero();  // the plan's mean floor travel per cycle frame, character frame (heading 0)
+    std::vector<Vec3> drag;        // the plan's floor offset minus its mean travel, character frame, metres
+    std::vector<double> drop;      // pelvis drop, metres (>= 0)
+    std::array<LegIk, 2> legs;     // right, left
+    LegJoints joints;              // the joints the legs' IK needs
+  };
+  const SmoothRoot& smooth_root() const { return smooth_; }
 
  private:
   friend Model make_model(const CycleModel&, const Settings&);
   Model() = default;
   CycleModel cycle_;
   Settings settings_;
+  SmoothRoot smooth_;
 };
 
-// Copies `cycle`. Throws legwork::Error on an unusable cycle (no frames, a
-// non-positive rate) or non-finite settings.
+// Copies `cycle` (and tabulates the smooth root). Throws legwork::Error on an
+// unusable cycle (no frames, a non-positive rate), non-finite settings or a
+// soft_reach outside (0, 1].
 Model make_model(const CycleModel& cycle, const Settings& settings = {});
 
 // One walking character.
@@ -63,6 +101,9 @@ struct State {
   double heading = 0;           // current heading, radians
   Vec3 offset = Vec3::Zero();   // world = yaw(heading) * in-place + offset (floor, y = 0)
   std::array<Vec3, 4> feet{};   // in-place heel/ball of right/left foot at `time`
+  Vec3 smooth = Vec3::Zero();   // smooth root: world = yaw(heading) * in-place + smooth (floor, y = 0)
+  // Scratch (sized once, no meaning between frames): FK of the plan's pose and of the solved one.
+  std::vector<Transform> plan_space, model_space;
 };
 
 // A new character at the settings' start (clock included).
@@ -78,6 +119,10 @@ struct Info {
   double desired_heading = 0;   // heading asked for, radians
   bool left_planted = true;     // the stance foot this frame
   Pivot pivot = Pivot::Heel;    // which point of it the body pivots on
+  // Smooth root only:
+  double pelvis_drop = 0;       // metres the pelvis is lowered so the legs reach
+  double foot_roll = 0;         // largest roll of a foot out of reach, radians (either foot)
+  bool reach_limited = false;   // a leg needed more than soft_reach (its foot was pulled in)
 };
 
 // One frame: Rejected (time not usable) leaves state and `out` untouched;

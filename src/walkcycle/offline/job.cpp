@@ -2,6 +2,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/core/rotation.hpp>
 #include <legwork/io/bvh.hpp>
 #include <legwork/io/gltf.hpp>
 #include <legwork/io/motion_file.hpp>
@@ -147,7 +148,8 @@ wc::WalkKeys prepared_keys(const WalkJob& a, Skeleton& skel) {
 
 // The walk (along a path, straight, a number of steps) or the in-place
 // cycle; its figures printed and added to the report.
-Motion walk_or_cycle(const wc::CycleModel& model, const WalkJob& a, const std::string& name, json& report, bool& walked) {
+Motion walk_or_cycle(const wc::CycleModel& model, const WalkJob& a, const std::string& name, json& report, bool& walked,
+                     wc::Ground& ground) {
   std::unique_ptr<wc::Path> path;
   wc::WalkOptions wo;
   wo.fps = a.fps;
@@ -170,6 +172,7 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkJob& a, const std::s
     std::printf("%s", text.c_str());
     if (!a.top.empty()) write_top(w, path.get(), a.top, name);
     result = w.motion;
+    ground = path->ground;
   } else {
     result = wc::bake_cycle(model);
     wc::add_in_place_report(result, report);
@@ -179,9 +182,30 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkJob& a, const std::s
   return result;
 }
 
-void write_walk_video(const Motion& result, const Skeleton& skel, const WalkJob& a, const std::string& name) {
+// The ground under a walk as the pictures draw it: its height along the
+// root's track on the floor, every centimetre (a stair's riser becomes two
+// points a centimetre apart), as wide as a body either side of the walk.
+render::GroundStrip ground_strip(const wc::Ground& ground, const Motion& walk) {
+  render::GroundStrip strip;
+  if (ground.flat() || walk.frame_count() < 2) return strip;
+  const Vec3 first = horizontal(walk.frame(0).translations[0]), last = horizontal(walk.frame(walk.frame_count() - 1).translations[0]);
+  if ((last - first).norm() > 1e-6) strip.across = Vec3::UnitY().cross(last - first).normalized();
+  auto add = [&](const Vec3& p) { strip.profile.push_back(Vec3(p.x(), ground.height(p), p.z())); };
+  Vec3 at = first;
+  add(at);
+  for (int f = 1; f < walk.frame_count(); ++f) {
+    const Vec3 next = horizontal(walk.frame(f).translations[0]);
+    const int pieces = static_cast<int>(std::ceil((next - at).norm() / 0.01));
+    for (int k = 1; k <= pieces; ++k) add(at + (next - at) * (static_cast<double>(k) / pieces));
+    if (pieces > 0) at = next;
+  }
+  return strip;
+}
+
+void write_walk_video(const Motion& result, const Skeleton& skel, const WalkJob& a, const std::string& name, const wc::Ground& ground) {
   if (a.video.empty()) return;
   render::VideoOptions vo;
+  vo.ground = ground_strip(ground, result);
   vo.camera.view = render::parse_view(a.video_view);
   vo.camera.width = 960;
   vo.camera.height = 540;
@@ -222,12 +246,13 @@ void run_walk_job(const WalkJob& a) {
   if (!a.slide_video.empty()) write_slide_video(model, a.spacing, a.slide_video);
 
   bool walked = false;
-  const Motion result = walk_or_cycle(model, a, name, report, walked);
+  wc::Ground ground;
+  const Motion result = walk_or_cycle(model, a, name, report, walked, ground);
   if (!a.out.empty()) {
     io::write_motion(io::prepare_output(a.out, "--out"), result, walked ? "walk" : "in-place cycle", "--out");
     io::announce(walked ? "walk" : "in-place cycle", a.out);
   }
-  write_walk_video(result, skel, a, name);
+  write_walk_video(result, skel, a, name, ground);
   if (!a.report.empty()) {
     io::prepare_output(a.report);
     io::write_text_file(a.report, report.dump(2) + "\n");

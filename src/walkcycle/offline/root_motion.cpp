@@ -1,6 +1,8 @@
 // Smooth root motion with the feet held by leg IK (see root_motion.hpp).
 #include "root_motion.hpp"
 
+#include <legwork/walkcycle/legs.hpp>
+
 #include <legwork/core/fk.hpp>
 #include <legwork/core/rotation.hpp>
 #include <legwork/ik/two_bone.hpp>
@@ -51,77 +53,6 @@ struct Extended {
   }
 };
 
-struct LegIk {
-  ik::TwoBoneChain chain;
-  double length = 0;  // thigh + shin, metres
-};
-
-LegIk leg_of(const Skeleton& s, bool left, std::span<const Transform> g) {
-  LegIk leg{left ? ik::left_leg(s) : ik::right_leg(s), 0.0};
-  auto pos = [&](int j) { return g[static_cast<std::size_t>(j)].translation; };
-  leg.length = (pos(leg.chain.mid) - pos(leg.chain.root)).norm() + (pos(leg.chain.end) - pos(leg.chain.mid)).norm();
-  return leg;
-}
-
-// Where the leg can put the ankle: the target pulled towards the hip so the
-// leg never straightens fully. Up to `soft` of its length the target is kept;
-// beyond, the distance approaches the full length exponentially (the knee
-// straightens smoothly instead of snapping). Returns the distance asked for,
-// as a fraction of the leg's length.
-double soften_reach(const Vec3& hip, const LegIk& leg, double soft, Vec3& target) {
-  const Vec3 d = target - hip;
-  const double dist = d.norm(), start = soft * leg.length, room = leg.length - start;
-  if (dist > start && room > 0) {
-    const double reached = start + room * (1.0 - std::exp(-(dist - start) / room));
-    target = hip + d * (reached / dist);
-  }
-  return leg.length > 0 ? dist / leg.length : 0.0;
-}
-
-// A foot whose ankle is out of the leg's reach rolls on the floor instead of
-// dragging: the stance foot about its ball once it pivots on the ball (the
-// heel rises; while it pivots on the heel it does not roll: rolling would
-// move the ball it is about to pivot on); the other foot about its ball when
-// it trails the hip (the heel rises, as at toe-off), about its heel when it
-// leads (the toes rise, as at heel strike). The rolling point stays where it
-// was; the smallest roll (at most 60 degrees either way) that brings the
-// ankle back to `reach` of the hip, or if none does the one that brings it
-// closest. `ankle` is updated in place. Returns the angle, radians.
-//
-// Rolling by a about the side axis k through the pivot P takes the ankle to
-// P + R(a) v (v = ankle - P), whose squared distance from the hip H is
-// C + A cos a + B sin a = C + M cos(a - phi) with u = P - H,
-// A = 2 u.v_perp, B = 2 u.(k x v), C = |u|^2 + |v|^2 + 2 u.v_par: solved in
-// closed form.
-double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Vec3& forward, const Pivot* stance,
-                 Transform& ankle) {
-  const Vec3 to_ankle = ankle.translation - hip;
-  if (!(to_ankle.norm() > reach) || (stance && *stance == Pivot::Heel)) return 0.0;
-  const bool on_ball = stance || to_ankle.dot(forward) < 0;
-  const Vec3 pivot = ankle.apply(on_ball ? foot.ball_local : foot.heel_local);
-  const Vec3 k = Vec3::UnitY().cross(forward).normalized();  // the foot's side axis
-  const Vec3 u = pivot - hip, v = ankle.translation - pivot;
-  const Vec3 v_par = k.dot(v) * k, v_perp = v - v_par;
-  const double A = 2 * u.dot(v_perp), B = 2 * u.dot(k.cross(v)), C = u.squaredNorm() + v.squaredNorm() + 2 * u.dot(v_par);
-  const double M = std::hypot(A, B), phi = std::atan2(B, A), limit = deg2rad(60.0);
-  auto wrap = [](double a) { return std::remainder(a, 2 * kPi); };
-  auto f = [&](double a) { return C + M * std::cos(a - phi); };
-  double angle = 0;
-  const double c = M > 1e-15 ? (reach * reach - C) / M : -2.0;
-  if (c >= -1.0) {  // within reach on the arc of angles around phi + pi; the nearest edge of it
-    const double a1 = wrap(phi + std::acos(std::min(c, 1.0))), a2 = wrap(phi - std::acos(std::min(c, 1.0)));
-    angle = std::abs(a1) < std::abs(a2) ? a1 : a2;
-  }
-  if (c < -1.0 || std::abs(angle) > limit) {  // out of reach: the closest within the limits
-    angle = std::clamp(wrap(phi + kPi), -limit, limit);
-    if (std::abs(wrap(phi + kPi)) > limit) angle = f(limit) < f(-limit) ? limit : -limit;
-  }
-  const Quat q(Eigen::AngleAxisd(angle, k));
-  ankle.translation = pivot + q * v;
-  ankle.rotation = (q * ankle.rotation).normalized();
-  return angle;
-}
-
 // The foot of the flat plan put on the ground: placed on `anchor` (the point
 // it pivots on; the heel for a free foot) raised by the ground height under
 // it, and turned rigidly towards the line between its heel and ball each
@@ -144,25 +75,6 @@ Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_bal
   ankle.translation = a + ground.height(a) * up + q * (ankle.translation - a);
   ankle.rotation = (q * ankle.rotation).normalized();
   return q;
-}
-
-// The toe's model transform after the leg's IK moved the ankle (the IK
-// updates the chain only; full FK if the toe does not hang from the ankle).
-void update_toe(const Skeleton& s, const FootPivots& foot, ConstPoseRef pose, std::span<Transform> g) {
-  if (foot.toe < 0) return;
-  const auto t = static_cast<std::size_t>(foot.toe);
-  if (s.parents[t] != foot.ankle) return forward_kinematics(s, pose, g);
-  g[t] = g[static_cast<std::size_t>(foot.ankle)] * Transform{pose.rotations[t], pose.translations[t]};
-}
-
-// How far the foot's lowest point (heel, ball, toe tip) is below the ground,
-// metres (0 if none is); `g` holds the pose's FK.
-double depth_below(const Ground& ground, const FootPivots& foot, const Skeleton& s, std::span<const Transform> g) {
-  const Transform& a = g[static_cast<std::size_t>(foot.ankle)];
-  auto below = [&](const Vec3& p) { return ground.height(p) - p.y(); };
-  double d = std::max(below(a.apply(foot.heel_local)), below(a.apply(foot.ball_local)));
-  if (foot.toe >= 0) d = std::max(d, below(end_site_position(s, g, foot.toe)));
-  return std::max(0.0, d);
 }
 
 }  // namespace
@@ -188,6 +100,9 @@ struct FootHold {
   Vec3 pivot = Vec3::Zero();
   Vec3 offset = Vec3::Zero();
   double lift = 0;  // stairs: the height the foot is planted at (or carried at in the swing), metres
+  // A stance foot already pivoting on its ball (its heel up before the pass
+  // key): the ground's slope turns it about the ball, not the heel.
+  bool on_ball = false;
   Vec3 apply(const Vec3& x) const { return pivot + yaw_rotation(angle) * (x - pivot) + offset + Vec3(0, lift, 0); }
   Transform apply(const Transform& t) const { return {(yaw_rotation(angle) * t.rotation).normalized(), apply(t.translation)}; }
 };
@@ -231,8 +146,9 @@ std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const 
     FootHold hold;
   } sides[2];
   const double rise = 0.02;  // metres of heel lift over which the foot turns on its ball
+  const LegJoints legs = leg_joints(m);
   for (int f = 0; f < n; ++f) {
-    forward_kinematics(plan.skeleton, plan.frame(f), g);
+    leg_kinematics(plan.skeleton, legs, plan.frame(f), g);
     const FrameLabel& l = labels[static_cast<std::size_t>(f)];
     for (int side = 0; side < 2; ++side) {
       Side& sd = sides[side];
@@ -259,6 +175,7 @@ std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const 
           if (!l.stopping) sd.turned = std::max(sd.turned, smoothstep((frac[static_cast<std::size_t>(f)] - 0.75) / 0.25));
         }
         sd.hold.angle = std::remainder(sd.landed_yaw - yaw, 2 * kPi) * (1.0 - sd.turned);
+        sd.hold.on_ball = pv == Pivot::Ball;
       } else {
         if (sd.stance) sd.left_ground = f, sd.lift_off = horizontal(sd.hold.apply(sd.heel) - sd.heel);
         const double u = sd.left_ground < 0 ? 1.0 : ((f - sd.left_ground) / step_frames - 0.25) / 0.6;
@@ -316,8 +233,9 @@ void plant_on_treads(const CycleModel& m, const Motion& plan, std::span<const Fr
   };
   std::vector<Plant> plants[2];
   auto along = [&](const Vec3& p) { return (p - ground.origin).dot(ground.direction); };
+  const LegJoints legs = leg_joints(m);
   for (int f = 0; f < n; ++f) {
-    forward_kinematics(plan.skeleton, plan.frame(f), g);
+    leg_kinematics(plan.skeleton, legs, plan.frame(f), g);
     for (int side = 0; side < 2; ++side) {
       const bool stance = labels[static_cast<std::size_t>(f)].left_stance == (side == 1);
       auto& list = plants[side];
@@ -368,10 +286,12 @@ struct FrameSolver {
   const CycleModel& m;
   const Ground& ground;
   const WalkOptions& opt;
-  std::vector<Transform> before, g;  // FK of the plan's pose, of the moved pose
+  std::vector<Transform> before, g;  // FK of the plan's pose, of the moved pose (the legs' joints)
   LegIk legs[2];
+  LegJoints leg_joints_;
   FrameSolver(const CycleModel& model, const Ground& gr, const WalkOptions& o, const Motion& motion)
-      : m(model), ground(gr), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()) {
+      : m(model), ground(gr), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()),
+        leg_joints_(leg_joints(model)) {
     forward_kinematics(motion.skeleton, motion.frame(0), before);
     legs[0] = leg_of(motion.skeleton, false, before);
     legs[1] = leg_of(motion.skeleton, true, before);
@@ -382,19 +302,12 @@ struct FrameSolver {
                WalkResult* r);
 };
 
-// Pelvis drop that brings `hip` within `reach` of `target`.
-double drop_to_reach(const Vec3& hip, const Vec3& target, double reach) {
-  const double side = horizontal(target - hip).norm(), above = hip.y() - target.y();
-  if (side >= reach) return std::max(0.0, above);
-  return std::max(0.0, above - std::sqrt(reach * reach - side * side));
-}
-
 double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label,
                           const std::array<FootHold, 2>& hold, WalkResult* r) {
   const Skeleton& s = m.skeleton;
-  forward_kinematics(s, pose, before);
+  leg_kinematics(s, leg_joints_, pose, before);
   if (r) pose.translations[0] += shift;
-  for (std::size_t j = 0; j < g.size(); ++j) g[j] = {before[j].rotation, before[j].translation + shift};  // (FK of the moved pose)
+  shift_legs(leg_joints_, before, shift, g);  // (FK of the moved pose)
   bool limited = false;
   double drop = 0;
   const Vec3 forward = yaw_rotation(heading) * Vec3::UnitZ();
@@ -409,7 +322,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     const double soft = std::max(opt.soft_reach, keyed);
     const bool stance = label.left_stance == (side == 1);
     Quat slope;  // the ground's turn under the foot (its toes follow it)
-    fit_to_ground(ground, foot, stance && label.pivot == Pivot::Ball, ankle, slope);
+    fit_to_ground(ground, foot, stance && (label.pivot == Pivot::Ball || hold[side].on_ball), ankle, slope);
     const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &label.pivot : nullptr, ankle);
     drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
     ik::TwoBoneTarget t;
@@ -433,7 +346,7 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
     // A foot point below the ground (the plan goes without the floor lift,
     // and its blend into the standing pose can dip) lifts the foot straight
     // up: no slip, no penetration.
-    const double below = depth_below(ground, foot, s, g);
+    const double below = depth_below(s, foot, std::span<const Transform>(g), [&](const Vec3& p) { return ground.height(p); });
     if (below > 0) {
       t.position.y() += below;
       solve_leg();

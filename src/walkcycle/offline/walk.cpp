@@ -22,8 +22,10 @@ struct FootPoints {
 
 FootPoints foot_points(const CycleModel& m, ConstPoseRef pose) {
   FootPoints f;
-  for (int side = 0; side < 2; ++side)
-    for (int k = 0; k < 2; ++k) f.p[side][k] = foot_point(m, pose, side == 1, k == 0 ? Pivot::Heel : Pivot::Ball);
+  for (int side = 0; side < 2; ++side) {
+    const std::array<Vec3, 2> hb = heel_and_ball(m, pose, side == 1);
+    f.p[side][0] = hb[0], f.p[side][1] = hb[1];
+  }
   return f;
 }
 
@@ -37,21 +39,7 @@ Vec3 planted_offset(const Vec3& world_prev, const Vec3& model_now, double theta)
 }  // namespace
 
 double step_length(const CycleModel& m) {
-  Pose pose(m.skeleton);
-  sample_cycle(m, 0.0, pose.ref());
-  FootPoints prev = foot_points(m, pose);
-  Vec3 c = Vec3::Zero();
-  // Fine steps so the figure does not depend on the output rate.
-  const int sub = 8;
-  for (int i = 1; i <= m.frames_per_cycle * sub; ++i) {
-    const double t = static_cast<double>(i) / sub;
-    sample_cycle(m, t, pose.ref());
-    const FootPoints cur = foot_points(m, pose);
-    const StanceAt s = stance_at(m, t - 0.5 / sub);
-    c = planted_offset(prev.get(s.left, s.pivot) + c, cur.get(s.left, s.pivot), 0.0);
-    prev = cur;
-  }
-  return c.norm() / 2.0;
+  return straight_pivot_travel(m, 8).back().norm() / 2.0;  // (fine steps: the figure does not depend on the output rate)
 }
 
 namespace {

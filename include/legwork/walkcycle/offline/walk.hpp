@@ -26,24 +26,12 @@
 // (a walk that does not advance, an unreachable path). It only reads the
 // model, so several walks can be generated from one model in parallel.
 #include <legwork/walkcycle/cycle.hpp>
+#include <legwork/walkcycle/legs.hpp>
 #include <legwork/walkcycle/offline/path.hpp>
 
 #include <vector>
 
 namespace legwork::walkcycle {
-
-// How the root travels (issue 14, item 1).
-enum class RootMotion : unsigned char {
-  // The root travels at a smoothed speed (the pivoting root's floor offset
-  // averaged over one step, twice) with the pelvis's own offsets from the
-  // keys, and both legs are solved by two-bone IK so each ankle is where the
-  // pivoting walk put it: the stance foot stays planted, the swing foot keeps
-  // its path. The final hold lasts one step (the root settles).
-  Smooth,
-  // Document 001's method: the root is pushed so the stance foot's pivot
-  // stays put (the root lunges and stalls twice per step); no IK.
-  Pivot,
-};
 
 struct WalkOptions {
   double fps = 0;              // output rate; 0 = the walk's own rate

@@ -1,0 +1,94 @@
+#pragma once
+// The smooth root's legs (issue 14, item 1), shared by the live walker
+// (walker.hpp) and walk_path (offline): the root travels smoothly and
+// two-bone leg IK puts each ankle where the pivoting plan had it. Runtime
+// code: no allocation, no exceptions. Positions are model = world space of
+// the pose being solved, metres.
+#include <legwork/core/fk.hpp>
+#include <legwork/ik/two_bone.hpp>
+#include <legwork/walkcycle/cycle.hpp>
+
+#include <algorithm>
+#include <array>
+#include <span>
+
+namespace legwork::walkcycle {
+
+// How the root travels.
+enum class RootMotion : unsigned char {
+  // The root travels at a smooth speed (the pivoting root's drag of the
+  // planted foot removed) with the pelvis's own offsets from the keys, and
+  // both legs are solved by two-bone IK so each ankle is where the pivoting
+  // walk put it: the stance foot stays planted, the swing foot keeps its path.
+  Smooth,
+  // Document 001's method: the root is pushed so the stance foot's pivot
+  // stays put (the root lunges and stalls twice per step); no IK.
+  Pivot,
+};
+
+struct LegIk {
+  ik::TwoBoneChain chain;
+  double length = 0;  // thigh + shin, metres
+};
+
+// The joints the legs' IK reads and writes in model space: both feet's
+// chains (root ... ankle) and their toes, parents first; `all` when a toe
+// does not hang from its ankle (then every joint).
+struct LegJoints {
+  std::array<int, 34> joints{};
+  int count = 0;
+  bool all = false;
+  std::span<const int> list() const { return {joints.data(), static_cast<std::size_t>(count)}; }
+};
+LegJoints leg_joints(const CycleModel& m);
+
+// FK of those joints only, to the same values forward_kinematics gives them
+// (the other entries of `g` are left as they were).
+void leg_kinematics(const Skeleton& s, const LegJoints& legs, ConstPoseRef pose, std::span<Transform> g);
+
+// g[j] = before[j] moved by `shift` for those joints (the moved pose's FK).
+void shift_legs(const LegJoints& legs, std::span<const Transform> before, const Vec3& shift, std::span<Transform> g);
+
+// The left or right leg's chain and length from a pose's FK `g`.
+LegIk leg_of(const Skeleton& s, bool left, std::span<const Transform> g);
+
+// Where the leg can put the ankle: the target pulled towards the hip so the
+// leg never straightens fully. Up to `soft` of its length the target is kept;
+// beyond, the distance approaches the full length exponentially (the knee
+// straightens smoothly instead of snapping). Returns the distance asked for,
+// as a fraction of the leg's length.
+double soften_reach(const Vec3& hip, const LegIk& leg, double soft, Vec3& target);
+
+// A foot whose ankle is out of the leg's reach rolls on the floor instead of
+// dragging: the stance foot about its ball once it pivots on the ball (the
+// heel rises; while it pivots on the heel it does not roll: rolling would
+// move the ball it is about to pivot on); the other foot (`stance` null)
+// about its ball when it trails the hip (the heel rises, as at toe-off),
+// about its heel when it leads (the toes rise, as at heel strike). The
+// rolling point stays where it was; the smallest roll (at most 60 degrees
+// either way) that brings the ankle back to `reach` of the hip, or if none
+// does the one that brings it closest. `ankle` is updated in place. Returns
+// the angle, radians.
+double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Vec3& forward, const Pivot* stance,
+                 Transform& ankle);
+
+// Pelvis drop that brings `hip` within `reach` of `target` (0 if it is).
+double drop_to_reach(const Vec3& hip, const Vec3& target, double reach);
+
+// The toe's model transform after the leg's IK moved the ankle (the IK
+// updates the chain only; full FK if the toe does not hang from the ankle).
+void update_toe(const Skeleton& s, const FootPivots& foot, ConstPoseRef pose, std::span<Transform> g);
+
+// How far the foot's lowest point (heel, ball, toe tip) is below the ground
+// (`height(point)` = the ground's height under it), metres (0 if none is);
+// `g` holds the pose's FK.
+template <class GroundHeight>
+double depth_below(const Skeleton& s, const FootPivots& foot, std::span<const Transform> g, const GroundHeight& height) {
+  const Transform& a = g[static_cast<std::size_t>(foot.ankle)];
+  auto below = [&](const Vec3& p) { return height(p) - p.y(); };
+  double d = std::max(below(a.apply(foot.heel_local)), below(a.apply(foot.ball_local)));
+  if (foot.toe >= 0) d = std::max(d, below(end_site_position(s, g, foot.toe)));
+  return std::max(0.0, d);
+}
+
+}  // namespace legwork::walkcycle

@@ -1,0 +1,111 @@
+// The smooth root's legs (see legs.hpp).
+#include <legwork/walkcycle/legs.hpp>
+
+#include <legwork/core/rotation.hpp>
+
+#include <cmath>
+
+namespace legwork::walkcycle {
+
+LegJoints leg_joints(const CycleModel& m) {
+  LegJoints l;
+  for (const FootPivots* f : {&m.right, &m.left}) {
+    for (int i = 0; i < f->chain_length && l.count + 1 < static_cast<int>(l.joints.size()); ++i)
+      l.joints[static_cast<std::size_t>(l.count++)] = f->chain[static_cast<std::size_t>(i)];
+    if (f->toe >= 0) {
+      if (m.skeleton.parents[static_cast<std::size_t>(f->toe)] != f->ankle) l.all = true;
+      l.joints[static_cast<std::size_t>(l.count++)] = f->toe;
+    }
+  }
+  if (l.all) l.count = 0;
+  return l;
+}
+
+void leg_kinematics(const Skeleton& s, const LegJoints& legs, ConstPoseRef pose, std::span<Transform> g) {
+  if (legs.all) return forward_kinematics(s, pose, g);
+  for (int j : legs.list()) {
+    const auto u = static_cast<std::size_t>(j);
+    const int p = s.parents[u];
+    if (p < 0) {
+      g[u] = {pose.rotations[u], pose.translations[u]};
+    } else {
+      const Transform& gp = g[static_cast<std::size_t>(p)];
+      g[u].rotation = gp.rotation * pose.rotations[u];
+      g[u].translation = gp.rotation * pose.translations[u] + gp.translation;
+    }
+  }
+}
+
+void shift_legs(const LegJoints& legs, std::span<const Transform> before, const Vec3& shift, std::span<Transform> g) {
+  auto move = [&](std::size_t j) { g[j] = {before[j].rotation, before[j].translation + shift}; };
+  if (legs.all)
+    for (std::size_t j = 0; j < g.size(); ++j) move(j);
+  else
+    for (int j : legs.list()) move(static_cast<std::size_t>(j));
+}
+
+LegIk leg_of(const Skeleton& s, bool left, std::span<const Transform> g) {
+  LegIk leg{left ? ik::left_leg(s) : ik::right_leg(s), 0.0};
+  auto pos = [&](int j) { return g[static_cast<std::size_t>(j)].translation; };
+  leg.length = (pos(leg.chain.mid) - pos(leg.chain.root)).norm() + (pos(leg.chain.end) - pos(leg.chain.mid)).norm();
+  return leg;
+}
+
+double soften_reach(const Vec3& hip, const LegIk& leg, double soft, Vec3& target) {
+  const Vec3 d = target - hip;
+  const double dist = d.norm(), start = soft * leg.length, room = leg.length - start;
+  if (dist > start && room > 0) {
+    const double reached = start + room * (1.0 - std::exp(-(dist - start) / room));
+    target = hip + d * (reached / dist);
+  }
+  return leg.length > 0 ? dist / leg.length : 0.0;
+}
+
+// Rolling by a about the side axis k through the pivot P takes the ankle to
+// P + R(a) v (v = ankle - P), whose squared distance from the hip H is
+// C + A cos a + B sin a = C + M cos(a - phi) with u = P - H,
+// A = 2 u.v_perp, B = 2 u.(k x v), C = |u|^2 + |v|^2 + 2 u.v_par: solved in
+// closed form.
+double roll_foot(const FootPivots& foot, const Vec3& hip, double reach, const Vec3& forward, const Pivot* stance,
+                 Transform& ankle) {
+  const Vec3 to_ankle = ankle.translation - hip;
+  if (!(to_ankle.norm() > reach) || (stance && *stance == Pivot::Heel)) return 0.0;
+  const bool on_ball = stance || to_ankle.dot(forward) < 0;
+  const Vec3 pivot = ankle.apply(on_ball ? foot.ball_local : foot.heel_local);
+  const Vec3 k = Vec3::UnitY().cross(forward).normalized();  // the foot's side axis
+  const Vec3 u = pivot - hip, v = ankle.translation - pivot;
+  const Vec3 v_par = k.dot(v) * k, v_perp = v - v_par;
+  const double A = 2 * u.dot(v_perp), B = 2 * u.dot(k.cross(v)), C = u.squaredNorm() + v.squaredNorm() + 2 * u.dot(v_par);
+  const double M = std::hypot(A, B), phi = std::atan2(B, A), limit = deg2rad(60.0);
+  auto wrap = [](double a) { return std::remainder(a, 2 * kPi); };
+  auto f = [&](double a) { return C + M * std::cos(a - phi); };
+  double angle = 0;
+  const double c = M > 1e-15 ? (reach * reach - C) / M : -2.0;
+  if (c >= -1.0) {  // within reach on the arc of angles around phi + pi; the nearest edge of it
+    const double a1 = wrap(phi + std::acos(std::min(c, 1.0))), a2 = wrap(phi - std::acos(std::min(c, 1.0)));
+    angle = std::abs(a1) < std::abs(a2) ? a1 : a2;
+  }
+  if (c < -1.0 || std::abs(angle) > limit) {  // out of reach: the closest within the limits
+    angle = std::clamp(wrap(phi + kPi), -limit, limit);
+    if (std::abs(wrap(phi + kPi)) > limit) angle = f(limit) < f(-limit) ? limit : -limit;
+  }
+  const Quat q(Eigen::AngleAxisd(angle, k));
+  ankle.translation = pivot + q * v;
+  ankle.rotation = (q * ankle.rotation).normalized();
+  return angle;
+}
+
+double drop_to_reach(const Vec3& hip, const Vec3& target, double reach) {
+  const double side = horizontal(target - hip).norm(), above = hip.y() - target.y();
+  if (side >= reach) return std::max(0.0, above);
+  return std::max(0.0, above - std::sqrt(reach * reach - side * side));
+}
+
+void update_toe(const Skeleton& s, const FootPivots& foot, ConstPoseRef pose, std::span<Transform> g) {
+  if (foot.toe < 0) return;
+  const auto t = static_cast<std::size_t>(foot.toe);
+  if (s.parents[t] != foot.ankle) return forward_kinematics(s, pose, g);
+  g[t] = g[static_cast<std::size_t>(foot.ankle)] * Transform{pose.rotations[t], pose.translations[t]};
+}
+
+}  // namespace legwork::walkcycle
