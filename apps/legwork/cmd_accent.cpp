@@ -128,6 +128,11 @@ void register_run(CLI::App& parent) {
                   "0 = the paper's pure synthesis")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--foot-lift-height", a->foot_lift_height,
+                  "metres a foot released at the end of a contact is lifted on its way back to the synthesized foot (0 = "
+                  "slides along the floor)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.5));
   cmd->add_option("--max-head-tilt", a->max_tilt, "reject candidates whose head tilt differs from the headset's by more than this (degrees, 0 = off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");

@@ -22,7 +22,7 @@ struct EvalArgs {
   double max_seconds = 0, quick_seconds = 12;
   // Engine switches (defaults = the engine's own defaults).
   int hop = -1, k = -1, speed_variants = -1;
-  double threshold = -1, hand_ik = -1;
+  double threshold = -1, hand_ik = -1, foot_lift_height = -1;
   bool mirror = false, exact = false;
 };
 
@@ -67,6 +67,9 @@ void register_eval(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--hand-ik", a->hand_ik, "engine: 0..1 pull of the synthesized arms onto the real hands")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--foot-lift-height", a->foot_lift_height,
+                  "engine: metres a released foot is lifted on its way back (0 = slides along the floor)")
+      ->check(CLI::Range(0.0, 0.5));
   cmd->add_flag("--mirror", a->mirror, "engine: add mirrored trials to every database");
   cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");
   cmd->callback([a] {
@@ -98,6 +101,7 @@ void register_eval(CLI::App& app) {
     if (a->k > 0) opt.config.k_left = opt.config.k_right = a->k;
     if (a->threshold >= 0) opt.config.threshold = a->threshold;
     if (a->hand_ik >= 0) opt.config.hand_ik = a->hand_ik;
+    if (a->foot_lift_height >= 0) opt.config.foot_lift_height = a->foot_lift_height;
     if (a->exact) opt.config.search = accent::SearchMode::Exact;
     opt.progress = io::status_printer("[eval] ");
 

@@ -48,6 +48,10 @@ static class Checks
         bad = AccentSettings.Default();
         bad.K = 0;
         Throws<LegworkException>("k out of range", () => Model.CreateAccent(db, bad), "k must be");
+        bad = AccentSettings.Default();
+        Expect("foot lift default", bad.FootLiftHeight > 0, "FootLiftHeight " + bad.FootLiftHeight);
+        bad.FootLiftHeight = 0.9;
+        Throws<LegworkException>("foot lift out of range", () => Model.CreateAccent(db, bad), "foot_lift_height must be between 0 and 0.5 metres");
 
         Model model = Model.CreateAccent(db, AccentSettings.Default());
         Avatar avatar = Avatar.Create(model);

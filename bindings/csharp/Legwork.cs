@@ -79,6 +79,7 @@ namespace Legwork
         public double HandIk;         // 0..1
         public double SmoothHalflife; // seconds
         public int RecognizeClass;    // 1: several classes allowed -> recognise the activity, search only its class; 0: all
+        public double FootLiftHeight; // metres (0..0.5) a released foot is lifted on its way back; 0 = slides (ABI 3)
 
         public static AccentSettings Default()
         {
@@ -151,7 +152,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 2;
+        public const uint AbiVersion = 3;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

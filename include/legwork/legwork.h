@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 2u
+#define LW_ABI_VERSION 3u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -144,6 +144,8 @@ typedef struct lw_accent_settings {
   double smooth_halflife; /* seconds; 0 = the paper's EWMA only */
   int32_t recognize_class; /* 1: with several classes allowed, recognise the activity from the input (with
                               hysteresis) and search only its class; 0: search every allowed class each frame */
+  double foot_lift_height; /* metres (0..0.5) a foot released at the end of a contact is lifted on its way back;
+                              0 = slides along the floor (ABI 3) */
 } lw_accent_settings;
 LW_API void lw_accent_settings_default(lw_accent_settings* s);
 /* The database must outlive the model. */

@@ -97,6 +97,8 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("contact_on", &Settings::contact_on, "blended contact above which a foot locks (0..1)")
       .def_readwrite("contact_off", &Settings::contact_off, "blended contact below which it lets go (0..1)")
       .def_readwrite("foot_release_seconds", &Settings::foot_release_seconds, "seconds to blend out of a lock")
+      .def_readwrite("foot_lift_height", &Settings::foot_lift_height,
+                     "metres (0..0.5) a foot released at the end of a contact is lifted on its way back (0 = slides)")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
                      "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
       .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")

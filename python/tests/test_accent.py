@@ -150,6 +150,27 @@ def test_lost_tracking_rows_degrade_not_fail(db, truth):
     assert np.isfinite(run["motion"].positions()).all()
 
 
+def test_foot_lift_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path):
+    """Settings.foot_lift_height is the CLI's --foot-lift-height: the same motion either way, and released feet
+    rise above the flat release's; out of range it is an error naming the setting."""
+    out_bvh = tmp_path / "lift.bvh"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--foot-lift-height", "0.1")
+    s = settings_for(truth)
+    assert s.foot_lift_height == pytest.approx(0.05)  # the default
+    s.foot_lift_height = 0.1
+    lifted = accent.accentuate_motion(db, s, truth)["motion"]
+    s.foot_lift_height = 0.0
+    flat = accent.accentuate_motion(db, s, truth)["motion"]
+    back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
+    assert np.abs(back.positions() - lifted.positions()).max() < 2e-4
+    ankles = [lifted.skeleton.roles[r] for r in ("left_ankle", "right_ankle")]
+    rise = (lifted.positions()[:, ankles, 1] - flat.positions()[:, ankles, 1]).max()
+    assert 0.05 < rise <= 0.1 + 1e-9
+    s.foot_lift_height = 0.7
+    with pytest.raises(legwork.Error, match="foot_lift_height must be between 0 and 0.5 metres"):
+        accent.make_model(db, s)
+
+
 def test_bad_settings_and_arrays(db, truth):
     s = accent.Settings()
     s.classes = ["walking", "flying"]

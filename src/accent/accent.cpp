@@ -72,6 +72,8 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: foot contact thresholds need 0 <= contact_off <= contact_on <= 1");
   if (!std::isfinite(cfg.foot_release_seconds) || cfg.foot_release_seconds < 0)
     throw Error("accent: foot_release_seconds must be >= 0");
+  if (!std::isfinite(cfg.foot_lift_height) || cfg.foot_lift_height < 0 || cfg.foot_lift_height > 0.5)
+    throw Error("accent: foot_lift_height must be between 0 and 0.5 metres");
   if (!(cfg.ik_blend_min >= 0 && cfg.ik_blend_min <= cfg.ik_blend_max && cfg.ik_blend_max <= 1))
     throw Error("accent: IK blend shares need 0 <= ik_blend_min <= ik_blend_max <= 1");
   if (!(cfg.class_seconds >= 0) || !(cfg.class_hold_seconds >= 0) || !(cfg.class_margin >= 0 && cfg.class_margin < 1) ||
@@ -165,13 +167,21 @@ Model make_model(const Database& db, const Settings& settings) {
   m.can_lock_feet_ = true;
   for (Role need : {Role::LeftHip, Role::LeftKnee, Role::LeftAnkle, Role::RightHip, Role::RightKnee, Role::RightAnkle})
     m.can_lock_feet_ = m.can_lock_feet_ && r.has(need);
+  std::vector<Vec3> rest(static_cast<std::size_t>(n));
+  forward_positions(skel, Pose(skel), rest);
+  auto chain_length = [&](const ik::TwoBoneChain& c) {
+    auto at = [&](int j) { return rest[static_cast<std::size_t>(j)]; };
+    return (at(c.mid) - at(c.root)).norm() + (at(c.end) - at(c.mid)).norm();
+  };
   if (m.can_lock_feet_) {
     m.leg_ = {ik::left_leg(skel), ik::right_leg(skel)};
-    std::vector<Vec3> rest(static_cast<std::size_t>(n));
-    forward_positions(skel, Pose(skel), rest);
-    auto at = [&](int j) { return rest[static_cast<std::size_t>(j)]; };
-    for (std::size_t f = 0; f < 2; ++f)
-      m.leg_length_[f] = (at(m.leg_[f].mid) - at(m.leg_[f].root)).norm() + (at(m.leg_[f].end) - at(m.leg_[f].mid)).norm();
+    for (std::size_t f = 0; f < 2; ++f) m.leg_length_[f] = chain_length(m.leg_[f]);
+  }
+  m.arm_ = {ik::left_arm(skel), ik::right_arm(skel)};
+  for (std::size_t h = 0; h < 2; ++h) {
+    m.arm_length_[h] = m.arm_[h].root >= 0 && m.arm_[h].mid >= 0 && m.arm_[h].end >= 0 ? chain_length(m.arm_[h]) : 0.0;
+    const Role clavicle = h == 0 ? Role::LeftClavicle : Role::RightClavicle;
+    m.clavicle_[h] = m.arm_length_[h] > 0 && r.has(clavicle) && skel.is_ancestor(r[clavicle], m.arm_[h].root) ? r[clavicle] : -1;
   }
   if (settings.ik_blend_max > 0) {
     try {
@@ -582,10 +592,15 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     }
     lock.weight = lock.locked ? 1.0 : std::max(0.0, lock.weight - fade);
     if (lock.weight <= 0) continue;
+    const double w = smooth01(lock.weight);
+    // A released foot travels from the lock to the synthesized ankle on a lifted
+    // arc (sin^2: no velocity step at either end) instead of along the floor.
+    const double arc = std::sin(kPi * (1.0 - lock.weight));
     ik::TwoBoneTarget target;
-    target.position = lock.position;
+    target.position = ankle.translation + w * (lock.position - ankle.translation) + Vec3::UnitY() * (cfg.foot_lift_height * arc * arc);
     target.rotation = lock.rotation;
-    target.position_weight = target.rotation_weight = smooth01(lock.weight);
+    target.position_weight = 1.0;
+    target.rotation_weight = w;
     target.hint_weight = 0;  // keep the synthesized knee's bend plane
     ik::solve_two_bone(model.skeleton(), chain, target, out, st.model_space);
   }
@@ -636,16 +651,43 @@ void drive_head(const Model& model, State& st, const Quat& head_rotation, PoseRe
   out.rotations[static_cast<std::size_t>(head)] = (parent.conjugate() * head_rotation).normalized();
 }
 
+// Most a clavicle swings (radians) to bring a wrist onto a controller the
+// synthesized arm cannot reach (the IK baseline's limit).
+constexpr double kClavicleReach = 0.5;
+
+// A hand target beyond the arm's reach (the scaled database arm is often a
+// little shorter than the user's, or the synthesized shoulder sits further
+// away): the clavicle swings its shoulder toward the target, as the IK
+// baseline's does, by `weight` of the needed angle. Updates st.model_space.
+void extend_reach(const Model& model, State& st, int h, const Vec3& target, double weight, PoseRef out) {
+  const Skeleton& skel = model.skeleton();
+  const int c = model.clavicle(h);
+  if (c < 0 || weight <= 0) return;
+  auto at = [&](int j) -> const Transform& { return st.model_space[static_cast<std::size_t>(j)]; };
+  const Vec3 shoulder = at(model.arm(h).root).translation;
+  const double excess = (target - shoulder).norm() - 0.999 * model.arm_length(h);
+  const Vec3 cp = at(c).translation;
+  const Vec3 b = shoulder - cp;
+  const Vec3 axis = b.cross(target - cp);
+  if (excess <= 0 || b.norm() < 1e-6 || axis.norm() < 1e-9) return;
+  const Quat q(Eigen::AngleAxisd(weight * std::min(kClavicleReach, 1.2 * excess / b.norm()), axis.normalized()));
+  const int p = skel.parents[static_cast<std::size_t>(c)];
+  const Quat cm = (q * at(c).rotation).normalized();
+  out.rotations[static_cast<std::size_t>(c)] = (p < 0 ? cm : at(p).rotation.conjugate() * cm).normalized();
+  forward_kinematics(skel, out, st.model_space);
+}
+
 // Hand IK: pull the wrists onto the (exaggerated) hands.
 void reach_hands(const Model& model, State& st, const Quat& head_rotation, const Vec3& head_position, double ik_weight,
                  PoseRef out) {
   const Skeleton& skel = model.skeleton();
   const Quat yaw = yaw_rotation(yaw_of(head_rotation));
   for (int h = 0; h < 2; ++h) {
-    const auto chain = h == 0 ? ik::left_arm(skel) : ik::right_arm(skel);
+    const ik::TwoBoneChain& chain = model.arm(h);
     ik::TwoBoneTarget target;
     // Exaggerated hands (as matched), so the style control survives hand IK.
     target.position = head_position + model.settings().exaggeration * st.hand_offset[static_cast<std::size_t>(h)];
+    extend_reach(model, st, h, target.position, std::clamp(ik_weight, 0.0, 1.0), out);
     // Elbows bend down and back, slightly outward.
     target.hint = st.model_space[static_cast<std::size_t>(chain.mid)].translation +
                   yaw * Vec3(h == 0 ? 0.3 : -0.3, -0.5, -0.4) * model.scale();
@@ -679,9 +721,10 @@ void finish_pose(const Model& model, State& st, const Quat& head_rotation, const
 
 // Confidence blend toward the IK body (Settings::ik_blend_*): the IK avatar
 // solves the same frame; its share grows with the smoothed match distance.
-// The hands are pinned again after the blend; st.model_space holds the
-// result's world transforms on return.
-void blend_ik(const Model& model, const TrackerFrame& in, State& st, double dt, double hand_weight, PoseRef out) {
+// Its local rotations are slerped into `out` before the spring filter, so the
+// IK body's steps are smoothed like the synthesis's switches, and before the
+// placement and hand IK, so the hands end on the controllers.
+void blend_ik(const Model& model, const TrackerFrame& in, State& st, double dt, PoseRef out) {
   const Settings& cfg = model.settings();
   if (ik::update(*model.ik_model(), in, *st.ik, st.ik_pose.ref()) == UpdateStatus::Rejected) return;
   const double typical = model.database().typical_distance();
@@ -700,13 +743,6 @@ void blend_ik(const Model& model, const TrackerFrame& in, State& st, double dt, 
   if (st.ik_share <= 0) return;
   for (std::size_t j = 0; j < out.rotations.size(); ++j)
     out.rotations[j] = slerp(out.rotations[j], st.ik_pose.rotations[j], st.ik_share);
-  out.translations[0] += st.ik_share * (st.ik_pose.translations[0] - out.translations[0]);
-  forward_kinematics(model.skeleton(), out, st.model_space);
-  // The head joint back exactly at the headset.
-  const Vec3 shift = st.last_head - st.model_space[static_cast<std::size_t>(model.skeleton().roles[Role::Head])].translation;
-  out.translations[0] += shift;
-  for (auto& t : st.model_space) t.translation += shift;
-  if (hand_weight > 1e-6) reach_hands(model, st, st.last_head_rot, st.last_head, hand_weight, out);
 }
 
 // Devices: hold the last good data of anything unusable. Returns true if any was lost.
@@ -793,9 +829,9 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
     out.rotations[j] = st.fallback <= 0 ? st.smoothed.rotations[j]
                        : st.fallback >= 1 ? st.direct.rotations[j]
                                           : slerp(st.smoothed.rotations[j], st.direct.rotations[j], st.fallback);
+  if (st.ik && !cfg.direct_only) blend_ik(model, in, st, dt, out);
   if (cfg.smooth && cfg.smooth_halflife > 0 && !cfg.direct_only) spring_filter(model, st, dt, out);
   finish_pose(model, st, st.last_head_rot, st.last_head, std::max(cfg.hand_ik, st.fallback), out);
-  if (st.ik && !cfg.direct_only) blend_ik(model, in, st, dt, std::max(cfg.hand_ik, st.fallback), out);
   if (cfg.foot_lock && model.can_lock_feet() && !cfg.direct_only) lock_feet(model, st, dt, out);
   // Never hand out a broken pose: fall back to the neutral one.
   if (!pose_finite(out)) {

@@ -88,6 +88,7 @@ void run_accent_job(const AccentJob& a) {
   cfg.recognize_class = !a.no_class_recognition;
   cfg.class_hold_seconds = a.class_hold;
   cfg.class_margin = a.class_margin;
+  cfg.foot_lift_height = a.foot_lift_height;
   const double fps = db.feature_space().fps;
   std::vector<TrackerFrame> frames;
   Motion truth;

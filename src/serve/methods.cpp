@@ -132,6 +132,7 @@ struct AccentRuntime : Contract<accent::Model, accent::State, accent::Info, &acc
     accent::Settings c;
     c.classes = opt.classes;
     c.recognize_class = opt.recognize_class;
+    c.foot_lift_height = opt.foot_lift_height;
     c.exaggeration = opt.exaggeration;
     c.user_height = opt.user_height;
     return accent::make_model(*res.db, c);
@@ -157,6 +158,7 @@ struct CombinedRuntime : Contract<combined::Model, combined::State, combined::In
     if (!res.db) return combined::make_model(avatar_skeleton(res, opt.user_height), c, learned);
     c.accent.classes = opt.classes;
     c.accent.recognize_class = opt.recognize_class;
+    c.accent.foot_lift_height = opt.foot_lift_height;
     c.accent.exaggeration = opt.exaggeration;
     c.accent.user_height = opt.user_height;
     return combined::make_model(*res.db, c, learned);
@@ -227,6 +229,8 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
   }
   if (!(opt.exaggeration > 0 && opt.exaggeration <= 4))
     throw Error("exaggeration " + std::to_string(opt.exaggeration) + " is outside (0, 4]");
+  if (!(opt.foot_lift_height >= 0 && opt.foot_lift_height <= 0.5))
+    throw Error("foot_lift_height " + std::to_string(opt.foot_lift_height) + " m is outside [0, 0.5]");
   if (!(opt.user_height == 0 || (opt.user_height >= kMinUserHeight && opt.user_height <= kMaxUserHeight))) {
     char msg[160];
     std::snprintf(msg, sizeof msg, "user_height %f m is outside [%g, %g] (0 = the avatar's own)", opt.user_height,

@@ -387,6 +387,11 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(lw_last_error()).find("recognize_class must be 0 or 1, got 2"), std::string::npos) << lw_last_error();
   s.recognize_class = 0;
+  EXPECT_DOUBLE_EQ(s.foot_lift_height, legwork::accent::Settings{}.foot_lift_height);  // ABI 3: the engine's default
+  s.foot_lift_height = 0.9;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("foot_lift_height must be between 0 and 0.5 metres"), std::string::npos) << lw_last_error();
+  s.foot_lift_height = 0.1;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

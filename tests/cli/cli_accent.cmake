@@ -17,6 +17,12 @@ legwork_cli_test(accent_run_glb_exact accent run --db ${ACC_DB} --input ${D}/wal
 legwork_cli_test(accent_run_target accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
                  --out ${O}/accent_07_02_daz.bvh --target ${PROJECT_SOURCE_DIR}/data/cmu/bvh_daz/climbing_ladder/14_33.bvh)
 set_tests_properties(cli.accent_run cli.accent_run_glb_exact cli.accent_run_target PROPERTIES FIXTURES_REQUIRED accent_db)
+# Every runtime setting of the engine is an option: the released feet's lift (accent::Settings::foot_lift_height).
+legwork_cli_test(accent_run_foot_lift accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
+                 --foot-lift-height 0.08 --out ${O}/accent_07_02_lift.bvh)
+legwork_cli_error(accent_run_foot_lift_range "--foot-lift-height: Value 0.9 not in range 0\\.0+ to 0\\.50*"
+                 accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --foot-lift-height 0.9 --out ${O}/x.bvh)
+set_tests_properties(cli.accent_run_foot_lift cli.accent_run_foot_lift_range PROPERTIES FIXTURES_REQUIRED accent_db)
 if(LEGWORK_BENCH)  # accent_speed is a benchmark program (bench/); the sanitizer builds have none
   add_test(NAME cli.accent_speed COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
            --json ${O}/accent_speed.json)

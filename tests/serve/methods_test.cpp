@@ -70,6 +70,10 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "exaggeration 0.000000 is outside (0, 4]");
   o.exaggeration = 4;  // the upper bound is allowed
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
+  o.foot_lift_height = 0.8;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "foot_lift_height 0.800000 m is outside [0, 0.5]");
+  o.foot_lift_height = 0.1;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];
   std::snprintf(want, sizeof want, "user_height 9.000000 m is outside [%g, %g] (0 = the avatar's own)", kMinUserHeight,

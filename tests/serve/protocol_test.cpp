@@ -1,5 +1,6 @@
 // Protocol v1 messages without sockets: binary forms, JSON frames, bad input.
 #include <legwork/serve/protocol.hpp>
+#include <legwork/accent/accent.hpp>
 
 #include "cmu_sample.hpp"
 
@@ -90,6 +91,13 @@ TEST(Protocol, RecognizeClassIsAHelloAndOptionsField) {
   ASSERT_TRUE(o.options.recognize_class.has_value());
   EXPECT_FALSE(*o.options.recognize_class);
   EXPECT_FALSE(parse_text(R"({"type":"options","exaggeration":2})").options.recognize_class.has_value());
+}
+
+// The released feet's lift (accent::Settings::foot_lift_height) is a hello field; absent, the engine's default.
+TEST(Protocol, FootLiftHeightIsAHelloField) {
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.foot_lift_height, accent::Settings{}.foot_lift_height);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"foot_lift_height":0.1})").hello.method.foot_lift_height, 0.1);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"foot_lift_height":0})").hello.method.foot_lift_height, 0.0);
 }
 
 TEST(Protocol, WalkAndRootAreHelloFields) {

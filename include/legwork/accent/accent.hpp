@@ -104,6 +104,10 @@ struct Settings {
   double foot_lock_follow_seconds = 0.15;
   double contact_on = 0.6, contact_off = 0.4;
   double foot_release_seconds = 0.15;
+  // A released foot (contact ended) travels back to the synthesized foot
+  // lifted by up to foot_lift_height (metres, a sin^2 arc over the release),
+  // instead of sliding along the floor; 0 = no lift.
+  double foot_lift_height = 0.05;
   // Confidence blend toward the full-body IK body (legwork::ik on the same
   // skeleton, run beside the synthesis): share of the IK pose in the output =
   // ik_blend_min, rising smoothly to ik_blend_max as the match distance
@@ -168,6 +172,11 @@ class Model {
   const ik::TwoBoneChain& leg(int foot) const { return leg_[static_cast<std::size_t>(foot)]; }
   double leg_length(int foot) const { return leg_length_[static_cast<std::size_t>(foot)]; }
   bool can_lock_feet() const { return can_lock_feet_; }
+  // Arm chains (0 left, 1 right), their lengths (upper arm + forearm, metres)
+  // and clavicles (-1 when the skeleton has none): hand IK's reach.
+  const ik::TwoBoneChain& arm(int hand) const { return arm_[static_cast<std::size_t>(hand)]; }
+  double arm_length(int hand) const { return arm_length_[static_cast<std::size_t>(hand)]; }
+  int clavicle(int hand) const { return clavicle_[static_cast<std::size_t>(hand)]; }
   // The full-body IK model on skeleton() (null when that skeleton cannot take
   // one, or the IK blend is off).
   const ik::Model* ik_model() const { return ik_.get(); }
@@ -189,6 +198,9 @@ class Model {
   std::array<ik::TwoBoneChain, 2> leg_{};
   std::array<double, 2> leg_length_{0, 0};
   bool can_lock_feet_ = false;
+  std::array<ik::TwoBoneChain, 2> arm_{};
+  std::array<double, 2> arm_length_{0, 0};
+  std::array<int, 2> clavicle_{-1, -1};
   std::shared_ptr<const ik::Model> ik_;
 };
 

@@ -40,6 +40,9 @@ struct MethodOptions {
   // accent: with several classes allowed, recognise the activity and search
   // only its class (accent::Settings::recognize_class); false: search all.
   bool recognize_class = true;
+  // accent (and combined's upper body): metres a foot released at the end of
+  // a contact is lifted on its way back (accent::Settings::foot_lift_height).
+  double foot_lift_height = 0.05;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
 };
