@@ -11,6 +11,13 @@ namespace legwork::cli {
 namespace {
 
 
+// The Kinect-like noise of the evaluation's noisy run (wip eval, wip tune).
+void add_noise_options(CLI::App* cmd, eval::WipJob& a) {
+  cmd->add_option("--noise", a.noise, "jitter of the noisy run, m (default 0.015)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--drop-rate", a.drop_rate, "dropped samples in the noisy run (default 0.02)")->check(CLI::Range(0.0, 0.9));
+  cmd->add_option("--seed", a.seed, "noise seed (default 1)");
+}
+
 void add_method_options(CLI::App* cmd, eval::WipJob& a) {
   cmd->add_option("--cutoff", a.cutoff, "low-pass cutoff, Hz (default 4)")->check(CLI::PositiveNumber);
   cmd->add_option("--h1", a.h1, "lift height threshold H1, m (default 0.1)")->check(CLI::PositiveNumber);
@@ -97,9 +104,7 @@ void register_wip(CLI::App& app) {
   ev->add_option("--data", a->data, "folder of walking BVH trials (default ../shared/data/cmu/bvh/walking, else data/cmu/bvh/walking)");
   ev->add_option("--out", a->eval_out, "output folder")->required();
   ev->add_option("--clip", a->clip, "walking BVH for the baseline's walk cycle (default data/cmu/bvh/walking/07_01.bvh)");
-  ev->add_option("--noise", a->noise, "jitter of the noisy run, m (default 0.015)")->check(CLI::NonNegativeNumber);
-  ev->add_option("--drop-rate", a->drop_rate, "dropped samples in the noisy run (default 0.02)")->check(CLI::Range(0.0, 0.9));
-  ev->add_option("--seed", a->seed, "noise seed (default 1)");
+  add_noise_options(ev, *a);
   ev->add_option("--truth", a->truth, "ground-truth contacts: learned (per-foot stance height, default) or fixed (the former "
                                       "3 cm over a rolling floor)")
       ->check(CLI::IsMember({"learned", "fixed"}));
@@ -131,9 +136,7 @@ void register_wip(CLI::App& app) {
   tune->add_option("--data", a->data, "folder of walking BVH trials (default ../shared/data/cmu/bvh/walking)");
   tune->add_option("--out", a->eval_out, "output folder")->required();
   tune->add_option("--limit", a->limit, "use only the first N trials")->check(CLI::PositiveNumber);
-  tune->add_option("--noise", a->noise, "jitter of the noisy run, m (default 0.015)")->check(CLI::NonNegativeNumber);
-  tune->add_option("--drop-rate", a->drop_rate, "dropped samples in the noisy run (default 0.02)")->check(CLI::Range(0.0, 0.9));
-  tune->add_option("--seed", a->seed, "noise seed (default 1)");
+  add_noise_options(tune, *a);
   tune->callback([a] { eval::run_wip_tune_job(*a); });
   cmd->callback([a, ev, learn, tune] {
     if (ev->parsed() || learn->parsed() || tune->parsed()) return;

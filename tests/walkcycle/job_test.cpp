@@ -14,6 +14,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <vector>
 
 using namespace legwork;
 
@@ -80,6 +81,17 @@ TEST(WalkJob, ExtractsKeysFromARealWalkThatWalkAgain) {
   EXPECT_EQ(report["steps"].get<int>(), 4);
 }
 
+// The layout of every picture (and video frame) a walk job draws, its printing kept quiet.
+static std::vector<render::PictureLayout> layout_of_walk_job(const walkcycle::WalkJob& job) {
+  testing::internal::CaptureStdout();
+  testing::internal::CaptureStderr();
+  render::LayoutRecorder layout;
+  walkcycle::run_walk_job(job);
+  testing::internal::GetCapturedStdout();
+  testing::internal::GetCapturedStderr();
+  return layout.pictures();
+}
+
 // The demo's pictures of each shipped walk (key sheet, arcs, top view) as the
 // demo draws them: no label over another label, none outside the picture,
 // by the drawing layer's own layout boxes.
@@ -92,14 +104,9 @@ TEST(WalkJob, PicturesOfTheShippedWalksHaveNoOverlappingLabels) {
     job.arc = "LeftHand,LeftToeBase";
     job.arc_out = temp(w);
     job.top = temp(w + "_top.png");
-    testing::internal::CaptureStdout();
-    testing::internal::CaptureStderr();
-    render::LayoutRecorder layout;
-    walkcycle::run_walk_job(job);
-    testing::internal::GetCapturedStdout();
-    testing::internal::GetCapturedStderr();
-    EXPECT_GE(layout.pictures().size(), 4u) << w;
-    for (const auto& picture : layout.pictures()) {
+    const auto pictures = layout_of_walk_job(job);
+    EXPECT_GE(pictures.size(), 4u) << w;
+    for (const auto& picture : pictures) {
       EXPECT_GE(picture.texts.size(), 3u) << picture.path << ": its title and labels were recorded";
       for (const auto& problem : render::layout_problems(picture)) ADD_FAILURE() << problem;
     }
@@ -114,14 +121,9 @@ TEST(WalkJob, VideoFramesOfAShippedWalkHaveNoOverlappingLabels) {
   job.keys = testdata::walk_keys_file("normal");
   job.steps = 2;
   job.video = temp("normal_layout.mp4");
-  testing::internal::CaptureStdout();
-  testing::internal::CaptureStderr();
-  render::LayoutRecorder layout;
-  walkcycle::run_walk_job(job);
-  testing::internal::GetCapturedStdout();
-  testing::internal::GetCapturedStderr();
-  ASSERT_GE(layout.pictures().size(), 10u) << "frames recorded";
-  for (const auto& frame : layout.pictures()) {
+  const auto pictures = layout_of_walk_job(job);
+  ASSERT_GE(pictures.size(), 10u) << "frames recorded";
+  for (const auto& frame : pictures) {
     EXPECT_NE(frame.path.find(job.video + " frame "), std::string::npos) << frame.path;
     bool counter = false;
     for (const auto& t : frame.texts) counter = counter || t.text.rfind("t = ", 0) == 0;
