@@ -44,7 +44,6 @@ double percentile(std::vector<double> values, double p) {
 }
 
 double pearson(std::span<const double> a, std::span<const double> b) {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const std::size_t n = std::min(a.size(), b.size());
   if (n < 2) return kNaN;
   double ma = 0, mb = 0;

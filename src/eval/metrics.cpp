@@ -10,8 +10,6 @@
 namespace legwork::eval {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 bool is_lower(Role r) {
   switch (r) {
     case Role::Pelvis:

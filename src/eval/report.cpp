@@ -19,7 +19,6 @@ namespace legwork::eval {
 namespace {
 
 using json = nlohmann::json;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // JSON has no NaN: undefined figures become null.
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }

@@ -1,6 +1,7 @@
 // Tracker CSV: time plus named xyz (and optional quaternion) columns.
 // A small hand-written reader: the format is fixed and the errors must point
 // at the exact cell (file:line:column), which generic CSV readers do not do.
+#include <legwork/core/stats.hpp>
 #include <legwork/io/text.hpp>
 #include <legwork/io/tracker_csv.hpp>
 
@@ -15,8 +16,6 @@
 namespace legwork::io {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Column suffixes in their canonical order: position, then orientation.
 constexpr std::string_view kSuffixes[] = {"_x", "_y", "_z", "_qw", "_qx", "_qy", "_qz"};

@@ -1,6 +1,8 @@
 // Drawing scenes: floor, footprints, curves, stick figures, text, scale bar.
 #include "scene_draw.hpp"
 
+#include <legwork/render/layout.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -128,11 +130,6 @@ void draw_footprints(cairo_t* cr, const Scene& scene, const Framing& fr) {
   cairo_restore(cr);
 }
 
-struct Box {
-  double x0, y0, x1, y1;
-  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
-};
-
 // A label next to point q at the first free spot (not over labels, dots or
 // feet already placed): eight spots around it, then the same eight twice and
 // three times as far with a thin leader line back to the point.
@@ -153,7 +150,7 @@ void place_label(cairo_t* cr, const Eigen::Vector2d& q, const std::string& s, co
     for (int k = 0; k < 8 && !found; ++k) {
       const Box b = box_at(k, r);
       bool clash = false;
-      for (const auto& o : placed) clash = clash || b.overlaps(o);
+      for (const auto& o : placed) clash = clash || (b.overlap_x(o) > 0 && b.overlap_y(o) > 0);
       if (!clash) chosen = b, radius = r, found = true;
     }
     if (found) break;

@@ -23,11 +23,10 @@ legwork_cli_test(accent_run_foot_lift accent run --db ${ACC_DB} --input ${D}/wal
 legwork_cli_error(accent_run_foot_lift_range "--foot-lift-height: Value 0.9 not in range 0\\.0+ to 0\\.50*"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --foot-lift-height 0.9 --out ${O}/x.bvh)
 set_tests_properties(cli.accent_run_foot_lift cli.accent_run_foot_lift_range PROPERTIES FIXTURES_REQUIRED accent_db)
-if(LEGWORK_BENCH)  # accent_speed is a benchmark program (bench/); the sanitizer builds have none
-  add_test(NAME cli.accent_speed COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
-           --json ${O}/accent_speed.json)
-  set_tests_properties(cli.accent_speed PROPERTIES FIXTURES_REQUIRED accent_db)
-endif()
+# accent_speed: the figures program of bench/ (built with the tests too).
+add_test(NAME cli.accent_speed COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
+         --json ${O}/accent_speed.json)
+set_tests_properties(cli.accent_speed PROPERTIES FIXTURES_REQUIRED accent_db)
 legwork_cli_error(accent_build_unknown_class "error: .*no class 'dancing' \\(classes present: basketball, boxing" accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing
                  --out ${O}/x.lwdb)
 legwork_cli_error(accent_build_bad_ext "error: --out '.*x.db' must end in .lwdb" accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --out ${O}/x.db)

@@ -4,7 +4,7 @@
 #include <legwork/core/interpolate.hpp>
 #include <legwork/io/bvh.hpp>
 
-#include "cmu_sample.hpp"
+#include "core_samples.hpp"
 #include "error_message.hpp"
 #include "testdata.hpp"
 
@@ -16,8 +16,8 @@ using namespace legwork;
 using testdata::message_of;
 
 namespace {
-Motion walk() { return testdata::load_sample("cmu/bvh/walking/07_01.bvh"); }
-double quat_distance(const Quat& a, const Quat& b) { return 1.0 - std::abs(a.dot(b)); }
+using testdata::quat_distance;
+using testdata::walk;
 double angle_between(const Quat& a, const Quat& b) { return a.angularDistance(b); }
 
 void expect_same_pose(ConstPoseRef a, ConstPoseRef b, double tol) {

@@ -2,7 +2,7 @@
 #include <legwork/core/fk.hpp>
 #include <legwork/core/mirror.hpp>
 
-#include "cmu_sample.hpp"
+#include "core_samples.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 using namespace legwork;
 
 namespace {
-Motion walk() { return testdata::load_sample("cmu/bvh/walking/07_01.bvh"); }
-double quat_distance(const Quat& a, const Quat& b) { return 1.0 - std::abs(a.dot(b)); }
+using testdata::quat_distance;
+using testdata::walk;
 }  // namespace
 
 TEST(Mirror, TwiceIsIdentity) {

@@ -2,14 +2,14 @@
 // interpolation and mirroring have their own fk_, interpolate_ and mirror_test.cpp.
 #include <legwork/core/motion.hpp>
 
-#include "cmu_sample.hpp"
+#include "core_samples.hpp"
 
 #include <gtest/gtest.h>
 
 using namespace legwork;
 
 namespace {
-Motion walk() { return testdata::load_sample("cmu/bvh/walking/07_01.bvh"); }
+using testdata::walk;
 }  // namespace
 
 TEST(Motion, RestPoseAndNewFramesUseTheSkeletonsOffsets) {

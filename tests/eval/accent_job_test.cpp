@@ -36,7 +36,7 @@ struct Scratch {
     std::filesystem::remove_all(dir, ec);
   }
 };
-std::string temp(const std::string& name) {
+std::string accent_job_temp(const std::string& name) {
   static const Scratch scratch;
   return (scratch.dir / name).string();
 }
@@ -45,7 +45,7 @@ std::string temp(const std::string& name) {
 const std::string& database_file() {
   static const std::string path = [] {
     const auto trials = accent::load_trials(testdata::sample("cmu").string(), {"walking"}, {kHeldOut});
-    const std::string p = temp("walks.lwdb");
+    const std::string p = accent_job_temp("walks.lwdb");
     accent::save_database(p, accent::build_database(trials, accent::BuildConfig{}));
     return p;
   }();
@@ -56,7 +56,7 @@ eval::AccentJob held_out_job(const std::string& out) {
   eval::AccentJob job;
   job.input = testdata::sample("cmu/" + kHeldOut).string();
   job.db = database_file();
-  job.out = temp(out);
+  job.out = accent_job_temp(out);
   return job;
 }
 
@@ -96,24 +96,24 @@ TEST(AccentJob, SearchModesByName) {
 TEST(AccentJob, OptionsAreCheckedByName) {
   auto job = held_out_job("x.fbx");
   EXPECT_EQ(error_of(job), "--out '" + job.out + "' must end in .glb or .bvh");
-  job.out = temp("x.bvh");
-  job.video = temp("x.avi");
+  job.out = accent_job_temp("x.bvh");
+  job.video = accent_job_temp("x.avi");
   EXPECT_EQ(error_of(job), "--video '" + job.video + "' must end in .mp4");
   job.video.clear();
-  job.input = temp("session.txt");
+  job.input = accent_job_temp("session.txt");
   EXPECT_EQ(error_of(job), "--input '" + job.input + "' must be a .bvh trial or a .csv headset session");
   job = held_out_job("x.bvh");
   job.mode = "quick";
   EXPECT_EQ(error_of(job), "--mode 'quick': expected fast, exact or brute");
   job = held_out_job("x.bvh");
-  job.db = temp("missing.lwdb");
+  job.db = accent_job_temp("missing.lwdb");
   EXPECT_NE(error_of(job).find(job.db), std::string::npos) << error_of(job);
 }
 
 TEST(AccentJob, HeldOutWalkGivesOneFramePerTrackerSampleAndItsReport) {
   auto job = held_out_job("walk.bvh");
-  job.json_path = temp("walk.json");
-  job.save_session = temp("walk_session.csv");
+  job.json_path = accent_job_temp("walk.json");
+  job.save_session = accent_job_temp("walk_session.csv");
   job.compare_ik = true;
   const std::string printed = run_quietly(job);
   EXPECT_NE(printed.find("wrote accentuated motion: " + job.out), std::string::npos) << printed;
@@ -143,7 +143,7 @@ TEST(AccentJob, HeldOutWalkGivesOneFramePerTrackerSampleAndItsReport) {
 
 TEST(AccentJob, SavedSessionReplaysOntoATargetRig) {
   auto first = held_out_job("first.bvh");
-  first.save_session = temp("replay.csv");
+  first.save_session = accent_job_temp("replay.csv");
   run_quietly(first);
   auto replay = held_out_job("replay.bvh");
   replay.input = first.save_session;

@@ -16,7 +16,7 @@
 using namespace legwork;
 
 namespace {
-std::string temp(const std::string& name) {
+std::string wip_job_temp(const std::string& name) {
   const auto d = std::filesystem::temp_directory_path() / "legwork_wip_job_test";
   std::filesystem::create_directories(d);
   return (d / name).string();
@@ -34,8 +34,8 @@ std::string error_of(const eval::WipJob& job) {
 TEST(WipJob, RealWalkDrivesLegsThatWalkForward) {
   eval::WipJob job;
   job.input = testdata::sample("cmu/bvh/walking/07_01.bvh").string();
-  job.out = temp("legs.bvh");
-  job.csv = temp("legs.csv");
+  job.out = wip_job_temp("legs.bvh");
+  job.csv = wip_job_temp("legs.csv");
   testing::internal::CaptureStdout();
   testing::internal::CaptureStderr();
   eval::run_wip_job(job);
@@ -52,9 +52,9 @@ TEST(WipJob, OptionsAreCheckedByName) {
   eval::WipJob job;
   job.synthetic = true;
   EXPECT_EQ(error_of(job), "--out FILE (.glb or .bvh) is required");
-  job.out = temp("x.fbx");
+  job.out = wip_job_temp("x.fbx");
   EXPECT_EQ(error_of(job), "--out '" + job.out + "' must end in .glb or .bvh");
-  job.out = temp("x.glb");
+  job.out = wip_job_temp("x.glb");
   job.calibrate = "maybe";
   EXPECT_EQ(error_of(job), "--calibrate 'maybe': expected auto, on or off");
   job.calibrate = "auto";
@@ -89,7 +89,7 @@ TEST(WipJob, EvaluationOverTwoTrialsWritesItsReport) {
   eval::WipJob job;
   job.data = testdata::sample("cmu/bvh/walking").string();
   job.limit = 2;
-  job.eval_out = temp("eval");
+  job.eval_out = wip_job_temp("eval");
   testing::internal::CaptureStdout();
   testing::internal::CaptureStderr();
   render::LayoutRecorder layout;

@@ -21,7 +21,7 @@ using legwork::testdata::metres;
 
 namespace {
 
-const std::string& kBase = legwork::testdata::kTinyBvh;
+using legwork::testdata::kTinyBvh;
 
 std::string error_of(const Motion& m, const io::BvhWriteOptions& w = {}) {
   try {
@@ -64,7 +64,7 @@ TEST(BvhWriter, QuatToEulerRecoversKnownAnglesInFileOrder) {
 }
 
 TEST(BvhWriter, DefaultLayoutFrameTimeAndScale) {
-  auto m = io::parse_bvh(kBase, "base.bvh", metres()).motion;
+  auto m = io::parse_bvh(kTinyBvh, "base.bvh", metres()).motion;
   m.fps = 120;
   io::BvhWriteOptions w;
   w.scale = 100;  // metres -> centimetres
@@ -121,7 +121,7 @@ TEST(BvhWriter, StreamedFileOfManyPiecesEqualsTheFormattedText) {
 }
 
 TEST(BvhWriter, RefusalsNameTheProblem) {
-  const auto f = io::parse_bvh(kBase, "base.bvh", metres());
+  const auto f = io::parse_bvh(kTinyBvh, "base.bvh", metres());
   Motion m = f.motion;
   m.fps = 0;
   EXPECT_EQ(error_of(m), "write_bvh: frame rate must be positive, got 0.000000");
@@ -175,13 +175,13 @@ TEST(BvhWriter, RoundTripOnRealFilesWithinOneMicro) {
 }
 
 TEST(BvhWriter, WriterRejectsNonFiniteMotion) {
-  auto m = io::parse_bvh(kBase, "base.bvh", metres()).motion;
+  auto m = io::parse_bvh(kTinyBvh, "base.bvh", metres()).motion;
   m.frame(1).translations[0].x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(error_of(m), "write_bvh: the motion has a non-finite joint translation");
 }
 
 TEST(BvhWriter, WriterRefusesALayoutThatWouldLoseData) {
-  auto f = io::parse_bvh(kBase, "base.bvh", metres());
+  auto f = io::parse_bvh(kTinyBvh, "base.bvh", metres());
   f.motion.frame(1).translations[1] += Vec3(0, 0.1, 0);  // Spine translates, its layout has rotations only
   io::BvhWriteOptions w;
   w.channels = f.channels;

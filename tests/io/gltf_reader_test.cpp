@@ -22,7 +22,7 @@ using namespace legwork;
 
 namespace {
 
-std::string temp(const std::string& name) { return (std::filesystem::temp_directory_path() / name).string(); }
+std::string reader_temp(const std::string& name) { return (std::filesystem::temp_directory_path() / name).string(); }
 
 // The numbers of a BVH text's MOTION section after the Frame Time line.
 std::vector<double> motion_numbers(const std::string& text) {
@@ -48,7 +48,7 @@ struct RoundTrip {
 RoundTrip bvh_glb_bvh(const std::filesystem::path& bvh, bool exact_copy) {
   RoundTrip r;
   r.original = io::read_bvh(bvh.string());
-  const std::string glb = temp("legwork_rt_" + bvh.stem().string() + ".glb");
+  const std::string glb = reader_temp("legwork_rt_" + bvh.stem().string() + ".glb");
   io::GltfOptions opt;
   opt.exact_copy = exact_copy;
   io::write_glb(glb, r.original.motion, opt);

@@ -18,7 +18,7 @@
 using namespace legwork;
 
 namespace {
-std::string temp(const std::string& name) { return (std::filesystem::temp_directory_path() / name).string(); }
+std::string gltf_temp(const std::string& name) { return (std::filesystem::temp_directory_path() / name).string(); }
 
 // Keep the test fast: the first `frames` real frames.
 Motion first_frames(const Motion& m, int frames) {
@@ -49,7 +49,7 @@ void expect_round_trip(const Motion& m, const std::string& path) {
 
 TEST(Gltf, CmuWalkRoundTripsWithin0p1mm) {
   const Motion m = first_frames(testdata::load_sample("cmu/bvh/walking/07_01.bvh"), 240);
-  const auto path = temp("legwork_walk.glb");
+  const auto path = gltf_temp("legwork_walk.glb");
   expect_round_trip(m, path);
   const std::string bytes = io::read_text_file(path);
   ASSERT_GE(bytes.size(), 12u);
@@ -59,18 +59,18 @@ TEST(Gltf, CmuWalkRoundTripsWithin0p1mm) {
 
 TEST(Gltf, DazSkeletonRoundTrips) {
   const Motion m = io::load_bvh(testdata::sample("cmu/bvh_daz/climbing_ladder/14_33.bvh").string());
-  const auto path = temp("legwork_daz.glb");
+  const auto path = gltf_temp("legwork_daz.glb");
   expect_round_trip(m, path);
   std::filesystem::remove(path);
 }
 
 TEST(Gltf, WithoutMeshStillRoundTrips) {
   const Motion m = first_frames(io::load_bvh(testdata::sample("cmu/bvh/running/09_01.bvh").string()), 30);
-  const auto path = temp("legwork_nomesh.glb");
+  const auto path = gltf_temp("legwork_nomesh.glb");
   io::GltfOptions opt;
   opt.include_mesh = false;
   io::write_glb(path, m, opt);
-  const auto with_mesh = temp("legwork_mesh.glb");
+  const auto with_mesh = gltf_temp("legwork_mesh.glb");
   io::write_glb(with_mesh, m);
   EXPECT_LT(std::filesystem::file_size(path), std::filesystem::file_size(with_mesh));
   EXPECT_EQ(io::read_glb(path, m.fps).frame_count(), m.frame_count());
@@ -87,10 +87,10 @@ TEST(Gltf, ErrorsAreClear) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/x.glb"), std::string::npos);
   }
   Motion empty(m.skeleton, 30, 0);
-  EXPECT_THROW(io::write_glb(temp("legwork_empty.glb"), empty), Error);
+  EXPECT_THROW(io::write_glb(gltf_temp("legwork_empty.glb"), empty), Error);
   EXPECT_THROW(io::read_glb(testdata::sample("cmu/bvh/walking/07_01.bvh").string()), Error);
   // A truncated GLB is an error naming the file, not a crash.
-  const auto path = temp("legwork_truncated.glb");
+  const auto path = gltf_temp("legwork_truncated.glb");
   io::write_glb(path, m);
   const std::string bytes = io::read_text_file(path);
   io::write_text_file(path, bytes.substr(0, bytes.size() / 2));
@@ -152,7 +152,7 @@ struct Glb {
 
 Glb sample_glb() {
   static const std::string bytes = [] {
-    const std::string path = temp("legwork_crafted_base.glb");
+    const std::string path = gltf_temp("legwork_crafted_base.glb");
     io::write_glb(path, first_frames(testdata::load_sample("cmu/bvh/walking/07_01.bvh"), 20));
     return io::read_binary_file(path);
   }();
@@ -230,7 +230,7 @@ TEST(Gltf, SampleTimeJustBelowTheLastKeyStaysInTheKeys) {
   // A time that rounds up to the last key as a float used to make
   // upper_bound return end() and read past the key vector (seen by ASan).
   const Motion m = first_frames(testdata::load_sample("cmu/bvh/walking/07_01.bvh"), 31);
-  const std::string path = temp("legwork_locate_edge.glb");
+  const std::string path = gltf_temp("legwork_locate_edge.glb");
   io::write_glb(path, m);
   const double last = static_cast<float>((m.frame_count() - 1) / m.fps);
   const int samples = m.frame_count() - 1;

@@ -19,7 +19,7 @@ namespace {
 
 std::string walk() { return testdata::sample("cmu/bvh/walking/07_01.bvh").string(); }
 
-std::string temp(const std::string& name) {
+std::string motion_temp(const std::string& name) {
   const auto d = std::filesystem::temp_directory_path() / "legwork_motion_file_test";
   std::filesystem::create_directories(d);
   return (d / name).string();
@@ -49,7 +49,7 @@ TEST(MotionFile, ReadsBvhWithTheSharedOptions) {
 
 TEST(MotionFile, GlbReadBackHasRolesAndDropFirst) {
   const io::BvhFile bvh = io::read_motion(walk());
-  const std::string glb = temp("walk.glb");
+  const std::string glb = motion_temp("walk.glb");
   io::write_motion(glb, bvh.motion, "walk");
   io::MotionReadOptions o;
   const io::BvhFile back = io::read_motion(glb, o);
@@ -62,8 +62,8 @@ TEST(MotionFile, GlbReadBackHasRolesAndDropFirst) {
 
 TEST(MotionFile, WriteRefusesOtherExtensionsNamingTheOption) {
   const io::BvhFile bvh = io::read_motion(walk());
-  EXPECT_EQ(error_of([&] { io::write_motion(temp("x.fbx"), bvh.motion, "m", "--out"); }),
-            "--out '" + temp("x.fbx") + "' must end in .bvh or .glb");
+  EXPECT_EQ(error_of([&] { io::write_motion(motion_temp("x.fbx"), bvh.motion, "m", "--out"); }),
+            "--out '" + motion_temp("x.fbx") + "' must end in .bvh or .glb");
 }
 
 TEST(MotionFile, ConvertTrimsResamplesKeepsChannelsAndMirrors) {
@@ -71,7 +71,7 @@ TEST(MotionFile, ConvertTrimsResamplesKeepsChannelsAndMirrors) {
   io::ConvertOptions c;
   c.frames = "1:120";
   c.rate = 60;
-  const std::string out = temp("converted.bvh");
+  const std::string out = motion_temp("converted.bvh");
   const Motion m = io::convert_motion(src, c, out);
   EXPECT_NEAR(m.fps, 60.0, 1e-9);
   EXPECT_NEAR(m.duration(), 119 / src.motion.fps, 1.0 / 60);
@@ -82,7 +82,7 @@ TEST(MotionFile, ConvertTrimsResamplesKeepsChannelsAndMirrors) {
   EXPECT_NEAR(back.report.scale, src.report.scale, 1e-9);  // the file's own units kept
   // Mirrored: frame 0 (the source's frame 1) has its root x flipped.
   c.mirror = true;
-  const Motion mirrored = io::convert_motion(src, c, temp("mirrored.glb"));
+  const Motion mirrored = io::convert_motion(src, c, motion_temp("mirrored.glb"));
   EXPECT_NEAR(mirrored.frame(0).translations[0].x(), -src.motion.frame(1).translations[0].x(), 1e-6);
 }
 
@@ -90,12 +90,12 @@ TEST(MotionFile, ConvertRefusesRatesAndSizesBeforeWork) {
   const io::BvhFile src = io::read_motion(walk());
   io::ConvertOptions c;
   c.rate = 5000;
-  EXPECT_EQ(error_of([&] { io::convert_motion(src, c, temp("x.bvh")); }), "--rate 5000 Hz is above the limit of 1000 Hz");
+  EXPECT_EQ(error_of([&] { io::convert_motion(src, c, motion_temp("x.bvh")); }), "--rate 5000 Hz is above the limit of 1000 Hz");
   c.rate = 0;
   c.frames = "5:2";
-  EXPECT_NE(error_of([&] { io::convert_motion(src, c, temp("x.bvh")); }).find("--frames '5:2' is outside the clip's frames 0:"),
+  EXPECT_NE(error_of([&] { io::convert_motion(src, c, motion_temp("x.bvh")); }).find("--frames '5:2' is outside the clip's frames 0:"),
             std::string::npos);
-  EXPECT_FALSE(std::filesystem::exists(temp("x.bvh")));
+  EXPECT_FALSE(std::filesystem::exists(motion_temp("x.bvh")));
 }
 
 TEST(MotionFile, InfoNamesRolesAndRoundsNumbers) {

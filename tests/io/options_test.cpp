@@ -18,7 +18,7 @@ using legwork::testdata::message_of;
 
 namespace {
 
-std::filesystem::path temp_dir() {
+std::filesystem::path options_dir() {
   const auto d = std::filesystem::temp_directory_path() / ("legwork_options_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(d);
   return d;
@@ -42,21 +42,21 @@ TEST(Options, NumberListsNameTheOptionAndTheExpectedForm) {
 }
 
 TEST(Options, OutputFoldersAreCheckedBeforeAnyWork) {
-  const std::string file = (temp_dir() / "not_a_folder.txt").string();
+  const std::string file = (options_dir() / "not_a_folder.txt").string();
   std::ofstream(file) << "x";
   EXPECT_EQ(message_of([&] { io::require_writable_folder(file, "--out"); }), "--out '" + file + "': is a file, not a folder");
   EXPECT_EQ(message_of([&] { io::require_writable_folder(file + "/report", "--out"); }),
             "--out '" + file + "/report': cannot write in '" + file + "' (it is a file, not a folder)");
   // A folder that does not exist yet, below a writable one, is fine (and is not created here).
-  const auto fresh = temp_dir() / "fresh" / "deeper";
-  std::filesystem::remove_all(temp_dir() / "fresh");
+  const auto fresh = options_dir() / "fresh" / "deeper";
+  std::filesystem::remove_all(options_dir() / "fresh");
   EXPECT_EQ(message_of([&] { io::require_writable_folder(fresh.string(), "--out"); }), "(no error)");
   EXPECT_FALSE(std::filesystem::exists(fresh));
-  EXPECT_EQ(message_of([&] { io::require_writable_folder(temp_dir().string(), "--out"); }), "(no error)");
+  EXPECT_EQ(message_of([&] { io::require_writable_folder(options_dir().string(), "--out"); }), "(no error)");
   // Not writable: /proc refuses new folders even to root.
   const std::string msg = message_of([] { io::require_writable_folder("/proc/legwork-report", "--out"); });
   EXPECT_EQ(msg.rfind("--out '/proc/legwork-report': cannot write in '/proc' (", 0), 0u) << msg;
-  std::filesystem::remove_all(temp_dir());
+  std::filesystem::remove_all(options_dir());
 }
 
 TEST(Options, NumberListsKeepSignsExponentsAndOrder) {
@@ -69,11 +69,11 @@ TEST(Options, NumberListsKeepSignsExponentsAndOrder) {
 }
 
 TEST(Options, TheWriteProbeLeavesNothingBehind) {
-  const auto dir = temp_dir() / "probe";
+  const auto dir = options_dir() / "probe";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   io::require_writable_folder((dir / "new").string(), "--out");
   io::require_writable_folder(dir.string(), "--out");
   EXPECT_TRUE(std::filesystem::is_empty(dir));
-  std::filesystem::remove_all(temp_dir());
+  std::filesystem::remove_all(options_dir());
 }

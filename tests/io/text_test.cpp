@@ -13,14 +13,14 @@ using namespace legwork;
 
 namespace {
 
-std::filesystem::path temp_dir() {
+std::filesystem::path text_dir() {
   const auto d = std::filesystem::temp_directory_path() / "legwork_text_test";
   std::filesystem::create_directories(d);
   return d;
 }
 
 std::string write_bytes(const std::string& name, const std::string& bytes) {
-  const auto p = (temp_dir() / name).string();
+  const auto p = (text_dir() / name).string();
   std::ofstream(p, std::ios::binary) << bytes;
   return p;
 }
@@ -38,12 +38,12 @@ std::string error_of(const std::string& path) {
 
 TEST(Text, DirectoryIsNamedNotABadAlloc) {
   // An ifstream opens a directory on Linux and reports a size of 2^63.
-  const std::string dir = temp_dir().string();
+  const std::string dir = text_dir().string();
   EXPECT_EQ(error_of(dir), dir + ": is a directory, not a file");
 }
 
 TEST(Text, MissingFileSaysWhy) {
-  const std::string p = (temp_dir() / "no-such-file.bvh").string();
+  const std::string p = (text_dir() / "no-such-file.bvh").string();
   EXPECT_EQ(error_of(p), p + ": cannot open file (No such file or directory)");
 }
 
@@ -69,7 +69,7 @@ TEST(Text, PipesAndDevicesAreReadByStreaming) {
 }
 
 TEST(Text, WritingOverADirectoryIsNamed) {
-  const std::string dir = temp_dir().string();
+  const std::string dir = text_dir().string();
   try {
     io::write_text_file(dir, "x");
     FAIL() << "expected an error";
@@ -130,7 +130,7 @@ TEST(TextHelpers, RequireExtensionListsTheChoices) {
 
 TEST(TextHelpers, OutputFoldersAreMadeOnlyUnderTheWorkingFolder) {
   namespace fs = std::filesystem;
-  const fs::path work = temp_dir() / "work";
+  const fs::path work = text_dir() / "work";
   fs::remove_all(work);
   fs::create_directories(work);
   const fs::path before = fs::current_path();
@@ -159,7 +159,7 @@ TEST(TextHelpers, OutputFoldersAreMadeOnlyUnderTheWorkingFolder) {
   fs::current_path(before);
   EXPECT_EQ(outside, "--plot '../elsewhere-legwork-test/out.png': folder '../elsewhere-legwork-test' does not exist and is "
                      "outside the working folder; create it first");
-  EXPECT_FALSE(fs::exists(temp_dir() / "elsewhere-legwork-test"));
+  EXPECT_FALSE(fs::exists(text_dir() / "elsewhere-legwork-test"));
   EXPECT_EQ(absolute, "--out '/nonexistent-legwork-test/out.png': folder '/nonexistent-legwork-test' does not exist and is "
                       "outside the working folder; create it first");
   EXPECT_FALSE(fs::exists("/nonexistent-legwork-test"));

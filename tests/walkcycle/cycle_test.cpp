@@ -12,7 +12,7 @@
 
 using namespace legwork;
 using namespace legwork::walkcycle;
-using namespace legwork::walkcycle::testing;
+using namespace legwork::walkcycle::samples;
 
 // The CMU skeleton with its left and right bones made mirror images (mean of
 // both sides), so mirrored poses give exactly mirrored positions.

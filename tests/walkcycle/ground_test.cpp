@@ -15,7 +15,7 @@
 
 using namespace legwork;
 using namespace legwork::walkcycle;
-using namespace legwork::walkcycle::testing;
+using namespace legwork::walkcycle::samples;
 
 namespace {
 

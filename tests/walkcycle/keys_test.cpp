@@ -16,7 +16,7 @@
 
 using namespace legwork;
 using namespace legwork::walkcycle;
-using namespace legwork::walkcycle::testing;
+using namespace legwork::walkcycle::samples;
 
 TEST(WalkKeys, ShippedWalksLoadWithTheirOwnSkeletonPath) {
   for (const auto& w : kWalks) {

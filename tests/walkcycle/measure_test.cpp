@@ -12,7 +12,7 @@
 
 using namespace legwork;
 using namespace legwork::walkcycle;
-using namespace legwork::walkcycle::testing;
+using namespace legwork::walkcycle::samples;
 
 TEST(Arcs, AJerkyKeyPoseShowsInTheArc) {
   const auto& s = cmu_skeleton();

@@ -12,7 +12,7 @@
 
 using namespace legwork;
 using namespace legwork::walkcycle;
-using namespace legwork::walkcycle::testing;
+using namespace legwork::walkcycle::samples;
 
 TEST(Paths, FormatsAndBadPaths) {
   const Path poly = parse_path_json(R"({"polyline": [[0,0],[0,1],[1,1]]})", "p");

@@ -11,7 +11,7 @@
 
 using namespace legwork;
 using namespace legwork::walkcycle;
-using namespace legwork::walkcycle::testing;
+using namespace legwork::walkcycle::samples;
 
 TEST(WalkReport, CycleFieldsAreTheMeasures) {
   const auto& s = cmu_skeleton();

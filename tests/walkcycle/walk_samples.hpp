@@ -14,7 +14,7 @@
 
 #include "cmu_sample.hpp"
 
-namespace legwork::walkcycle::testing {
+namespace legwork::walkcycle::samples {
 
 inline const Skeleton& cmu_skeleton() { return testdata::sample_skeleton(); }
 
@@ -46,4 +46,4 @@ inline std::string expect_error(const std::function<void()>& fn) {
   return "";
 }
 
-}  // namespace legwork::walkcycle::testing
+}  // namespace legwork::walkcycle::samples

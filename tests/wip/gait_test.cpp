@@ -5,6 +5,7 @@
 
 #include "cmu_sample.hpp"
 #include "testdata.hpp"
+#include "sample_walk_run.hpp"
 
 #include <cmath>
 #include <functional>
@@ -13,10 +14,7 @@
 namespace legwork::wip {
 namespace {
 
-const Model& cmu_model() {
-  static const Model m = make_model(testdata::sample_skeleton());
-  return m;
-}
+using samples::cmu_model;
 
 // A frame with both ankles tracked (valid) at the given positions.
 TrackerFrame feet(double t, const Vec3& left, const Vec3& right) {

@@ -25,7 +25,7 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(LearningSamples, BothFeetOfTheWalkingFramesAfterSettlingWithTheirLeadAndDepthPerLeg) {
-  const auto& run = testing::sample_walk_run();
+  const auto& run = samples::sample_walk_run();
   const auto& frames = run.frames;
   const double leg = run.leg_length;
   std::vector<double> left(frames.size(), 0.3), right(frames.size(), -0.2);

@@ -71,7 +71,7 @@ TEST(LearnedLookup, TheAmplitudeFollowsApexAndCadenceWithinItsRange) {
 }
 
 TEST(CycleCoordinate, RisesThroughTheSwingAndRestsAtZeroOnARealWalk) {
-  const auto& frames = testing::sample_walk_run().frames;
+  const auto& frames = samples::sample_walk_run().frames;
   int descending = 0, rising = 0;
   for (const auto& fr : frames)
     for (int f = 0; f < 2; ++f) {

@@ -8,6 +8,7 @@
 
 #include "cmu_sample.hpp"
 #include "testdata.hpp"
+#include "sample_walk_run.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -17,12 +18,7 @@
 namespace legwork::wip {
 namespace {
 
-Motion load(const std::string& rel) { return testdata::load_sample(rel); }
-
-const Model& cmu_model() {
-  static const Model m = make_model(load("cmu/bvh/walking/07_01.bvh").skeleton);
-  return m;
-}
+using samples::cmu_model;
 
 TEST(Equations, TakeTheRestoredValuesAtZeroAndMaximumHeight) {
   const StepShape k{0.6, 0.3};

@@ -4,6 +4,7 @@
 
 #include "cmu_sample.hpp"
 #include "testdata.hpp"
+#include "sample_walk_run.hpp"
 
 #include <cmath>
 #include <limits>
@@ -11,10 +12,7 @@
 namespace legwork::wip {
 namespace {
 
-const Model& cmu_model() {
-  static const Model m = make_model(testdata::sample_skeleton());
-  return m;
-}
+using samples::cmu_model;
 
 TEST(Calibration, RefusesWhenTheUserIsNotStill) {
   SyntheticOptions o;

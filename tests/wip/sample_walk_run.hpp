@@ -1,13 +1,20 @@
 #pragma once
 // The method (default settings, rolling floor) run once over the sample walk
-// 05_01's own ankles at 30 Hz, shared by the wip tests that need real frames.
+// 05_01's own ankles at 30 Hz, shared by the wip tests that need real frames;
+// and the model of the sample skeleton.
 #include <legwork/wip/offline/run.hpp>
 
 #include "cmu_sample.hpp"
 
 #include <vector>
 
-namespace legwork::wip::testing {
+namespace legwork::wip::samples {
+
+// The method's model for the sample CMU skeleton (walking 07_01), built once.
+inline const Model& cmu_model() {
+  static const Model m = make_model(testdata::sample_skeleton());
+  return m;
+}
 
 struct SampleWalkRun {
   double leg_length = 0;
@@ -26,4 +33,4 @@ inline const SampleWalkRun& sample_walk_run() {
   return run;
 }
 
-}  // namespace legwork::wip::testing
+}  // namespace legwork::wip::samples

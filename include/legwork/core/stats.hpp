@@ -2,10 +2,14 @@
 // Statistics of series of numbers, one definition each for every module:
 // mean and sample standard deviation, median, percentile and Pearson
 // correlation. Offline helpers (median and percentile copy their input).
+#include <limits>
 #include <span>
 #include <vector>
 
 namespace legwork {
+
+// A quiet NaN: what a statistic of too few (or no) numbers is.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Mean and sample standard deviation (n - 1) of the finite values; mean NaN
 // when there is none, sd 0 with fewer than two.
