@@ -16,14 +16,12 @@ using namespace legwork;
 using testdata::message_of;
 
 namespace {
-using testdata::quat_distance;
-using testdata::walk;
 double angle_between(const Quat& a, const Quat& b) { return a.angularDistance(b); }
 
 void expect_same_pose(ConstPoseRef a, ConstPoseRef b, double tol) {
   ASSERT_EQ(a.joint_count(), b.joint_count());
   for (std::size_t j = 0; j < a.rotations.size(); ++j) {
-    EXPECT_LT(quat_distance(a.rotations[j], b.rotations[j]), tol) << "joint " << j;
+    EXPECT_LT(testdata::quat_distance(a.rotations[j], b.rotations[j]), tol) << "joint " << j;
     EXPECT_LT((a.translations[j] - b.translations[j]).norm(), tol) << "joint " << j;
   }
 }
@@ -33,15 +31,15 @@ TEST(Interpolate, SlerpIsShortestArcAndEndpointExact) {
   Quat a(Eigen::AngleAxisd(0.3, Vec3::UnitY()));
   Quat b(Eigen::AngleAxisd(1.1, Vec3::UnitY()));
   Quat neg_b(-b.w(), -b.x(), -b.y(), -b.z());
-  EXPECT_LT(quat_distance(slerp(a, neg_b, 0.5), Quat(Eigen::AngleAxisd(0.7, Vec3::UnitY()))), 1e-12);
-  EXPECT_LT(quat_distance(slerp(a, b, 0.0), a), 1e-15);
-  EXPECT_LT(quat_distance(slerp(a, b, 1.0), b), 1e-12);
-  EXPECT_LT(quat_distance(nlerp(a, neg_b, 0.5), Quat(Eigen::AngleAxisd(0.7, Vec3::UnitY()))), 1e-12);
+  EXPECT_LT(testdata::quat_distance(slerp(a, neg_b, 0.5), Quat(Eigen::AngleAxisd(0.7, Vec3::UnitY()))), 1e-12);
+  EXPECT_LT(testdata::quat_distance(slerp(a, b, 0.0), a), 1e-15);
+  EXPECT_LT(testdata::quat_distance(slerp(a, b, 1.0), b), 1e-12);
+  EXPECT_LT(testdata::quat_distance(nlerp(a, neg_b, 0.5), Quat(Eigen::AngleAxisd(0.7, Vec3::UnitY()))), 1e-12);
 }
 
 TEST(Interpolate, SlerpTurnsAtConstantRateBetweenRealJointRotations) {
   // Two frames half a stride apart of the walk's left hip: the angle from a grows linearly in t.
-  const Motion m = walk();
+  const Motion m = testdata::walk();
   const auto hip = static_cast<std::size_t>(m.skeleton.roles[Role::LeftHip]);
   const Quat a = m.frame(0).rotations[hip], b = m.frame(60).rotations[hip];
   const double total = angle_between(a, b);
@@ -53,7 +51,7 @@ TEST(Interpolate, SlerpTurnsAtConstantRateBetweenRealJointRotations) {
 }
 
 TEST(Interpolate, SampleMotionAtAFrameTimeIsThatFrameAndClampsOutside) {
-  const Motion m = walk();
+  const Motion m = testdata::walk();
   Pose p(m.skeleton);
   for (int f : {0, 1, 57, m.frame_count() - 1}) {
     sample_motion(m, f / m.fps, p.ref());
@@ -66,7 +64,7 @@ TEST(Interpolate, SampleMotionAtAFrameTimeIsThatFrameAndClampsOutside) {
 }
 
 TEST(Interpolate, BlendHalfwayLerpsTranslationsAndMatchesSampleBetweenFrames) {
-  const Motion m = walk();
+  const Motion m = testdata::walk();
   Pose half(m.skeleton), sampled(m.skeleton);
   blend_poses(m.frame(30), m.frame(31), 0.5, half.ref());
   const auto root = 0u;
@@ -76,7 +74,7 @@ TEST(Interpolate, BlendHalfwayLerpsTranslationsAndMatchesSampleBetweenFrames) {
 }
 
 TEST(Resample, To90HzKeepsDurationAndPositionsWithin1cm) {
-  Motion m = walk();  // 120 Hz
+  Motion m = testdata::walk();  // 120 Hz
   Motion r = resample(m, 90.0);
   EXPECT_NEAR(r.fps, 90.0, 1e-12);
   EXPECT_NEAR(r.duration(), m.duration(), 1.0 / 90.0);
@@ -101,7 +99,7 @@ TEST(Resample, To90HzKeepsDurationAndPositionsWithin1cm) {
 }
 
 TEST(Resample, RejectsBadRateAndTrimsConcatenates) {
-  Motion m = walk();
+  Motion m = testdata::walk();
   EXPECT_THROW(resample(m, 0.0), Error);
   EXPECT_THROW(trim(m, 5, 2), Error);
   EXPECT_THROW(trim(m, 0, m.frame_count()), Error);
@@ -113,7 +111,7 @@ TEST(Resample, RejectsBadRateAndTrimsConcatenates) {
 }
 
 TEST(Resample, ErrorsSayWhatIsWrong) {
-  const Motion m = walk();
+  const Motion m = testdata::walk();
   EXPECT_EQ(message_of([&] { (void)resample(m, -2.0); }), "resample: frame rate must be positive, got -2.000000");
   EXPECT_NE(message_of([&] { (void)resample(m, std::nan("")); }).find("resample: frame rate must be positive"), std::string::npos);
   EXPECT_EQ(message_of([&] { (void)trim(m, 0, m.frame_count()); }),
@@ -125,7 +123,7 @@ TEST(Resample, ErrorsSayWhatIsWrong) {
 }
 
 TEST(Resample, AtTheOwnRateReproducesEveryFrame) {
-  const Motion m = walk();
+  const Motion m = testdata::walk();
   const Motion r = resample(m, m.fps);
   ASSERT_EQ(r.frame_count(), m.frame_count());
   for (int f = 0; f < m.frame_count(); f += 13) expect_same_pose(r.frame(f), m.frame(f), 1e-12);

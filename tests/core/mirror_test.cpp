@@ -11,24 +11,20 @@
 
 using namespace legwork;
 
-namespace {
-using testdata::quat_distance;
-using testdata::walk;
-}  // namespace
 
 TEST(Mirror, TwiceIsIdentity) {
-  Motion m = walk();
+  Motion m = testdata::walk();
   Motion mm = mirror_motion(mirror_motion(m));
   for (int f = 0; f < m.frame_count(); f += 7)
     for (int j = 0; j < m.joint_count(); ++j) {
       const auto ju = static_cast<std::size_t>(j);
-      EXPECT_LT(quat_distance(mm.frame(f).rotations[ju], m.frame(f).rotations[ju]), 1e-15);
+      EXPECT_LT(testdata::quat_distance(mm.frame(f).rotations[ju], m.frame(f).rotations[ju]), 1e-15);
       EXPECT_LT((mm.frame(f).translations[ju] - m.frame(f).translations[ju]).norm(), 1e-15);
     }
 }
 
 TEST(Mirror, MirroredLeftHandFollowsReflectedRightHand) {
-  Motion m = walk();
+  Motion m = testdata::walk();
   Motion mir = mirror_motion(m);
   const auto& r = m.skeleton.roles;
   auto p = joint_positions(m), q = joint_positions(mir);
@@ -45,7 +41,7 @@ TEST(Mirror, MirroredLeftHandFollowsReflectedRightHand) {
 }
 
 TEST(Mirror, MirroredWalkStillWalksForward) {
-  Motion m = walk();
+  Motion m = testdata::walk();
   Motion mir = mirror_motion(m);
   const Vec3 d0 = m.frame(m.frame_count() - 1).translations[0] - m.frame(0).translations[0];
   const Vec3 d1 = mir.frame(mir.frame_count() - 1).translations[0] - mir.frame(0).translations[0];
@@ -69,7 +65,7 @@ TEST(Mirror, RotationIsTheReflectionConjugatedMatrix) {
 }
 
 TEST(Mirror, PoseTakesTheCounterpartJointsValues) {
-  const Motion m = walk();
+  const Motion m = testdata::walk();
   const auto& s = m.skeleton;
   Pose out(s);
   mirror_pose(s, m.frame(40), out.ref());
@@ -78,7 +74,7 @@ TEST(Mirror, PoseTakesTheCounterpartJointsValues) {
     const auto ju = static_cast<std::size_t>(j);
     const auto other = static_cast<std::size_t>(s.mirror[ju]);
     EXPECT_EQ(out.translations[ju], mirror_vector(m.frame(40).translations[other])) << s.names[ju];
-    EXPECT_LT(quat_distance(out.rotations[ju], mirror_rotation(m.frame(40).rotations[other])), 1e-15) << s.names[ju];
+    EXPECT_LT(testdata::quat_distance(out.rotations[ju], mirror_rotation(m.frame(40).rotations[other])), 1e-15) << s.names[ju];
     EXPECT_EQ(out.translations[ju], whole.frame(40).translations[ju]);
   }
   // The left knee's mirror image is the right knee's.

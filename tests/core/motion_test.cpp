@@ -8,12 +8,9 @@
 
 using namespace legwork;
 
-namespace {
-using testdata::walk;
-}  // namespace
 
 TEST(Motion, RestPoseAndNewFramesUseTheSkeletonsOffsets) {
-  const Motion m = walk();
+  const Motion m = testdata::walk();
   const Pose rest(m.skeleton);
   ASSERT_EQ(rest.joint_count(), m.joint_count());
   EXPECT_EQ(rest.translations, m.skeleton.rest_offsets);
@@ -28,7 +25,7 @@ TEST(Motion, RestPoseAndNewFramesUseTheSkeletonsOffsets) {
 }
 
 TEST(Motion, FramesAreContiguousFrameMajorViews) {
-  Motion m = walk();
+  Motion m = testdata::walk();
   const auto n = static_cast<std::size_t>(m.joint_count());
   ASSERT_EQ(m.all_translations().size(), n * static_cast<std::size_t>(m.frame_count()));
   EXPECT_EQ(&m.frame(3).translations[2], &m.all_translations()[3 * n + 2]);
@@ -43,7 +40,7 @@ TEST(Motion, FramesAreContiguousFrameMajorViews) {
 }
 
 TEST(Motion, PushingAPoseOfAnotherRigIsAnError) {
-  Motion m = walk();
+  Motion m = testdata::walk();
   Skeleton small;
   small.add_joint("root", -1, Vec3::Zero());
   const Pose p(small);
