@@ -1044,7 +1044,8 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
   if (ec || !fs::is_directory(run.out)) throw Error("cannot create the output folder '" + run.out + "'");
   const fs::path out(run.out);
   const Motion cycle = wip::extract_walk_cycle(load_trial(run.clip, run));
-  WipEvalOptions fixed = run.options;  // the document's fixed thresholds, for comparison
+  WipEvalOptions fixed = run.options;  // the document's detector with its fixed thresholds, for comparison
+  fixed.settings.gait.detector = wip::StepDetector::Document;
   fixed.settings.gait.adaptive = false;
   Totals t;
   std::vector<Motion> motions;

@@ -41,7 +41,8 @@ struct ContactOptions {
   double min_swing = 0.15;          // s: shorter lifts are not steps
   double min_stance = 0.05;         // s: shorter touch-downs do not split a swing
   // foot_swings: also the last swing of a foot that the clip's end cuts (its
-  // foot-off is seen, its strike is not; at least min_swing long), with strike
+  // foot-off is seen, its strike is not; at least 50 ms long: min_swing is for
+  // lifts that came back down, this one is still under way), with strike
   // = the clip's end and `cut` set. Scoring foot-offs needs it: the step was
   // taken. Off by default (gait cycles need the true strike).
   bool end_swings = false;
