@@ -99,6 +99,8 @@ void bind_runtime(pb::module_& m) {
       "avatar"_a, "settings"_a = Settings{}, "learned"_a = nullptr,
       "Model from an avatar skeleton with legs; legwork.Error naming missing roles. learned: the table for\n"
       "settings.mapping.depth = DepthMapping.Learned (legwork.wip.read_learned_mapping).");
+  m.def("step_speed_gain", &step_speed_gain, "settings"_a,
+        "The step-speed model's gain: settings.mapping.speed_gain when > 0, else the detector's calibrated gain.");
   m.def("set_floor", &set_floor, "state"_a, "left"_a, "right"_a, "Tracker-space floor height under each ankle, metres.");
   pb::class_<Info>(m, "Info", "Per-frame diagnostics ([left, right] pairs).")
       .def(pb::init<>())

@@ -115,6 +115,17 @@ def test_wip_learned_mapping_swings_the_feet_and_needs_its_table():
         assert z[:, foot].min() < -0.1 * model.leg_length < 0.1 * model.leg_length < z[:, foot].max()
 
 
+def test_wip_speed_gain_zero_takes_the_detectors_calibrated_gain():
+    s = wip.Settings()
+    assert s.gait.detector == wip.StepDetector.Adaptive and s.mapping.speed_gain == 0
+    adaptive = wip.step_speed_gain(s)
+    s.gait.detector = wip.StepDetector.Document
+    document = wip.step_speed_gain(s)
+    assert adaptive > document > 0  # the adaptive detector's phases average less of the swing's speed
+    s.mapping.speed_gain = 3.0
+    assert wip.step_speed_gain(s) == 3.0
+
+
 def test_wip_step_detector_is_a_setting_and_the_adaptive_one_lifts_earlier():
     walk = legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/05_01.bvh"), drop_first=True)
     assert wip.Settings().gait.detector in (wip.StepDetector.Document, wip.StepDetector.Adaptive)

@@ -143,8 +143,13 @@ std::vector<SwingEvent> foot_swings(const Motion& m, const ContactOptions& p) {
       double apex = 0;
       while (e < n && !contact[static_cast<std::size_t>(e)]) apex = std::max(apex, ankle.y[static_cast<std::size_t>(e++)] - rest);
       const double t0 = f / m.fps, t1 = e / m.fps;
-      // Swings cut by the clip's ends have no true foot-off or foot-strike.
-      if (f > 0 && e < n && t1 - t0 >= p.min_swing) out.push_back({foot, t0, t1, apex});
+      // A swing cut by the clip's start has no true foot-off; one cut by its
+      // end has no strike (kept, flagged, on request: its foot-off is real).
+      // min_swing drops lifts that came back down quickly (blips); a lift the
+      // end cuts is still under way, so only a 50 ms minimum applies to it.
+      const bool cut = e >= n;
+      const double shortest = cut ? std::min(p.min_swing, 0.05) : p.min_swing;
+      if (f > 0 && (!cut || p.end_swings) && t1 - t0 >= shortest) out.push_back({foot, t0, t1, apex, cut});
       f = e;
     }
   }

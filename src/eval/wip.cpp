@@ -41,6 +41,9 @@ std::vector<SwingEvent> detected_swings(std::span<const wip::Info> frames) {
         off[f] = -1;
       }
     }
+  // A swing still open when the frames end was detected too (its foot-off fired): cut at the last frame.
+  for (int f = 0; f < 2; ++f)
+    if (off[f] >= 0) out.push_back({f, off[f], frames.back().time, apex[f], true});
   std::sort(out.begin(), out.end(), [](const SwingEvent& a, const SwingEvent& b) { return a.off < b.off; });
   return out;
 }
@@ -233,6 +236,7 @@ DepthTrack true_depths(const Motion& m, double rate) {
     forward_positions(m.skeleton, pose, pos);
     const auto iu = static_cast<std::size_t>(i);
     pelvis[iu] = pos[static_cast<std::size_t>(r[Role::Pelvis])];
+    d.pelvis.push_back(pelvis[iu]);
     ankle[0][iu] = pos[static_cast<std::size_t>(r[Role::LeftAnkle])];
     ankle[1][iu] = pos[static_cast<std::size_t>(r[Role::RightAnkle])];
     Vec3 h = pos[static_cast<std::size_t>(r[Role::LeftHip])] - pos[static_cast<std::size_t>(r[Role::RightHip])];
@@ -322,6 +326,8 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
 
   e.true_depth = true_depths(trial, rate);
   e.turning = e.true_depth.heading_range_deg > kTurningDegrees;
+  e.speed = {name, e.subject, std::max(0.0, t_end - opt.settle),
+             travelled_distance(e.true_depth.pelvis, rate, opt.settle, t_end), wip_travelled(e.frames, opt.settle, t_end)};
   e.learn = wip::learning_samples(e.frames, e.true_depth.z[0], e.true_depth.z[1], model.leg_length(), opt.settle);
   const auto base_model = wip::make_keyframe_baseline(cycle, model.leg_length());
   auto base = wip::make_baseline_state(base_model);
@@ -630,6 +636,7 @@ struct Totals {
   Agreement depth, base;
   Agreement depth_class[2], learned, learned_class[2];  // [0] normal, [1] turning walks
   int learned_trials = 0;
+  std::vector<SpeedTrial> speed;
   nlohmann::json trials = nlohmann::json::array();
   std::ostringstream rows;
   int failed = 0;
@@ -644,6 +651,7 @@ void add_trial(const WipTrialEval& e, const WipTrialEval& ef, Totals& t) {
   t.strict_noisy.push_back(e.strict_noisy);
   t.strict_fixed.push_back(ef.strict);
   t.still.insert(t.still.end(), e.still.begin(), e.still.end());
+  t.speed.push_back(e.speed);
   t.depth.merge(e.depth);
   t.base.merge(e.baseline_depth);
   t.depth_class[e.turning ? 1 : 0].merge(e.depth);
@@ -668,6 +676,8 @@ void add_trial(const WipTrialEval& e, const WipTrialEval& ef, Totals& t) {
                       {"subject", e.subject},
                       {"class", e.turning ? "turning" : "normal"},
                       {"heading_range_deg", e.true_depth.heading_range_deg},
+                      {"real_speed_mps", e.speed.real_speed()},
+                      {"wip_speed_mps", e.speed.wip_speed()},
                       {"learned_depth_correlation", e.depth_learned.samples > 1 ? num(e.depth_learned.correlation) : nullptr},
                       {"learned_depth_rms_cm", e.depth_learned.samples > 1 ? num(100 * e.depth_learned.rms) : nullptr},
                       {"plot", e.name + ".png"}});
@@ -729,6 +739,12 @@ std::vector<Goal> goals(const WipEvalSummary& s) {
     cv.false_steps_per_minute = s.cv_false_per_minute;
     cv.false_steps_per_minute_noisy = s.cv_false_per_minute_noisy;
     detector_goals(" (adaptive detector, parameters cross-validated by subject)", cv, g);
+  }
+  if (s.speed.trials > 0) {
+    const double ratio = s.speed.real_speed > 0 ? s.speed.wip_speed / s.speed.real_speed : NAN;
+    g.push_back({"walking speed within 10 % of the capture's (pooled, the run's gain)",
+                 na(s.speed.wip_speed, "%.2f") + " vs " + na(s.speed.real_speed, "%.2f") + " m/s",
+                 std::abs(ratio - 1) <= 0.1, std::isfinite(ratio)});
   }
   g.push_back({"IK-target depth r >= 0.9 and RMS <= 8 cm (the document's mapping)",
                "r " + na(s.depth.correlation, "%.3f") + ", RMS " + na(100 * s.depth.rms, "%.1f cm"),
@@ -794,6 +810,16 @@ std::string detectors_markdown(const WipEvalRun& run, const WipEvalSummary& s) {
   return md.str();
 }
 
+nlohmann::json speed_json(const SpeedSummary& v) {
+  nlohmann::json folds = nlohmann::json::array();
+  for (const auto& f : v.folds)
+    folds.push_back({{"subject", f.subject}, {"gain", f.gain}, {"real_speed_mps", f.real_speed}, {"wip_speed_mps", f.wip_speed}});
+  return {{"trials", v.trials},           {"gain", v.gain},
+          {"real_speed_mps", v.real_speed}, {"wip_speed_mps", v.wip_speed},
+          {"rms_error_mps", v.rms_error},   {"calibrated_gain", v.calibrated_gain},
+          {"cv_by_subject", {{"wip_speed_mps", v.cv_wip_speed}, {"rms_error_mps", v.cv_rms_error}, {"folds", folds}}}};
+}
+
 nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, const Totals& t) {
   const auto& a = run.options.settings;
   nlohmann::json j;
@@ -819,6 +845,7 @@ nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, cons
   j["baseline_depth_rms_cm"] = 100 * s.baseline_depth.rms;
   j["depth_by_mapping"] = depth_mapping_json(s);
   j["detectors"] = detectors_json(s);
+  j["walking_speed"] = speed_json(s.speed);
   j["trials"] = s.trials;
   j["trials_skipped"] = s.skipped;
   j["data"] = run.data;
@@ -860,6 +887,23 @@ std::string depth_markdown(const WipEvalSummary& s) {
   return md.str();
 }
 
+std::string speed_markdown(const SpeedSummary& v) {
+  std::ostringstream md;
+  md << "\n## Walking speed against the capture's\n\nThe avatar's travel (step-speed gain " << na(v.gain, "%.2f")
+     << ") against the pelvis's real path (averaged over +-0.5 s), over the scored time of " << v.trials
+     << " trials. The gain that matches the real speed on all trials: **" << na(v.calibrated_gain, "%.2f")
+     << "**; cross-validated by subject, each subject is scored with the gain chosen on the others.\n\n"
+        "| | pooled speed m/s | RMS error of trial mean speeds m/s |\n|---|---|---|\n"
+     << "| real (pelvis) | " << na(v.real_speed, "%.2f") << " | - |\n"
+     << "| method, gain " << na(v.gain, "%.2f") << " | " << na(v.wip_speed, "%.2f") << " | " << na(v.rms_error, "%.2f") << " |\n"
+     << "| method, gain cross-validated by subject | " << na(v.cv_wip_speed, "%.2f") << " | " << na(v.cv_rms_error, "%.2f")
+     << " |\n\n| held-out subject | gain (from the others) | real m/s | method m/s |\n|---|---|---|---|\n";
+  for (const auto& f : v.folds)
+    md << "| " << f.subject << " | " << na(f.gain, "%.2f") << " | " << na(f.real_speed, "%.2f") << " | "
+       << na(f.wip_speed, "%.2f") << " |\n";
+  return md.str();
+}
+
 std::string summary_markdown(const WipEvalRun& run, const WipEvalSummary& s, const Totals& t) {
   std::ostringstream md;
   md << "# Walking-in-place evaluation on real walking\n\n";
@@ -896,7 +940,7 @@ std::string summary_markdown(const WipEvalRun& run, const WipEvalSummary& s, con
      << na(100 * s.depth.rms, "%.1f") << " cm** |\n"
      << "| key-frame baseline depth vs real foot depth | r = " << na(s.baseline_depth.correlation, "%.3f")
      << ", RMS " << na(100 * s.baseline_depth.rms, "%.1f") << " cm |\n";
-  md << depth_markdown(s);
+  md << depth_markdown(s) << speed_markdown(s.speed);
   md << "\n## Per trial\n\n| trial | s | true | detected | matched | F1 +-200 | F1 +-100 | F1 noisy | latency "
         "median ms | lenient overlap F1 | depth r | depth RMS cm | class | learned depth r | learned RMS cm |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
@@ -1000,7 +1044,8 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
   if (ec || !fs::is_directory(run.out)) throw Error("cannot create the output folder '" + run.out + "'");
   const fs::path out(run.out);
   const Motion cycle = wip::extract_walk_cycle(load_trial(run.clip, run));
-  WipEvalOptions fixed = run.options;  // the document's fixed thresholds, for comparison
+  WipEvalOptions fixed = run.options;  // the document's detector with its fixed thresholds, for comparison
+  fixed.settings.gait.detector = wip::StepDetector::Document;
   fixed.settings.gait.adaptive = false;
   Totals t;
   std::vector<Motion> motions;
@@ -1037,6 +1082,7 @@ WipEvalSummary run_wip_evaluation(const WipEvalRun& run) {
   if (t.clean.empty()) throw Error("no trial in '" + run.data + "' could be evaluated");
   WipEvalSummary s;
   finish_summary(t, s);
+  s.speed = summarize_speed(t.speed, wip::step_speed_gain(run.options.settings));
   score_detectors(detection, run, s);
   io::write_text_file((out / "report.json").string(), summary_json(run, s, t).dump(2) + "\n");
   io::write_text_file((out / "report.md").string(), summary_markdown(run, s, t));

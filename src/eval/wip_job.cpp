@@ -73,6 +73,7 @@ wip::Settings wip_settings(const WipJob& a, double rate) {
   p.mapping.normalise_height = !a.raw_height;
   p.mapping.stop_time = a.stop_time;
   p.mapping.max_speed = a.max_speed;
+  p.mapping.speed_gain = a.speed_gain;
   p.mapping.step_length = a.step_length;
   if (a.mapping == "document") p.mapping.depth = DepthMapping::Document;
   else if (a.mapping == "learned") p.mapping.depth = DepthMapping::Learned;

@@ -66,6 +66,11 @@ double approach(double current, double target, double dt, double tau) {
 
 }  // namespace
 
+double step_speed_gain(const Settings& s) {
+  if (s.mapping.speed_gain > 0) return s.mapping.speed_gain;
+  return s.gait.detector == StepDetector::Adaptive ? kAdaptiveSpeedGain : kDocumentSpeedGain;
+}
+
 Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef upper_body,
                  const LearnedMapping* learned) {
   Model m;
@@ -99,6 +104,9 @@ Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef 
   m.shape_.H = mp.user_step_height;
   if (!(m.shape_.H > 0) || !(settings.signal.rate > 0) || !(settings.signal.cutoff > 0) || !(mp.reference_leg > 0))
     throw Error("walking-in-place settings: step height, reference leg, sample rate and cutoff must be positive");
+  if (!(mp.speed_gain >= 0))
+    throw Error("walking-in-place settings: speed_gain " + std::to_string(mp.speed_gain) +
+                " must be >= 0 (0 = the detector's calibrated gain)");
 
   m.base_pose_ = Pose(s);
   std::vector<Transform> g(static_cast<std::size_t>(s.joint_count()));
@@ -135,7 +143,7 @@ void reset_motion(const Model& model, State& st) {
     st.gait[f].init(p.gait);
   }
   st.step_speed.reset();
-  st.step_speed.gain = p.mapping.speed_gain;
+  st.step_speed.gain = step_speed_gain(p);
   st.frequency_speed.reset();
   st.frequency_speed.stride_per_step = p.mapping.stride_per_step;
   st.walking = false;

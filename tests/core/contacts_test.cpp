@@ -79,3 +79,27 @@ TEST(Contacts, NeedsAnklesAndSaysSo) {
     EXPECT_STREQ(e.what(), "foot contacts need ankle joints (roles left_ankle/right_ankle)");
   }
 }
+
+// 07_01 ends while a foot is in the air: by default that swing is left out
+// (no strike); with end_swings it is kept, flagged cut, its strike at the
+// clip's end, its foot-off where the foot really left the floor (after the
+// other foot's last complete swing began), and the complete swings are unchanged.
+TEST(Contacts, ASwingTheClipsEndCutsIsKeptOnRequestWithItsFootOff) {
+  const Motion m = testdata::load_sample("cmu/bvh/walking/07_01.bvh");
+  const auto complete = foot_swings(m);
+  ContactOptions opt;
+  opt.end_swings = true;
+  const auto all = foot_swings(m, opt);
+  ASSERT_EQ(all.size(), complete.size() + 1) << "07_01 ends mid-swing";
+  int cut = 0;
+  for (const auto& s : all) {
+    if (!s.cut) continue;
+    ++cut;
+    EXPECT_NEAR(s.strike, m.frame_count() / m.fps, 1e-9);
+    EXPECT_GE(s.strike - s.off, 0.05);
+    EXPECT_GT(s.off, complete.back().off) << "the cut swing is the last one";
+    EXPECT_GT(s.apex, 0.03) << "a real lift, not a heel rise";
+  }
+  EXPECT_EQ(cut, 1);
+  for (const auto& s : complete) EXPECT_FALSE(s.cut);
+}

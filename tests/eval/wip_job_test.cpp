@@ -85,6 +85,17 @@ TEST(WipJob, DetectorOptionsReachTheSettings) {
   EXPECT_THROW(eval::wip_settings(job, 30), Error);
 }
 
+// --speed-gain: 0 (the default) leaves the detector's calibrated gain, a
+// positive value overrides it for either detector.
+TEST(WipJob, SpeedGainReachesTheSettingsAndZeroIsTheDetectorsGain) {
+  eval::WipJob job;
+  EXPECT_EQ(wip::step_speed_gain(eval::wip_settings(job, 30)), wip::kAdaptiveSpeedGain);
+  job.detector = "document";
+  EXPECT_EQ(wip::step_speed_gain(eval::wip_settings(job, 30)), wip::kDocumentSpeedGain);
+  job.speed_gain = 3.2;
+  EXPECT_EQ(wip::step_speed_gain(eval::wip_settings(job, 30)), 3.2);
+}
+
 TEST(WipJob, EvaluationOverTwoTrialsWritesItsReport) {
   eval::WipJob job;
   job.data = testdata::sample("cmu/bvh/walking").string();

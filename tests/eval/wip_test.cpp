@@ -169,18 +169,40 @@ TEST(TrueContacts, StillSegmentsAreWhereBothFeetRest) {
   EXPECT_EQ(still_segments(m, "105_02", {}, det, 1.0, 0.5, m.duration() - 0.1)[0].false_steps, 1);
 }
 
+// A swing still open when the frames end is a detection too: kept, cut at
+// the last frame, so a step at a clip's end is neither a miss nor dropped.
+TEST(DetectedSwings, ASwingOpenAtTheLastFrameIsKeptAndFlaggedCut) {
+  std::vector<wip::Info> frames(10);
+  for (int i = 0; i < 10; ++i) frames[static_cast<std::size_t>(i)].time = 0.1 * i;
+  frames[2].events[kLeft] = wip::kEventFootOff;
+  frames[5].events[kLeft] = wip::kEventFootStrike;
+  frames[7].events[kRight] = wip::kEventFootOff;
+  const auto swings = detected_swings(frames);
+  ASSERT_EQ(swings.size(), 2u);
+  EXPECT_FALSE(swings[0].cut);
+  EXPECT_NEAR(swings[0].strike, 0.5, 1e-12);
+  EXPECT_EQ(swings[1].foot, kRight);
+  EXPECT_TRUE(swings[1].cut);
+  EXPECT_NEAR(swings[1].off, 0.7, 1e-12);
+  EXPECT_NEAR(swings[1].strike, 0.9, 1e-12);
+}
+
 // ---- real walking ----------------------------------------------------------
 
 const std::vector<std::string> kSampleTrials = {"05_01", "07_01", "07_02", "07_12", "10_04", "16_15", "16_21"};
 
+// The document's detector (the reference; its 4 Hz filter lags, so every
+// detection follows the true foot-off).
 TEST(RealWalking, StepsAreDetectedAndDepthsFollowTheRealFeetOnSampleTrials) {
   const Motion cycle = wip::extract_walk_cycle(load("cmu/bvh/walking/07_01.bvh"));
   std::vector<StepScore> scores;
   std::vector<StrictScore> strict, strict_100;
   Agreement depth, baseline;
+  WipEvalOptions opt;
+  opt.settings.gait.detector = wip::StepDetector::Document;
   int i = 0;
   for (const auto& name : kSampleTrials) {
-    const auto e = evaluate_wip_trial(load("cmu/bvh/walking/" + name + ".bvh"), name, cycle, {}, i++);
+    const auto e = evaluate_wip_trial(load("cmu/bvh/walking/" + name + ".bvh"), name, cycle, opt, i++);
     scores.push_back(e.steps);
     strict.push_back(e.strict);
     strict_100.push_back(e.strict_100);

@@ -40,6 +40,12 @@ struct ContactOptions {
   double speed_tol = 0.5;           // m/s
   double min_swing = 0.15;          // s: shorter lifts are not steps
   double min_stance = 0.05;         // s: shorter touch-downs do not split a swing
+  // foot_swings: also the last swing of a foot that the clip's end cuts (its
+  // foot-off is seen, its strike is not; at least 50 ms long: min_swing is for
+  // lifts that came back down, this one is still under way), with strike
+  // = the clip's end and `cut` set. Scoring foot-offs needs it: the step was
+  // taken. Off by default (gait cycles need the true strike).
+  bool end_swings = false;
 };
 
 // One swing of one foot (0 = left, 1 = right): foot-off and foot-strike.
@@ -47,12 +53,14 @@ struct SwingEvent {
   int foot = 0;
   double off = 0, strike = 0;  // seconds
   double apex = 0;             // peak lift, metres
+  bool cut = false;            // the clip ended mid-swing (ContactOptions::end_swings): strike = the clip's end
 };
 
 // Per frame of `m`: 1 while the foot ([0] left, [1] right) is in contact.
 // Needs the ankle roles (toes optional); throws naming them otherwise.
 std::array<std::vector<char>, 2> foot_contacts(const Motion& m, const ContactOptions& opt = {});
-// Complete swings (not cut by the clip's ends, at least min_swing long), by foot-off time.
+// Complete swings (not cut by the clip's ends, at least min_swing long), by
+// foot-off time; with opt.end_swings also the swings the clip's end cuts.
 std::vector<SwingEvent> foot_swings(const Motion& m, const ContactOptions& opt = {});
 // Frames where `foot` (0 left, 1 right) strikes the floor: the first contact
 // frame after a swing of at least min_swing, or after one under way at frame 0.

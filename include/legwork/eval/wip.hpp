@@ -8,6 +8,7 @@
 #include <legwork/wip/offline/synthetic.hpp>
 #include <legwork/core/contacts.hpp>
 #include <legwork/wip/offline/learn.hpp>
+#include <legwork/eval/wip_speed.hpp>
 #include <legwork/wip/wip.hpp>
 
 #include <cmath>
@@ -23,7 +24,8 @@ namespace legwork::eval {
 
 using legwork::SwingEvent;
 
-// Swings seen by the gait machines (foot-off to foot-strike events).
+// Swings seen by the gait machines (foot-off to foot-strike events); a swing
+// still open at the last frame ends there, flagged `cut` (its foot-off was detected).
 std::vector<SwingEvent> detected_swings(std::span<const wip::Info> frames);
 
 struct StepScore {
@@ -86,6 +88,7 @@ std::vector<StillSegment> still_segments(const Motion& m, const std::string& nam
 struct DepthTrack {
   std::vector<double> time;
   std::vector<double> z[2];
+  std::vector<Vec3> pelvis;      // world pelvis position per sample (walking speed, wip_speed.hpp)
   double heading_range_deg = 0;  // max - min of the (unwrapped) walking heading over the trial
 };
 // Trials whose heading spans more than this are "turning" walks in the report.
@@ -104,7 +107,7 @@ struct Agreement {
 
 struct WipEvalOptions {
   wip::Settings settings;      // the method's settings (signal.rate = tracker rate)
-  ContactOptions truth;
+  ContactOptions truth{.end_swings = true};  // foot-offs of swings the clip's end cuts count too
   double noise = 0.015;        // Kinect-like jitter for the noisy run, m
   double drop_rate = 0.02;     // dropped samples in the noisy run
   std::uint64_t seed = 1;      // noise seed (mixed with the trial index)
@@ -130,6 +133,7 @@ struct WipTrialEval {
   std::vector<wip::LearnSample> learn; // training samples of the clean run (learned mapping)
   Agreement depth_learned;             // learned mapping, table built without this subject (samples 0 = n/a)
   std::vector<double> learned_z[2];    // its IK-target depths per frame
+  SpeedTrial speed;                    // the avatar's travel against the pelvis's (clean run)
 };
 // The CMU subject of a trial name ("105_02" -> "105").
 std::string subject_of(const std::string& trial);
@@ -185,6 +189,7 @@ struct WipEvalSummary {
   StrictScore cv_strict, cv_noisy;   // held-out subjects pooled
   double cv_false_per_minute = NAN, cv_false_per_minute_noisy = NAN;
   std::string tuning_markdown, tuning_json;  // the cross-validation's report section and JSON
+  SpeedSummary speed;                // walking speed against the capture's (wip_speed.hpp)
   std::vector<std::string> written;  // report.md, report.json
 };
 // Evaluates every trial (with the adaptive and the document's fixed

@@ -19,6 +19,7 @@ struct WipJob {
   std::string mapping = "document", table;  // depth mapping; the learned table file ("" = data/wip/learned_mapping.txt)
   std::string exclude_subjects;             // wip learn: comma-separated CMU subjects left out
   double rate = 30, cutoff = 4, h1 = 0.1, v1 = 0.2, v2 = 0.6, stop_time = 1.5, max_speed = 3.5, step_length = 0.6;
+  double speed_gain = 0;  // 0 = the detector's calibrated gain (wip::step_speed_gain)
   // Step detector (wip::GaitSettings / SignalSettings; defaults from there).
   std::string detector = wip::GaitSettings{}.detector == wip::StepDetector::Adaptive ? "adaptive" : "document";
   double detect_cutoff = wip::SignalSettings{}.detect_cutoff, baseline_tau = wip::SignalSettings{}.baseline_tau;

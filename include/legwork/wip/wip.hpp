@@ -49,18 +49,32 @@ struct MappingSettings {
   double knee_bend = 0.02;      // standing root lowered by this fraction of the leg (keeps knees soft)
   bool feet_flat = true;        // keep the ankle's standing model rotation
   SpeedModel speed_model = SpeedModel::StepSpeed;
-  double speed_gain = 2.15;     // step-speed model gain: comfortable in-place stepping (0.15 m, 1.8 steps/s) -> ~1.3 m/s
+  // Step-speed model gain (m/s of forward speed per m/s of mean vertical foot
+  // speed); 0 = the gain calibrated for the chosen detector (step_speed_gain()).
+  double speed_gain = 0;
   double stride_per_step = 0.65;  // step-frequency model, m per step
   double max_speed = 3.5;       // m/s cap
   double speed_tau = 0.3;       // s: smoothing of the forward speed
   double max_dt = 0.5;          // s: longer frame gaps are integrated as this (gaps over 5 s restart, FrameClock)
 };
 
+// The step-speed gains calibrated for each step detector (their phase timing
+// differs, so the same stepping averages different foot speeds; docs/wip.md).
+inline constexpr double kDocumentSpeedGain = 2.15;  // comfortable in-place stepping (0.15 m, 1.8 steps/s) -> ~1.3 m/s
+// The adaptive detector's mid-swing and terminal events come at other points of the swing (the averaging
+// windows hold less of the fast rise and fall): with 2.15 the shared CMU walks moved 0.28 m/s against
+// their real 0.60; this gain matches the real speed pooled over the 57 walks (`wip eval`, walking speed).
+inline constexpr double kAdaptiveSpeedGain = 4.61;
+
 struct Settings {
   SignalSettings signal;    // rate = the tracker's nominal rate (used for the first frame's dt and the filter design)
   GaitSettings gait;
   MappingSettings mapping;
 };
+
+// The step-speed model's gain: mapping.speed_gain when set (> 0), else the
+// chosen detector's calibrated gain.
+double step_speed_gain(const Settings& settings);
 
 // The avatar and everything derived from it. Built offline by make_model;
 // immutable and shareable by any number of avatars on any threads.

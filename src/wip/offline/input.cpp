@@ -24,7 +24,7 @@ TrackerInput tracker_input_from_motion(const Motion& m, const std::string& name,
   TrackerInput in;
   in.frames = tracker_frames_from_motion(m, rate);
   if (in.frames.empty()) throw Error(name + ": the motion has no frames to track");
-  in.truth = foot_swings(m);
+  in.truth = foot_swings(m, {.end_swings = true});  // scored by foot-off: a swing the clip's end cuts was taken
   in.rate = rate;
   in.still_start = false;
   in.what = "ankles of " + name + " (" + std::to_string(m.frame_count()) + " frames, sampled at " +
