@@ -5,7 +5,6 @@
 
 #include "cmu_sample.hpp"
 #include "testdata.hpp"
-#include "sample_walk_run.hpp"
 
 #include <cmath>
 #include <functional>
