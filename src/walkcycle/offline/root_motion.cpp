@@ -100,6 +100,7 @@ struct FootHold {
   Vec3 pivot = Vec3::Zero();
   Vec3 offset = Vec3::Zero();
   double lift = 0;  // stairs: the height the foot is planted at (or carried at in the swing), metres
+  Vec3 tread = Vec3::Zero();  // stairs: the part of `offset` that moves the foot onto its tread
   // A stance foot already pivoting on its ball (its heel up before the pass
   // key): the ground's slope turns it about the ball, not the heel.
   bool on_ball = false;
@@ -198,10 +199,11 @@ struct FootExtent {
 
 // Stairs: a foot that would stand across a tread's edge is moved along the
 // stairs, the least it takes (1 cm steps, up to a tread's depth), until its
-// ball stays at least 2 cm from an edge and neither its heel nor its toe tip
-// goes lower than the tread under the ball (the heel may overhang the tread
-// below, as on real stairs). Returns the move (metres) and the tread's
-// height in `height`.
+// ball stays at least 2 cm from an edge, its heel is not lower than the
+// tread under the ball (it may overhang the tread below, as on real stairs)
+// and its toe tip stays 2 cm short of the riser ahead (a foot rolled on its
+// ball moves its toe base forward by up to a centimetre). Returns the move
+// (metres) and the tread's height in `height`.
 double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
   auto h = [&](double s) { return ground.height(ground.origin + s * ground.direction); };
   const double margin = 0.02;
@@ -209,7 +211,7 @@ double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
     for (int sign : {-1, 1}) {
       const double d = sign * 0.01 * i, tread = h(e.ball_lo + d);
       if (h(e.ball_lo + d - margin) != tread || h(e.ball_hi + d + margin) != tread) continue;
-      if (h(e.lo + d) > tread || h(e.hi + d) > tread) continue;
+      if (h(e.lo + d) > tread || h(e.hi + d + margin) > tread) continue;
       height = tread;
       return d;
     }
@@ -247,7 +249,11 @@ void plant_on_treads(const CycleModel& m, const Motion& plan, std::span<const Fr
       const Transform& a = g[static_cast<std::size_t>(foot.ankle)];
       const FootHold& h = holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)];
       const double heel = along(h.apply(a.apply(foot.heel_local))), ball = along(h.apply(a.apply(foot.ball_local)));
-      const double toe = foot.toe >= 0 ? along(h.apply(end_site_position(plan.skeleton, g, foot.toe))) : ball;
+      // (The toes as the plan bends them, and laid flat ahead of the ball, as
+      // a foot rolled on its ball keeps them on a tread.)
+      const Vec3 tip = foot.toe >= 0 ? h.apply(end_site_position(plan.skeleton, g, foot.toe)) : h.apply(a.apply(foot.ball_local));
+      const Vec3 ball_at = h.apply(a.apply(foot.ball_local));
+      const double toe = std::max(along(tip), ball + (tip - ball_at).norm());
       p.extent.lo = std::min({p.extent.lo, heel, ball, toe});
       p.extent.hi = std::max({p.extent.hi, heel, ball, toe});
       p.extent.ball_lo = std::min(p.extent.ball_lo, ball);
@@ -261,16 +267,17 @@ void plant_on_treads(const CycleModel& m, const Motion& plan, std::span<const Fr
     const auto& list = plants[side];
     for (std::size_t i = 0; i < list.size(); ++i) {
       const Plant& p = list[i];
-      for (int f = p.first; f <= p.last; ++f) at(f).lift = p.height, at(f).offset += p.move * ground.direction;
+      for (int f = p.first; f <= p.last; ++f) at(f).lift = p.height, at(f).tread = p.move * ground.direction;
       if (i + 1 == list.size()) break;
       const Plant& q = list[i + 1];
       for (int f = p.last + 1; f < q.first; ++f) {
         const double u = static_cast<double>(f - p.last) / (q.first - p.last);
         const double w = q.height >= p.height ? smoothstep(u / 0.6) : smoothstep((u - 0.4) / 0.6);
         at(f).lift = p.height + w * (q.height - p.height);
-        at(f).offset += (p.move + smoothstep(u) * (q.move - p.move)) * ground.direction;
+        at(f).tread = (p.move + smoothstep(u) * (q.move - p.move)) * ground.direction;
       }
     }
+    for (int f = 0; f < n; ++f) at(f).offset += at(f).tread;
   }
 }
 
@@ -381,8 +388,11 @@ std::vector<Vec3> ground_lift(const Ground& ground, const Motion& motion, double
   const int n = motion.frame_count();
   std::vector<Vec3> lift(static_cast<std::size_t>(n), Vec3::Zero());
   if (ground.flat()) return lift;
-  if (ground.stepped()) {  // (the heights the feet are planted and carried at)
-    for (int f = 0; f < n; ++f) lift[static_cast<std::size_t>(f)] = Vec3(0, 0.5 * (holds[static_cast<std::size_t>(f)][0].lift + holds[static_cast<std::size_t>(f)][1].lift), 0);
+  if (ground.stepped()) {  // (the heights the feet are planted and carried at, and their moves onto the treads)
+    for (int f = 0; f < n; ++f) {
+      const auto& h = holds[static_cast<std::size_t>(f)];
+      lift[static_cast<std::size_t>(f)] = 0.5 * (h[0].tread + h[1].tread) + Vec3(0, 0.5 * (h[0].lift + h[1].lift), 0);
+    }
     return window_average(window_average(lift, step_frames, rest_at_end), step_frames, rest_at_end);
   }
   const Skeleton& s = motion.skeleton;
