@@ -105,7 +105,8 @@ bool head_heading(const DevicePose& head, double& heading) {
 // drop that would bring every ankle within reach (0 if none is needed) and
 // leaves `pose` alone.
 double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double heading, const StanceAt& st,
-                  std::span<Transform> before, std::span<Transform> g, bool apply, Info* info) {
+                  const std::array<FootHold, 2>& hold, std::span<Transform> before, std::span<Transform> g, bool apply,
+                  Info* info) {
   const CycleModel& m = model.cycle();
   const Skeleton& sk = m.skeleton;
   leg_kinematics(sk, model.smooth_root().joints, pose, before);
@@ -119,7 +120,7 @@ double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double he
     const FootPivots& foot = m.foot(side == 1);
     const auto end = static_cast<std::size_t>(leg.chain.end);
     const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
-    Transform ankle = before[end];
+    Transform ankle = hold[static_cast<std::size_t>(side)].apply(before[end]);
     // As straight as the keys had it, or soft_reach, whichever is more.
     const double keyed = (before[end].translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
     const double soft = std::max(model.settings().soft_reach, keyed);
@@ -137,7 +138,8 @@ double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double he
       ik::solve_two_bone(sk, leg.chain, t, pose, g);
       if (roll != 0.0 && foot.toe >= 0)  // a rolled foot's toes keep their world rotation (flat on the floor)
         pose.rotations[static_cast<std::size_t>(foot.toe)] =
-            (t.rotation.conjugate() * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
+            (t.rotation.conjugate() * yaw_rotation(hold[static_cast<std::size_t>(side)].angle) *
+             before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
       update_toe(sk, foot, pose, g);
     };
     solve_leg();
@@ -152,6 +154,24 @@ double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double he
   return drop;
 }
 
+// Each foot's hold this frame: the plan's heel and ball (world) fed to its StanceTurn.
+std::array<FootHold, 2> turn_stance_feet(const CycleModel& m, State& s, const StanceAt& st) {
+  std::array<FootHold, 2> hold{};
+  const double half = m.half_cycle();
+  for (int side = 0; side < 2; ++side) {
+    StanceTurn::Frame in;
+    const Quat yaw = yaw_rotation(s.heading);
+    in.heel = yaw * s.feet[static_cast<std::size_t>(foot_index(side == 1, Pivot::Heel))] + s.offset;
+    in.ball = yaw * s.feet[static_cast<std::size_t>(foot_index(side == 1, Pivot::Ball))] + s.offset;
+    in.stance = st.left == (side == 1);
+    in.pivot = st.pivot;
+    in.step_fraction = std::clamp((s.time - st.step * half) / half, 0.0, 1.0);
+    in.time = s.time, in.step_time = half;
+    hold[static_cast<std::size_t>(side)] = s.turn[static_cast<std::size_t>(side)].advance(in);
+  }
+  return hold;
+}
+
 // Smooth root, per frame (`frames` cycle frames advanced): the root follows
 // the plan's offset less its drag; the legs reach the plan's ankles.
 void smooth_frame(const Model& model, State& s, double frames, const StanceAt& st, PoseRef out, Info* info) {
@@ -162,7 +182,9 @@ void smooth_frame(const Model& model, State& s, double frames, const StanceAt& s
   s.smooth += (1.0 - std::exp(-frames / follow)) * (smooth_target(model, s) - s.smooth);
   const double drop = table_at(sr.drop, m, s.time);
   if (info) info->pelvis_drop = drop;
-  solve_legs(model, out, s.smooth - s.offset - Vec3(0, drop, 0), s.heading, st, s.plan_space, s.model_space, true, info);
+  std::array<FootHold, 2> hold{};
+  if (model.settings().turn_on_ball) hold = turn_stance_feet(m, s, st);
+  solve_legs(model, out, s.smooth - s.offset - Vec3(0, drop, 0), s.heading, st, hold, s.plan_space, s.model_space, true, info);
 }
 
 // Periodic running maximum over +-`half_width` samples, then a periodic mean over as many.
@@ -220,7 +242,7 @@ std::vector<double> tabulate_drop(const Model& model) {
     sample_cycle(m, t, pose.ref());
     pose.translations[0] += o[static_cast<std::size_t>(i)];
     const Vec3 shift = -model.smooth_root().drag[static_cast<std::size_t>(i)];
-    need[static_cast<std::size_t>(i)] = solve_legs(model, pose.ref(), shift, 0.0, stance_at(m, t), before, g, false, nullptr);
+    need[static_cast<std::size_t>(i)] = solve_legs(model, pose.ref(), shift, 0.0, stance_at(m, t), {}, before, g, false, nullptr);
   }
   const int quarter = static_cast<int>(std::ceil(m.half_cycle() / 4 * Model::samples_per_frame));
   return spread_drop(need, quarter);
@@ -266,6 +288,7 @@ void reset(const Model&, State& s, const Vec3& position, double heading) {
   s.decided_step = 0;
   s.offset = s.smooth = Vec3::Zero();
   s.feet = {};
+  s.turn = {};
   s.start_position = horizontal(position);
   s.start_heading = s.desired_heading = s.heading = s.heading_from = s.heading_to = heading;
 }

@@ -307,3 +307,35 @@ TEST(Walker, MakeModelRejectsABadSoftReach) {
     }
   }
 }
+
+// Issue 14 item 2 for the live walker: on a 90-degree turn each stance foot
+// keeps the yaw it landed with while its heel is down and turns on its ball
+// (StanceTurn, walk_path's code), instead of twisting with the body about its
+// pivot: its heel and ball stay where they came down (<= 2 mm) and a flat
+// foot does not twist.
+TEST(Walker, StanceFootTurnsOnItsBallOnTurns) {
+  for (const char* w : {"normal", "sneak", "double-bounce"}) {
+    Settings twist_settings;
+    twist_settings.turn_on_ball = false;
+    const Model ball = make_model(cycle(w)), twist = make_model(cycle(w), twist_settings);
+    ASSERT_TRUE(ball.settings().turn_on_ball);
+    for (double rate : {30.0, 90.0}) {
+      const LiveWalk a = walk_live(ball, 10.0, rate, 3.0, kPi / 2), b = walk_live(twist, 10.0, rate, 3.0, kPi / 2);
+      const FootTurnReport fa = measure_foot_turning(ball.cycle(), a.motion, a.labels, Ground{});
+      const FootTurnReport fb = measure_foot_turning(twist.cycle(), b.motion, b.labels, Ground{});
+      const SlipReport sa = measure_stance_slip(ball.cycle(), a.motion, a.labels);
+      std::printf("[walkcycle] walker %-13s 90-degree turn %2.0f Hz: turning on the ball: heel / ball slip %.2f / %.2f mm, flat twist %.2f deg, "
+                  "turn on the ball %.1f deg, pivot slip %.2f mm | with the body: heel / ball slip %.2f / %.2f mm, flat twist %.2f deg\n",
+                  w, rate, fa.heel_slip_mm, fa.ball_slip_mm, fa.twist_deg, fa.turn_on_ball_deg, sa.max_mm, fb.heel_slip_mm,
+                  fb.ball_slip_mm, fb.twist_deg);
+      EXPECT_LE(fa.heel_slip_mm, 2.0) << w << " " << rate;
+      EXPECT_LE(fa.ball_slip_mm, 2.0) << w << " " << rate;
+      EXPECT_LE(sa.max_mm, 2.0) << w << " " << rate;
+      // Turning with the body slides the ball round the heel (4-21 mm) and twists a flat foot (up to 10 deg).
+      EXPECT_LT(fa.ball_slip_mm, fb.ball_slip_mm) << w << " " << rate;
+      EXPECT_LE(fa.twist_deg, fb.twist_deg) << w << " " << rate;
+      const Vec3 end = a.motion.frame(a.motion.frame_count() - 1).translations[0];
+      EXPECT_GT(end.x(), 2.0) << w;  // walked off to the left (+x)
+    }
+  }
+}

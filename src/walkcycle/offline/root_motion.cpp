@@ -92,22 +92,6 @@ std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool res
 
 namespace {
 
-// A rigid horizontal move of one foot of the plan: turned by `angle` about the
-// vertical through the plan's point `pivot`, then moved by `offset`
-// (horizontal). The identity leaves the plan's foot alone.
-struct FootHold {
-  double angle = 0;
-  Vec3 pivot = Vec3::Zero();
-  Vec3 offset = Vec3::Zero();
-  double lift = 0;  // stairs: the height the foot is planted at (or carried at in the swing), metres
-  Vec3 tread = Vec3::Zero();  // stairs: the part of `offset` that moves the foot onto its tread
-  // A stance foot already pivoting on its ball (its heel up before the pass
-  // key): the ground's slope turns it about the ball, not the heel.
-  bool on_ball = false;
-  Vec3 apply(const Vec3& x) const { return pivot + yaw_rotation(angle) * (x - pivot) + offset + Vec3(0, lift, 0); }
-  Transform apply(const Transform& t) const { return {(yaw_rotation(angle) * t.rotation).normalized(), apply(t.translation)}; }
-};
-
 // How far through its step each frame is (0 at the step's first frame, 1 at its last).
 std::vector<double> step_fractions(std::span<const FrameLabel> labels) {
   std::vector<double> frac(labels.size(), 0.0);
@@ -121,70 +105,30 @@ std::vector<double> step_fractions(std::span<const FrameLabel> labels) {
   return frac;
 }
 
-// The stance foot turns on its ball, not in place (issue 14, item 2). The
-// pivoting plan turns the whole body, stance foot included, about the planted
-// pivot: a flat foot twists on its heel and its heel slides round the ball.
-// Here each stance foot keeps the yaw it landed with while its heel is down
-// and turns to the plan's yaw on its ball as the heel rises (fully once the
-// heel is 2 cm up; at the latest over the last quarter of the stance), its
-// pivot (heel, then ball) held where it was. Once the foot leaves the ground
-// the offset this leaves is faded out over the middle of the swing, so it
-// lands on the plan's footprint. Per frame, per side (0 = right, 1 = left).
+// Each stance foot turns on its ball, not in place (StanceTurn, legs.hpp),
+// per frame, per side (0 = right, 1 = left).
 std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const Motion& plan,
                                                      std::span<const FrameLabel> labels, double step_frames) {
   const int n = std::min(plan.frame_count(), static_cast<int>(labels.size()));
   std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
   const std::vector<double> frac = step_fractions(labels.first(static_cast<std::size_t>(n)));
   std::vector<Transform> g(static_cast<std::size_t>(plan.joint_count()));
-  struct Side {
-    bool stance = false;
-    Pivot pivot = Pivot::Heel;
-    double landed_yaw = 0, turned = 0;  // the yaw it landed with; how far it has turned to the plan's (0-1)
-    int left_ground = -1;               // frame the foot left the ground
-    Vec3 lift_off = Vec3::Zero();       // its offset from the plan then
-    Vec3 anchor = Vec3::Zero();         // where the stance foot's pivot is held (floor)
-    Vec3 heel = Vec3::Zero(), ball = Vec3::Zero();  // the plan's, previous frame
-    FootHold hold;
-  } sides[2];
-  const double rise = 0.02;  // metres of heel lift over which the foot turns on its ball
+  StanceTurn sides[2];
   const LegJoints legs = leg_joints(m);
   for (int f = 0; f < n; ++f) {
     leg_kinematics(plan.skeleton, legs, plan.frame(f), g);
     const FrameLabel& l = labels[static_cast<std::size_t>(f)];
     for (int side = 0; side < 2; ++side) {
-      Side& sd = sides[side];
       const FootPivots& foot = m.foot(side == 1);
       const Transform& ankle = g[static_cast<std::size_t>(foot.ankle)];
-      const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
-      if (f == 0) sd.heel = heel, sd.ball = ball;
-      const double yaw = std::atan2(ball.x() - heel.x(), ball.z() - heel.z());
-      const bool stance = l.left_stance == (side == 1);
-      if (stance) {
-        const bool landing = !sd.stance;
-        if (landing) sd.landed_yaw = yaw, sd.turned = 0;
-        // Its pivot: the heel, then the ball from the pass key or as soon as
-        // the heel is up with the ball down (a foot rising early to its toes).
-        const bool heel_up = heel.y() > kFootDownTolerance && ball.y() <= kFootDownTolerance;
-        const Pivot pv = (!landing && sd.pivot == Pivot::Ball) || l.pivot == Pivot::Ball || heel_up ? Pivot::Ball : Pivot::Heel;
-        if (landing || pv != sd.pivot) sd.anchor = horizontal(sd.hold.apply(pv == Pivot::Heel ? sd.heel : sd.ball));
-        sd.pivot = pv;
-        const Vec3& now = pv == Pivot::Heel ? heel : ball;
-        sd.hold.pivot = now;
-        sd.hold.offset = sd.anchor - horizontal(now);  // the pivot stays where it was, wherever the plan has it
-        if (pv == Pivot::Ball) {
-          sd.turned = std::max(sd.turned, smoothstep((heel.y() - kFootDownTolerance) / rise));
-          if (!l.stopping) sd.turned = std::max(sd.turned, smoothstep((frac[static_cast<std::size_t>(f)] - 0.75) / 0.25));
-        }
-        sd.hold.angle = std::remainder(sd.landed_yaw - yaw, 2 * kPi) * (1.0 - sd.turned);
-        sd.hold.on_ball = pv == Pivot::Ball;
-      } else {
-        if (sd.stance) sd.left_ground = f, sd.lift_off = horizontal(sd.hold.apply(sd.heel) - sd.heel);
-        const double u = sd.left_ground < 0 ? 1.0 : ((f - sd.left_ground) / step_frames - 0.25) / 0.6;
-        sd.hold = {0.0, Vec3::Zero(), sd.lift_off * (1 - smoothstep(u))};
-        sd.pivot = Pivot::Heel;
-      }
-      holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)] = sd.hold;
-      sd.stance = stance, sd.heel = heel, sd.ball = ball;
+      StanceTurn::Frame in;
+      in.heel = ankle.apply(foot.heel_local), in.ball = ankle.apply(foot.ball_local);
+      in.stance = l.left_stance == (side == 1);
+      in.pivot = l.pivot;
+      in.step_fraction = frac[static_cast<std::size_t>(f)];
+      in.stopping = l.stopping;
+      in.time = f, in.step_time = step_frames;
+      holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)] = sides[side].advance(in);
     }
   }
   return holds;

@@ -10,9 +10,7 @@
 
 namespace legwork::walkcycle {
 
-// A foot point (heel, ball) is on the ground while it is within this height
-// above it (a shoe sole's give); above, it is in the air and cannot slip.
-inline constexpr double kFootDownTolerance = 0.005;  // metres
+// (kFootDownTolerance, the height within which a foot point is down: legs.hpp.)
 
 // Stance slip: for every pivot phase (one stance foot pivoting on its heel or
 // on its ball), the largest horizontal distance the pivot point moves from
