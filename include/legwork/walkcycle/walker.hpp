@@ -41,6 +41,7 @@
 // RootMotion::Pivot is document 001's root, unchanged.
 #include <legwork/core/tracker.hpp>
 #include <legwork/walkcycle/cycle.hpp>
+#include <legwork/walkcycle/ground.hpp>
 #include <legwork/walkcycle/legs.hpp>
 
 #include <array>
@@ -58,6 +59,14 @@ struct Settings {
   // false: it turns with the body about its pivot (twisting in place).
   bool turn_on_ball = true;
   double soft_reach = 0.98;                  // smooth root: fraction of a leg's length it may straighten to, (0, 1]
+  // Smooth root: the ground walked on (a slope or a height field, the same
+  // type as a path file's "ground"; stairs are refused: the live walker
+  // does not know its footsteps ahead to plant them on treads). The feet are
+  // put on it by the legs' IK (fit_to_ground, as walk_path), the pelvis
+  // rises by the mean ground height under the heels and balls, followed
+  // smoothly (two first-order stages of a quarter step with their lag
+  // compensated: a constant grade is followed exactly).
+  Ground ground;
 };
 
 class Model {
@@ -111,6 +120,8 @@ struct State {
   std::array<Vec3, 4> feet{};   // in-place heel/ball of right/left foot at `time`
   Vec3 smooth = Vec3::Zero();   // smooth root: world = yaw(heading) * in-place + smooth (floor, y = 0)
   std::array<StanceTurn, 2> turn{};  // smooth root: right, left foot turning on its ball (legs.hpp)
+  std::array<double, 2> rise{};      // smooth root on uneven ground: the pelvis's rise, two follower stages, metres
+  bool rise_started = false;
   // Scratch (sized once, no meaning between frames): FK of the plan's pose and of the solved one.
   std::vector<Transform> plan_space, model_space;
 };
@@ -130,6 +141,7 @@ struct Info {
   Pivot pivot = Pivot::Heel;    // which point of it the body pivots on
   // Smooth root only:
   double pelvis_drop = 0;       // metres the pelvis is lowered so the legs reach
+  double ground_rise = 0;       // metres the pelvis is raised by the ground under the feet
   double foot_roll = 0;         // largest roll of a foot out of reach, radians (either foot)
   bool reach_limited = false;   // a leg needed more than soft_reach (its foot was pulled in)
 };

@@ -53,30 +53,6 @@ struct Extended {
   }
 };
 
-// The foot of the flat plan put on the ground: placed on `anchor` (the point
-// it pivots on; the heel for a free foot) raised by the ground height under
-// it, and turned rigidly towards the line between its heel and ball each
-// raised by the ground under them (`full`) - fully while the foot is flat,
-// not at all once heel and ball differ in height by 5 cm or more (a foot on
-// its heel or ball touches the ground at one point only; its toes still
-// follow the ground, see solve). A rigid foot turned on a slope moves its
-// other point sideways by the turn times their height difference, which is
-// what makes the switch from heel to ball slip; fading the turn out keeps
-// that near a millimetre on a 12 % grade. Returns the turn applied.
-Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_ball, Transform& ankle, Quat& full) {
-  full = Quat::Identity();
-  if (ground.flat() || ground.stepped()) return full;  // (stairs: planted flat by plant_on_treads)
-  const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
-  const Vec3 up = Vec3::UnitY();
-  const double flat = std::clamp(1.0 - std::abs(ball.y() - heel.y()) / 0.05, 0.0, 1.0);
-  full = Quat::FromTwoVectors(ball - heel, (ball + ground.height(ball) * up) - (heel + ground.height(heel) * up));
-  const Quat q = Quat::Identity().slerp(flat, full);
-  const Vec3 a = anchor_ball ? ball : heel;
-  ankle.translation = a + ground.height(a) * up + q * (ankle.translation - a);
-  ankle.rotation = (q * ankle.rotation).normalized();
-  return q;
-}
-
 }  // namespace
 
 std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool rest_at_end) {
