@@ -43,8 +43,17 @@ struct FootHold {
   // A stance foot already pivoting on its ball (its heel up before the pass
   // key): the ground's slope turns it about the ball, not the heel.
   bool on_ball = false;
-  Vec3 apply(const Vec3& x) const { return pivot + yaw_rotation(angle) * (x - pivot) + offset + Vec3(0, lift, 0); }
-  Transform apply(const Transform& t) const { return {(yaw_rotation(angle) * t.rotation).normalized(), apply(t.translation)}; }
+  // (One rotation built per call, none for a zero angle: the identity
+  // quaternion's products are exact, so the result is the same to the bit.)
+  Vec3 apply(const Vec3& x) const { return angle == 0 ? moved(x - pivot) : moved(yaw_rotation(angle) * (x - pivot)); }
+  Transform apply(const Transform& t) const {
+    if (angle == 0) return {t.rotation.normalized(), moved(t.translation - pivot)};
+    const Quat q = yaw_rotation(angle);
+    return {(q * t.rotation).normalized(), moved(q * (t.translation - pivot))};
+  }
+
+ private:
+  Vec3 moved(const Vec3& turned) const { return pivot + turned + offset + Vec3(0, lift, 0); }
 };
 
 // The stance foot turns on its ball, not in place (issue 14, item 2), for

@@ -81,19 +81,14 @@ std::vector<double> step_fractions(std::span<const FrameLabel> labels) {
   return frac;
 }
 
-// Each stance foot turns on its ball, not in place (StanceTurn, legs.hpp),
-// per frame, per side (0 = right, 1 = left).
-std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const Motion& plan,
-                                                     std::span<const FrameLabel> labels, double step_frames) {
-  const int n = std::min(plan.frame_count(), static_cast<int>(labels.size()));
-  std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
-  const std::vector<double> frac = step_fractions(labels.first(static_cast<std::size_t>(n)));
-  std::vector<Transform> g(static_cast<std::size_t>(plan.joint_count()));
-  StanceTurn sides[2];
-  const LegJoints legs = leg_joints(m);
-  for (int f = 0; f < n; ++f) {
-    leg_kinematics(plan.skeleton, legs, plan.frame(f), g);
-    const FrameLabel& l = labels[static_cast<std::size_t>(f)];
+// Each stance foot turns on its ball, not in place (StanceTurn, legs.hpp):
+// both feet's turns fed frame by frame, in order, from the plan's FK.
+struct StanceTurns {
+  StanceTurns(const CycleModel& model, std::span<const FrameLabel> labels, double step)
+      : m(model), frac(step_fractions(labels)), step_frames(step) {}
+  // The holds of frame f (`g`: the FK of the plan's frame f, the legs' joints at least).
+  std::array<FootHold, 2> at(int f, std::span<const Transform> g, const FrameLabel& l) {
+    std::array<FootHold, 2> out;
     for (int side = 0; side < 2; ++side) {
       const FootPivots& foot = m.foot(side == 1);
       const Transform& ankle = g[static_cast<std::size_t>(foot.ankle)];
@@ -104,8 +99,27 @@ std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const 
       in.step_fraction = frac[static_cast<std::size_t>(f)];
       in.stopping = l.stopping;
       in.time = f, in.step_time = step_frames;
-      holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)] = sides[side].advance(in);
+      out[static_cast<std::size_t>(side)] = sides[side].advance(in);
     }
+    return out;
+  }
+  const CycleModel& m;
+  std::vector<double> frac;
+  double step_frames;
+  StanceTurn sides[2];
+};
+
+// Per frame, per side (0 = right, 1 = left).
+std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const Motion& plan,
+                                                     std::span<const FrameLabel> labels, double step_frames) {
+  const int n = std::min(plan.frame_count(), static_cast<int>(labels.size()));
+  std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
+  StanceTurns turns(m, labels.first(static_cast<std::size_t>(n)), step_frames);
+  std::vector<Transform> g(static_cast<std::size_t>(plan.joint_count()));
+  const LegJoints legs = leg_joints(m);
+  for (int f = 0; f < n; ++f) {
+    leg_kinematics(plan.skeleton, legs, plan.frame(f), g);
+    holds[static_cast<std::size_t>(f)] = turns.at(f, g, labels[static_cast<std::size_t>(f)]);
   }
   return holds;
 }
@@ -223,8 +237,10 @@ struct FrameSolver {
     legs[0] = leg_of(motion.skeleton, false, before);
     legs[1] = leg_of(motion.skeleton, true, before);
   }
-  // A frame of the plan: the first pass (r = nullptr) measures the drop
-  // needed and leaves `pose` alone; the second moves and solves it.
+  // The plan's frame to solve next: its FK (`before`, the legs' joints).
+  void plan(ConstPoseRef pose) { leg_kinematics(m.skeleton, leg_joints_, pose, before); }
+  // A frame of the plan (after plan(pose)): the first pass (r = nullptr)
+  // measures the drop needed and leaves `pose` alone; the second moves and solves it.
   double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, const std::array<FootHold, 2>& hold,
                WalkResult* r);
 };
@@ -232,7 +248,6 @@ struct FrameSolver {
 double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label,
                           const std::array<FootHold, 2>& hold, WalkResult* r) {
   const Skeleton& s = m.skeleton;
-  leg_kinematics(s, leg_joints_, pose, before);
   if (r) pose.translations[0] += shift;
   shift_legs(leg_joints_, before, shift, g);  // (FK of the moved pose)
   bool limited = false;
@@ -337,7 +352,9 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   const std::vector<Vec3> smooth =
       window_average(window_average(floor_offset, step_frames, opt.stop), step_frames, opt.stop);
   std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
-  if (opt.turn_on_ball) holds = hold_stance_yaw(m, motion, r.labels, step_frames);
+  // (Off stairs the feet's turns are fed in the first pass, from its FK of the plan.)
+  const bool turns_in_pass = opt.turn_on_ball && !ground.stepped() && static_cast<int>(r.labels.size()) >= n;
+  if (opt.turn_on_ball && !turns_in_pass) holds = hold_stance_yaw(m, motion, r.labels, step_frames);
   if (ground.stepped()) plant_on_treads(m, motion, r.labels, ground, holds);
   const std::vector<Vec3> lift = ground_lift(ground, motion, step_frames, opt.stop, holds);
   std::vector<Vec3> shift(static_cast<std::size_t>(n));
@@ -347,9 +364,13 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   // drop; the drop is spread smoothly (running maximum over a quarter step,
   // averaged over as much: never less than needed).
   std::vector<double> drop(static_cast<std::size_t>(n));
-  for (int f = 0; f < n; ++f)
+  StanceTurns turns(m, std::span<const FrameLabel>(r.labels).first(turns_in_pass ? static_cast<std::size_t>(n) : 0), step_frames);
+  for (int f = 0; f < n; ++f) {
+    solver.plan(motion.frame(f));
+    if (turns_in_pass) holds[static_cast<std::size_t>(f)] = turns.at(f, solver.before, r.labels[static_cast<std::size_t>(f)]);
     drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)], r.heading[static_cast<std::size_t>(f)],
                                                      r.labels[static_cast<std::size_t>(f)], holds[static_cast<std::size_t>(f)], nullptr);
+  }
   // (On stairs the drop needed changes by a tread's rise from step to step:
   // spread over half a step, averaged over a step.)
   const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / (ground.stepped() ? 2 : 4))));
@@ -360,6 +381,7 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   for (int f = 0; f < n; ++f) {
     const Vec3 d = shift[static_cast<std::size_t>(f)] + lowered[static_cast<std::size_t>(f)];
     r.pelvis_drop_max = std::max(r.pelvis_drop_max, -lowered[static_cast<std::size_t>(f)].y());
+    solver.plan(motion.frame(f));
     solver.solve(motion.frame(f), d, r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)],
                  holds[static_cast<std::size_t>(f)], &r);
   }
