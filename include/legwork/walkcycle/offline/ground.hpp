@@ -19,7 +19,8 @@
 // On a slope or height field the feet follow the ground under them (it has
 // no edges). On stairs each foot is planted flat on the highest tread under
 // its heel and ball and carried from tread to tread in the swing (see
-// docs/walkcycle.md); the footsteps themselves are not moved to the treads.
+// docs/walkcycle.md), and walk_path shortens the steps on the flight to one
+// tread each (stair_stride, walk.hpp; WalkOptions::fit_stairs_stride).
 #include <legwork/walkcycle/ground.hpp>
 
 #include <string>
