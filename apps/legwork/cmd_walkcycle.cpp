@@ -42,6 +42,9 @@ void register_walkcycle(CLI::App& app) {
   cmd->add_option("--stance-turn", a->stance_turn, "smooth root on turns: ball: the stance foot keeps its yaw while the heel "
                                                    "is down and turns on its ball (default); twist: it turns with the body")
       ->check(CLI::IsMember({"ball", "twist"}));
+  cmd->add_option("--stairs-stride", a->stairs_stride, "on stairs: fit: one tread per step, the stride shortened to the "
+                                                       "treads (default); keep: the walk's own stride (two treads at a time, crouching)")
+      ->check(CLI::IsMember({"fit", "keep"}));
   output_file(cmd->add_option("--out,-o", a->out, "the walk (or, with no path, the in-place cycle): .bvh or .glb"));
   output_file(cmd->add_option("--cycle-out", a->cycle_out, "the in-place loop (frame N = frame 0 left out): .bvh or .glb"));
   output_file(cmd->add_option("--sheet", a->sheet, "key-pose sheet: the five poses of a step side by side (.png or .svg)"));

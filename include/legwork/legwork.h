@@ -188,6 +188,11 @@ typedef struct lw_walker_settings {
   int32_t root;              /* lw_walker_root */
   double max_turn_per_step;  /* radians of heading change per step, >= 0 */
   double soft_reach;         /* smooth root: fraction of a leg's length it may straighten to, (0, 1] */
+  /* The ground walked on (smooth root): the JSON text of a path file's "ground"
+   * object, e.g. {"slope": {"origin": [0, 1], "direction": [0, 1], "grade": 0.1}}
+   * or {"heightfield": {...}} (docs/walkcycle.md; stairs are refused); NULL or
+   * "" = the flat floor. Copied by lw_model_create_walker_with_settings. */
+  const char* ground_json;
 } lw_walker_settings;
 LW_API void lw_walker_settings_default(lw_walker_settings* s);
 /* The walker with settings (`s` NULL = defaults); a bad value is

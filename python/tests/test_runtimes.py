@@ -260,3 +260,30 @@ def test_combined_with_a_database(db):
     assert model.accentuated
     state = legwork.combined.State(model)
     assert state.legs_weight == 0.0
+
+
+def test_walker_walks_the_ground_it_is_given():
+    walk = walkcycle.load_walk(str(SOURCE / "data/walks/normal.json"))
+    cycle = walkcycle.build_cycle(walk.skeleton, walk.keys)
+    settings = walkcycle.Settings()
+    assert settings.ground == "flat" and settings.turn_on_ball
+    settings.set_ground('{"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.1}}')
+    assert settings.ground == "slope 10.0 %"
+    model = walkcycle.make_model(cycle, settings)
+    state, pose, info = walkcycle.State(model), core.Pose(model.skeleton()), walkcycle.Info()
+    heights = []
+    for i in range(150):  # 5 s at 30 Hz, straight up the slope
+        f = core.TrackerFrame(i / 30.0)
+        f.set(core.Device.Head, np.array([0.0, 1.7, 0.0]), np.array([1.0, 0, 0, 0]))
+        walkcycle.update(model, f, state, pose, info)
+        root = np.array(pose.translations[0])
+        heights.append(root[1] - 0.1 * max(0.0, root[2] - 0.5))  # above the ground
+    assert np.array(pose.translations[0])[2] > 4.0
+    assert abs(heights[-1] - heights[0]) < 0.1 * 0.36 + 0.01  # rides the ground (the lower foot: up to half a stride's rise below the mean)
+    assert info.ground_rise > 0.3
+    with pytest.raises(legwork.Error, match="Settings.set_ground: slope: grade"):
+        settings.set_ground('{"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.5}}')
+    stairs = walkcycle.Settings()
+    stairs.set_ground('{"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "run": 0.3, "count": 3}}')
+    with pytest.raises(legwork.Error, match="stairs are not supported by the live walker"):
+        walkcycle.make_model(cycle, stairs)

@@ -59,6 +59,17 @@ for w in normal sneak double-bounce; do
   done
 done
 
+# Stairs before/after (issue 14): the walk's own stride (two treads a step,
+# crouching; --stairs-stride keep) against the stride fitted to the treads
+# (the default, one tread per step), from the side.
+if [ "$have_ffmpeg" = 1 ]; then
+  "$LEGWORK" walkcycle --keys "$walks/normal.json" --path "$walks/paths/stairs.json" --stairs-stride keep \
+    --video "$out/normal_stairs_kept_stride_side.mp4" --video-view side >/dev/null
+  ffmpeg -loglevel error -y -ss 3.2 -i "$out/normal_stairs_kept_stride_side.mp4" -frames:v 1 "$out/normal_stairs_kept_stride_side.png"
+fi
+"$LEGWORK" walkcycle --keys "$walks/normal.json" --path "$walks/paths/stairs.json" --stairs-stride keep \
+  --report "$out/normal_stairs_kept_stride_report.json" >/dev/null
+
 # From mocap: key poses of a real walk, ready to stylise, and the walk they make.
 "$LEGWORK" walkcycle extract "$DATA/bvh/walking/16_15.bvh" --out "$out/16_15_keys.json" \
   --sheet "$out/16_15_keys.png" --report "$out/16_15_extract.json"
@@ -70,8 +81,8 @@ if command -v python3 >/dev/null 2>&1; then
 {
   echo "# Walk-cycle demo figures"
   echo
-  echo "| walk | run | root | ground | steps | frames | stance slip max (mm) | feet below the ground (mm) | root speed min-max (m/s) | peak root acceleration (m/s^2) | loop seam (m) | net / total turning (deg) | max path deviation (m) | end distance (m) | floor lift (mm) |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| walk | run | root | ground | steps | frames | stance slip max (mm) | feet below the ground (mm) | root speed min-max (m/s) | peak root acceleration (m/s^2) | loop seam (m) | net / total turning (deg) | max path deviation (m) | end distance (m) | floor lift (mm) | pelvis drop (mm) | pelvis vertical speed (m/s) / acceleration (m/s^2) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for f in "$out"/*_report.json; do
     python3 - "$f" <<'PY'
 import json, os, sys
@@ -81,7 +92,8 @@ print(f"| {r.get('walk')} | {name} | {r.get('root_motion')} | {r.get('ground')} 
       f"{r.get('ground_penetration_mm_max', 0):.1f} | "
       f"{r.get('root_speed_min_mps', 0):.2f}-{r.get('root_speed_max_mps', 0):.2f} | {r.get('root_accel_max_mps2', 0):.1f} | "
       f"{r.get('loop_seam_error_m', 0):.2e} | {r.get('turning_deg', 0):.1f} / {r.get('turning_abs_deg', 0):.1f} | "
-      f"{r.get('max_path_deviation_m', 0):.3f} | {r.get('end_distance_m', 0):.3f} | {r.get('floor_lift_mm_max', 0):.1f} |")
+      f"{r.get('max_path_deviation_m', 0):.3f} | {r.get('end_distance_m', 0):.3f} | {r.get('floor_lift_mm_max', 0):.1f} | "
+      f"{1e3 * r.get('pelvis_drop_max_m', 0):.0f} | {r.get('pelvis_vertical_speed_max_mps', 0):.2f} / {r.get('pelvis_vertical_accel_max_mps2', 0):.1f} |")
 PY
   done
 } > "$out/figures.md"
@@ -110,8 +122,9 @@ fi
   for w in normal sneak double-bounce; do
     echo "${w}_hill.bvh / ${w}_hill_report.json: '$w' over a hill (height field, 10 % grades): feet on the ground, slip and penetration in the report"
     echo "${w}_ramp.bvh / ${w}_ramp_report.json: '$w' up a 12 % ramp"
-    echo "${w}_stairs.bvh / ${w}_stairs_report.json: '$w' up five stairs (0.15 m rise, 0.36 m run): feet planted flat on the treads"
+    echo "${w}_stairs.bvh / ${w}_stairs_report.json: '$w' up five stairs (0.15 m rise, 0.36 m run): one tread per step (the stride fitted to the treads), feet planted flat on them"
   done
+  echo "normal_stairs_kept_stride_side.mp4 / .png / _report.json: before/after: the normal walk up the same stairs with its own stride (--stairs-stride keep: two treads a step, the pelvis drops ~18 cm to reach); compare normal_stairs_side.mp4 (one tread a step)"
   for g in hill ramp stairs; do
     echo "normal_${g}.mp4 / normal_${g}_side.mp4: the normal walk on the $g with the ground drawn (three-quarter view / from the side)"
     echo "normal_${g}_side.png: a still of it from the side (3.2 s in): the feet on the ground, the toe's path (green)"

@@ -12,6 +12,7 @@
 #include <legwork/ik/full_body.hpp>
 #include <legwork/io/bvh.hpp>
 #include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/offline/ground.hpp>
 #include <legwork/walkcycle/walker.hpp>
 #include <legwork/wip/offline/learn.hpp>
 #include <legwork/wip/wip.hpp>
@@ -414,7 +415,7 @@ void lw_walker_settings_default(lw_walker_settings* s) {
   if (!s) return;
   const walkcycle::Settings d;
   *s = lw_walker_settings{d.root == walkcycle::RootMotion::Pivot ? LW_WALKER_ROOT_PIVOT : LW_WALKER_ROOT_SMOOTH, d.max_turn_per_step,
-                          d.soft_reach};
+                          d.soft_reach, nullptr};
 }
 
 lw_status lw_model_create_walker_with_settings(const char* keys_json_path, const lw_walker_settings* s, lw_model** out) {
@@ -433,6 +434,13 @@ lw_status lw_model_create_walker_with_settings(const char* keys_json_path, const
     settings.root = s->root == LW_WALKER_ROOT_PIVOT ? walkcycle::RootMotion::Pivot : walkcycle::RootMotion::Smooth;
     settings.max_turn_per_step = s->max_turn_per_step;
     settings.soft_reach = s->soft_reach;
+  }
+  if (s && s->ground_json && *s->ground_json) {
+    try {
+      settings.ground = walkcycle::parse_ground_json(s->ground_json, "lw_walker_settings.ground_json");
+    } catch (const Error& e) {
+      return fail(LW_ERROR_INVALID_ARGUMENT, std::string(where) + ": " + e.what());
+    }
   }
   return guarded(where, [&] {
     const walkcycle::WalkFile walk = walkcycle::load_walk(keys_json_path);

@@ -8,6 +8,7 @@
 #include <legwork/core/measure.hpp>
 #include <legwork/ik/full_body.hpp>
 #include <legwork/walkcycle/offline/keys.hpp>
+#include <legwork/walkcycle/offline/ground.hpp>
 #include <legwork/walkcycle/walker.hpp>
 #include <legwork/wip/wip.hpp>
 
@@ -190,6 +191,7 @@ struct WalkerRuntime : Contract<walkcycle::Model, walkcycle::State, walkcycle::I
     walkcycle::Settings s;
     if (opt.root != "smooth" && opt.root != "pivot") throw Error("root '" + opt.root + "' is not one of: smooth, pivot");
     s.root = opt.root == "pivot" ? walkcycle::RootMotion::Pivot : walkcycle::RootMotion::Smooth;
+    if (!opt.ground.empty()) s.ground = walkcycle::parse_ground_json(opt.ground, "hello.ground");
     const auto names = walks(res);
     if (std::find(names.begin(), names.end(), opt.walk) == names.end())
       throw Error("walk '" + opt.walk + "' is not one of this server's walks (" + join(names) + ")");

@@ -101,6 +101,10 @@ Hello parse_hello(const json& j) {
       if (!w->is_string()) fail("bad_message", std::string("hello.") + key + " must be a string");
       (std::string(key) == "walk" ? h.method.walk : h.method.root) = w->get<std::string>();
     }
+  if (auto g = j.find("ground"); g != j.end() && !g->is_null()) {
+    if (!g->is_object()) fail("bad_message", "hello.ground must be an object (a path file's \"ground\": slope or heightfield)");
+    h.method.ground = g->dump();
+  }
   if (auto d = j.find("detector"); d != j.end() && !d->is_null()) {
     if (!d->is_string()) fail("bad_message", "hello.detector must be a string (\"document\" or \"adaptive\")");
     h.method.detector = d->get<std::string>();

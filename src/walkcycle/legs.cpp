@@ -101,6 +101,38 @@ double drop_to_reach(const Vec3& hip, const Vec3& target, double reach) {
   return std::max(0.0, above - std::sqrt(reach * reach - side * side));
 }
 
+const FootHold& StanceTurn::advance(const Frame& in) {
+  if (!started) heel = in.heel, ball = in.ball, started = true;
+  const double rise = 0.02;  // metres of heel lift over which the foot turns on its ball
+  const double yaw = std::atan2(in.ball.x() - in.heel.x(), in.ball.z() - in.heel.z());
+  if (in.stance) {
+    const bool landing = !stance;
+    if (landing) landed_yaw = yaw, turned = 0;
+    // Its pivot: the heel, then the ball from the pass key or as soon as
+    // the heel is up with the ball down (a foot rising early to its toes).
+    const bool heel_up = in.heel.y() > kFootDownTolerance && in.ball.y() <= kFootDownTolerance;
+    const Pivot pv = (!landing && pivot == Pivot::Ball) || in.pivot == Pivot::Ball || heel_up ? Pivot::Ball : Pivot::Heel;
+    if (landing || pv != pivot) anchor = horizontal(hold.apply(pv == Pivot::Heel ? heel : ball));
+    pivot = pv;
+    const Vec3& now = pv == Pivot::Heel ? in.heel : in.ball;
+    hold.pivot = now;
+    hold.offset = anchor - horizontal(now);  // the pivot stays where it was, wherever the plan has it
+    if (pv == Pivot::Ball) {
+      turned = std::max(turned, smoothstep((in.heel.y() - kFootDownTolerance) / rise));
+      if (!in.stopping) turned = std::max(turned, smoothstep((in.step_fraction - 0.75) / 0.25));
+    }
+    hold.angle = std::remainder(landed_yaw - yaw, 2 * kPi) * (1.0 - turned);
+    hold.on_ball = pv == Pivot::Ball;
+  } else {
+    if (stance) left_ground = in.time, lift_off = horizontal(hold.apply(heel) - heel);
+    const double u = left_ground < 0 ? 1.0 : ((in.time - left_ground) / in.step_time - 0.25) / 0.6;
+    hold = {0.0, Vec3::Zero(), lift_off * (1 - smoothstep(u))};
+    pivot = Pivot::Heel;
+  }
+  stance = in.stance, heel = in.heel, ball = in.ball;
+  return hold;
+}
+
 void update_toe(const Skeleton& s, const FootPivots& foot, ConstPoseRef pose, std::span<Transform> g) {
   if (foot.toe < 0) return;
   const auto t = static_cast<std::size_t>(foot.toe);

@@ -104,8 +104,9 @@ bool head_heading(const DevicePose& head, double& heading) {
 // go below the floor). With `apply` false only measures: returns the pelvis
 // drop that would bring every ankle within reach (0 if none is needed) and
 // leaves `pose` alone.
-double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double heading, const StanceAt& st,
-                  std::span<Transform> before, std::span<Transform> g, bool apply, Info* info) {
+double solve_legs(const Model& model, const Ground& ground, PoseRef pose, const Vec3& shift, double heading,
+                  const StanceAt& st, const std::array<FootHold, 2>& hold, std::span<Transform> before,
+                  std::span<Transform> g, bool apply, Info* info) {
   const CycleModel& m = model.cycle();
   const Skeleton& sk = m.skeleton;
   leg_kinematics(sk, model.smooth_root().joints, pose, before);
@@ -119,11 +120,13 @@ double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double he
     const FootPivots& foot = m.foot(side == 1);
     const auto end = static_cast<std::size_t>(leg.chain.end);
     const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
-    Transform ankle = before[end];
+    Transform ankle = hold[static_cast<std::size_t>(side)].apply(before[end]);
     // As straight as the keys had it, or soft_reach, whichever is more.
     const double keyed = (before[end].translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
     const double soft = std::max(model.settings().soft_reach, keyed);
     const bool stance = st.left == (side == 1);
+    Quat slope;  // the ground's turn under the foot (its toes follow it)
+    fit_to_ground(ground, foot, stance && (st.pivot == Pivot::Ball || hold[static_cast<std::size_t>(side)].on_ball), ankle, slope);
     const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &st.pivot : nullptr, ankle);
     drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
     if (!apply) continue;
@@ -135,13 +138,16 @@ double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double he
     limited = limited || soften_reach(hip, leg, soft, t.position) > soft + 1e-6;
     auto solve_leg = [&] {
       ik::solve_two_bone(sk, leg.chain, t, pose, g);
-      if (roll != 0.0 && foot.toe >= 0)  // a rolled foot's toes keep their world rotation (flat on the floor)
+      // A rolled foot's toes keep their world rotation (flat on the floor); on
+      // uneven ground they turn with the ground under the foot.
+      if ((roll != 0.0 || !ground.flat()) && foot.toe >= 0)
         pose.rotations[static_cast<std::size_t>(foot.toe)] =
-            (t.rotation.conjugate() * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
+            (t.rotation.conjugate() * slope * yaw_rotation(hold[static_cast<std::size_t>(side)].angle) *
+             before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
       update_toe(sk, foot, pose, g);
     };
     solve_leg();
-    const double below = depth_below(sk, foot, std::span<const Transform>(g), [](const Vec3&) { return 0.0; });
+    const double below = depth_below(sk, foot, std::span<const Transform>(g), [&](const Vec3& p) { return ground.height(p); });
     if (below > 0) {
       t.position.y() += below;
       solve_leg();
@@ -150,6 +156,44 @@ double solve_legs(const Model& model, PoseRef pose, const Vec3& shift, double he
   }
   if (info) info->foot_roll = roll_max, info->reach_limited = limited;
   return drop;
+}
+
+// Each foot's hold this frame: the plan's heel and ball (world) fed to its StanceTurn.
+std::array<FootHold, 2> turn_stance_feet(const CycleModel& m, State& s, const StanceAt& st) {
+  std::array<FootHold, 2> hold{};
+  const double half = m.half_cycle();
+  for (int side = 0; side < 2; ++side) {
+    StanceTurn::Frame in;
+    const Quat yaw = yaw_rotation(s.heading);
+    in.heel = yaw * s.feet[static_cast<std::size_t>(foot_index(side == 1, Pivot::Heel))] + s.offset;
+    in.ball = yaw * s.feet[static_cast<std::size_t>(foot_index(side == 1, Pivot::Ball))] + s.offset;
+    in.stance = st.left == (side == 1);
+    in.pivot = st.pivot;
+    in.step_fraction = std::clamp((s.time - st.step * half) / half, 0.0, 1.0);
+    in.time = s.time, in.step_time = half;
+    hold[static_cast<std::size_t>(side)] = s.turn[static_cast<std::size_t>(side)].advance(in);
+  }
+  return hold;
+}
+
+// The pelvis's rise over uneven ground: the mean ground height under the
+// plan's heels and balls, followed by two first-order stages of a quarter
+// step (y1, y2); 2 y1 - y2 compensates their lag (y2' = (y1 - y2) / tau, a
+// ramp's lag is 2 tau times its rate), so a constant grade is followed
+// exactly and the rise stays smooth.
+double follow_ground(const Model& model, State& s, double frames) {
+  const Ground& ground = model.settings().ground;
+  if (ground.flat()) return 0.0;
+  double target = 1e300;  // the lowest: the leg reaching down is the one that runs out of reach
+  for (const Vec3& p : s.feet) target = std::min(target, ground.height(yaw_rotation(s.heading) * p + s.offset));
+  if (!s.rise_started) {
+    s.rise = {target, target};
+    s.rise_started = true;
+  }
+  const double a = 1.0 - std::exp(-frames / (0.25 * model.cycle().half_cycle()));
+  s.rise[0] += a * (target - s.rise[0]);
+  s.rise[1] += a * (s.rise[0] - s.rise[1]);
+  return 2 * s.rise[0] - s.rise[1];
 }
 
 // Smooth root, per frame (`frames` cycle frames advanced): the root follows
@@ -162,7 +206,12 @@ void smooth_frame(const Model& model, State& s, double frames, const StanceAt& s
   s.smooth += (1.0 - std::exp(-frames / follow)) * (smooth_target(model, s) - s.smooth);
   const double drop = table_at(sr.drop, m, s.time);
   if (info) info->pelvis_drop = drop;
-  solve_legs(model, out, s.smooth - s.offset - Vec3(0, drop, 0), s.heading, st, s.plan_space, s.model_space, true, info);
+  std::array<FootHold, 2> hold{};
+  if (model.settings().turn_on_ball) hold = turn_stance_feet(m, s, st);
+  const double rise = follow_ground(model, s, frames);
+  if (info) info->ground_rise = rise;
+  solve_legs(model, model.settings().ground, out, s.smooth - s.offset + Vec3(0, rise - drop, 0), s.heading, st, hold,
+             s.plan_space, s.model_space, true, info);
 }
 
 // Periodic running maximum over +-`half_width` samples, then a periodic mean over as many.
@@ -220,10 +269,31 @@ std::vector<double> tabulate_drop(const Model& model) {
     sample_cycle(m, t, pose.ref());
     pose.translations[0] += o[static_cast<std::size_t>(i)];
     const Vec3 shift = -model.smooth_root().drag[static_cast<std::size_t>(i)];
-    need[static_cast<std::size_t>(i)] = solve_legs(model, pose.ref(), shift, 0.0, stance_at(m, t), before, g, false, nullptr);
+    need[static_cast<std::size_t>(i)] = solve_legs(model, Ground{}, pose.ref(), shift, 0.0, stance_at(m, t), {}, before, g, false, nullptr);
   }
   const int quarter = static_cast<int>(std::ceil(m.half_cycle() / 4 * Model::samples_per_frame));
   return spread_drop(need, quarter);
+}
+
+// The walker's ground: finite, a consistent height field, not stairs, and
+// only with the smooth root (only the legs can put the feet on it).
+void check_ground(const Settings& s) {
+  const Ground& g = s.ground;
+  if (g.flat()) return;
+  if (g.stepped())
+    throw Error("walker: ground: stairs are not supported by the live walker (its footsteps are not known ahead to plant "
+                "them on treads): walk them with walk_path (legwork walkcycle --path), or give a slope or height field");
+  if (s.root != RootMotion::Smooth)
+    throw Error("walker: ground: uneven ground (" + g.describe() + ") needs the smooth root: the legs' IK puts the feet on it");
+  if (!g.origin.allFinite() || !g.direction.allFinite() || !std::isfinite(g.grade) || !std::isfinite(g.length) ||
+      !std::isfinite(g.cell))
+    throw Error("walker: ground: origin, direction, grade, length and cell must be finite");
+  if (g.kind == Ground::Kind::HeightField &&
+      (!(g.cell > 0) || g.columns < 1 || g.rows < 1 || g.heights.size() != static_cast<std::size_t>(g.columns) * static_cast<std::size_t>(g.rows)))
+    throw Error("walker: ground: a height field needs cell > 0 and rows x columns heights, got " + std::to_string(g.rows) +
+                " x " + std::to_string(g.columns) + " and " + std::to_string(g.heights.size()) + " heights");
+  for (double h : g.heights)
+    if (!std::isfinite(h)) throw Error("walker: ground: a height field's heights must be finite");
 }
 
 }  // namespace
@@ -239,6 +309,7 @@ Model make_model(const CycleModel& cycle, const Settings& settings) {
     throw Error("walker: the start position and heading must be finite");
   if (!(settings.soft_reach > 0 && settings.soft_reach <= 1))
     throw Error("walker: soft_reach must be in (0, 1] (a fraction of the leg's length), got " + std::to_string(settings.soft_reach));
+  check_ground(settings);
   if (settings.root != RootMotion::Smooth && settings.root != RootMotion::Pivot)
     throw Error("walker: root must be RootMotion::Smooth or RootMotion::Pivot, got " + std::to_string(static_cast<int>(settings.root)));
   Model m;
@@ -266,6 +337,9 @@ void reset(const Model&, State& s, const Vec3& position, double heading) {
   s.decided_step = 0;
   s.offset = s.smooth = Vec3::Zero();
   s.feet = {};
+  s.turn = {};
+  s.rise = {};
+  s.rise_started = false;
   s.start_position = horizontal(position);
   s.start_heading = s.desired_heading = s.heading = s.heading_from = s.heading_to = heading;
 }

@@ -366,6 +366,47 @@ TEST(CApi, WalkerRootIsSmoothByDefaultAndPivotOnRequest) {
   EXPECT_EQ(bad, nullptr);
 }
 
+// The walker on a ground given through the C API (the JSON of a path file's
+// "ground"): up a 10 % slope the root rises with the ground (as high above it
+// at the end as at the start, within the step's bob); a bad or stairs ground
+// is refused naming the field.
+TEST(CApi, WalkerWalksTheGroundItIsGiven) {
+  const std::string walk = sample("walks/normal.json");
+  lw_walker_settings s;
+  lw_walker_settings_default(&s);
+  EXPECT_EQ(s.ground_json, nullptr);
+  s.ground_json = R"({"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.1}})";
+  lw_model* model = nullptr;
+  ASSERT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &model), LW_OK) << lw_last_error();
+  lw_avatar* avatar = nullptr;
+  ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
+  lw_frame f{};
+  f.devices[LW_HEAD] = {{0, 1.7, 0}, {1, 0, 0, 0}, 1};
+  double first[3] = {0, 0, 0}, root[3] = {0, 0, 0};
+  for (int i = 0; i < 150; ++i) {
+    f.time = i / 30.0;
+    ASSERT_EQ(lw_avatar_update(avatar, &f), LW_OK);
+    ASSERT_EQ(lw_avatar_pose(avatar, nullptr, root, nullptr, 0), LW_OK);
+    if (i == 0) std::copy(root, root + 3, first);
+  }
+  const double ground_end = 0.1 * std::max(0.0, root[2] - 0.5);
+  std::printf("[capi] walker up a 10 %% slope: root %.3f m above the ground at the start, %.3f m at the end (z %.2f m)\n", first[1],
+              root[1] - ground_end, root[2]);
+  EXPECT_GT(root[2], 4.0);  // walked up the slope
+  // (The pelvis follows the lower foot: up to half a stride's rise, 36 mm, below the feet's mean.)
+  EXPECT_NEAR(root[1] - ground_end, first[1], 0.1 * 0.36 + 0.01);
+  lw_avatar_destroy(avatar);
+  lw_model_destroy(model);
+  lw_model* bad = nullptr;
+  s.ground_json = R"({"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.5}})";
+  EXPECT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &bad), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("lw_walker_settings.ground_json: slope: grade"), std::string::npos) << lw_last_error();
+  s.ground_json = R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "run": 0.3, "count": 3}})";
+  EXPECT_NE(lw_model_create_walker_with_settings(walk.c_str(), &s, &bad), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("stairs are not supported by the live walker"), std::string::npos) << lw_last_error();
+  EXPECT_EQ(bad, nullptr);
+}
+
 TEST(CApi, BadInputGivesAStatusAndAMessage) {
   lw_database* db = nullptr;
   EXPECT_EQ(lw_database_load(nullptr, &db), LW_ERROR_INVALID_ARGUMENT);

@@ -202,4 +202,30 @@ TEST(ServeMethods, WalkerWalksAShippedWalkWithTheRootAsked) {
   EXPECT_GT(spread[1], 0.4);
 }
 
+// The walker on the ground of hello "ground" (a path file's "ground"): up a
+// 10 % slope the root rises with it; a bad ground names the hello field.
+TEST(ServeMethods, WalkerWalksTheHellosGround) {
+  Resources res;
+  res.walks_dir = std::string(LEGWORK_SOURCE_DIR) + "/data/walks";
+  MethodOptions o = options("walker");
+  o.ground = R"({"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.1}})";
+  const auto method = make_method(res, o);
+  Pose pose(method->skeleton());
+  MethodInfo info;
+  double first = 0;
+  for (int f = 0; f < 150; ++f) {
+    TrackerFrame frame;
+    frame.time = f / 30.0;
+    frame.head() = {Vec3(0, 1.7, 0), Quat::Identity(), true};
+    ASSERT_EQ(method->update(frame, pose.ref(), info), UpdateStatus::Ok);
+    if (f == 0) first = pose.translations[0].y();
+  }
+  const Vec3 end = pose.translations[0];
+  EXPECT_GT(end.z(), 4.0);
+  // As high above the ground as at the start (the pelvis follows the lower foot: up to half a stride's rise below).
+  EXPECT_NEAR(end.y() - 0.1 * (end.z() - 0.5), first, 0.1 * 0.36 + 0.01);
+  o.ground = R"({"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.9}})";
+  EXPECT_NE(message_of([&] { make_method(res, o); }).find("hello.ground: slope: grade 0.900000"), std::string::npos);
+}
+
 }  // namespace legwork::serve

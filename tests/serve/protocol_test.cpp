@@ -108,6 +108,9 @@ TEST(Protocol, WalkAndRootAreHelloFields) {
   EXPECT_EQ(h.method.method, "walker");
   EXPECT_EQ(h.method.walk, "sneak");
   EXPECT_EQ(h.method.root, "pivot");
+  EXPECT_EQ(d.method.ground, "");
+  const Hello g = parse_text(R"({"type":"hello","version":1,"method":"walker","ground":{"slope":{"origin":[0,1],"direction":[0,1],"grade":0.1}}})").hello;
+  EXPECT_EQ(g.method.ground, R"({"slope":{"direction":[0,1],"grade":0.1,"origin":[0,1]}})");
 }
 
 TEST(Protocol, BadMessagesNameTheProblem) {
@@ -125,6 +128,8 @@ TEST(Protocol, BadMessagesNameTheProblem) {
   EXPECT_EQ(message(R"({"type":"hello","version":1,"recognize_class":"yes"})"),
             "bad_message: hello.recognize_class must be true or false");
   EXPECT_EQ(message(R"({"type":"hello","version":1,"root":1})"), "bad_message: hello.root must be a string");
+  EXPECT_EQ(message(R"({"type":"hello","version":1,"ground":"hill"})"),
+            "bad_message: hello.ground must be an object (a path file's \"ground\": slope or heightfield)");
   EXPECT_EQ(message(R"({"type":"options","recognize_class":1})"), "bad_message: options.recognize_class must be true or false");
   EXPECT_EQ(message(R"({"type":"frame"})"), "bad_message: frame without \"t\" (seconds)");
   EXPECT_EQ(message(R"({"type":"frame","t":1,"left":{"p":[0,1,0],"q":[0,0,0,0]}})"),

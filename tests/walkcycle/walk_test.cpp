@@ -267,3 +267,31 @@ TEST(Walk, StanceFootTurnsOnItsBallNotInPlace) {
     }
   }
 }
+
+// The stairs' stride (stair_stride): the risers found along the path, one
+// tread per step, and the standing-pose weight that gives that travel - as
+// walked: the footsteps on the flight are a tread apart.
+TEST(Walk, StairStrideIsOneTreadPerStep) {
+  const CycleModel m = shipped("normal");
+  const Path path = read_path((testdata::source_dir() / "data/walks/paths/stairs.json").string());
+  const StairStride s = stair_stride(m, path);
+  EXPECT_NEAR(s.first_riser, 1.5, 0.02);
+  EXPECT_NEAR(s.last_riser, 1.5 + 4 * 0.36, 0.02);
+  EXPECT_DOUBLE_EQ(s.stride, 0.36);
+  EXPECT_GT(s.weight, 0.0);
+  EXPECT_LT(s.weight, 1.0);
+  EXPECT_EQ(stair_stride(m, straight_path(6.0)).weight, 0.0);
+  const WalkResult w = walk_path(m, path);
+  int on_flight = 0;
+  for (std::size_t i = 1; i < w.footsteps.size(); ++i) {
+    const double z0 = w.footsteps[i - 1].heel.z(), z1 = w.footsteps[i].heel.z();
+    if (z0 < 1.5 || z1 > 1.5 + 4 * 0.36) continue;  // both on the flight
+    ++on_flight;
+    EXPECT_NEAR(z1 - z0, 0.36, 0.05) << "footsteps " << i - 1 << " and " << i;
+  }
+  EXPECT_GE(on_flight, 3);
+  // Treads deeper than the stride: two steps a tread.
+  const Path deep = parse_path_json(R"({"polyline": [[0, 0], [0, 9]], "ground": {"stairs": {"origin": [0, 1.5],
+      "direction": [0, 1], "rise": 0.15, "run": 1.0, "count": 3}}})", "deep.json");
+  EXPECT_DOUBLE_EQ(stair_stride(m, deep).stride, 0.5);
+}

@@ -45,6 +45,7 @@ struct MethodOptions {
   double foot_lift_height = 0.05;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
+  std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)
 };
 
 // Per-frame diagnostics as a flat list of name -> number or name -> text

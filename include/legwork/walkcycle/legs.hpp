@@ -5,6 +5,7 @@
 // code: no allocation, no exceptions. Positions are model = world space of
 // the pose being solved, metres.
 #include <legwork/core/fk.hpp>
+#include <legwork/core/rotation.hpp>
 #include <legwork/ik/two_bone.hpp>
 #include <legwork/walkcycle/cycle.hpp>
 
@@ -24,6 +25,69 @@ enum class RootMotion : unsigned char {
   // Document 001's method: the root is pushed so the stance foot's pivot
   // stays put (the root lunges and stalls twice per step); no IK.
   Pivot,
+};
+
+// A foot point (heel, ball) is on the ground while it is within this height
+// above it (a shoe sole's give); above, it is in the air and cannot slip.
+inline constexpr double kFootDownTolerance = 0.005;  // metres
+
+// A rigid horizontal move of one foot of the plan: turned by `angle` about the
+// vertical through the plan's point `pivot`, then moved by `offset`
+// (horizontal). The identity leaves the plan's foot alone.
+struct FootHold {
+  double angle = 0;
+  Vec3 pivot = Vec3::Zero();
+  Vec3 offset = Vec3::Zero();
+  double lift = 0;  // stairs: the height the foot is planted at (or carried at in the swing), metres
+  Vec3 tread = Vec3::Zero();  // stairs: the part of `offset` that moves the foot onto its tread
+  // A stance foot already pivoting on its ball (its heel up before the pass
+  // key): the ground's slope turns it about the ball, not the heel.
+  bool on_ball = false;
+  // (One rotation built per call, none for a zero angle: the identity
+  // quaternion's products are exact, so the result is the same to the bit.)
+  Vec3 apply(const Vec3& x) const { return angle == 0 ? moved(x - pivot) : moved(yaw_rotation(angle) * (x - pivot)); }
+  Transform apply(const Transform& t) const {
+    if (angle == 0) return {t.rotation.normalized(), moved(t.translation - pivot)};
+    const Quat q = yaw_rotation(angle);
+    return {(q * t.rotation).normalized(), moved(q * (t.translation - pivot))};
+  }
+
+ private:
+  Vec3 moved(const Vec3& turned) const { return pivot + turned + offset + Vec3(0, lift, 0); }
+};
+
+// The stance foot turns on its ball, not in place (issue 14, item 2), for
+// walk_path's smooth root and the live walker alike. The pivoting plan turns
+// the whole body, stance foot included, about the planted pivot: a flat foot
+// twists on its heel and its heel slides round the ball. Here each stance
+// foot keeps the yaw it landed with while its heel is down and turns to the
+// plan's yaw on its ball as the heel rises (fully once the heel is 2 cm up;
+// at the latest over the last quarter of the stance), its pivot (heel, then
+// ball) held where it was. Once the foot leaves the ground the offset this
+// leaves is faded out over the middle of the swing, so it lands on the
+// plan's footprint. One per foot, fed every frame in order.
+struct StanceTurn {
+  struct Frame {
+    Vec3 heel = Vec3::Zero(), ball = Vec3::Zero();  // the plan's (world; y above its flat floor)
+    bool stance = false;         // this foot bears the weight
+    Pivot pivot = Pivot::Heel;   // the plan's pivot of the stance foot
+    double step_fraction = 0;    // how far through its step (0 at the step's start, 1 at its end)
+    bool stopping = false;       // in the stop step or the final hold
+    double time = 0;             // now, in any unit...
+    double step_time = 1;        // ...and a step's duration in it
+  };
+  // The hold of this frame (the plan's foot moved by it is where the foot goes).
+  const FootHold& advance(const Frame& f);
+
+  bool started = false;
+  bool stance = false;
+  Pivot pivot = Pivot::Heel;
+  double landed_yaw = 0, turned = 0;  // the yaw it landed with; how far it has turned to the plan's (0-1)
+  double left_ground = -1;            // time the foot left the ground
+  Vec3 lift_off = Vec3::Zero();       // its offset from the plan then
+  Vec3 anchor = Vec3::Zero();         // where the stance foot's pivot is held (floor)
+  Vec3 heel = Vec3::Zero(), ball = Vec3::Zero();  // the plan's, previous frame
+  FootHold hold;
 };
 
 struct LegIk {

@@ -34,9 +34,14 @@
 // averaged over half a step, tabulated), then the soft limit pulls the ankle
 // in (Info::reach_limited). No foot point goes below the floor (the plan is
 // walked without the cycle's floor lift; a dipping foot is lifted by its leg).
+// On turns each stance foot keeps the yaw it landed with while its heel is
+// down and turns on its ball as the heel rises (Settings::turn_on_ball;
+// StanceTurn in legs.hpp, the same code as walk_path's), instead of twisting
+// with the body about its pivot.
 // RootMotion::Pivot is document 001's root, unchanged.
 #include <legwork/core/tracker.hpp>
 #include <legwork/walkcycle/cycle.hpp>
+#include <legwork/walkcycle/ground.hpp>
 #include <legwork/walkcycle/legs.hpp>
 
 #include <array>
@@ -49,7 +54,19 @@ struct Settings {
   Vec3 start_position = Vec3::Zero();        // floor point under the root at the start (y ignored), metres
   double start_heading = 0;                  // radians about y at the start, 0 = facing +z
   RootMotion root = RootMotion::Smooth;      // Smooth: even travel, legs by IK; Pivot: document 001's root
+  // Smooth root: a stance foot keeps the yaw it landed with while its heel is
+  // down and turns on its ball as the heel rises (StanceTurn, as walk_path);
+  // false: it turns with the body about its pivot (twisting in place).
+  bool turn_on_ball = true;
   double soft_reach = 0.98;                  // smooth root: fraction of a leg's length it may straighten to, (0, 1]
+  // Smooth root: the ground walked on (a slope or a height field, the same
+  // type as a path file's "ground"; stairs are refused: the live walker
+  // does not know its footsteps ahead to plant them on treads). The feet are
+  // put on it by the legs' IK (fit_to_ground, as walk_path), the pelvis
+  // rises by the mean ground height under the heels and balls, followed
+  // smoothly (two first-order stages of a quarter step with their lag
+  // compensated: a constant grade is followed exactly).
+  Ground ground;
 };
 
 class Model {
@@ -102,6 +119,9 @@ struct State {
   Vec3 offset = Vec3::Zero();   // world = yaw(heading) * in-place + offset (floor, y = 0)
   std::array<Vec3, 4> feet{};   // in-place heel/ball of right/left foot at `time`
   Vec3 smooth = Vec3::Zero();   // smooth root: world = yaw(heading) * in-place + smooth (floor, y = 0)
+  std::array<StanceTurn, 2> turn{};  // smooth root: right, left foot turning on its ball (legs.hpp)
+  std::array<double, 2> rise{};      // smooth root on uneven ground: the pelvis's rise, two follower stages, metres
+  bool rise_started = false;
   // Scratch (sized once, no meaning between frames): FK of the plan's pose and of the solved one.
   std::vector<Transform> plan_space, model_space;
 };
@@ -121,6 +141,7 @@ struct Info {
   Pivot pivot = Pivot::Heel;    // which point of it the body pivots on
   // Smooth root only:
   double pelvis_drop = 0;       // metres the pelvis is lowered so the legs reach
+  double ground_rise = 0;       // metres the pelvis is raised by the ground under the feet
   double foot_roll = 0;         // largest roll of a foot out of reach, radians (either foot)
   bool reach_limited = false;   // a leg needed more than soft_reach (its foot was pulled in)
 };

@@ -121,47 +121,6 @@ Ground parse_stairs(const json& o, std::string_view source) {
 
 }  // namespace
 
-double Ground::height(double x, double z) const {
-  switch (kind) {
-    case Kind::Flat:
-      return 0.0;
-    case Kind::Slope: {
-      const double d = (x - origin.x()) * direction.x() + (z - origin.z()) * direction.z();
-      return grade * std::clamp(d, 0.0, length);
-    }
-    case Kind::HeightField: {
-      const double u = std::clamp((x - origin.x()) / cell, 0.0, columns - 1.0);
-      const double v = std::clamp((z - origin.z()) / cell, 0.0, rows - 1.0);
-      const int c = std::min(static_cast<int>(u), columns - 2), r = std::min(static_cast<int>(v), rows - 2);
-      const double fu = u - c, fv = v - r;
-      auto h = [&](int rr, int cc) { return heights[static_cast<std::size_t>(rr * columns + cc)]; };
-      return (1 - fv) * ((1 - fu) * h(r, c) + fu * h(r, c + 1)) + fv * ((1 - fu) * h(r + 1, c) + fu * h(r + 1, c + 1));
-    }
-    case Kind::Stairs: {
-      const double d = (x - origin.x()) * direction.x() + (z - origin.z()) * direction.z();
-      return d < 0 ? 0.0 : rise * std::min(count, static_cast<int>(std::floor(d / run)) + 1);
-    }
-  }
-  return 0.0;
-}
-
-std::string Ground::describe() const {
-  char buf[160];
-  if (kind == Kind::Slope) {
-    if (length < 1e8) std::snprintf(buf, sizeof buf, "slope %.1f %% over %.2f m", grade * 100, length);
-    else std::snprintf(buf, sizeof buf, "slope %.1f %%", grade * 100);
-  } else if (kind == Kind::HeightField) {
-    const auto [lo, hi] = std::minmax_element(heights.begin(), heights.end());
-    std::snprintf(buf, sizeof buf, "height field %d x %d, %.2f m cells, %.3f-%.3f m", columns, rows, cell, *lo, *hi);
-  } else if (kind == Kind::Stairs) {
-    std::snprintf(buf, sizeof buf, "stairs %s, %d steps of %.3f m rise, %.3f m run", rise > 0 ? "up" : "down", count,
-                  std::abs(rise), run);
-  } else {
-    return "flat";
-  }
-  return buf;
-}
-
 Ground parse_ground_json(std::string_view text, std::string_view source) {
   json doc;
   try {

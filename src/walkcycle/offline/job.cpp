@@ -174,6 +174,7 @@ Motion walk_or_cycle(const wc::CycleModel& model, const WalkJob& a, const std::s
   wo.fps = a.fps;
   wo.root = a.root == "pivot" ? wc::RootMotion::Pivot : wc::RootMotion::Smooth;
   wo.turn_on_ball = a.stance_turn != "twist";
+  wo.fit_stairs_stride = a.stairs_stride != "keep";
   if (!a.path.empty()) path = std::make_unique<wc::Path>(wc::read_path(a.path));
   else if (!a.svg_path.empty()) path = std::make_unique<wc::Path>(wc::parse_svg_path(a.svg_path, "--svg-path"));
   else if (a.straight > 0) path = std::make_unique<wc::Path>(wc::straight_path(a.straight));

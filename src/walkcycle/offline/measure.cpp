@@ -134,6 +134,31 @@ FootTurnReport measure_foot_turning(const CycleModel& m, const Motion& walk, std
   return r;
 }
 
+TreadReport measure_treads(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels, const Ground& ground) {
+  TreadReport r;
+  if (!ground.stepped()) return r;
+  const int n = std::min(walk.frame_count(), static_cast<int>(labels.size()));
+  std::vector<Transform> g(static_cast<std::size_t>(walk.joint_count()));
+  auto tread = [&](double along) { return along < 0 ? 0 : std::min(ground.count, static_cast<int>(std::floor(along / ground.run)) + 1); };
+  r.ball_margin_mm = std::numeric_limits<double>::infinity();
+  int last_step = -1, last_tread = -1;
+  for (int f = 0; f < n; ++f) {
+    const FrameLabel& l = labels[static_cast<std::size_t>(f)];
+    forward_kinematics(walk.skeleton, walk.frame(f), g);
+    const Vec3 b = pivot_world(m, g, l.left_stance, Pivot::Ball);
+    if (b.y() - ground.height(b) > kFootDownTolerance) continue;
+    const double along = (b - ground.origin).dot(ground.direction);
+    const double k = std::clamp(std::round(along / ground.run), 0.0, ground.count - 1.0);  // the nearest riser
+    r.ball_margin_mm = std::min(r.ball_margin_mm, 1e3 * std::abs(along - k * ground.run));
+    if (l.step == last_step) continue;
+    if (last_tread >= 0) r.treads_per_step_max = std::max(r.treads_per_step_max, std::abs(tread(along) - last_tread));
+    last_step = l.step, last_tread = tread(along);
+    ++r.stances;
+  }
+  if (r.stances == 0) r.ball_margin_mm = 0;
+  return r;
+}
+
 SeamReport measure_loop_seam(const CycleModel& m) {
   const double n = m.frames_per_cycle, h = 1e-3;
   Pose pose(m.skeleton);
@@ -274,7 +299,13 @@ RootMotionReport measure_root_motion(const Motion& walk, std::span<const FrameLa
     v_prev = v;
     have_prev = true;
   }
-  if (r.frames == 0) return RootMotionReport{};
+  for (int f = 1; f < n; ++f) {
+    auto y = [&](int i) { return walk.frame(i).translations[0].y(); };
+    r.vertical_speed_max_mps = std::max(r.vertical_speed_max_mps, std::abs(y(f) - y(f - 1)) * walk.fps);
+    if (f + 1 < n)
+      r.vertical_accel_max_mps2 = std::max(r.vertical_accel_max_mps2, std::abs(y(f + 1) - 2 * y(f) + y(f - 1)) * walk.fps * walk.fps);
+  }
+  if (r.frames == 0) return RootMotionReport{0, 0, 0, 0, 0, r.vertical_speed_max_mps, r.vertical_accel_max_mps2};
   r.speed_mean_mps = sum / r.frames;
   return r;
 }

@@ -94,6 +94,8 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   report["root_speed_mean_mps"] = round6(rm.speed_mean_mps);
   report["root_speed_max_mps"] = round6(rm.speed_max_mps);
   report["root_accel_max_mps2"] = round6(rm.accel_max_mps2);
+  report["pelvis_vertical_speed_max_mps"] = round6(rm.vertical_speed_max_mps);
+  report["pelvis_vertical_accel_max_mps2"] = round6(rm.vertical_accel_max_mps2);
   report["max_path_deviation_m"] = round6(w.max_path_deviation);
   report["root_motion"] = w.root == RootMotion::Smooth ? "smooth" : "pivot";
   const auto contact = measure_ground_contact(model, w.motion, w.labels, w.ground);
@@ -105,6 +107,16 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   appendf(text, "ground: %s; feet at most %.2f mm below it (frame %d), the stance foot at most %.2f mm above it (frame %d)\n",
           w.ground.describe().c_str(), contact.penetration_mm, contact.penetration_frame, contact.stance_float_mm,
           contact.float_frame);
+  if (w.ground.stepped()) {
+    const auto treads = measure_treads(model, w.motion, w.labels, w.ground);
+    report["tread_ball_margin_mm_min"] = round6(treads.ball_margin_mm);
+    report["treads_per_step_max"] = treads.treads_per_step_max;
+    report["stairs_stride_m"] = round6(w.stairs_stride);
+    appendf(text, "stairs: %s; the stance foot's ball at least %.1f mm from a tread's edge, up to %d tread%s per step\n",
+            w.stairs_stride > 0 ? ("strides shortened to " + std::to_string(std::lround(w.stairs_stride * 1000)) + " mm on the flight").c_str()
+                                : "the walk's own stride",
+            treads.ball_margin_mm, treads.treads_per_step_max, treads.treads_per_step_max == 1 ? "" : "s");
+  }
   const auto turn = measure_foot_turning(model, w.motion, w.labels, w.ground);
   report["stance_heel_slip_mm_max"] = round6(turn.heel_slip_mm);
   report["stance_ball_slip_mm_max"] = round6(turn.ball_slip_mm);
@@ -120,9 +132,10 @@ void add_walk_report(const CycleModel& model, const WalkResult& w, double ms, js
   report["leg_reach_max"] = round6(w.leg_reach_max);
   report["reach_limited_frames"] = w.reach_limited_frames;
   report["foot_lifted_out_of_ground_mm_max"] = round6(w.ground_lift_max * 1e3);
-  appendf(text, "root: %s, speed %.2f-%.2f m/s (mean %.2f), peak acceleration %.1f m/s^2",
+  appendf(text, "root: %s, speed %.2f-%.2f m/s (mean %.2f), peak acceleration %.1f m/s^2; pelvis vertical speed up to %.2f m/s, "
+          "acceleration up to %.1f m/s^2",
           w.root == RootMotion::Smooth ? "smooth (legs by IK)" : "pivoting (document 001)", rm.speed_min_mps,
-          rm.speed_max_mps, rm.speed_mean_mps, rm.accel_max_mps2);
+          rm.speed_max_mps, rm.speed_mean_mps, rm.accel_max_mps2, rm.vertical_speed_max_mps, rm.vertical_accel_max_mps2);
   if (w.root == RootMotion::Smooth)
     appendf(text, "; feet roll up to %.1f deg and the pelvis drops up to %.1f mm to stay in reach, legs reach up to %.1f %% of their length (softened on %d frames)",
             rad2deg(w.foot_roll_max), 1e3 * w.pelvis_drop_max, 100 * w.leg_reach_max, w.reach_limited_frames);

@@ -53,30 +53,6 @@ struct Extended {
   }
 };
 
-// The foot of the flat plan put on the ground: placed on `anchor` (the point
-// it pivots on; the heel for a free foot) raised by the ground height under
-// it, and turned rigidly towards the line between its heel and ball each
-// raised by the ground under them (`full`) - fully while the foot is flat,
-// not at all once heel and ball differ in height by 5 cm or more (a foot on
-// its heel or ball touches the ground at one point only; its toes still
-// follow the ground, see solve). A rigid foot turned on a slope moves its
-// other point sideways by the turn times their height difference, which is
-// what makes the switch from heel to ball slip; fading the turn out keeps
-// that near a millimetre on a 12 % grade. Returns the turn applied.
-Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_ball, Transform& ankle, Quat& full) {
-  full = Quat::Identity();
-  if (ground.flat() || ground.stepped()) return full;  // (stairs: planted flat by plant_on_treads)
-  const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
-  const Vec3 up = Vec3::UnitY();
-  const double flat = std::clamp(1.0 - std::abs(ball.y() - heel.y()) / 0.05, 0.0, 1.0);
-  full = Quat::FromTwoVectors(ball - heel, (ball + ground.height(ball) * up) - (heel + ground.height(heel) * up));
-  const Quat q = Quat::Identity().slerp(flat, full);
-  const Vec3 a = anchor_ball ? ball : heel;
-  ankle.translation = a + ground.height(a) * up + q * (ankle.translation - a);
-  ankle.rotation = (q * ankle.rotation).normalized();
-  return q;
-}
-
 }  // namespace
 
 std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool rest_at_end) {
@@ -92,21 +68,6 @@ std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool res
 
 namespace {
 
-// A rigid horizontal move of one foot of the plan: turned by `angle` about the
-// vertical through the plan's point `pivot`, then moved by `offset`
-// (horizontal). The identity leaves the plan's foot alone.
-struct FootHold {
-  double angle = 0;
-  Vec3 pivot = Vec3::Zero();
-  Vec3 offset = Vec3::Zero();
-  double lift = 0;  // stairs: the height the foot is planted at (or carried at in the swing), metres
-  // A stance foot already pivoting on its ball (its heel up before the pass
-  // key): the ground's slope turns it about the ball, not the heel.
-  bool on_ball = false;
-  Vec3 apply(const Vec3& x) const { return pivot + yaw_rotation(angle) * (x - pivot) + offset + Vec3(0, lift, 0); }
-  Transform apply(const Transform& t) const { return {(yaw_rotation(angle) * t.rotation).normalized(), apply(t.translation)}; }
-};
-
 // How far through its step each frame is (0 at the step's first frame, 1 at its last).
 std::vector<double> step_fractions(std::span<const FrameLabel> labels) {
   std::vector<double> frac(labels.size(), 0.0);
@@ -120,71 +81,45 @@ std::vector<double> step_fractions(std::span<const FrameLabel> labels) {
   return frac;
 }
 
-// The stance foot turns on its ball, not in place (issue 14, item 2). The
-// pivoting plan turns the whole body, stance foot included, about the planted
-// pivot: a flat foot twists on its heel and its heel slides round the ball.
-// Here each stance foot keeps the yaw it landed with while its heel is down
-// and turns to the plan's yaw on its ball as the heel rises (fully once the
-// heel is 2 cm up; at the latest over the last quarter of the stance), its
-// pivot (heel, then ball) held where it was. Once the foot leaves the ground
-// the offset this leaves is faded out over the middle of the swing, so it
-// lands on the plan's footprint. Per frame, per side (0 = right, 1 = left).
+// Each stance foot turns on its ball, not in place (StanceTurn, legs.hpp):
+// both feet's turns fed frame by frame, in order, from the plan's FK.
+struct StanceTurns {
+  StanceTurns(const CycleModel& model, std::span<const FrameLabel> labels, double step)
+      : m(model), frac(step_fractions(labels)), step_frames(step) {}
+  // The holds of frame f (`g`: the FK of the plan's frame f, the legs' joints at least).
+  std::array<FootHold, 2> at(int f, std::span<const Transform> g, const FrameLabel& l) {
+    std::array<FootHold, 2> out;
+    for (int side = 0; side < 2; ++side) {
+      const FootPivots& foot = m.foot(side == 1);
+      const Transform& ankle = g[static_cast<std::size_t>(foot.ankle)];
+      StanceTurn::Frame in;
+      in.heel = ankle.apply(foot.heel_local), in.ball = ankle.apply(foot.ball_local);
+      in.stance = l.left_stance == (side == 1);
+      in.pivot = l.pivot;
+      in.step_fraction = frac[static_cast<std::size_t>(f)];
+      in.stopping = l.stopping;
+      in.time = f, in.step_time = step_frames;
+      out[static_cast<std::size_t>(side)] = sides[side].advance(in);
+    }
+    return out;
+  }
+  const CycleModel& m;
+  std::vector<double> frac;
+  double step_frames;
+  StanceTurn sides[2];
+};
+
+// Per frame, per side (0 = right, 1 = left).
 std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const Motion& plan,
                                                      std::span<const FrameLabel> labels, double step_frames) {
   const int n = std::min(plan.frame_count(), static_cast<int>(labels.size()));
   std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
-  const std::vector<double> frac = step_fractions(labels.first(static_cast<std::size_t>(n)));
+  StanceTurns turns(m, labels.first(static_cast<std::size_t>(n)), step_frames);
   std::vector<Transform> g(static_cast<std::size_t>(plan.joint_count()));
-  struct Side {
-    bool stance = false;
-    Pivot pivot = Pivot::Heel;
-    double landed_yaw = 0, turned = 0;  // the yaw it landed with; how far it has turned to the plan's (0-1)
-    int left_ground = -1;               // frame the foot left the ground
-    Vec3 lift_off = Vec3::Zero();       // its offset from the plan then
-    Vec3 anchor = Vec3::Zero();         // where the stance foot's pivot is held (floor)
-    Vec3 heel = Vec3::Zero(), ball = Vec3::Zero();  // the plan's, previous frame
-    FootHold hold;
-  } sides[2];
-  const double rise = 0.02;  // metres of heel lift over which the foot turns on its ball
   const LegJoints legs = leg_joints(m);
   for (int f = 0; f < n; ++f) {
     leg_kinematics(plan.skeleton, legs, plan.frame(f), g);
-    const FrameLabel& l = labels[static_cast<std::size_t>(f)];
-    for (int side = 0; side < 2; ++side) {
-      Side& sd = sides[side];
-      const FootPivots& foot = m.foot(side == 1);
-      const Transform& ankle = g[static_cast<std::size_t>(foot.ankle)];
-      const Vec3 heel = ankle.apply(foot.heel_local), ball = ankle.apply(foot.ball_local);
-      if (f == 0) sd.heel = heel, sd.ball = ball;
-      const double yaw = std::atan2(ball.x() - heel.x(), ball.z() - heel.z());
-      const bool stance = l.left_stance == (side == 1);
-      if (stance) {
-        const bool landing = !sd.stance;
-        if (landing) sd.landed_yaw = yaw, sd.turned = 0;
-        // Its pivot: the heel, then the ball from the pass key or as soon as
-        // the heel is up with the ball down (a foot rising early to its toes).
-        const bool heel_up = heel.y() > kFootDownTolerance && ball.y() <= kFootDownTolerance;
-        const Pivot pv = (!landing && sd.pivot == Pivot::Ball) || l.pivot == Pivot::Ball || heel_up ? Pivot::Ball : Pivot::Heel;
-        if (landing || pv != sd.pivot) sd.anchor = horizontal(sd.hold.apply(pv == Pivot::Heel ? sd.heel : sd.ball));
-        sd.pivot = pv;
-        const Vec3& now = pv == Pivot::Heel ? heel : ball;
-        sd.hold.pivot = now;
-        sd.hold.offset = sd.anchor - horizontal(now);  // the pivot stays where it was, wherever the plan has it
-        if (pv == Pivot::Ball) {
-          sd.turned = std::max(sd.turned, smoothstep((heel.y() - kFootDownTolerance) / rise));
-          if (!l.stopping) sd.turned = std::max(sd.turned, smoothstep((frac[static_cast<std::size_t>(f)] - 0.75) / 0.25));
-        }
-        sd.hold.angle = std::remainder(sd.landed_yaw - yaw, 2 * kPi) * (1.0 - sd.turned);
-        sd.hold.on_ball = pv == Pivot::Ball;
-      } else {
-        if (sd.stance) sd.left_ground = f, sd.lift_off = horizontal(sd.hold.apply(sd.heel) - sd.heel);
-        const double u = sd.left_ground < 0 ? 1.0 : ((f - sd.left_ground) / step_frames - 0.25) / 0.6;
-        sd.hold = {0.0, Vec3::Zero(), sd.lift_off * (1 - smoothstep(u))};
-        sd.pivot = Pivot::Heel;
-      }
-      holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)] = sd.hold;
-      sd.stance = stance, sd.heel = heel, sd.ball = ball;
-    }
+    holds[static_cast<std::size_t>(f)] = turns.at(f, g, labels[static_cast<std::size_t>(f)]);
   }
   return holds;
 }
@@ -198,10 +133,11 @@ struct FootExtent {
 
 // Stairs: a foot that would stand across a tread's edge is moved along the
 // stairs, the least it takes (1 cm steps, up to a tread's depth), until its
-// ball stays at least 2 cm from an edge and neither its heel nor its toe tip
-// goes lower than the tread under the ball (the heel may overhang the tread
-// below, as on real stairs). Returns the move (metres) and the tread's
-// height in `height`.
+// ball stays at least 2 cm from an edge, its heel is not lower than the
+// tread under the ball (it may overhang the tread below, as on real stairs)
+// and its toe tip stays 2 cm short of the riser ahead (a foot rolled on its
+// ball moves its toe base forward by up to a centimetre). Returns the move
+// (metres) and the tread's height in `height`.
 double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
   auto h = [&](double s) { return ground.height(ground.origin + s * ground.direction); };
   const double margin = 0.02;
@@ -209,7 +145,7 @@ double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
     for (int sign : {-1, 1}) {
       const double d = sign * 0.01 * i, tread = h(e.ball_lo + d);
       if (h(e.ball_lo + d - margin) != tread || h(e.ball_hi + d + margin) != tread) continue;
-      if (h(e.lo + d) > tread || h(e.hi + d) > tread) continue;
+      if (h(e.lo + d) > tread || h(e.hi + d + margin) > tread) continue;
       height = tread;
       return d;
     }
@@ -247,7 +183,11 @@ void plant_on_treads(const CycleModel& m, const Motion& plan, std::span<const Fr
       const Transform& a = g[static_cast<std::size_t>(foot.ankle)];
       const FootHold& h = holds[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)];
       const double heel = along(h.apply(a.apply(foot.heel_local))), ball = along(h.apply(a.apply(foot.ball_local)));
-      const double toe = foot.toe >= 0 ? along(h.apply(end_site_position(plan.skeleton, g, foot.toe))) : ball;
+      // (The toes as the plan bends them, and laid flat ahead of the ball, as
+      // a foot rolled on its ball keeps them on a tread.)
+      const Vec3 tip = foot.toe >= 0 ? h.apply(end_site_position(plan.skeleton, g, foot.toe)) : h.apply(a.apply(foot.ball_local));
+      const Vec3 ball_at = h.apply(a.apply(foot.ball_local));
+      const double toe = std::max(along(tip), ball + (tip - ball_at).norm());
       p.extent.lo = std::min({p.extent.lo, heel, ball, toe});
       p.extent.hi = std::max({p.extent.hi, heel, ball, toe});
       p.extent.ball_lo = std::min(p.extent.ball_lo, ball);
@@ -261,16 +201,17 @@ void plant_on_treads(const CycleModel& m, const Motion& plan, std::span<const Fr
     const auto& list = plants[side];
     for (std::size_t i = 0; i < list.size(); ++i) {
       const Plant& p = list[i];
-      for (int f = p.first; f <= p.last; ++f) at(f).lift = p.height, at(f).offset += p.move * ground.direction;
+      for (int f = p.first; f <= p.last; ++f) at(f).lift = p.height, at(f).tread = p.move * ground.direction;
       if (i + 1 == list.size()) break;
       const Plant& q = list[i + 1];
       for (int f = p.last + 1; f < q.first; ++f) {
         const double u = static_cast<double>(f - p.last) / (q.first - p.last);
         const double w = q.height >= p.height ? smoothstep(u / 0.6) : smoothstep((u - 0.4) / 0.6);
         at(f).lift = p.height + w * (q.height - p.height);
-        at(f).offset += (p.move + smoothstep(u) * (q.move - p.move)) * ground.direction;
+        at(f).tread = (p.move + smoothstep(u) * (q.move - p.move)) * ground.direction;
       }
     }
+    for (int f = 0; f < n; ++f) at(f).offset += at(f).tread;
   }
 }
 
@@ -296,8 +237,10 @@ struct FrameSolver {
     legs[0] = leg_of(motion.skeleton, false, before);
     legs[1] = leg_of(motion.skeleton, true, before);
   }
-  // A frame of the plan: the first pass (r = nullptr) measures the drop
-  // needed and leaves `pose` alone; the second moves and solves it.
+  // The plan's frame to solve next: its FK (`before`, the legs' joints).
+  void plan(ConstPoseRef pose) { leg_kinematics(m.skeleton, leg_joints_, pose, before); }
+  // A frame of the plan (after plan(pose)): the first pass (r = nullptr)
+  // measures the drop needed and leaves `pose` alone; the second moves and solves it.
   double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, const std::array<FootHold, 2>& hold,
                WalkResult* r);
 };
@@ -305,7 +248,6 @@ struct FrameSolver {
 double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label,
                           const std::array<FootHold, 2>& hold, WalkResult* r) {
   const Skeleton& s = m.skeleton;
-  leg_kinematics(s, leg_joints_, pose, before);
   if (r) pose.translations[0] += shift;
   shift_legs(leg_joints_, before, shift, g);  // (FK of the moved pose)
   bool limited = false;
@@ -381,8 +323,11 @@ std::vector<Vec3> ground_lift(const Ground& ground, const Motion& motion, double
   const int n = motion.frame_count();
   std::vector<Vec3> lift(static_cast<std::size_t>(n), Vec3::Zero());
   if (ground.flat()) return lift;
-  if (ground.stepped()) {  // (the heights the feet are planted and carried at)
-    for (int f = 0; f < n; ++f) lift[static_cast<std::size_t>(f)] = Vec3(0, 0.5 * (holds[static_cast<std::size_t>(f)][0].lift + holds[static_cast<std::size_t>(f)][1].lift), 0);
+  if (ground.stepped()) {  // (the heights the feet are planted and carried at, and their moves onto the treads)
+    for (int f = 0; f < n; ++f) {
+      const auto& h = holds[static_cast<std::size_t>(f)];
+      lift[static_cast<std::size_t>(f)] = 0.5 * (h[0].tread + h[1].tread) + Vec3(0, 0.5 * (h[0].lift + h[1].lift), 0);
+    }
     return window_average(window_average(lift, step_frames, rest_at_end), step_frames, rest_at_end);
   }
   const Skeleton& s = motion.skeleton;
@@ -407,7 +352,9 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   const std::vector<Vec3> smooth =
       window_average(window_average(floor_offset, step_frames, opt.stop), step_frames, opt.stop);
   std::vector<std::array<FootHold, 2>> holds(static_cast<std::size_t>(n));
-  if (opt.turn_on_ball) holds = hold_stance_yaw(m, motion, r.labels, step_frames);
+  // (Off stairs the feet's turns are fed in the first pass, from its FK of the plan.)
+  const bool turns_in_pass = opt.turn_on_ball && !ground.stepped() && static_cast<int>(r.labels.size()) >= n;
+  if (opt.turn_on_ball && !turns_in_pass) holds = hold_stance_yaw(m, motion, r.labels, step_frames);
   if (ground.stepped()) plant_on_treads(m, motion, r.labels, ground, holds);
   const std::vector<Vec3> lift = ground_lift(ground, motion, step_frames, opt.stop, holds);
   std::vector<Vec3> shift(static_cast<std::size_t>(n));
@@ -417,9 +364,13 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   // drop; the drop is spread smoothly (running maximum over a quarter step,
   // averaged over as much: never less than needed).
   std::vector<double> drop(static_cast<std::size_t>(n));
-  for (int f = 0; f < n; ++f)
+  StanceTurns turns(m, std::span<const FrameLabel>(r.labels).first(turns_in_pass ? static_cast<std::size_t>(n) : 0), step_frames);
+  for (int f = 0; f < n; ++f) {
+    solver.plan(motion.frame(f));
+    if (turns_in_pass) holds[static_cast<std::size_t>(f)] = turns.at(f, solver.before, r.labels[static_cast<std::size_t>(f)]);
     drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)], r.heading[static_cast<std::size_t>(f)],
                                                      r.labels[static_cast<std::size_t>(f)], holds[static_cast<std::size_t>(f)], nullptr);
+  }
   // (On stairs the drop needed changes by a tread's rise from step to step:
   // spread over half a step, averaged over a step.)
   const int quarter = std::max(1, static_cast<int>(std::ceil(step_frames / (ground.stepped() ? 2 : 4))));
@@ -430,6 +381,7 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   for (int f = 0; f < n; ++f) {
     const Vec3 d = shift[static_cast<std::size_t>(f)] + lowered[static_cast<std::size_t>(f)];
     r.pelvis_drop_max = std::max(r.pelvis_drop_max, -lowered[static_cast<std::size_t>(f)].y());
+    solver.plan(motion.frame(f));
     solver.solve(motion.frame(f), d, r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)],
                  holds[static_cast<std::size_t>(f)], &r);
   }

@@ -135,7 +135,63 @@ struct FinalTravel {
   mutable std::array<std::array<bool, kTurns>, 3> filled{};
 };
 
+// Straight travel per step of the cycle blended towards the standing pose by
+// `w` throughout (a steady walk of shorter strides; one cycle, halved).
+double blended_step_travel(const CycleModel& m, double w) {
+  Pose cyc(m.skeleton), pose(m.skeleton);
+  auto local = [&](double t) {
+    sample_cycle(m, t, cyc.ref());
+    blend_poses(cyc, m.stand, w, pose.ref());
+  };
+  local(0.0);
+  FootPoints prev = foot_points(m, pose);
+  const Vec3 root0 = horizontal(pose.translations[0]);
+  Vec3 c = Vec3::Zero();
+  const int sub = m.frames_per_cycle * 8;
+  for (int i = 1; i <= sub; ++i) {
+    const double t = static_cast<double>(i) / 8;
+    local(t);
+    const FootPoints cur = foot_points(m, pose);
+    const StanceAt st = stance_at(m, t - 0.5 / 8);
+    c = planted_offset(prev.get(st.left, st.pivot) + c, cur.get(st.left, st.pivot), 0.0);
+    prev = cur;
+  }
+  return (horizontal(pose.translations[0]) + c - root0).norm() / 2;
+}
+
 }  // namespace
+
+StairStride stair_stride(const CycleModel& m, const Path& path) {
+  StairStride st;
+  const Ground& g = path.ground;
+  if (!g.stepped()) return st;
+  // The risers along the path: where the ground's height jumps (2 cm samples).
+  const double ds = 0.02;
+  double h_prev = g.height(path.at(0.0));
+  for (double s = ds; s <= path.length() + 1e-9; s += ds) {
+    const double h = g.height(path.at(s));
+    if (h != h_prev) {
+      if (st.first_riser < 0) st.first_riser = s;
+      st.last_riser = s;
+    }
+    h_prev = h;
+  }
+  if (st.first_riser < 0) return st;
+  // One tread per step, or several steps per tread on treads longer than the stride.
+  const double full = step_length(m);
+  st.stride = g.run / std::max(1.0, std::ceil(g.run / full - 1e-9));
+  if (st.stride >= full) return st;
+  double lo = 0, hi = 1;  // weight of the standing pose: the travel falls as it rises
+  if (blended_step_travel(m, hi) > st.stride)
+    throw Error("walk: stairs with " + std::to_string(g.run) + " m treads need strides of " + std::to_string(st.stride) +
+                " m; even the standing pose travels more per step");
+  for (int i = 0; i < 24; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (blended_step_travel(m, mid) > st.stride ? lo : hi) = mid;
+  }
+  st.weight = 0.5 * (lo + hi);
+  return st;
+}
 
 namespace {
 
@@ -163,6 +219,8 @@ class PathWalk {
   void measure_end();
   bool plan_final_steps(int k, const Vec3& start, double t_here);
   double solve_amplitude(double distance, int stop, double turn, Vec3* travel) const;
+  double stairs_weight_at(double t) const;
+  void decide_stairs(int k);
 
   const CycleModel& m;
   const Path& path;
@@ -174,6 +232,8 @@ class PathWalk {
   double final_travel = 0;  // straight root travel of the plain final two steps (cycle step + stop step)
   double amp = 1.0;         // stride of the step before the stop step (1 = the cycle's)
   std::vector<double> target;
+  StairStride stairs;              // the stride fitted to the treads
+  std::vector<double> stairs_w;    // per footstep j (landing at j * half): weight of the standing pose
   int stop_step = -1;
   double end_time = -1;
   double s_track = 0;
@@ -219,6 +279,10 @@ PathWalk::PathWalk(const CycleModel& model, const Path& p, const WalkOptions& o,
   hold = opt.root == RootMotion::Smooth ? half : half / 2;
   stop_travel = 0.5 * L;  // (without a stop, the walk just ends)
   target = {std::atan2(path.tangent(0).x(), path.tangent(0).z())};
+  if (opt.fit_stairs_stride) stairs = stair_stride(m, path);
+  stairs_w = {0.0, 0.0};
+  r.stairs_stride = stairs.weight > 0 ? stairs.stride : 0.0;
+  decide_stairs(0);
   stop_step = opt.steps > 0 ? opt.steps - 1 : -1;  // the stop step is the last of the `steps`
   end_time = opt.steps >= 0 && !opt.stop ? opt.steps * half : -1;
   last_here = path.points.front();
@@ -276,6 +340,37 @@ bool PathWalk::plan_final_steps(int k, const Vec3& here, double t_here) {
   return true;
 }
 
+// Stairs: the footstep landing at (k + 1) * half takes the stairs' stride if
+// the walk's own stride would put it on the flight or past a quarter tread
+// before its first riser (so the approach shortens on the flat rather than
+// skipping a tread), up to the first footstep on the top (half a tread past
+// the last riser). Estimated at mid-step k - 1 from where the stance foot of
+// step k - 1 stands, one stride on for step k (its own, decided before).
+// Its stride blends in over the step before it lands (the swing).
+void PathWalk::decide_stairs(int k) {
+  if (static_cast<int>(stairs_w.size()) > k + 1) return;
+  double w = 0;
+  if (stairs.weight > 0) {
+    double s0 = 0;
+    if (!r.labels.empty()) {
+      const Vec3 heel = horizontal(yaw_rotation(theta_prev) * prev.get(r.labels.back().left_stance, Pivot::Heel) + c);
+      int seg = seg_track;
+      double dist = 0;
+      s0 = path.project(heel, std::max(0, seg_track - 2), s_track + 3 * L + lookahead, &seg, &dist);
+    }
+    const double next = s0 + (stairs_w.back() > 0 ? stairs.stride : L);  // step k's footstep
+    if (next + L >= stairs.first_riser - 0.25 * path.ground.run && next + stairs.stride <= stairs.last_riser + 0.5 * path.ground.run)
+      w = stairs.weight;
+  }
+  stairs_w.push_back(w);
+}
+
+double PathWalk::stairs_weight_at(double t) const {
+  const int j = static_cast<int>(std::floor(t / half)) + 1;
+  const auto at = [&](int i) { return stairs_w[static_cast<std::size_t>(std::clamp(i, 0, static_cast<int>(stairs_w.size()) - 1))]; };
+  return at(j - 1) + (at(j) - at(j - 1)) * smoothstep(t / half - (j - 1));
+}
+
 double PathWalk::heading_at(double t) const {
   const int j = static_cast<int>(std::floor(t / half + 0.5));
   const double a = target[static_cast<std::size_t>(std::max(0, j - 1))];
@@ -327,6 +422,7 @@ void PathWalk::decide_headings(int f, double t) {
     // step, which itself travels `stop_travel`.
     if (opt.steps < 0 && stop_step < 0 && !opt.stop && remaining - 0.5 * L - stop_travel < 0.5 * L) end_time = k * half;
     target.push_back(th);
+    decide_stairs(k);
     if (opt.steps < 0 && opt.stop) plan_final_steps(k, here, std::max(0, f - 1) * dt);
   }
 }
@@ -335,13 +431,13 @@ void PathWalk::decide_headings(int f, double t) {
 // stopping (returns whether it is).
 bool PathWalk::local_pose(double t) {
   sample_cycle(m, t, local.ref());
-  if (!(stop_step >= 0 && opt.stop)) return false;
-  const double w = final_weight(t, half, stop_step, amp);
+  const bool stopping = stop_step >= 0 && opt.stop;
+  const double w = std::max(stopping ? final_weight(t, half, stop_step, amp) : 0.0, stairs_weight_at(t));
   if (w > 0) {
     blend_poses(local, m.stand, w, stand_blend.ref());
     std::swap(local, stand_blend);
   }
-  return t >= stop_step * half;
+  return stopping && t >= stop_step * half;
 }
 
 FrameLabel PathWalk::label_at(double t, bool stopping) const {

@@ -19,36 +19,15 @@
 // On a slope or height field the feet follow the ground under them (it has
 // no edges). On stairs each foot is planted flat on the highest tread under
 // its heel and ball and carried from tread to tread in the swing (see
-// docs/walkcycle.md); the footsteps themselves are not moved to the treads.
-#include <legwork/core/types.hpp>
+// docs/walkcycle.md), and walk_path shortens the steps on the flight to one
+// tread each (stair_stride, walk.hpp; WalkOptions::fit_stairs_stride).
+#include <legwork/walkcycle/ground.hpp>
 
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace legwork::walkcycle {
-
-struct Ground {
-  enum class Kind : unsigned char { Flat, Slope, HeightField, Stairs };
-  Kind kind = Kind::Flat;
-  Vec3 origin = Vec3::Zero();      // slope: where the ramp starts; height field: the grid's first point (y ignored)
-  Vec3 direction = Vec3::UnitZ();  // slope, stairs: uphill for a positive grade / rise (unit, horizontal)
-  double grade = 0;                // slope: rise per metre
-  double length = 1e9;             // slope: metres of ramp, flat beyond
-  double cell = 1;                 // height field: grid spacing, metres
-  int columns = 0, rows = 0;       // height field: grid size (x, z)
-  std::vector<double> heights;     // height field: row-major, rows * columns
-  double rise = 0, run = 1;        // stairs: height of a step, depth of a tread, metres
-  int count = 0;                   // stairs: number of steps
-
-  bool flat() const { return kind == Kind::Flat; }
-  bool stepped() const { return kind == Kind::Stairs; }  // a height that jumps: feet planted flat on treads
-  // Ground height under the floor point (x, z), metres.
-  double height(double x, double z) const;
-  double height(const Vec3& p) const { return height(p.x(), p.z()); }
-  // "flat", "slope 10.0 % over 4.00 m", "height field 8 x 12, 0.50 m cells, 0.000-0.300 m".
-  std::string describe() const;
-};
 
 // The "ground" object of a path file (its JSON text); `source` names it in errors.
 Ground parse_ground_json(std::string_view text, std::string_view source);

@@ -24,6 +24,7 @@ struct WalkJob {
   int steps = -1;
   std::string root = "smooth";  // smooth (legs by IK) or pivot (document 001's root)
   std::string stance_turn = "ball";  // smooth root: ball (the stance foot turns on its ball) or twist (with the body)
+  std::string stairs_stride = "fit";  // stairs: fit (one tread per step) or keep (the walk's own stride)
   std::string out;
   std::string cycle_out;
   std::string sheet;

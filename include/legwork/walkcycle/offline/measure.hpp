@@ -10,9 +10,7 @@
 
 namespace legwork::walkcycle {
 
-// A foot point (heel, ball) is on the ground while it is within this height
-// above it (a shoe sole's give); above, it is in the air and cannot slip.
-inline constexpr double kFootDownTolerance = 0.005;  // metres
+// (kFootDownTolerance, the height within which a foot point is down: legs.hpp.)
 
 // Stance slip: for every pivot phase (one stance foot pivoting on its heel or
 // on its ball), the largest horizontal distance the pivot point moves from
@@ -33,13 +31,18 @@ SlipReport measure_stance_slip(const CycleModel& m, const Motion& walk, std::spa
 // The root's horizontal speed while cruising (steps after the first, before
 // the stop step): frame-to-frame speed min / mean / max (m/s) and the largest
 // horizontal acceleration (m/s^2, difference of successive velocities).
-// A walk too short to cruise reports frames = 0 and zeros.
+// A walk too short to cruise reports frames = 0 and zeros. The pelvis's
+// (root joint's) vertical smoothness is measured over the whole walk (start,
+// stairs and stop included): the largest vertical speed (m/s, frame-to-frame
+// difference) and acceleration (m/s^2, second difference).
 struct RootMotionReport {
   double speed_min_mps = 0;
   double speed_mean_mps = 0;
   double speed_max_mps = 0;
   double accel_max_mps2 = 0;
   int frames = 0;  // cruising frames measured
+  double vertical_speed_max_mps = 0;
+  double vertical_accel_max_mps2 = 0;
 };
 RootMotionReport measure_root_motion(const Motion& walk, std::span<const FrameLabel> labels);
 
@@ -69,6 +72,19 @@ struct FootTurnReport {
 };
 FootTurnReport measure_foot_turning(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels,
                                     const Ground& ground);
+
+// Feet on stairs (Ground::Kind::Stairs; zeros on other grounds): for every
+// stance, where the stance foot's ball is while it is down (within
+// kFootDownTolerance of the ground). ball_margin_mm = the smallest distance
+// of a ball that is down from a tread's edge (a riser's line), over all
+// stances; treads_per_step_max = the most treads (risers) between the balls
+// of two successive stances (1 = one tread per step; 2 = every other tread).
+struct TreadReport {
+  double ball_margin_mm = 0;
+  int treads_per_step_max = 0;
+  int stances = 0;  // stances whose ball came down
+};
+TreadReport measure_treads(const CycleModel& m, const Motion& walk, std::span<const FrameLabel> labels, const Ground& ground);
 
 // Seam of the in-place loop: every joint's model-space position and velocity
 // just before frame N (left limit, quadratic extrapolation) against frame 0

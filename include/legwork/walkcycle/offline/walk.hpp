@@ -50,6 +50,9 @@ struct WalkOptions {
   // down and turns on its ball as the heel rises (false: it turns with the
   // body about its pivot, twisting in place, as the pivoting plan has it).
   bool turn_on_ball = true;
+  // Stairs: the steps on the flight are shortened to the treads (one tread
+  // per step, see stair_stride); false keeps the walk's own stride.
+  bool fit_stairs_stride = true;
   double lookahead_steps = 1.0;  // heading lead along the path, in step lengths
   bool stop = true;            // end in the standing pose at the path's end
   int max_steps = 100000;      // safety limit
@@ -112,7 +115,24 @@ struct WalkResult {
   // or toe tip would have gone into the ground (the plan's blend into the
   // standing pose, the spline between keys, a riser in a swing), metres.
   double ground_lift_max = 0;
+  // Stairs: the stride the steps on the flight were shortened to (metres; 0
+  // when the walk kept its own, see stair_stride).
+  double stairs_stride = 0;
 };
+
+// Stairs (issue 14): the walk's stride fitted to the treads - one tread per
+// step (several steps per tread if a tread is deeper than the walk's
+// stride) - by blending the cycle towards the standing pose by `weight`
+// (its steady travel per step is then `stride`, solved by bisection), on the
+// footsteps that land between the first and last riser along the path.
+// weight = 0 (no change) on other grounds or when the stride already fits.
+struct StairStride {
+  double stride = 0;        // metres per step on the flight
+  double weight = 0;        // of the standing pose in the cycle, 0..1
+  double first_riser = -1;  // arc length along the path of the first and last riser (-1: none on the path)
+  double last_riser = -1;
+};
+StairStride stair_stride(const CycleModel& m, const Path& path);
 
 // Straight-walk advance per step of the cycle (metres); the walk's stride.
 double step_length(const CycleModel& m);
