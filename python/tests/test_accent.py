@@ -177,12 +177,12 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
     """Settings.foot_lock_slack / foot_swing_speed are the CLI's --foot-lock-slack / --foot-swing-speed: the same
     motion either way, and they change it; out of range they are errors naming the setting."""
     out_bvh = tmp_path / "slack.bvh"
-    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--foot-lock-slack", "0",
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--foot-lock-slack", "0.1",
         "--foot-swing-speed", "0")
     s = settings_for(truth)
-    assert s.foot_lock_slack == pytest.approx(0.1) and s.foot_swing_speed == pytest.approx(0.5)  # the defaults
+    assert s.foot_lock_slack == pytest.approx(0.0) and s.foot_swing_speed == pytest.approx(0.5)  # the defaults
     default = accent.accentuate_motion(db, s, truth)["motion"]
-    s.foot_lock_slack = 0.0
+    s.foot_lock_slack = 0.1
     s.foot_swing_speed = 0.0
     plain = accent.accentuate_motion(db, s, truth)["motion"]
     back = legwork.io.read_bvh(str(out_bvh), scale=1.0)

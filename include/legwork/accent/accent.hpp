@@ -61,7 +61,7 @@ struct Settings {
   // continuous velocity, so candidate-set switches do not show as jerks).
   // false: neither (the ablation's "no smoothing").
   bool smooth = true;
-  double smooth_halflife = 0.08;  // seconds the spring takes to halve an error; 0 = EWMA only (the paper)
+  double smooth_halflife = 0.08;  // seconds the spring takes to halve an error (0.06 before the swing clearance); 0 = EWMA only (the paper)
   double min_smoothing_weight = 0.1;  // lower bound on w so the pose never freezes
   double user_height = 0;    // metres; 0 = the database skeleton's height
   double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
@@ -110,8 +110,10 @@ struct Settings {
   double foot_lift_height = 0.05;
   // A planted foot stays exactly where it touched down while the synthesized
   // foot is within foot_lock_slack (metres, scaled with the user) of it; only
-  // the distance beyond creeps (foot_lock_follow_seconds). 0 = all of it creeps.
-  double foot_lock_slack = 0.1;
+  // the distance beyond creeps (foot_lock_follow_seconds). 0 = all of it
+  // creeps (the default: 0.1 m cut skating 2.97x -> 2.54x but cost 0.2-0.3 cm
+  // of lower-body error, docs/accent.md).
+  double foot_lock_slack = 0.0;
   // Swing clearance: a free foot whose synthesized ankle moves horizontally
   // faster than foot_swing_speed (m/s, scaled with the user) is swinging and is
   // lifted (smoothly) to pass at least foot_lift_height above its floor (the
