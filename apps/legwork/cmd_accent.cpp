@@ -133,6 +133,16 @@ void register_run(CLI::App& parent) {
                   "slides along the floor)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.5));
+  cmd->add_option("--foot-lock-slack", a->foot_lock_slack,
+                  "metres the synthesized foot may move away from a planted foot before the plant creeps after it (0 = "
+                  "it always creeps)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--foot-swing-speed", a->foot_swing_speed,
+                  "m/s above which a free foot counts as swinging and is lifted to clear the floor by --foot-lift-height "
+                  "(0 = off)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
   cmd->add_option("--max-head-tilt", a->max_tilt, "reject candidates whose head tilt differs from the headset's by more than this (degrees, 0 = off)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");

@@ -22,7 +22,7 @@ struct EvalArgs {
   double max_seconds = 0, quick_seconds = 12;
   // Engine switches (defaults = the engine's own defaults).
   int hop = -1, k = -1, speed_variants = -1;
-  double threshold = -1, hand_ik = -1, foot_lift_height = -1;
+  double threshold = -1, hand_ik = -1, foot_lift_height = -1, foot_lock_slack = -1, foot_swing_speed = -1;
   bool mirror = false, exact = false;
 };
 
@@ -70,6 +70,12 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--foot-lift-height", a->foot_lift_height,
                   "engine: metres a released foot is lifted on its way back (0 = slides along the floor)")
       ->check(CLI::Range(0.0, 0.5));
+  cmd->add_option("--foot-lock-slack", a->foot_lock_slack,
+                  "engine: metres the synthesized foot may move from a planted one before the plant creeps (0 = always)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--foot-swing-speed", a->foot_swing_speed,
+                  "engine: m/s above which a free foot is swinging and clears the floor (0 = off)")
+      ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag("--mirror", a->mirror, "engine: add mirrored trials to every database");
   cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");
   cmd->callback([a] {
@@ -102,6 +108,8 @@ void register_eval(CLI::App& app) {
     if (a->threshold >= 0) opt.config.threshold = a->threshold;
     if (a->hand_ik >= 0) opt.config.hand_ik = a->hand_ik;
     if (a->foot_lift_height >= 0) opt.config.foot_lift_height = a->foot_lift_height;
+    if (a->foot_lock_slack >= 0) opt.config.foot_lock_slack = a->foot_lock_slack;
+    if (a->foot_swing_speed >= 0) opt.config.foot_swing_speed = a->foot_swing_speed;
     if (a->exact) opt.config.search = accent::SearchMode::Exact;
     opt.progress = io::status_printer("[eval] ");
 

@@ -50,6 +50,8 @@ static class Checks
         Throws<LegworkException>("k out of range", () => Model.CreateAccent(db, bad), "k must be");
         bad = AccentSettings.Default();
         Expect("foot lift default", bad.FootLiftHeight > 0, "FootLiftHeight " + bad.FootLiftHeight);
+        Expect("foot slack default", bad.FootLockSlack == 0, "FootLockSlack " + bad.FootLockSlack);
+        Expect("swing speed default", bad.FootSwingSpeed > 0, "FootSwingSpeed " + bad.FootSwingSpeed);
         bad.FootLiftHeight = 0.9;
         Throws<LegworkException>("foot lift out of range", () => Model.CreateAccent(db, bad), "foot_lift_height must be between 0 and 0.5 metres");
 

@@ -80,6 +80,8 @@ namespace Legwork
         public double SmoothHalflife; // seconds
         public int RecognizeClass;    // 1: several classes allowed -> recognise the activity, search only its class; 0: all
         public double FootLiftHeight; // metres (0..0.5) a released foot is lifted on its way back; 0 = slides (ABI 3)
+        public double FootLockSlack;  // metres (0..1) the synthesized foot may move from a plant before it creeps (ABI 4)
+        public double FootSwingSpeed; // m/s (0..10) above which a free foot swings clear of the floor; 0 = off (ABI 4)
 
         public static AccentSettings Default()
         {
@@ -152,7 +154,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 3;
+        public const uint AbiVersion = 4;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

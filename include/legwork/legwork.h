@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 3u
+#define LW_ABI_VERSION 4u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -146,6 +146,10 @@ typedef struct lw_accent_settings {
                               hysteresis) and search only its class; 0: search every allowed class each frame */
   double foot_lift_height; /* metres (0..0.5) a foot released at the end of a contact is lifted on its way back;
                               0 = slides along the floor (ABI 3) */
+  double foot_lock_slack;  /* metres (0..1) the synthesized foot may move from a planted foot before the plant creeps
+                              after it; 0 = it always creeps (ABI 4) */
+  double foot_swing_speed; /* m/s (0..10) above which a free foot is swinging and is lifted to clear the floor by
+                              foot_lift_height; 0 = off (ABI 4) */
 } lw_accent_settings;
 LW_API void lw_accent_settings_default(lw_accent_settings* s);
 /* The database must outlive the model. */

@@ -99,6 +99,10 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("foot_release_seconds", &Settings::foot_release_seconds, "seconds to blend out of a lock")
       .def_readwrite("foot_lift_height", &Settings::foot_lift_height,
                      "metres (0..0.5) a foot released at the end of a contact is lifted on its way back (0 = slides)")
+      .def_readwrite("foot_lock_slack", &Settings::foot_lock_slack,
+                     "metres the synthesized foot may move from a planted foot before the plant creeps after it (0 = it always creeps)")
+      .def_readwrite("foot_swing_speed", &Settings::foot_swing_speed,
+                     "m/s above which a free foot counts as swinging and is lifted to clear the floor by foot_lift_height (0 = off)")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
                      "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
       .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")

@@ -154,9 +154,11 @@ def test_foot_lift_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_pa
     """Settings.foot_lift_height is the CLI's --foot-lift-height: the same motion either way, and released feet
     rise above the flat release's; out of range it is an error naming the setting."""
     out_bvh = tmp_path / "lift.bvh"
-    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--foot-lift-height", "0.1")
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--foot-lift-height", "0.1",
+        "--foot-swing-speed", "0")
     s = settings_for(truth)
     assert s.foot_lift_height == pytest.approx(0.05)  # the default
+    s.foot_swing_speed = 0.0  # the release arc alone (swinging feet are lifted by foot_lift_height too)
     s.foot_lift_height = 0.1
     lifted = accent.accentuate_motion(db, s, truth)["motion"]
     s.foot_lift_height = 0.0
@@ -168,6 +170,30 @@ def test_foot_lift_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_pa
     assert 0.05 < rise <= 0.1 + 1e-9
     s.foot_lift_height = 0.7
     with pytest.raises(legwork.Error, match="foot_lift_height must be between 0 and 0.5 metres"):
+        accent.make_model(db, s)
+
+
+def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, truth, tmp_path):
+    """Settings.foot_lock_slack / foot_swing_speed are the CLI's --foot-lock-slack / --foot-swing-speed: the same
+    motion either way, and they change it; out of range they are errors naming the setting."""
+    out_bvh = tmp_path / "slack.bvh"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--foot-lock-slack", "0.1",
+        "--foot-swing-speed", "0")
+    s = settings_for(truth)
+    assert s.foot_lock_slack == pytest.approx(0.0) and s.foot_swing_speed == pytest.approx(0.5)  # the defaults
+    default = accent.accentuate_motion(db, s, truth)["motion"]
+    s.foot_lock_slack = 0.1
+    s.foot_swing_speed = 0.0
+    plain = accent.accentuate_motion(db, s, truth)["motion"]
+    back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
+    assert np.abs(back.positions() - plain.positions()).max() < 2e-4
+    assert np.abs(default.positions() - plain.positions()).max() > 1e-3
+    s.foot_lock_slack = 1.5
+    with pytest.raises(legwork.Error, match="foot_lock_slack must be between 0 and 1 metre"):
+        accent.make_model(db, s)
+    s.foot_lock_slack = 0.1
+    s.foot_swing_speed = 12.0
+    with pytest.raises(legwork.Error, match="foot_swing_speed must be between 0 and 10 m/s"):
         accent.make_model(db, s)
 
 

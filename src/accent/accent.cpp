@@ -74,6 +74,10 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: foot_release_seconds must be >= 0");
   if (!std::isfinite(cfg.foot_lift_height) || cfg.foot_lift_height < 0 || cfg.foot_lift_height > 0.5)
     throw Error("accent: foot_lift_height must be between 0 and 0.5 metres");
+  if (!std::isfinite(cfg.foot_lock_slack) || cfg.foot_lock_slack < 0 || cfg.foot_lock_slack > 1)
+    throw Error("accent: foot_lock_slack must be between 0 and 1 metre");
+  if (!std::isfinite(cfg.foot_swing_speed) || cfg.foot_swing_speed < 0 || cfg.foot_swing_speed > 10)
+    throw Error("accent: foot_swing_speed must be between 0 and 10 m/s");
   if (!(cfg.ik_blend_min >= 0 && cfg.ik_blend_min <= cfg.ik_blend_max && cfg.ik_blend_max <= 1))
     throw Error("accent: IK blend shares need 0 <= ik_blend_min <= ik_blend_max <= 1");
   if (!(cfg.class_seconds >= 0) || !(cfg.class_hold_seconds >= 0) || !(cfg.class_margin >= 0 && cfg.class_margin < 1) ||
@@ -561,43 +565,97 @@ bool blend_candidates(const Model& model, State& st, double threshold, double dt
   return true;
 }
 
+// How fast (m/s) a foot's floor estimate (the lowest height its synthesized
+// ankle recently had) rises when the foot stays higher: a step up is found
+// within a second or so, a swing (0.3-0.5 s) barely moves it.
+constexpr double kFloorRelax = 0.1;
+// Time constant (s) of the swing indicator, and half-life (s) of the critically
+// damped spring on the swing clearance's lift (continuous velocity: no jerk).
+constexpr double kSwingSeconds = 0.05;
+constexpr double kClearanceHalflife = 0.04;
+
+// One foot's lock state for this frame: touch down, let go, creep beyond the
+// slack, stay within the leg's reach. `ankle` is the synthesized ankle (world).
+void update_lock(const Model& model, State& st, int f, const Transform& ankle, double dt) {
+  const Settings& cfg = model.settings();
+  State::FootLock& lock = st.foot[static_cast<std::size_t>(f)];
+  const double c = st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback);
+  const bool contact = c > (lock.locked ? cfg.contact_off : cfg.contact_on);
+  if (contact && !lock.locked) {
+    // Touch down where the foot is shown now (mid-release: between the old lock and the synthesized foot).
+    const double w = smooth01(lock.weight);
+    lock.position = ankle.translation + w * (lock.position - ankle.translation);
+    lock.rotation = ankle.rotation.slerp(w, lock.rotation).normalized();
+    lock.locked = true;
+  }
+  if (!contact) lock.locked = false;
+  if (lock.locked) {
+    // A planted foot stays put while the synthesized one is within the slack, and
+    // creeps toward it by the distance beyond (foot_lock_follow_seconds; 0 = held still) ...
+    const Vec3 gap = ankle.translation - lock.position;
+    const double g = gap.norm(), slack = cfg.foot_lock_slack * model.scale();
+    if (cfg.foot_lock_follow_seconds > 0 && g > slack)
+      lock.position += (1.0 - std::exp(-dt / cfg.foot_lock_follow_seconds)) * ((g - slack) / g) * gap;
+    // ... and never further from the hip than the leg reaches (pulled along the leg: mostly up, like a heel rising).
+    const Vec3 hip = st.model_space[static_cast<std::size_t>(model.leg(f).root)].translation;
+    const Vec3 d = lock.position - hip;
+    const double reach = 0.995 * model.leg_length(f);
+    if (d.norm() > reach) lock.position = hip + d * (reach / d.norm());
+  }
+  const double fade = cfg.foot_release_seconds > 0 ? dt / cfg.foot_release_seconds : 1.0;
+  lock.weight = lock.locked ? 1.0 : std::max(0.0, lock.weight - fade);
+}
+
+// Swing clearance (Settings::foot_swing_speed): metres to lift a free foot
+// whose synthesized ankle moves fast (a swing) and would pass lower than
+// foot_lift_height above its floor; smoothed by a critically damped spring.
+// `target_y` is where the foot would be shown, `upright` 0..1 the headset's
+// uprightness (a swimmer's feet have no floor).
+double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& ankle, double target_y, double upright,
+                       double dt) {
+  const Settings& cfg = model.settings();
+  if (!lock.have_floor) {
+    lock.floor = ankle.y();
+    lock.previous = ankle;
+    lock.have_floor = true;
+  }
+  lock.floor = std::min(lock.floor + kFloorRelax * dt, ankle.y());
+  Vec3 step = ankle - lock.previous;
+  step.y() = 0;
+  lock.previous = ankle;
+  if (cfg.foot_swing_speed <= 0) return 0.0;
+  const bool swinging = !lock.locked && dt > 0 && step.norm() > cfg.foot_swing_speed * model.scale() * dt;
+  lock.swing = lock.locked ? 0.0 : lock.swing + (1.0 - std::exp(-dt / kSwingSeconds)) * ((swinging ? 1.0 : 0.0) - lock.swing);
+  const double below = lock.floor + cfg.foot_lift_height * model.scale() - target_y;
+  const double goal = upright * smooth01(std::clamp(lock.swing, 0.0, 1.0)) * std::max(0.0, below);
+  const double y = 2.0 * std::log(2.0) / kClearanceHalflife, decay = std::exp(-y * dt);
+  const double j0 = lock.lift - goal, j1 = lock.lift_velocity + j0 * y;
+  lock.lift = decay * (j0 + j1 * dt) + goal;
+  lock.lift_velocity = decay * (lock.lift_velocity - j1 * y * dt);
+  return std::max(0.0, lock.lift);
+}
+
 // Foot locking (Settings::foot_lock): on the placed pose (st.model_space
-// holds its world transforms), hold each planted ankle where it touched down.
+// holds its world transforms), hold each planted ankle where it touched down;
+// released feet travel back on a lifted arc, swinging feet clear the floor.
 void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
   const Settings& cfg = model.settings();
-  const double fade = cfg.foot_release_seconds > 0 ? dt / cfg.foot_release_seconds : 1.0;
+  const double up = (st.last_head_rot * Vec3::UnitY()).y();
+  const double upright = smooth01(std::clamp((up - 0.174) / (0.5 - 0.174), 0.0, 1.0));
   for (int f = 0; f < 2; ++f) {
     State::FootLock& lock = st.foot[static_cast<std::size_t>(f)];
     const ik::TwoBoneChain& chain = model.leg(f);
-    const Transform& ankle = st.model_space[static_cast<std::size_t>(chain.end)];
-    const double c = st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback);
-    const bool contact = c > (lock.locked ? cfg.contact_off : cfg.contact_on);
-    if (contact && !lock.locked) {
-      // Touch down where the foot is shown now (mid-release: between the old lock and the synthesized foot).
-      const double w = smooth01(lock.weight);
-      lock.position = ankle.translation + w * (lock.position - ankle.translation);
-      lock.rotation = ankle.rotation.slerp(w, lock.rotation).normalized();
-      lock.locked = true;
-    }
-    if (!contact) lock.locked = false;
-    if (lock.locked) {
-      // A planted foot creeps toward the synthesized one (0 = held still) ...
-      if (cfg.foot_lock_follow_seconds > 0)
-        lock.position += (1.0 - std::exp(-dt / cfg.foot_lock_follow_seconds)) * (ankle.translation - lock.position);
-      // ... and never further from the hip than the leg reaches (pulled along the leg: mostly up, like a heel rising).
-      const Vec3 hip = st.model_space[static_cast<std::size_t>(chain.root)].translation;
-      const Vec3 d = lock.position - hip;
-      const double reach = 0.995 * model.leg_length(f);
-      if (d.norm() > reach) lock.position = hip + d * (reach / d.norm());
-    }
-    lock.weight = lock.locked ? 1.0 : std::max(0.0, lock.weight - fade);
-    if (lock.weight <= 0) continue;
+    const Transform ankle = st.model_space[static_cast<std::size_t>(chain.end)];  // synthesized
+    update_lock(model, st, f, ankle, dt);
     const double w = smooth01(lock.weight);
     // A released foot travels from the lock to the synthesized ankle on a lifted
     // arc (sin^2: no velocity step at either end) instead of along the floor.
     const double arc = std::sin(kPi * (1.0 - lock.weight));
     ik::TwoBoneTarget target;
     target.position = ankle.translation + w * (lock.position - ankle.translation) + Vec3::UnitY() * (cfg.foot_lift_height * arc * arc);
+    const double lift = swing_clearance(model, lock, ankle.translation, target.position.y(), upright, dt);
+    if (lock.weight <= 0 && lift < 1e-5) continue;
+    target.position.y() += lift;
     target.rotation = lock.rotation;
     target.position_weight = 1.0;
     target.rotation_weight = w;

@@ -89,6 +89,8 @@ void run_accent_job(const AccentJob& a) {
   cfg.class_hold_seconds = a.class_hold;
   cfg.class_margin = a.class_margin;
   cfg.foot_lift_height = a.foot_lift_height;
+  cfg.foot_lock_slack = a.foot_lock_slack;
+  cfg.foot_swing_speed = a.foot_swing_speed;
   const double fps = db.feature_space().fps;
   std::vector<TrackerFrame> frames;
   Motion truth;

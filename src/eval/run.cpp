@@ -355,6 +355,10 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
   add("foot_lock_held", "feet held still while planted (no creep)", [](Variant& x) { x.config.foot_lock_follow_seconds = 0; });
   add("no_foot_lift", "released feet slide back along the floor (foot_lift_height = 0)",
       [](Variant& x) { x.config.foot_lift_height = 0; });
+  add("foot_slack", "planted feet hold within 0.1 m before creeping (foot_lock_slack = 0.1)",
+      [](Variant& x) { x.config.foot_lock_slack = 0.1; });
+  add("no_swing_clearance", "swinging feet not lifted clear of the floor (foot_swing_speed = 0)",
+      [](Variant& x) { x.config.foot_swing_speed = 0; });
   return v;
 }
 

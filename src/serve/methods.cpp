@@ -119,6 +119,17 @@ struct WipRuntime : Contract<wip::Model, wip::State, wip::Info, &wip::update> {
   }
 };
 
+// The session's accentuation options (hello fields) on accent::Settings.
+void accent_options(const MethodOptions& opt, accent::Settings& c) {
+  c.classes = opt.classes;
+  c.recognize_class = opt.recognize_class;
+  c.foot_lift_height = opt.foot_lift_height;
+  c.foot_lock_slack = opt.foot_lock_slack;
+  c.foot_swing_speed = opt.foot_swing_speed;
+  c.exaggeration = opt.exaggeration;
+  c.user_height = opt.user_height;
+}
+
 // CoolMoves accentuation over the shared database (one Model per session's settings).
 struct AccentRuntime : Contract<accent::Model, accent::State, accent::Info, &accent::update> {
   static void describe(const Info& i, MethodInfo& out) {
@@ -131,11 +142,7 @@ struct AccentRuntime : Contract<accent::Model, accent::State, accent::Info, &acc
   }
   static Model model(const Resources& res, const MethodOptions& opt) {
     accent::Settings c;
-    c.classes = opt.classes;
-    c.recognize_class = opt.recognize_class;
-    c.foot_lift_height = opt.foot_lift_height;
-    c.exaggeration = opt.exaggeration;
-    c.user_height = opt.user_height;
+    accent_options(opt, c);
     return accent::make_model(*res.db, c);
   }
 };
@@ -157,11 +164,7 @@ struct CombinedRuntime : Contract<combined::Model, combined::State, combined::In
     combined::Settings c;
     const wip::LearnedMapping* learned = leg_mapping(res, opt, c.wip);
     if (!res.db) return combined::make_model(avatar_skeleton(res, opt.user_height), c, learned);
-    c.accent.classes = opt.classes;
-    c.accent.recognize_class = opt.recognize_class;
-    c.accent.foot_lift_height = opt.foot_lift_height;
-    c.accent.exaggeration = opt.exaggeration;
-    c.accent.user_height = opt.user_height;
+    accent_options(opt, c.accent);
     return combined::make_model(*res.db, c, learned);
   }
 };
@@ -233,6 +236,10 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("exaggeration " + std::to_string(opt.exaggeration) + " is outside (0, 4]");
   if (!(opt.foot_lift_height >= 0 && opt.foot_lift_height <= 0.5))
     throw Error("foot_lift_height " + std::to_string(opt.foot_lift_height) + " m is outside [0, 0.5]");
+  if (!(opt.foot_lock_slack >= 0 && opt.foot_lock_slack <= 1))
+    throw Error("foot_lock_slack " + std::to_string(opt.foot_lock_slack) + " m is outside [0, 1]");
+  if (!(opt.foot_swing_speed >= 0 && opt.foot_swing_speed <= 10))
+    throw Error("foot_swing_speed " + std::to_string(opt.foot_swing_speed) + " m/s is outside [0, 10]");
   if (!(opt.user_height == 0 || (opt.user_height >= kMinUserHeight && opt.user_height <= kMaxUserHeight))) {
     char msg[160];
     std::snprintf(msg, sizeof msg, "user_height %f m is outside [%g, %g] (0 = the avatar's own)", opt.user_height,

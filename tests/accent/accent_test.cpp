@@ -232,6 +232,29 @@ TEST_F(HeldOut, PlantedFeetStayPutAndSlideLess) {
   EXPECT_LT(c, a);
 }
 
+// Mean horizontal ankle slide per frame (metres) between frames within 3 cm of
+// the ankle's own floor level (5th percentile of its height): the evaluation's
+// foot-skating measure on the ankles.
+double floor_slide(const Motion& m) {
+  const auto& r = m.skeleton.roles;
+  double slide = 0;
+  int pairs = 0;
+  for (Role a : {Role::LeftAnkle, Role::RightAnkle}) {
+    std::vector<Vec3> p;
+    for (int f = 0; f < m.frame_count(); ++f) p.push_back(joint_positions(m.skeleton, m.frame(f))[static_cast<std::size_t>(r[a])]);
+    std::vector<double> h;
+    for (const auto& x : p) h.push_back(x.y());
+    std::sort(h.begin(), h.end());
+    const double floor = h[h.size() / 20] + 0.03;
+    for (std::size_t f = 0; f + 1 < p.size(); ++f)
+      if (p[f].y() < floor && p[f + 1].y() < floor) {
+        slide += std::hypot(p[f + 1].x() - p[f].x(), p[f + 1].z() - p[f].z());
+        ++pairs;
+      }
+  }
+  return slide / std::max(pairs, 1);
+}
+
 // A foot let go at the end of a contact travels back to the synthesized foot
 // on a lifted arc: where the avatar's feet are near the floor they slide less
 // (the evaluation's foot-skating measure: horizontal ankle travel between
@@ -241,28 +264,10 @@ TEST_F(HeldOut, ReleasedFeetLiftInsteadOfSliding) {
   auto run_with = [&](double lift) {
     Settings s;
     s.foot_lift_height = lift;
+    s.foot_swing_speed = 0;  // the release arc alone
     return accentuate_motion(*db_, s, *input_);
   };
   const AccentRun flat = run_with(0.0), lifted = run_with(0.05);
-  auto floor_slide = [](const Motion& m) {
-    const auto& r = m.skeleton.roles;
-    double slide = 0;
-    int pairs = 0;
-    for (Role a : {Role::LeftAnkle, Role::RightAnkle}) {
-      std::vector<Vec3> p;
-      for (int f = 0; f < m.frame_count(); ++f) p.push_back(joint_positions(m.skeleton, m.frame(f))[static_cast<std::size_t>(r[a])]);
-      std::vector<double> h;
-      for (const auto& x : p) h.push_back(x.y());
-      std::sort(h.begin(), h.end());
-      const double floor = h[h.size() / 20] + 0.03;
-      for (std::size_t f = 0; f + 1 < p.size(); ++f)
-        if (p[f].y() < floor && p[f + 1].y() < floor) {
-          slide += std::hypot(p[f + 1].x() - p[f].x(), p[f + 1].z() - p[f].z());
-          ++pairs;
-        }
-    }
-    return slide / std::max(pairs, 1);
-  };
   double rise = 0;  // highest ankle difference lifted - flat
   for (int f = 0; f < lifted.output.frame_count(); ++f) {
     const auto a = joint_positions(lifted.output.skeleton, lifted.output.frame(f));
@@ -278,6 +283,37 @@ TEST_F(HeldOut, ReleasedFeetLiftInsteadOfSliding) {
   EXPECT_LT(s_lifted, s_flat);
   EXPECT_GT(rise, 0.03);
   EXPECT_LT(rise, 0.05 + 1e-6);
+}
+
+// Swing clearance: a free foot moving fast (a swing) passes at least
+// foot_lift_height above its floor, so near the floor the feet slide less than
+// without it. Slack: a planted foot holds still while the synthesized foot is
+// within foot_lock_slack (0.1 m here), so locked ankles slide less than when
+// the whole gap creeps (the default, foot_lock_slack = 0).
+TEST_F(HeldOut, SwingingFeetClearTheFloorAndPlantsHoldWithinTheSlack) {
+  Settings no_clearance, slack;
+  no_clearance.foot_swing_speed = 0;
+  slack.foot_lock_slack = 0.1;
+  const AccentRun def = accentuate_motion(*db_, Settings{}, *input_), unlifted = accentuate_motion(*db_, no_clearance, *input_),
+                  slackened = accentuate_motion(*db_, slack, *input_);
+  auto locked_slide = [](const AccentRun& run) {
+    const auto slides = ankle_slides(run.output);
+    double sum = 0;
+    int n = 0;
+    for (std::size_t f = 0; f + 1 < run.info.size(); ++f)
+      for (std::size_t foot = 0; foot < 2; ++foot)
+        if (run.info[f].foot_locked[foot] && run.info[f + 1].foot_locked[foot]) {
+          sum += slides[foot][f];
+          ++n;
+        }
+    return n ? sum / n : 0.0;
+  };
+  const double s_def = floor_slide(def.output), s_unlifted = floor_slide(unlifted.output);
+  const double l_def = locked_slide(def), l_slack = locked_slide(slackened);
+  std::printf("[ figures  ] ankle slide near the floor %.2f cm/frame (%.2f without swing clearance); locked ankles %.2f "
+              "cm/frame creeping by the whole gap, %.2f with 0.1 m slack\n", 100 * s_def, 100 * s_unlifted, 100 * l_def, 100 * l_slack);
+  EXPECT_LT(s_def, s_unlifted);
+  EXPECT_LT(l_slack, l_def);
 }
 
 // The IK blend follows coverage: a walk matched against boxing only is far
@@ -533,6 +569,26 @@ TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
       ADD_FAILURE() << "foot_lift_height " << lift;
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("foot_lift_height must be between 0 and 0.5 metres"), std::string::npos) << e.what();
+    }
+  }
+  for (double slack : {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+    Settings bad;
+    bad.foot_lock_slack = slack;
+    try {
+      (void)make_model(db, bad);
+      ADD_FAILURE() << "foot_lock_slack " << slack;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("foot_lock_slack must be between 0 and 1 metre"), std::string::npos) << e.what();
+    }
+  }
+  for (double speed : {-1.0, 11.0, std::numeric_limits<double>::infinity()}) {
+    Settings bad;
+    bad.foot_swing_speed = speed;
+    try {
+      (void)make_model(db, bad);
+      ADD_FAILURE() << "foot_swing_speed " << speed;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("foot_swing_speed must be between 0 and 10 m/s"), std::string::npos) << e.what();
     }
   }
 }

@@ -433,6 +433,16 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
   EXPECT_NE(std::string(lw_last_error()).find("foot_lift_height must be between 0 and 0.5 metres"), std::string::npos) << lw_last_error();
   s.foot_lift_height = 0.1;
+  EXPECT_DOUBLE_EQ(s.foot_lock_slack, legwork::accent::Settings{}.foot_lock_slack);  // ABI 4: the engine's defaults
+  EXPECT_DOUBLE_EQ(s.foot_swing_speed, legwork::accent::Settings{}.foot_swing_speed);
+  s.foot_lock_slack = 2;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("foot_lock_slack must be between 0 and 1 metre"), std::string::npos) << lw_last_error();
+  s.foot_lock_slack = 0.05;
+  s.foot_swing_speed = -1;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("foot_swing_speed must be between 0 and 10 m/s"), std::string::npos) << lw_last_error();
+  s.foot_swing_speed = 0.8;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

@@ -74,6 +74,13 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "foot_lift_height 0.800000 m is outside [0, 0.5]");
   o.foot_lift_height = 0.1;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
+  o.foot_lock_slack = 1.5;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "foot_lock_slack 1.500000 m is outside [0, 1]");
+  o.foot_lock_slack = 0.2;
+  o.foot_swing_speed = -1;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "foot_swing_speed -1.000000 m/s is outside [0, 10]");
+  o.foot_swing_speed = 0.8;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];
   std::snprintf(want, sizeof want, "user_height 9.000000 m is outside [%g, %g] (0 = the avatar's own)", kMinUserHeight,

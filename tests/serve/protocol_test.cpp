@@ -93,6 +93,17 @@ TEST(Protocol, RecognizeClassIsAHelloAndOptionsField) {
   EXPECT_FALSE(parse_text(R"({"type":"options","exaggeration":2})").options.recognize_class.has_value());
 }
 
+// The planted feet's slack and the swing clearance's speed (accent::Settings::foot_lock_slack,
+// foot_swing_speed) are hello fields; absent, the engine's defaults.
+TEST(Protocol, FootSlackAndSwingSpeedAreHelloFields) {
+  const auto absent = parse_text(R"({"type":"hello","version":1})").hello.method;
+  EXPECT_EQ(absent.foot_lock_slack, accent::Settings{}.foot_lock_slack);
+  EXPECT_EQ(absent.foot_swing_speed, accent::Settings{}.foot_swing_speed);
+  const auto given = parse_text(R"({"type":"hello","version":1,"foot_lock_slack":0.2,"foot_swing_speed":0})").hello.method;
+  EXPECT_EQ(given.foot_lock_slack, 0.2);
+  EXPECT_EQ(given.foot_swing_speed, 0.0);
+}
+
 // The released feet's lift (accent::Settings::foot_lift_height) is a hello field; absent, the engine's default.
 TEST(Protocol, FootLiftHeightIsAHelloField) {
   EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.foot_lift_height, accent::Settings{}.foot_lift_height);

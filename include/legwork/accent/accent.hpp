@@ -61,7 +61,7 @@ struct Settings {
   // continuous velocity, so candidate-set switches do not show as jerks).
   // false: neither (the ablation's "no smoothing").
   bool smooth = true;
-  double smooth_halflife = 0.06;  // seconds the spring takes to halve an error; 0 = EWMA only (the paper)
+  double smooth_halflife = 0.08;  // seconds the spring takes to halve an error (0.06 before the swing clearance); 0 = EWMA only (the paper)
   double min_smoothing_weight = 0.1;  // lower bound on w so the pose never freezes
   double user_height = 0;    // metres; 0 = the database skeleton's height
   double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
@@ -108,6 +108,19 @@ struct Settings {
   // lifted by up to foot_lift_height (metres, a sin^2 arc over the release),
   // instead of sliding along the floor; 0 = no lift.
   double foot_lift_height = 0.05;
+  // A planted foot stays exactly where it touched down while the synthesized
+  // foot is within foot_lock_slack (metres, scaled with the user) of it; only
+  // the distance beyond creeps (foot_lock_follow_seconds). 0 = all of it
+  // creeps (the default: 0.1 m cut skating 2.97x -> 2.54x but cost 0.2-0.3 cm
+  // of lower-body error, docs/accent.md).
+  double foot_lock_slack = 0.0;
+  // Swing clearance: a free foot whose synthesized ankle moves horizontally
+  // faster than foot_swing_speed (m/s, scaled with the user) is swinging and is
+  // lifted (smoothly) to pass at least foot_lift_height above its floor (the
+  // lowest height it recently had) instead of grazing it: the blend of
+  // candidates in different phases of a step flattens the swing. Not while the
+  // headset is tilted 60-80 degrees or more (a swimmer). 0 = off.
+  double foot_swing_speed = 0.5;
   // Confidence blend toward the full-body IK body (legwork::ik on the same
   // skeleton, run beside the synthesis): share of the IK pose in the output =
   // ik_blend_min, rising smoothly to ik_blend_max as the match distance
@@ -242,6 +255,12 @@ struct State {
     double weight = 0;      // share of the lock in the output (1 while locked, fading after)
     Vec3 position = Vec3::Zero();      // world position of the planted ankle
     Quat rotation = Quat::Identity();  // world rotation of the planted ankle
+    // Swing clearance (Settings::foot_swing_speed).
+    bool have_floor = false;
+    double floor = 0;                  // lowest recent synthesized ankle height (relaxing upward)
+    Vec3 previous = Vec3::Zero();      // last frame's synthesized ankle
+    double swing = 0;                  // 0..1: the foot is swinging
+    double lift = 0, lift_velocity = 0;  // the clearance's lift (spring-smoothed), metres and m/s
   };
   std::array<FootLock, 2> foot{};
   std::array<double, 2> contact{0, 0};  // this frame's blended candidate contact

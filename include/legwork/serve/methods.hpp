@@ -43,6 +43,9 @@ struct MethodOptions {
   // accent (and combined's upper body): metres a foot released at the end of
   // a contact is lifted on its way back (accent::Settings::foot_lift_height).
   double foot_lift_height = 0.05;
+  // accent::Settings::foot_lock_slack (metres) and foot_swing_speed (m/s), the engine's defaults.
+  double foot_lock_slack = 0.0;
+  double foot_swing_speed = 0.5;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
   std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)
