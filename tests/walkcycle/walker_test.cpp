@@ -11,9 +11,9 @@
 #include "alloc_counter.hpp"
 #include "cmu_sample.hpp"
 #include "testdata.hpp"
+#include "walk_samples.hpp"
 
 #include <cmath>
-#include <functional>
 #include <cstdio>
 #include <limits>
 
@@ -348,15 +348,6 @@ TEST(Walker, StanceFootTurnsOnItsBallOnTurns) {
 // penetration <= 2 mm), the pelvis rising with it smoothly, nothing
 // allocated per frame; stairs and the pivoting root on uneven ground refused.
 TEST(Walker, WalksTheGroundItIsGiven) {
-  auto expect_error = [](const std::function<void()>& fn) -> std::string {
-    try {
-      fn();
-    } catch (const Error& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "expected legwork::Error";
-    return "";
-  };
   auto ground_of = [](const std::string& name) {
     return read_path((testdata::source_dir() / "data/walks/paths" / (name + ".json")).string()).ground;
   };
@@ -404,10 +395,10 @@ TEST(Walker, WalksTheGroundItIsGiven) {
   // Refused: stairs (footsteps unknown ahead) and uneven ground with the pivoting root.
   Settings stairs;
   stairs.ground = ground_of("stairs");
-  EXPECT_NE(expect_error([&] { make_model(cycle("normal"), stairs); }).find("walker: ground: stairs are not supported by the live walker"),
+  EXPECT_NE(samples::expect_error([&] { make_model(cycle("normal"), stairs); }).find("walker: ground: stairs are not supported by the live walker"),
             std::string::npos);
   settings.root = RootMotion::Pivot;
-  EXPECT_EQ(expect_error([&] { make_model(cycle("normal"), settings); }),
+  EXPECT_EQ(samples::expect_error([&] { make_model(cycle("normal"), settings); }),
             "walker: ground: uneven ground (height field 5 x 20, 0.50 m cells, 0.000-0.300 m) needs the smooth root: the legs' IK "
             "puts the feet on it");
 }
