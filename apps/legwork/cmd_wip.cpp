@@ -80,11 +80,11 @@ void register_wip(CLI::App& app) {
   cmd->add_option("--calibrate", a->calibrate,
                   "floor calibration from the first 3 s standing still: auto (CSV/synthetic yes, BVH no), on, off");
   cmd->add_option("--speed-model", a->speed_model, "forward speed: step (Bruno et al., default) or frequency (GUD-WIP)");
-  cmd->add_option("--max-speed", a->max_speed, "forward speed cap, m/s (default 3.5)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-speed", a->max_speed, "forward speed cap, m/s (default 3.5)")->check(CLI::Range(0.0, 12.0));
   cmd->add_option("--speed-gain", a->speed_gain,
                   "step-speed model gain (m/s per m/s of mean vertical foot speed); 0 = the detector's calibrated gain "
                   "(document 2.15, adaptive 4.61)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 20.0));
   cmd->add_flag("--keep-first-frame", a->keep_first, "keep BVH frame 0 (dropped by default: CMU's T-pose)");
   add_method_options(cmd, *a);
   auto& s = a->syn;

@@ -23,6 +23,8 @@ set_tests_properties(cli.wip_csv PROPERTIES DEPENDS cli.wip_synthetic)
 # Bad input: each must fail with its own message (main prints "legwork: error: <message>"
 # only when a command fails, so matching it checks both the failure and the text).
 legwork_cli_error(wip_no_input "error: [^\n]*give exactly one of --input FILE \\(.csv or .bvh\\) and --synthetic" wip --out ${O}/x.glb)
+legwork_cli_error(wip_speed_gain_range "--speed-gain: Value -1 not in range 0\\.0+ to 20\\.0+" wip --synthetic --speed-gain -1 --out ${O}/x.glb)
+legwork_cli_error(wip_max_speed_range "--max-speed: Value 50 not in range 0\\.0+ to 12\\.0+" wip --synthetic --max-speed 50 --out ${O}/x.glb)
 legwork_cli_error(wip_bad_out "error: [^\n]*--out '[^']*x.txt' must end in .glb or .bvh" wip --synthetic --out ${O}/x.txt)
 legwork_cli_error(wip_bad_plot "error: [^\n]*--plot '[^']*x.jpg' must end in .png" wip --synthetic --out ${O}/x.glb --plot ${O}/x.jpg)
 legwork_cli_error(wip_bad_calibrate "error: [^\n]*--calibrate 'maybe': expected auto, on or off" wip --synthetic --out ${O}/x.glb
