@@ -561,36 +561,25 @@ TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
   ac.classes = {};
   ac.k_left = 1000;
   EXPECT_THROW(make_model(db, ac), Error);
-  for (double lift : {-0.01, 0.6, std::numeric_limits<double>::quiet_NaN()}) {
-    Settings bad;
-    bad.foot_lift_height = lift;
-    try {
-      (void)make_model(db, bad);
-      ADD_FAILURE() << "foot_lift_height " << lift;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("foot_lift_height must be between 0 and 0.5 metres"), std::string::npos) << e.what();
+  // Each foot setting outside its range is refused, naming the setting and its range.
+  auto refused = [&](double Settings::*field, std::initializer_list<double> values, const std::string& message) {
+    for (double v : values) {
+      Settings bad;
+      bad.*field = v;
+      try {
+        (void)make_model(db, bad);
+        ADD_FAILURE() << message << ": " << v << " accepted";
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+      }
     }
-  }
-  for (double slack : {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
-    Settings bad;
-    bad.foot_lock_slack = slack;
-    try {
-      (void)make_model(db, bad);
-      ADD_FAILURE() << "foot_lock_slack " << slack;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("foot_lock_slack must be between 0 and 1 metre"), std::string::npos) << e.what();
-    }
-  }
-  for (double speed : {-1.0, 11.0, std::numeric_limits<double>::infinity()}) {
-    Settings bad;
-    bad.foot_swing_speed = speed;
-    try {
-      (void)make_model(db, bad);
-      ADD_FAILURE() << "foot_swing_speed " << speed;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("foot_swing_speed must be between 0 and 10 m/s"), std::string::npos) << e.what();
-    }
-  }
+  };
+  refused(&Settings::foot_lift_height, {-0.01, 0.6, std::numeric_limits<double>::quiet_NaN()},
+          "foot_lift_height must be between 0 and 0.5 metres");
+  refused(&Settings::foot_lock_slack, {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()},
+          "foot_lock_slack must be between 0 and 1 metre");
+  refused(&Settings::foot_swing_speed, {-1.0, 11.0, std::numeric_limits<double>::infinity()},
+          "foot_swing_speed must be between 0 and 10 m/s");
 }
 
 }  // namespace
