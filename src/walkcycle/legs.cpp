@@ -140,4 +140,44 @@ void update_toe(const Skeleton& s, const FootPivots& foot, ConstPoseRef pose, st
   g[t] = g[static_cast<std::size_t>(foot.ankle)] * Transform{pose.rotations[t], pose.translations[t]};
 }
 
+LegPlacement place_leg(const LegFrame& frame, const LegIk& leg, const FootPivots& foot, const FootHold& hold,
+                       const Pivot* pivot, bool apply, PoseRef pose, std::span<Transform> g) {
+  const Skeleton& sk = frame.skeleton;
+  const Ground& ground = frame.ground;
+  const auto end = static_cast<std::size_t>(leg.chain.end);
+  const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
+  Transform ankle = hold.apply(frame.before[end]);
+  const double keyed =
+      (frame.before[end].translation - frame.before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
+  const double soft = std::max(frame.soft_reach, keyed);
+  LegPlacement out;
+  Quat slope;  // the ground's turn under the foot (its toes follow it)
+  fit_to_ground(ground, foot, pivot && (*pivot == Pivot::Ball || hold.on_ball), ankle, slope);
+  out.roll = roll_foot(foot, hip, soft * leg.length, frame.forward, pivot, ankle);
+  out.drop = drop_to_reach(hip, ankle.translation, soft * leg.length);
+  ik::TwoBoneTarget t;
+  t.position = ankle.translation;
+  t.rotation = ankle.rotation;
+  t.rotation_weight = 1.0;
+  t.hint = frame.before[static_cast<std::size_t>(leg.chain.mid)].translation + frame.shift;
+  out.reach = soften_reach(hip, leg, soft, t.position);
+  out.limited = out.reach > soft + 1e-6;
+  if (!apply) return out;
+  auto solve_leg = [&] {
+    ik::solve_two_bone(sk, leg.chain, t, pose, g);
+    if ((out.roll != 0.0 || !ground.flat()) && foot.toe >= 0)
+      pose.rotations[static_cast<std::size_t>(foot.toe)] =
+          (t.rotation.conjugate() * slope * yaw_rotation(hold.angle) * frame.before[static_cast<std::size_t>(foot.toe)].rotation)
+              .normalized();
+    update_toe(sk, foot, pose, g);
+  };
+  solve_leg();
+  out.lift = depth_below(sk, foot, std::span<const Transform>(g), [&](const Vec3& p) { return ground.height(p); });
+  if (out.lift > 0) {
+    t.position.y() += out.lift;
+    solve_leg();
+  }
+  return out;
+}
+
 }  // namespace legwork::walkcycle

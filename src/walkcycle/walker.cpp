@@ -112,47 +112,18 @@ double solve_legs(const Model& model, const Ground& ground, PoseRef pose, const 
   leg_kinematics(sk, model.smooth_root().joints, pose, before);
   if (apply) pose.translations[0] += shift;
   shift_legs(model.smooth_root().joints, before, shift, g);
-  const Vec3 forward = yaw_rotation(heading) * Vec3::UnitZ();
+  const LegFrame frame{sk, ground, before, shift, yaw_rotation(heading) * Vec3::UnitZ(), model.settings().soft_reach};
   double drop = 0, roll_max = 0;
   bool limited = false;
   for (int side = 0; side < 2; ++side) {
     const LegIk& leg = model.smooth_root().legs[static_cast<std::size_t>(side)];
-    const FootPivots& foot = m.foot(side == 1);
-    const auto end = static_cast<std::size_t>(leg.chain.end);
-    const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
-    Transform ankle = hold[static_cast<std::size_t>(side)].apply(before[end]);
-    // As straight as the keys had it, or soft_reach, whichever is more.
-    const double keyed = (before[end].translation - before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
-    const double soft = std::max(model.settings().soft_reach, keyed);
     const bool stance = st.left == (side == 1);
-    Quat slope;  // the ground's turn under the foot (its toes follow it)
-    fit_to_ground(ground, foot, stance && (st.pivot == Pivot::Ball || hold[static_cast<std::size_t>(side)].on_ball), ankle, slope);
-    const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &st.pivot : nullptr, ankle);
-    drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
+    const LegPlacement placed = place_leg(frame, leg, m.foot(side == 1), hold[static_cast<std::size_t>(side)],
+                                          stance ? &st.pivot : nullptr, apply, pose, g);
+    drop = std::max(drop, placed.drop);
     if (!apply) continue;
-    ik::TwoBoneTarget t;
-    t.position = ankle.translation;
-    t.rotation = ankle.rotation;
-    t.rotation_weight = 1.0;
-    t.hint = before[static_cast<std::size_t>(leg.chain.mid)].translation + shift;  // the knee points where it did
-    limited = limited || soften_reach(hip, leg, soft, t.position) > soft + 1e-6;
-    auto solve_leg = [&] {
-      ik::solve_two_bone(sk, leg.chain, t, pose, g);
-      // A rolled foot's toes keep their world rotation (flat on the floor); on
-      // uneven ground they turn with the ground under the foot.
-      if ((roll != 0.0 || !ground.flat()) && foot.toe >= 0)
-        pose.rotations[static_cast<std::size_t>(foot.toe)] =
-            (t.rotation.conjugate() * slope * yaw_rotation(hold[static_cast<std::size_t>(side)].angle) *
-             before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
-      update_toe(sk, foot, pose, g);
-    };
-    solve_leg();
-    const double below = depth_below(sk, foot, std::span<const Transform>(g), [&](const Vec3& p) { return ground.height(p); });
-    if (below > 0) {
-      t.position.y() += below;
-      solve_leg();
-    }
-    roll_max = std::max(roll_max, std::abs(roll));
+    limited = limited || placed.limited;
+    roll_max = std::max(roll_max, std::abs(placed.roll));
   }
   if (info) info->foot_roll = roll_max, info->reach_limited = limited;
   return drop;

@@ -8,6 +8,7 @@
 #include <legwork/core/rotation.hpp>
 #include <legwork/ik/two_bone.hpp>
 #include <legwork/walkcycle/cycle.hpp>
+#include <legwork/walkcycle/ground.hpp>
 
 #include <algorithm>
 #include <array>
@@ -154,5 +155,37 @@ double depth_below(const Skeleton& s, const FootPivots& foot, std::span<const Tr
   if (foot.toe >= 0) d = std::max(d, below(end_site_position(s, g, foot.toe)));
   return std::max(0.0, d);
 }
+
+// One frame of the smooth root, as both legs see it: the plan's FK
+// (`before`), the shift the root moved by (the moved pose's FK is `g`), the
+// walking direction, and the soft limit of the legs' reach.
+struct LegFrame {
+  const Skeleton& skeleton;
+  const Ground& ground;
+  std::span<const Transform> before;
+  Vec3 shift;
+  Vec3 forward;
+  double soft_reach;
+};
+
+// What placing one leg did.
+struct LegPlacement {
+  double drop = 0;      // pelvis drop that would bring the ankle within reach
+  double roll = 0;      // the foot's roll, radians
+  double reach = 0;     // the reach asked for, fraction of the leg's length
+  double lift = 0;      // how far the foot was lifted out of the ground, metres
+  bool limited = false; // the soft limit pulled the ankle in
+};
+
+// One leg of the smooth root (the live walker's and walk_path's): the plan's
+// ankle moved by the foot's `hold`, fitted to the ground, rolled if out of
+// reach (`pivot`: the stance foot's, null for the other foot), pulled in by
+// the soft limit (as straight as the keys had it, or soft_reach, whichever
+// is more). With `apply`, the leg is solved by two-bone IK (the knee points
+// where it did), the toes keep their world rotation (or turn with the
+// ground), and a foot point below the ground lifts the foot straight up (no
+// slip, no penetration); without, only measures.
+LegPlacement place_leg(const LegFrame& frame, const LegIk& leg, const FootPivots& foot, const FootHold& hold,
+                       const Pivot* pivot, bool apply, PoseRef pose, std::span<Transform> g);
 
 }  // namespace legwork::walkcycle

@@ -252,51 +252,17 @@ double FrameSolver::solve(PoseRef pose, const Vec3& shift, double heading, const
   shift_legs(leg_joints_, before, shift, g);  // (FK of the moved pose)
   bool limited = false;
   double drop = 0;
-  const Vec3 forward = yaw_rotation(heading) * Vec3::UnitZ();
+  const LegFrame frame{s, ground, before, shift, yaw_rotation(heading) * Vec3::UnitZ(), opt.soft_reach};
   for (int side = 0; side < 2; ++side) {
-    const LegIk& leg = legs[side];
-    const FootPivots& foot = m.foot(side == 1);
-    const Vec3 hip = g[static_cast<std::size_t>(leg.chain.root)].translation;
-    Transform ankle = hold[side].apply(before[static_cast<std::size_t>(leg.chain.end)]);
-    // As straight as the keys had it, or soft_reach, whichever is more.
-    const double keyed = (before[static_cast<std::size_t>(leg.chain.end)].translation -
-                          before[static_cast<std::size_t>(leg.chain.root)].translation).norm() / leg.length;
-    const double soft = std::max(opt.soft_reach, keyed);
     const bool stance = label.left_stance == (side == 1);
-    Quat slope;  // the ground's turn under the foot (its toes follow it)
-    fit_to_ground(ground, foot, stance && (label.pivot == Pivot::Ball || hold[side].on_ball), ankle, slope);
-    const double roll = roll_foot(foot, hip, soft * leg.length, forward, stance ? &label.pivot : nullptr, ankle);
-    drop = std::max(drop, drop_to_reach(hip, ankle.translation, soft * leg.length));
-    ik::TwoBoneTarget t;
-    t.position = ankle.translation;
-    t.rotation = ankle.rotation;
-    t.rotation_weight = 1.0;
-    // The knee points where it did, carried along with the pelvis.
-    t.hint = before[static_cast<std::size_t>(leg.chain.mid)].translation + shift;
-    const double reach = soften_reach(hip, leg, soft, t.position);
+    const LegPlacement placed = place_leg(frame, legs[side], m.foot(side == 1), hold[side],
+                                          stance ? &label.pivot : nullptr, r != nullptr, pose, g);
+    drop = std::max(drop, placed.drop);
     if (!r) continue;
-    auto solve_leg = [&] {
-      ik::solve_two_bone(s, leg.chain, t, pose, g);
-      // A rolled foot's toes keep their world rotation (flat on the floor); on
-      // uneven ground they turn with the ground under the foot.
-      if ((roll != 0.0 || !ground.flat()) && foot.toe >= 0)
-        pose.rotations[static_cast<std::size_t>(foot.toe)] =
-            (t.rotation.conjugate() * slope * yaw_rotation(hold[side].angle) * before[static_cast<std::size_t>(foot.toe)].rotation).normalized();
-      update_toe(s, foot, pose, g);
-    };
-    solve_leg();
-    // A foot point below the ground (the plan goes without the floor lift,
-    // and its blend into the standing pose can dip) lifts the foot straight
-    // up: no slip, no penetration.
-    const double below = depth_below(s, foot, std::span<const Transform>(g), [&](const Vec3& p) { return ground.height(p); });
-    if (below > 0) {
-      t.position.y() += below;
-      solve_leg();
-      r->ground_lift_max = std::max(r->ground_lift_max, below);
-    }
-    r->foot_roll_max = std::max(r->foot_roll_max, std::abs(roll));
-    r->leg_reach_max = std::max(r->leg_reach_max, reach);
-    limited = limited || reach > soft + 1e-6;
+    r->ground_lift_max = std::max(r->ground_lift_max, placed.lift);
+    r->foot_roll_max = std::max(r->foot_roll_max, std::abs(placed.roll));
+    r->leg_reach_max = std::max(r->leg_reach_max, placed.reach);
+    limited = limited || placed.limited;
   }
   if (r) r->reach_limited_frames += limited;
   return drop;
