@@ -157,6 +157,80 @@ void measure_recall(const Database& db, const BenchArgs* a, const Motion& truth,
   j["avatar_state_bytes"] = state.bytes();
   j["model_bytes"] = model.bytes();
 }
+// The machine's load, printed and recorded: wall-clock figures include the
+// time the machine gave to other processes.
+void record_load(json& j) {
+  double load[3] = {0, 0, 0};
+  if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = -1;
+    std::fclose(f);
+  }
+  j["machine_load_1min"] = load[0];
+  std::printf("machine load (1 min): %.1f on %u cores - wall-clock figures include time given to other processes\n", load[0],
+              std::thread::hardware_concurrency());
+}
+
+// Per-frame latency (mean, p99) and frames/s (wall and thread CPU) of one
+// avatar over the trial, per search mode.
+void measure_modes(const Database& db, const BenchArgs* a, const Motion& truth, const std::vector<TrackerFrame>& frames,
+                   json& j) {
+  json modes = json::object();
+  for (SearchMode mode : {SearchMode::BruteForce, SearchMode::Exact, SearchMode::Fast}) {
+    Settings cfg;
+    cfg.search = mode;
+    cfg.fast_eps = a->eps;
+    cfg.fast_max_checks = a->max_checks;
+    cfg.k_left = cfg.k_right = a->k;
+    cfg.user_height = measure_body(truth.skeleton).standing_height;
+    cfg.foot_lock = !a->no_foot_lock;
+    cfg.recognize_class = !a->no_class_recognition;
+    cfg.classes = split_commas(a->classes_run);
+    if (a->no_ik_blend) cfg.ik_blend_min = cfg.ik_blend_max = 0;
+    std::vector<double> lat;
+    lat.reserve(frames.size() * static_cast<std::size_t>(a->repeat));
+    double total = 0, cpu = 0;
+    std::size_t bytes = 0;
+    for (int r = 0; r < a->repeat; ++r) {
+      const Model model = make_model(db, cfg);
+      State state(model);
+      Pose pose(model.skeleton());
+      bytes = state.bytes();
+      const double c0 = thread_cpu_seconds();
+      for (const auto& f : frames) {
+        const auto s = Clock::now();
+        update(model, f, state, pose.ref());
+        const double dt = seconds_since(s);
+        lat.push_back(dt);
+        total += dt;
+      }
+      cpu += thread_cpu_seconds() - c0;
+    }
+    const double mean_us = 1e6 * total / static_cast<double>(lat.size());
+    const double p99_us = 1e6 * percentile(lat, 0.99);
+    const double fps_run = static_cast<double>(lat.size()) / total;
+    const double fps_cpu = static_cast<double>(lat.size()) / cpu;
+    std::printf("%-6s wall: mean %7.2f us, p99 %7.2f us, %8.0f frames/s | CPU time: %8.0f frames/s (%.0fx the document's 152 Hz)\n",
+                mode_name(mode), mean_us, p99_us, fps_run, fps_cpu, fps_cpu / 152.0);
+    modes[mode_name(mode)] = {{"mean_us", mean_us}, {"p99_us", p99_us}, {"frames_per_second", fps_run},
+                              {"frames_per_cpu_second", fps_cpu}, {"cpu_us_per_frame", 1e6 * cpu / static_cast<double>(lat.size())},
+                              {"speedup_vs_152hz", fps_cpu / 152.0}, {"avatar_state_bytes", bytes}};
+  }
+  j["modes"] = modes;
+}
+
+// A timed database build from --data (the --input trial excluded).
+void measure_build(const BenchArgs* a, json& j) {
+  auto t1 = Clock::now();
+  const auto trials = load_trials(a->data, split_commas(a->classes), {a->input});
+  const double read_s = seconds_since(t1);
+  t1 = Clock::now();
+  const Database built = build_database(trials, BuildConfig{});
+  const double build_s = seconds_since(t1);
+  std::printf("build: %zu trials read in %.2f s, database (%d windows) built in %.2f s\n", trials.size(), read_s,
+              built.window_count(), build_s);
+  j["build"] = {{"data", a->data}, {"trials", trials.size()}, {"read_seconds", read_s}, {"build_seconds", build_s},
+                {"windows", built.window_count()}};
+}
 }  // namespace
 
 int run(int argc, char** argv) {
@@ -172,10 +246,10 @@ int run(int argc, char** argv) {
   cmd->add_option("--scale", a->scale, "metres per BVH unit (default: detected)");
   cmd->add_option("--repeat", a->repeat, "passes over the trial per mode")->check(CLI::PositiveNumber);
   cmd->add_option("--k", a->k, "matches per hand")->check(CLI::Range(1, kMaxK));
-  cmd->add_option("--eps", a->eps, "fast-mode approximation (neighbours within (1+eps) x the true distance)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--eps", a->eps, "fast-mode approximation (neighbours within (1+eps) x the true distance)")->check(CLI::Range(0.0f, 100.0f));
   cmd->add_option("--data", a->data, "also time a database build from this folder (the --input file excluded)");
   cmd->add_option("--classes", a->classes, "classes for the timed build (default: all)");
-  cmd->add_option("--max-checks", a->max_checks, "fast-mode budget of candidates per search (0 = unlimited)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-checks", a->max_checks, "fast-mode budget of candidates per search (0 = unlimited)")->check(CLI::Range(0, 100000000));
   cmd->add_option("--json", a->json_path, "write the figures as JSON");
   cmd->add_flag("--no-foot-lock", a->no_foot_lock, "time the engine without foot locking");
   cmd->add_flag("--no-ik-blend", a->no_ik_blend, "time the engine without the IK blend");
@@ -187,77 +261,16 @@ int run(int argc, char** argv) {
     json j;
     j["database"] = a->db;
     j["input"] = a->input;
-    {
-      double load[3] = {0, 0, 0};
-      if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
-        if (std::fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = -1;
-        std::fclose(f);
-      }
-      j["machine_load_1min"] = load[0];
-      std::printf("machine load (1 min): %.1f on %u cores - wall-clock figures include time given to other processes\n", load[0],
-                  std::thread::hardware_concurrency());
-    }
+    record_load(j);
     Database db = measure_load(a.get(), j);
 
     const double fps = db.feature_space().fps;
     Motion truth = resample(load_input(*a), fps);
     const auto frames = tracker_frames_from_motion(truth);
     j["input_frames"] = frames.size();
-    json modes = json::object();
-    for (SearchMode mode : {SearchMode::BruteForce, SearchMode::Exact, SearchMode::Fast}) {
-      Settings cfg;
-      cfg.search = mode;
-      cfg.fast_eps = a->eps;
-      cfg.fast_max_checks = a->max_checks;
-      cfg.k_left = cfg.k_right = a->k;
-      cfg.user_height = measure_body(truth.skeleton).standing_height;
-      cfg.foot_lock = !a->no_foot_lock;
-      cfg.recognize_class = !a->no_class_recognition;
-      cfg.classes = split_commas(a->classes_run);
-      if (a->no_ik_blend) cfg.ik_blend_min = cfg.ik_blend_max = 0;
-      std::vector<double> lat;
-      lat.reserve(frames.size() * static_cast<std::size_t>(a->repeat));
-      double total = 0, cpu = 0;
-      std::size_t bytes = 0;
-      for (int r = 0; r < a->repeat; ++r) {
-        const Model model = make_model(db, cfg);
-        State state(model);
-        Pose pose(model.skeleton());
-        bytes = state.bytes();
-        const double c0 = thread_cpu_seconds();
-        for (const auto& f : frames) {
-          const auto s = Clock::now();
-          update(model, f, state, pose.ref());
-          const double dt = seconds_since(s);
-          lat.push_back(dt);
-          total += dt;
-        }
-        cpu += thread_cpu_seconds() - c0;
-      }
-      const double mean_us = 1e6 * total / static_cast<double>(lat.size());
-      const double p99_us = 1e6 * percentile(lat, 0.99);
-      const double fps_run = static_cast<double>(lat.size()) / total;
-      const double fps_cpu = static_cast<double>(lat.size()) / cpu;
-      std::printf("%-6s wall: mean %7.2f us, p99 %7.2f us, %8.0f frames/s | CPU time: %8.0f frames/s (%.0fx the document's 152 Hz)\n",
-                  mode_name(mode), mean_us, p99_us, fps_run, fps_cpu, fps_cpu / 152.0);
-      modes[mode_name(mode)] = {{"mean_us", mean_us}, {"p99_us", p99_us}, {"frames_per_second", fps_run},
-                                {"frames_per_cpu_second", fps_cpu}, {"cpu_us_per_frame", 1e6 * cpu / static_cast<double>(lat.size())},
-                                {"speedup_vs_152hz", fps_cpu / 152.0}, {"avatar_state_bytes", bytes}};
-    }
-    j["modes"] = modes;
+    measure_modes(db, a.get(), truth, frames, j);
     measure_recall(db, a.get(), truth, frames, j);
-    if (!a->data.empty()) {
-      auto t1 = Clock::now();
-      const auto trials = load_trials(a->data, split_commas(a->classes), {a->input});
-      const double read_s = seconds_since(t1);
-      t1 = Clock::now();
-      const Database built = build_database(trials, BuildConfig{});
-      const double build_s = seconds_since(t1);
-      std::printf("build: %zu trials read in %.2f s, database (%d windows) built in %.2f s\n", trials.size(), read_s,
-                  built.window_count(), build_s);
-      j["build"] = {{"data", a->data}, {"trials", trials.size()}, {"read_seconds", read_s}, {"build_seconds", build_s},
-                    {"windows", built.window_count()}};
-    }
+    if (!a->data.empty()) measure_build(a.get(), j);
     j["peak_rss_kb"] = peak_rss_kb();
     std::printf("memory: database %.1f MB (mapped, shared by all avatars), %zu bytes per avatar, peak RSS %.1f MB\n",
                 db.bytes().size() / 1e6, j["avatar_state_bytes"].get<std::size_t>(), peak_rss_kb() / 1e3);
