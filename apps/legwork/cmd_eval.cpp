@@ -55,7 +55,7 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--threads", a->threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--video", a->video, "also write compare.mp4: truth, engine and IK side by side (needs ffmpeg)");
   cmd->add_flag("--no-ablation", a->no_ablation, "skip the ablation variants");
-  cmd->add_flag("--no-ik", a->no_ik, "skip the IK baseline");
+  cmd->add_flag("--no-ik", a->no_ik, "skip the IK baselines (on the database skeleton at the user's height, and on the subject's own skeleton)");
   cmd->add_flag("--skip-no-class", a->skip_no_class,
                 "skip the no-class setting (one database of every class per fold, the class recognised from the input)");
   cmd->add_flag("--keep-first-frame", a->keep_first, "do not drop frame 0 (CMU files start with a T-pose)");
@@ -98,6 +98,7 @@ void register_eval(CLI::App& app) {
     if (a->max_seconds > 0) opt.max_test_seconds = a->max_seconds;
     opt.ablation = !a->no_ablation;
     opt.ik = !a->no_ik;
+    opt.ik_own_skeleton = !a->no_ik;
     opt.no_class = !a->skip_no_class;
     opt.threads = a->threads;
     opt.drop_first_frame = !a->keep_first;
