@@ -357,6 +357,11 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
       [](Variant& x) { x.config.foot_lift_height = 0; });
   add("foot_slack", "planted feet hold within 0.1 m before creeping (foot_lock_slack = 0.1)",
       [](Variant& x) { x.config.foot_lock_slack = 0.1; });
+  // Issue 12, "where IK wins": a floor under the IK body's share (helps the
+  // cross-subject folds whose databases hold one or two trials, costs the
+  // well-covered cross-trial folds; docs/accent.md).
+  add("ik_floor_0.3", "IK body's share at least 0.3 (ik_blend_min = 0.3)", [](Variant& x) { x.config.ik_blend_min = 0.3; });
+  add("ik_floor_0.5", "IK body's share at least 0.5 (ik_blend_min = 0.5)", [](Variant& x) { x.config.ik_blend_min = 0.5; });
   add("no_swing_clearance", "swinging feet not lifted clear of the floor (foot_swing_speed = 0)",
       [](Variant& x) { x.config.foot_swing_speed = 0; });
   return v;
