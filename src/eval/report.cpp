@@ -341,6 +341,41 @@ double metric_value(const TrialMetrics& m, const std::string& key) {
   throw Error("unknown metric key '" + key + "'");
 }
 
+// One protocol's part of report.json: folds, method summaries, ablation, winners.
+static json protocol_json(const EvalResult& r, const ProtocolResult& p) {
+  json pj;
+  pj["folds"] = p.folds.size();
+  json skipped = json::object();
+  for (const auto& [cls, why] : p.plan.skipped) skipped[cls] = why;
+  pj["skipped_classes"] = skipped;
+  json folds = json::array();
+  for (const auto& f : p.folds) {
+    json fj = {{"class", f.fold.cls}, {"held_out", f.fold.held_out}, {"test", f.test_ids},
+               {"database_trials", f.fold.database.size()}};
+    for (const auto& [m, mf] : f.methods) {
+      if (!mf.ok) {
+        fj[m] = {{"error", mf.error}};
+        continue;
+      }
+      json mj = {{"frames", mf.frames}, {"database_windows", mf.database_windows}};
+      for (const auto& k : metric_keys()) mj[k.key] = num(metric_value(mf.metrics, k.key));
+      fj[m] = mj;
+    }
+    folds.push_back(fj);
+  }
+  for (const auto& m : p.methods) {
+    const bool main_method = m == "accent" || m == "ik" || m == "ik_own" || m == "no_class";
+    json s = summarize_method(p, m);
+    if (main_method) pj[m] = s;
+    const bool baseline = m == "ik" || m == "ik_own" || m == "no_class";
+    if (!baseline && r.variants.size() > 1 && p.protocol == Protocol::CrossSubject) pj["ablation"][m] = s;
+  }
+  pj["winners"] = class_winners(pj);
+  pj["winners_own_skeleton"] = class_winners(pj, "ik_own");
+  pj["fold_results"] = folds;
+  return pj;
+}
+
 json report_json(const EvalResult& r) {
   json out;
   json meta;
@@ -417,39 +452,7 @@ json report_json(const EvalResult& r) {
   out["meta"] = meta;
   out["paper"] = paper_figures();
 
-  for (const auto& p : r.protocols) {
-    json pj;
-    pj["folds"] = p.folds.size();
-    json skipped = json::object();
-    for (const auto& [cls, why] : p.plan.skipped) skipped[cls] = why;
-    pj["skipped_classes"] = skipped;
-    json folds = json::array();
-    for (const auto& f : p.folds) {
-      json fj = {{"class", f.fold.cls}, {"held_out", f.fold.held_out}, {"test", f.test_ids},
-                 {"database_trials", f.fold.database.size()}};
-      for (const auto& [m, mf] : f.methods) {
-        if (!mf.ok) {
-          fj[m] = {{"error", mf.error}};
-          continue;
-        }
-        json mj = {{"frames", mf.frames}, {"database_windows", mf.database_windows}};
-        for (const auto& k : metric_keys()) mj[k.key] = num(metric_value(mf.metrics, k.key));
-        fj[m] = mj;
-      }
-      folds.push_back(fj);
-    }
-    for (const auto& m : p.methods) {
-      const bool main_method = m == "accent" || m == "ik" || m == "ik_own" || m == "no_class";
-      json s = summarize_method(p, m);
-      if (main_method) pj[m] = s;
-      const bool baseline = m == "ik" || m == "ik_own" || m == "no_class";
-      if (!baseline && r.variants.size() > 1 && p.protocol == Protocol::CrossSubject) pj["ablation"][m] = s;
-    }
-    pj["winners"] = class_winners(pj);
-    pj["winners_own_skeleton"] = class_winners(pj, "ik_own");
-    pj["fold_results"] = folds;
-    out[protocol_key(p.protocol)] = pj;
-  }
+  for (const auto& p : r.protocols) out[protocol_key(p.protocol)] = protocol_json(r, p);
   out["targets"] = targets_of(out);
   return out;
 }
