@@ -23,6 +23,7 @@ struct EvalArgs {
   // Engine switches (defaults = the engine's own defaults).
   int hop = -1, k = -1, speed_variants = -1;
   double threshold = -1, hand_ik = -1, foot_lift_height = -1, foot_lock_slack = -1, foot_swing_speed = -1;
+  double ik_blend_min = -1, ik_blend_near = -1, ik_blend_far = -1, foot_lock_follow = -1, contact_on = -1, contact_off = -1;
   bool mirror = false, exact = false;
 };
 
@@ -55,7 +56,7 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--threads", a->threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--video", a->video, "also write compare.mp4: truth, engine and IK side by side (needs ffmpeg)");
   cmd->add_flag("--no-ablation", a->no_ablation, "skip the ablation variants");
-  cmd->add_flag("--no-ik", a->no_ik, "skip the IK baseline");
+  cmd->add_flag("--no-ik", a->no_ik, "skip the IK baselines (on the database skeleton at the user's height, and on the subject's own skeleton)");
   cmd->add_flag("--skip-no-class", a->skip_no_class,
                 "skip the no-class setting (one database of every class per fold, the class recognised from the input)");
   cmd->add_flag("--keep-first-frame", a->keep_first, "do not drop frame 0 (CMU files start with a T-pose)");
@@ -76,6 +77,22 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--foot-swing-speed", a->foot_swing_speed,
                   "engine: m/s above which a free foot is swinging and clears the floor (0 = off)")
       ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--ik-blend-min", a->ik_blend_min,
+                  "engine: share of the IK body where the database covers the user (0..1, at most the maximum share)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--ik-blend-near", a->ik_blend_near,
+                  "engine: match distance (typical distances) where the IK body's share starts to rise")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--ik-blend-far", a->ik_blend_far,
+                  "engine: match distance (typical distances) where the IK body's share reaches its maximum")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--foot-lock-follow", a->foot_lock_follow,
+                  "engine: seconds a planted foot takes to creep toward the synthesized one (0 = held still)")
+      ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--contact-on", a->contact_on, "engine: blended candidate contact above which a foot locks (0..1)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--contact-off", a->contact_off, "engine: blended candidate contact below which a locked foot lets go (0..1)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--mirror", a->mirror, "engine: add mirrored trials to every database");
   cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");
   cmd->callback([a] {
@@ -98,6 +115,7 @@ void register_eval(CLI::App& app) {
     if (a->max_seconds > 0) opt.max_test_seconds = a->max_seconds;
     opt.ablation = !a->no_ablation;
     opt.ik = !a->no_ik;
+    opt.ik_own_skeleton = !a->no_ik;
     opt.no_class = !a->skip_no_class;
     opt.threads = a->threads;
     opt.drop_first_frame = !a->keep_first;
@@ -110,6 +128,12 @@ void register_eval(CLI::App& app) {
     if (a->foot_lift_height >= 0) opt.config.foot_lift_height = a->foot_lift_height;
     if (a->foot_lock_slack >= 0) opt.config.foot_lock_slack = a->foot_lock_slack;
     if (a->foot_swing_speed >= 0) opt.config.foot_swing_speed = a->foot_swing_speed;
+    if (a->contact_on >= 0) opt.config.contact_on = a->contact_on;
+    if (a->contact_off >= 0) opt.config.contact_off = a->contact_off;
+    if (a->ik_blend_min >= 0) opt.config.ik_blend_min = a->ik_blend_min;
+    if (a->ik_blend_near >= 0) opt.config.ik_blend_near = a->ik_blend_near;
+    if (a->ik_blend_far >= 0) opt.config.ik_blend_far = a->ik_blend_far;
+    if (a->foot_lock_follow >= 0) opt.config.foot_lock_follow_seconds = a->foot_lock_follow;
     if (a->exact) opt.config.search = accent::SearchMode::Exact;
     opt.progress = io::status_printer("[eval] ");
 

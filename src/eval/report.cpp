@@ -129,13 +129,15 @@ json unmeasured(const std::string& name, double g, const std::string& op, const 
 // Per class, the engine against the IK baseline on full and lower body (class
 // means over folds): { "<class>": { "full_body": {"accent": x, "ik": y,
 // "winner": "accent"|"ik"}, "lower_body": {...} } }, and the counts.
-json class_winners(const json& pj) {
+// `ik` names the baseline: "ik" (the database skeleton at the user's height,
+// what the engine gets) or "ik_own" (the subject's own skeleton).
+json class_winners(const json& pj, const char* ik = "ik") {
   json out = json::object();
-  if (!pj.contains("accent") || !pj.contains("ik")) return out;
+  if (!pj.contains("accent") || !pj.contains(ik)) return out;
   int wins = 0, contests = 0;
   for (const auto& [cls, a] : pj["accent"]["classes"].items()) {
-    if (!pj["ik"]["classes"].contains(cls)) continue;
-    const json& i = pj["ik"]["classes"][cls];
+    if (!pj[ik]["classes"].contains(cls)) continue;
+    const json& i = pj[ik]["classes"][cls];
     for (const char* part : {"full_body", "lower_body"}) {
       const std::string key = std::string(part) + "_cm";
       const double va = get(a, key), vi = get(i, key);
@@ -276,12 +278,17 @@ double value_of(const json& r, const std::string& protocol, const std::string& m
 
 // Calls row(protocol, method, results, document's figures) for each protocol
 // and main method (accent engine, IK baseline) the report holds, in table order.
+// "accent engine", "IK baseline" (database skeleton at the user's height), "IK, own skeleton".
+std::string method_label(const std::string& m) {
+  return m == "ik" ? "IK baseline" : m == "ik_own" ? "IK baseline, subject's own skeleton" : "accent engine";
+}
+
 template <class Row>
 void for_each_method(const json& r, Row&& row) {
   const json& paper = r["paper"];
   for (const auto& p : kProtocols) {
     if (!r.contains(p)) continue;
-    for (const char* m : {"accent", "ik"}) {
+    for (const char* m : {"accent", "ik", "ik_own"}) {
       if (!r[p].contains(m)) continue;
       const json pp = paper.contains(p) && paper[p].contains(m) ? paper[p][m] : json::object();
       row(p, std::string(m), r[p][m], pp);
@@ -332,6 +339,41 @@ double metric_value(const TrialMetrics& m, const std::string& key) {
   if (key == "foot_skating_cm") return m.foot_skating_cm;
   if (key == "foot_skating_truth_cm") return m.foot_skating_truth_cm;
   throw Error("unknown metric key '" + key + "'");
+}
+
+// One protocol's part of report.json: folds, method summaries, ablation, winners.
+static json protocol_json(const EvalResult& r, const ProtocolResult& p) {
+  json pj;
+  pj["folds"] = p.folds.size();
+  json skipped = json::object();
+  for (const auto& [cls, why] : p.plan.skipped) skipped[cls] = why;
+  pj["skipped_classes"] = skipped;
+  json folds = json::array();
+  for (const auto& f : p.folds) {
+    json fj = {{"class", f.fold.cls}, {"held_out", f.fold.held_out}, {"test", f.test_ids},
+               {"database_trials", f.fold.database.size()}};
+    for (const auto& [m, mf] : f.methods) {
+      if (!mf.ok) {
+        fj[m] = {{"error", mf.error}};
+        continue;
+      }
+      json mj = {{"frames", mf.frames}, {"database_windows", mf.database_windows}};
+      for (const auto& k : metric_keys()) mj[k.key] = num(metric_value(mf.metrics, k.key));
+      fj[m] = mj;
+    }
+    folds.push_back(fj);
+  }
+  for (const auto& m : p.methods) {
+    const bool main_method = m == "accent" || m == "ik" || m == "ik_own" || m == "no_class";
+    json s = summarize_method(p, m);
+    if (main_method) pj[m] = s;
+    const bool baseline = m == "ik" || m == "ik_own" || m == "no_class";
+    if (!baseline && r.variants.size() > 1 && p.protocol == Protocol::CrossSubject) pj["ablation"][m] = s;
+  }
+  pj["winners"] = class_winners(pj);
+  pj["winners_own_skeleton"] = class_winners(pj, "ik_own");
+  pj["fold_results"] = folds;
+  return pj;
 }
 
 json report_json(const EvalResult& r) {
@@ -403,41 +445,14 @@ json report_json(const EvalResult& r) {
       "velocities. jitter: mean jerk magnitude of the output (10^2 m/s^3, as AvatarPoser/AGRoL). hand correlation: "
       "Pearson r of input vs output hand positions relative to the input head, per axis, averaged over x, y, z. "
       "foot skating: mean horizontal slide per frame (90 Hz) of an ankle or toe staying within 3 cm of its floor "
-      "level. frames_per_second: per-frame solver time only.";
+      "level. frames_per_second: per-frame solver time only. IK baseline (method ik): the VRIK-style full-body IK "
+      "on the database's reference skeleton scaled to the user's standing height, the information the engine gets; "
+      "ik_own: the same IK on the held-out subject's own skeleton (true bone lengths; the baseline of reports before "
+      "this change). Wins and the 'better than IK' goals are against ik.";
   out["meta"] = meta;
   out["paper"] = paper_figures();
 
-  for (const auto& p : r.protocols) {
-    json pj;
-    pj["folds"] = p.folds.size();
-    json skipped = json::object();
-    for (const auto& [cls, why] : p.plan.skipped) skipped[cls] = why;
-    pj["skipped_classes"] = skipped;
-    json folds = json::array();
-    for (const auto& f : p.folds) {
-      json fj = {{"class", f.fold.cls}, {"held_out", f.fold.held_out}, {"test", f.test_ids},
-                 {"database_trials", f.fold.database.size()}};
-      for (const auto& [m, mf] : f.methods) {
-        if (!mf.ok) {
-          fj[m] = {{"error", mf.error}};
-          continue;
-        }
-        json mj = {{"frames", mf.frames}, {"database_windows", mf.database_windows}};
-        for (const auto& k : metric_keys()) mj[k.key] = num(metric_value(mf.metrics, k.key));
-        fj[m] = mj;
-      }
-      folds.push_back(fj);
-    }
-    for (const auto& m : p.methods) {
-      const bool main_method = m == "accent" || m == "ik" || m == "no_class";
-      json s = summarize_method(p, m);
-      if (main_method) pj[m] = s;
-      if (m != "ik" && m != "no_class" && r.variants.size() > 1 && p.protocol == Protocol::CrossSubject) pj["ablation"][m] = s;
-    }
-    pj["winners"] = class_winners(pj);
-    pj["fold_results"] = folds;
-    out[protocol_key(p.protocol)] = pj;
-  }
+  for (const auto& p : r.protocols) out[protocol_key(p.protocol)] = protocol_json(r, p);
   out["targets"] = targets_of(out);
   return out;
 }
@@ -451,7 +466,7 @@ void md_body_parts(std::ostringstream& md, const json& r) {
   md << "| protocol | method | left hand | right hand | upper body | lower body | full body | doc. full body | "
         "doc. hands (L/R) |\n|---|---|---|---|---|---|---|---|---|\n";
   for_each_method(r, [&](const std::string& p, const std::string& m, const json& x, const json& pp) {
-    md << "| " << p << " | " << (m == "ik" ? "IK baseline" : "accent engine") << " | " << fmt_sd(x, "left_hand_cm")
+    md << "| " << p << " | " << method_label(m) << " | " << fmt_sd(x, "left_hand_cm")
        << " | " << fmt_sd(x, "right_hand_cm") << " | " << fmt_sd(x, "upper_body_cm") << " | "
        << fmt_sd(x, "lower_body_cm") << " | **" << fmt_sd(x, "full_body_cm") << "** | " << paper_cell(pp, "full_body_cm")
        << " | " << paper_cell(pp, "left_hand_cm") << " / " << paper_cell(pp, "right_hand_cm") << " |\n";
@@ -499,8 +514,9 @@ void md_per_class(std::ostringstream& md, const json& r) {
     const json& pj = r[p];
     md << "\n## " << p << ": per class (full body / lower body, cm; winner = lower error)\n\n";
     md << "| class | folds | accent full | IK full | winner full | accent lower | IK lower | winner lower | "
-          "skating accent / IK / truth (cm/frame) | jitter accent / IK / truth | accent hands L/R | hand corr. |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "skating accent / IK / truth (cm/frame) | jitter accent / IK / truth | accent hands L/R | hand corr. | "
+          "IK on the subject's own skeleton: full / lower |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     std::set<std::string> classes;
     for (const char* m : {"accent", "ik"})
       if (pj.contains(m))
@@ -509,7 +525,7 @@ void md_per_class(std::ostringstream& md, const json& r) {
       auto cls = [&](const char* m) -> json {
         return pj.contains(m) && pj[m]["classes"].contains(c) ? pj[m]["classes"][c] : json::object();
       };
-      const json a = cls("accent"), i = cls("ik");
+      const json a = cls("accent"), i = cls("ik"), own = cls("ik_own");
       md << "| " << c << " | " << (a.contains("folds") ? a["folds"].dump() : i.value("folds", json(0)).dump()) << " | "
          << fmt_sd(a, "full_body_cm") << " | " << fmt_sd(i, "full_body_cm") << " | " << winner_cell(pj, c, "full_body")
          << " | " << fmt_sd(a, "lower_body_cm") << " | " << fmt_sd(i, "lower_body_cm") << " | "
@@ -517,11 +533,16 @@ void md_per_class(std::ostringstream& md, const json& r) {
          << fmt(get(i, "foot_skating_cm"), 2) << " / " << fmt(get(a, "foot_skating_truth_cm"), 2) << " | "
          << fmt(get(a, "jitter"), 1) << " / " << fmt(get(i, "jitter"), 1) << " / " << fmt(get(a, "jitter_truth"), 1)
          << " | " << fmt(get(a, "left_hand_cm"), 2) << " / " << fmt(get(a, "right_hand_cm"), 2) << " | "
-         << fmt(get(a, "hand_correlation"), 3) << " |\n";
+         << fmt(get(a, "hand_correlation"), 3) << " | " << fmt(get(own, "full_body_cm")) << " / "
+         << fmt(get(own, "lower_body_cm")) << " |\n";
     }
     if (pj.contains("winners") && pj["winners"].contains("contests"))
       md << "\nThe engine is below the IK baseline in " << pj["winners"]["engine_wins"] << " of "
          << pj["winners"]["contests"] << " (class, part) pairs.\n";
+    if (pj.contains("winners_own_skeleton") && pj["winners_own_skeleton"].contains("contests"))
+      md << "Against the IK baseline on the subject's own skeleton (true bone lengths, which the engine is not "
+            "given): "
+         << pj["winners_own_skeleton"]["engine_wins"] << " of " << pj["winners_own_skeleton"]["contests"] << ".\n";
     md << "\nThe document gives its per-class figures (Figure 4 B) only as a plot, without numbers.\n";
     if (!pj["skipped_classes"].empty()) {
       md << "\nNot evaluated under " << p << ":\n";
@@ -824,7 +845,7 @@ std::string report_summary(const nlohmann::json& r) {
     if (!r.contains(p)) continue;
     std::snprintf(buf, sizeof buf, "%s (%d folds):\n", p, r[p]["folds"].get<int>());
     out += buf;
-    for (const char* m : {"accent", "ik", "no_class"}) {
+    for (const char* m : {"accent", "ik", "ik_own", "no_class"}) {
       if (!r[p].contains(m)) continue;
       const auto& x = r[p][m];
       std::snprintf(buf, sizeof buf,

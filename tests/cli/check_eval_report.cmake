@@ -19,7 +19,7 @@ function(require_number)
 endfunction()
 
 foreach(protocol cross_subject cross_trial)
-  foreach(method accent ik)
+  foreach(method accent ik ik_own)
     foreach(k IN LISTS keys)
       require_number(${protocol} ${method} ${k})
     endforeach()

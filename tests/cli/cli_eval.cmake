@@ -10,6 +10,13 @@ legwork_cli_error(eval_foot_lift_range "--foot-lift-height: Value -1 not in rang
 legwork_cli_error(eval_foot_slack_range "--foot-lock-slack: Value 3 not in range 0\\.0+ to 1\\.0*" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --foot-lock-slack 3)
 legwork_cli_test(eval_foot_lift eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --quick-trials 2 --max-seconds 3 --no-ablation --skip-no-class --foot-lift-height 0.08)
 set_tests_properties(cli.eval_foot_lift PROPERTIES TIMEOUT 180)
+# The IK blend, contact thresholds and lock creep as evaluation options (issue 12's "where IK wins" runs).
+legwork_cli_test(eval_ik_blend eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --quick-trials 2 --max-seconds 3 --no-ablation
+                 --skip-no-class --ik-blend-min 0.3 --ik-blend-near 1 --ik-blend-far 2 --contact-on 0.5 --contact-off 0.3 --foot-lock-follow 0.2)
+set_tests_properties(cli.eval_ik_blend PROPERTIES TIMEOUT 180)
+legwork_cli_error(eval_ik_blend_min_range "--ik-blend-min: Value 1.5 not in range 0\\.0+ to 1\\.0*" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --ik-blend-min 1.5)
+legwork_cli_error(eval_contact_order "error: accent: foot contact thresholds need 0 <= contact_off <= contact_on <= 1"
+                 eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --quick-trials 2 --max-seconds 3 --no-ablation --skip-no-class --contact-on 0.2)
 legwork_cli_error(eval_missing_data "error: .*no-such-folder: not a directory" eval accent --data ${O}/no-such-folder --quick)
 legwork_cli_error(eval_unknown_class "error: .*no class 'dancing' \\(classes present: basketball" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing --quick)
 legwork_cli_error(eval_bad_protocol "error: --protocols: unknown protocol 'leave_one_out' \\(cross_subject, cross_trial, cross_dataset\\)" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --protocols leave_one_out --quick)

@@ -4,6 +4,7 @@
 
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/core/measure.hpp>
 #include <legwork/core/tracker.hpp>
 
 #include "cmu_sample.hpp"
@@ -87,4 +88,43 @@ TEST(IkBaseline, ASkeletonWithoutArmsIsRefusedByName) {
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()).rfind("full-body IK: the skeleton has no joint for role(s)", 0), 0u) << e.what();
   }
+}
+
+// The fair baseline (method "ik"): another subject's skeleton scaled to the
+// user's standing height, as the engine's database skeleton is; the output
+// stands as tall as the user, keeps the reference's proportions, and differs
+// from the baseline on the user's own bone lengths.
+TEST(IkBaseline, AtHeightRunsOnTheReferenceScaledToTheUsersHeight) {
+  const Motion user = walk90();  // subject 7
+  const Skeleton reference = testdata::load_sample("cmu/bvh/basketball/124_03.bvh").skeleton;  // subject 124
+  const double h_user = measure_body(user.skeleton).standing_height, h_ref = measure_body(reference).standing_height;
+  ASSERT_GT(std::abs(h_user - h_ref), 0.01) << "the two subjects must differ in height for this test";
+  const Motion fair = eval::run_ik_baseline_at_height(reference, user);
+  const Motion own = eval::run_ik_baseline(user);
+  ASSERT_EQ(fair.frame_count(), user.frame_count());
+  EXPECT_EQ(fair.skeleton.names, reference.names);
+  EXPECT_NEAR(measure_body(fair.skeleton).standing_height, h_user, 1e-9);
+  const int thigh = fair.skeleton.roles[Role::LeftKnee];
+  const double ratio = fair.skeleton.rest_offsets[static_cast<std::size_t>(thigh)].norm() /
+                       reference.rest_offsets[static_cast<std::size_t>(thigh)].norm();
+  EXPECT_NEAR(ratio, h_user / h_ref, 1e-9);
+  // The head still follows the headset on the scaled reference skeleton.
+  std::vector<Transform> world(static_cast<std::size_t>(fair.skeleton.joint_count()));
+  std::vector<Transform> truth(static_cast<std::size_t>(user.skeleton.joint_count()));
+  const int head = fair.skeleton.roles[Role::Head];
+  double worst = 0;
+  for (int f = 0; f < fair.frame_count(); f += 10) {
+    forward_kinematics(fair.skeleton, fair.frame(f), world);
+    forward_kinematics(user.skeleton, user.frame(f), truth);
+    worst = std::max(worst, (world[static_cast<std::size_t>(head)].translation -
+                             truth[static_cast<std::size_t>(user.skeleton.roles[Role::Head])].translation).norm());
+  }
+  EXPECT_LT(worst, 0.02);
+  // Not the own-skeleton run under another name.
+  forward_kinematics(fair.skeleton, fair.frame(fair.frame_count() / 2), world);
+  std::vector<Transform> own_world(static_cast<std::size_t>(own.skeleton.joint_count()));
+  forward_kinematics(own.skeleton, own.frame(own.frame_count() / 2), own_world);
+  const Vec3 d = world[static_cast<std::size_t>(fair.skeleton.roles[Role::LeftAnkle])].translation -
+                 own_world[static_cast<std::size_t>(own.skeleton.roles[Role::LeftAnkle])].translation;
+  EXPECT_GT(d.norm(), 1e-4);
 }

@@ -64,6 +64,34 @@ TEST(EvalReport, PerClassWinnerIsTheLowerErrorOfTheClassFigures) {
   }
 }
 
+// The IK baseline both ways: "ik" on the database's reference skeleton at the
+// user's height (what the engine gets), "ik_own" on the subject's own; the
+// second winners table is against "ik_own", and the two baselines differ.
+TEST(EvalReport, BothIkBaselinesAreReportedAndWinsCountAgainstEach) {
+  const json& r = sample_report();
+  for (const char* p : {"cross_subject", "cross_trial"}) {
+    ASSERT_TRUE(r.at(p).contains("ik_own")) << p;
+    const json& w = r.at(p).at("winners_own_skeleton");
+    int wins = 0, contests = 0;
+    bool differ = false;
+    for (const auto& [cls, parts] : w.at("classes").items())
+      for (const char* part : {"full_body", "lower_body"}) {
+        const std::string key = std::string(part) + "_cm";
+        const double a = num(r[p]["accent"]["classes"][cls], key), o = num(r[p]["ik_own"]["classes"][cls], key);
+        EXPECT_DOUBLE_EQ(num(parts[part], "ik"), o) << p << " " << cls << " " << part;
+        differ = differ || o != num(r[p]["ik"]["classes"][cls], key);
+        ++contests;
+        wins += a < o;
+      }
+    EXPECT_EQ(w.at("engine_wins").get<int>(), wins) << p;
+    EXPECT_EQ(w.at("contests").get<int>(), contests) << p;
+    EXPECT_TRUE(differ) << p << ": the two IK baselines gave the same figures";
+  }
+  const std::string md = report_markdown(r);
+  EXPECT_NE(md.find("IK baseline, subject's own skeleton"), std::string::npos);
+  EXPECT_NE(md.find("Against the IK baseline on the subject's own skeleton"), std::string::npos);
+}
+
 // The truth's skating per class, recomputed here from the BVH files of the
 // class's held-out trials (same clipping as the run), equals the report's, and
 // is the same whichever method it sits beside.

@@ -35,7 +35,13 @@ struct RunOptions {
   accent::Settings config;
   bool ablation = true;         // ablation variants, on the cross-subject protocol
   bool quick_ablation = false;  // only the document's three ablation steps
-  bool ik = true;               // the IK baseline
+  // The IK baseline, given what the engine is given (method "ik"): the
+  // database's reference skeleton scaled to the user's standing height.
+  bool ik = true;
+  // The IK baseline on the held-out subject's own skeleton (true bone
+  // lengths; method "ik_own", the baseline of earlier reports): information
+  // the engine does not get.
+  bool ik_own_skeleton = true;
   // The "no class given" setting (method "no_class"): per fold one database of
   // every class (the fold's held-out subject or trials left out), the engine
   // recognising the class (accent::Settings::recognize_class). Not for
@@ -124,6 +130,9 @@ EvalResult run_evaluation(const Catalogue& data, const Catalogue* test, const Ru
 // Output motion of the IK baseline driven by a motion's head and hands (on
 // the motion's own skeleton, at its rate); `seconds` gets the solver time.
 Motion run_ik_baseline(const Motion& truth, double* seconds = nullptr);
+// The same on `reference` (a database skeleton) scaled to the motion's
+// standing height: what the engine knows of the user (its height only).
+Motion run_ik_baseline_at_height(const Skeleton& reference, const Motion& truth, double* seconds = nullptr);
 
 // The IK baseline (the VRIK-style full-body IK of legwork::ik) over a clip:
 // one ik avatar on `skel` driven by the frames' head and hands, output at
