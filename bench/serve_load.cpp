@@ -10,6 +10,7 @@
 // "sustained" is the largest N found that kept p99 <= --p99-ms with every
 // frame answered (the doubling steps below it kept it too). --server-pids adds the servers'
 // CPU time per frame (from /proc) and the avatars per core it implies.
+#include <legwork/core/measure.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/io/bvh.hpp>
 #include <legwork/serve/protocol.hpp>
@@ -78,9 +79,10 @@ constexpr long kPeriodUs = 11111;  // 90 Hz
 class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
  public:
   // phase: when in the 11.1 ms frame period this client sends (0..1).
-  ReplayClient(net::io_context& ioc, const std::vector<std::string>& frames, Run& run, std::string method, double seconds,
+  // hello: the session's hello message (JSON text).
+  ReplayClient(net::io_context& ioc, const std::vector<std::string>& frames, Run& run, std::string hello, double seconds,
                int offset, double phase)
-      : ws_(net::make_strand(ioc)), timer_(ioc), frames_(frames), run_(run), method_(std::move(method)), seconds_(seconds),
+      : ws_(net::make_strand(ioc)), timer_(ioc), frames_(frames), run_(run), hello_(std::move(hello)), seconds_(seconds),
         index_(static_cast<std::size_t>(offset) % frames.size()), phase_(phase) {}
 
   void start(const tcp::endpoint& ep) {
@@ -103,7 +105,6 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
   }
 
   void hello() {
-    hello_ = json{{"type", "hello"}, {"version", 1}, {"method", method_}, {"format", "binary"}, {"record", false}}.dump();
     ws_.text(true);
     ws_.async_write(net::buffer(hello_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
       if (ec) return self->fail();
@@ -179,7 +180,7 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
   net::steady_timer timer_;
   const std::vector<std::string>& frames_;
   Run& run_;
-  std::string method_, hello_, out_;
+  std::string hello_, out_;
   double seconds_;
   std::size_t index_;
   double phase_;
@@ -192,12 +193,12 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
 // Clients send at evenly spread phases of the frame period, as independent
 // headsets do; `aligned` makes them all send at once (the worst case).
 Run run_clients(const tcp::endpoint& ep, const std::vector<std::string>& frames, int clients, double seconds,
-                const std::string& method, bool aligned) {
+                const std::string& hello, bool aligned) {
   Run run;
   run.clients = clients;
   net::io_context ioc;
   for (int i = 0; i < clients; ++i)
-    std::make_shared<ReplayClient>(ioc, frames, run, method, seconds, i * 7, aligned ? 0.0 : double(i) / clients)->start(ep);
+    std::make_shared<ReplayClient>(ioc, frames, run, hello, seconds, i * 7, aligned ? 0.0 : double(i) / clients)->start(ep);
   ioc.run_for(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds + 15)));
   auto& l = run.latency_ms;
   std::sort(l.begin(), l.end());
@@ -229,6 +230,11 @@ int main(int argc, char** argv) {
   app.add_option("--clients", clients, "concurrent clients")->check(CLI::Range(1, 5000));
   app.add_option("--seconds", seconds, "streaming time per step")->check(CLI::Range(0.5, 60.0));
   app.add_option("--method", method, "session method");
+  std::vector<std::string> classes;
+  app.add_option("--classes", classes, "hello classes (accent; default: none given, the server recognises the activity)")->delimiter(',');
+  double user_height = -1;
+  app.add_option("--user-height", user_height,
+                 "hello user_height in metres (default: the trial subject's standing height, as the viewer sends; 0: none)");
   app.add_option("--trial", trial, "BVH trial replayed (head + hands)");
   app.add_flag("--ramp", ramp, "double the clients until p99 or answers fail, then narrow the bracket");
   app.add_option("--max-clients", max_clients, "ramp ceiling")->check(CLI::Range(1, 5000));
@@ -243,8 +249,13 @@ int main(int argc, char** argv) {
 
   io::BvhReadOptions ro;
   ro.drop_first_frame = true;
+  const Motion motion = io::load_bvh(trial, ro);
+  if (user_height < 0) user_height = measure_body(motion.skeleton).standing_height;
+  json hello = {{"type", "hello"}, {"version", 1}, {"method", method}, {"format", "binary"}, {"record", false}};
+  if (user_height > 0 && method != "walker") hello["user_height"] = user_height;
+  if (!classes.empty()) hello["classes"] = classes;
   std::vector<std::string> frames;
-  for (auto f : tracker_frames_from_motion(io::load_bvh(trial, ro), 90.0)) {
+  for (auto f : tracker_frames_from_motion(motion, 90.0)) {
     f.foot(kLeft).valid = f.foot(kRight).valid = false;
     frames.push_back(serve::binary_frame(f));
     if (still) break;
@@ -254,7 +265,7 @@ int main(int argc, char** argv) {
   // One step: n clients for `seconds`; prints and records it; true when ok.
   auto step = [&](int n, bool& answered) {
     const double cpu0 = cpu_seconds(server_pids);
-    Run r = run_clients(ep, frames, n, seconds, method, aligned);
+    Run r = run_clients(ep, frames, n, seconds, hello.dump(), aligned);
     if (r.answered > 0 && !server_pids.empty())
       r.server_cpu_us_per_frame = 1e6 * (cpu_seconds(server_pids) - cpu0) / static_cast<double>(r.answered);
     answered = r.answered_share >= 0.99 && r.failed_clients == 0;
@@ -283,7 +294,7 @@ int main(int argc, char** argv) {
   }
   std::printf("%s: %d avatars sustained at 90 Hz with p99 <= %.1f ms (method %s)\n", label.c_str(), sustained, p99_limit, method.c_str());
   if (!out.empty()) {
-    std::ofstream(out) << json{{"label", label}, {"method", method}, {"rate_hz", 90}, {"p99_limit_ms", p99_limit}, {"aligned", aligned},
+    std::ofstream(out) << json{{"label", label}, {"method", method}, {"hello", hello}, {"rate_hz", 90}, {"p99_limit_ms", p99_limit}, {"aligned", aligned},
                                {"sustained_avatars", sustained}, {"steps", steps}}
                               .dump(2)
                        << "\n";
