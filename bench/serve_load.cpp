@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -64,9 +65,27 @@ double cpu_seconds(const std::vector<int>& pids) {
   return total;
 }
 
+// Nanoseconds the processes' threads spent waiting on a run queue for a CPU
+// (Linux /proc/PID/task/TID/schedstat, second field): time other processes on
+// the same cores took from them.
+double runqueue_wait_seconds(const std::vector<int>& pids) {
+  double total = 0;
+  for (int pid : pids) {
+    const std::string dir = "/proc/" + std::to_string(pid) + "/task";
+    std::error_code ec;
+    for (const auto& t : std::filesystem::directory_iterator(dir, ec)) {
+      std::ifstream in(t.path() / "schedstat");
+      unsigned long long run = 0, wait = 0;
+      if (in >> run >> wait) total += static_cast<double>(wait) * 1e-9;
+    }
+  }
+  return total;
+}
+
 struct Run {
   int clients = 0;
   double server_cpu_us_per_frame = 0;  // with --server-pids
+  double server_wait_us_per_frame = 0, client_wait_us_per_frame = 0;  // run-queue waits (CPU taken by others)
   std::uint64_t sent = 0, answered = 0, errors = 0, failed_clients = 0;
   std::vector<double> latency_ms;
   double p50 = 0, p99 = 0, max = 0, answered_share = 0;
@@ -215,6 +234,8 @@ json to_json(const Run& r) {
   return {{"clients", r.clients},   {"frames_sent", r.sent},   {"poses", r.answered}, {"answered", r.answered_share},
           {"p50_ms", r.p50},        {"p99_ms", r.p99},         {"max_ms", r.max},     {"errors", r.errors},
           {"failed_clients", r.failed_clients}, {"server_cpu_us_per_frame", r.server_cpu_us_per_frame},
+          {"server_runqueue_wait_us_per_frame", r.server_wait_us_per_frame},
+          {"client_runqueue_wait_us_per_frame", r.client_wait_us_per_frame},
           {"avatars_per_core_by_cpu", r.server_cpu_us_per_frame > 0 ? 1e6 / (90.0 * r.server_cpu_us_per_frame) : 0.0}};
 }
 
@@ -264,15 +285,23 @@ int main(int argc, char** argv) {
   json steps = json::array();
   // One step: n clients for `seconds`; prints and records it; true when ok.
   auto step = [&](int n, bool& answered) {
-    const double cpu0 = cpu_seconds(server_pids);
+    const double cpu0 = cpu_seconds(server_pids), wait0 = runqueue_wait_seconds(server_pids);
+    const double self_wait0 = runqueue_wait_seconds({static_cast<int>(getpid())});
     Run r = run_clients(ep, frames, n, seconds, hello.dump(), aligned);
-    if (r.answered > 0 && !server_pids.empty())
-      r.server_cpu_us_per_frame = 1e6 * (cpu_seconds(server_pids) - cpu0) / static_cast<double>(r.answered);
+    if (r.answered > 0) {
+      const auto per_frame = [&](double s) { return 1e6 * s / static_cast<double>(r.answered); };
+      r.client_wait_us_per_frame = per_frame(runqueue_wait_seconds({static_cast<int>(getpid())}) - self_wait0);
+      if (!server_pids.empty()) {
+        r.server_cpu_us_per_frame = per_frame(cpu_seconds(server_pids) - cpu0);
+        r.server_wait_us_per_frame = per_frame(runqueue_wait_seconds(server_pids) - wait0);
+      }
+    }
     answered = r.answered_share >= 0.99 && r.failed_clients == 0;
     const bool ok = answered && r.p99 <= p99_limit;
-    std::printf("%-13s clients %5d  sent %8llu  answered %6.2f %%  p50 %6.2f ms  p99 %7.2f ms  max %7.2f ms  server CPU %6.1f us/frame  %s\n",
+    std::printf("%-13s clients %5d  sent %8llu  answered %6.2f %%  p50 %6.2f ms  p99 %7.2f ms  max %7.2f ms  server CPU %6.1f us/frame  "
+                "run-queue wait: server %6.1f, client %6.1f us/frame  %s\n",
                 label.c_str(), n, static_cast<unsigned long long>(r.sent), 100 * r.answered_share, r.p50, r.p99, r.max,
-                r.server_cpu_us_per_frame, ok ? "ok" : "over");
+                r.server_cpu_us_per_frame, r.server_wait_us_per_frame, r.client_wait_us_per_frame, ok ? "ok" : "over");
     std::fflush(stdout);
     steps.push_back(to_json(r));
     steps.back()["ok"] = ok;

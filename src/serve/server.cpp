@@ -179,8 +179,11 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     if (h.record.value_or(false) && srv_.opt.record_dir.empty())
       w.warnings.push_back("recording requested but the server has no --record DIR; not recording");
     w.recording = !rec.dir.empty();
+    // dispatch: with --workers 0 the avatar runs inside this session's strand and the
+    // pose is written at once (no handler allocation, no extra scheduler pass); from
+    // a worker thread it is queued to the strand as a post would.
     Sink sink = [weak = weak_from_this(), ex = ws_.get_executor()](Outgoing o) {
-      net::post(ex, [weak, o = std::move(o)]() mutable {
+      net::dispatch(ex, [weak, o = std::move(o)]() mutable {
         if (auto s = weak.lock()) s->send(std::move(o));
       });
     };
