@@ -88,7 +88,7 @@ struct Run {
   double server_wait_us_per_frame = 0, client_wait_us_per_frame = 0;  // run-queue waits (CPU taken by others)
   std::uint64_t sent = 0, answered = 0, errors = 0, failed_clients = 0;
   std::vector<double> latency_ms;
-  double p50 = 0, p99 = 0, max = 0, answered_share = 0;
+  double p50 = 0, p90 = 0, p99 = 0, max = 0, answered_share = 0;
 };
 
 constexpr std::uint32_t kWarmupFrames = 45;  // the first half second of each client is not timed
@@ -223,6 +223,7 @@ Run run_clients(const tcp::endpoint& ep, const std::vector<std::string>& frames,
   std::sort(l.begin(), l.end());
   if (!l.empty()) {
     run.p50 = l[l.size() / 2];
+    run.p90 = l[std::min(l.size() - 1, static_cast<std::size_t>(0.90 * static_cast<double>(l.size())))];
     run.p99 = l[std::min(l.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(l.size())))];
     run.max = l.back();
   }
@@ -232,7 +233,7 @@ Run run_clients(const tcp::endpoint& ep, const std::vector<std::string>& frames,
 
 json to_json(const Run& r) {
   return {{"clients", r.clients},   {"frames_sent", r.sent},   {"poses", r.answered}, {"answered", r.answered_share},
-          {"p50_ms", r.p50},        {"p99_ms", r.p99},         {"max_ms", r.max},     {"errors", r.errors},
+          {"p50_ms", r.p50},        {"p90_ms", r.p90},         {"p99_ms", r.p99},         {"max_ms", r.max},     {"errors", r.errors},
           {"failed_clients", r.failed_clients}, {"server_cpu_us_per_frame", r.server_cpu_us_per_frame},
           {"server_runqueue_wait_us_per_frame", r.server_wait_us_per_frame},
           {"client_runqueue_wait_us_per_frame", r.client_wait_us_per_frame},
@@ -298,9 +299,9 @@ int main(int argc, char** argv) {
     }
     answered = r.answered_share >= 0.99 && r.failed_clients == 0;
     const bool ok = answered && r.p99 <= p99_limit;
-    std::printf("%-13s clients %5d  sent %8llu  answered %6.2f %%  p50 %6.2f ms  p99 %7.2f ms  max %7.2f ms  server CPU %6.1f us/frame  "
+    std::printf("%-13s clients %5d  sent %8llu  answered %6.2f %%  p50 %6.2f ms  p90 %6.2f ms  p99 %7.2f ms  max %7.2f ms  server CPU %6.1f us/frame  "
                 "run-queue wait: server %6.1f, client %6.1f us/frame  %s\n",
-                label.c_str(), n, static_cast<unsigned long long>(r.sent), 100 * r.answered_share, r.p50, r.p99, r.max,
+                label.c_str(), n, static_cast<unsigned long long>(r.sent), 100 * r.answered_share, r.p50, r.p90, r.p99, r.max,
                 r.server_cpu_us_per_frame, r.server_wait_us_per_frame, r.client_wait_us_per_frame, ok ? "ok" : "over");
     std::fflush(stdout);
     steps.push_back(to_json(r));
