@@ -7,14 +7,6 @@ using Legwork;
 
 static class WalkerGround
 {
-    static int failures;
-
-    static void Expect(string what, bool ok, string detail)
-    {
-        Console.WriteLine("{0}: {1} ({2})", ok ? "ok  " : "FAIL", what, detail);
-        if (!ok) ++failures;
-    }
-
     static int Joint(Model model, string humanoid)
     {
         int n = model.Skeleton.JointCount;
@@ -86,7 +78,7 @@ static class WalkerGround
         }
         Library.CheckAbi();
         WalkerSettings s = WalkerSettings.Default();
-        Expect("defaults", s.Root == WalkerRoot.Smooth && s.GroundJson == null && s.SoftReach > 0 && s.SoftReach <= 1,
+        Expect.That("defaults", s.Root == WalkerRoot.Smooth && s.GroundJson == null && s.SoftReach > 0 && s.SoftReach <= 1,
                "root " + s.Root + ", soft reach " + s.SoftReach + ", max turn " + s.MaxTurnPerStep);
         double flatZ, rampZ;
         Model flat = Model.CreateWalker(args[0], s);
@@ -94,40 +86,24 @@ static class WalkerGround
         Model ramp = Model.CreateWalker(args[0], s);
         double flatBelowRamp = Clearance(flat, out flatZ), onRamp = Clearance(ramp, out rampZ);
         double onFlat = flatBelowRamp + Ground(flatZ);
-        Expect("walked up the ramp", Ground(rampZ) > 0.25, string.Format("left ankle at z {0:F2} m, ground {1:F3} m", rampZ, Ground(rampZ)));
-        Expect("the flat walker's feet end below the ramp", flatBelowRamp < -0.2, string.Format("{0:F3} m", flatBelowRamp));
+        Expect.That("walked up the ramp", Ground(rampZ) > 0.25, string.Format("left ankle at z {0:F2} m, ground {1:F3} m", rampZ, Ground(rampZ)));
+        Expect.That("the flat walker's feet end below the ramp", flatBelowRamp < -0.2, string.Format("{0:F3} m", flatBelowRamp));
         // On the ramp the leg IK plants the feet on it: the lowest foot joint as high
         // above it as above the floor, within grade x the foot's length (a joint
         // that far from the contact sees the slope's rise).
         double footLength = FootLength(flat);
-        Expect("planted foot as high above the ramp as above the floor", Math.Abs(onRamp - onFlat) <= Grade * footLength,
+        Expect.That("planted foot as high above the ramp as above the floor", Math.Abs(onRamp - onFlat) <= Grade * footLength,
                string.Format("{0:F3} m above the floor, {1:F3} m above the ramp (bound {2:F3} m)", onFlat, onRamp, Grade * footLength));
         flat.Dispose();
         ramp.Dispose();
 
         WalkerSettings bad = WalkerSettings.Default();
         bad.GroundJson = "{\"slope\": {\"origin\": [0, 0.5], \"direction\": [0, 1], \"grade\": 0.5}}";
-        try
-        {
-            Model.CreateWalker(args[0], bad);
-            Expect("too steep a ramp refused", false, "no exception");
-        }
-        catch (LegworkException e)
-        {
-            Expect("too steep a ramp refused", e.Message.Contains("lw_walker_settings.ground_json: slope: grade"), e.Message);
-        }
+        Expect.Throws<LegworkException>("too steep a ramp refused", () => Model.CreateWalker(args[0], bad),
+                                        "lw_walker_settings.ground_json: slope: grade");
         bad = WalkerSettings.Default();
         bad.SoftReach = 0;
-        try
-        {
-            Model.CreateWalker(args[0], bad);
-            Expect("soft reach 0 refused", false, "no exception");
-        }
-        catch (LegworkException e)
-        {
-            Expect("soft reach 0 refused", e.Message.Contains("soft_reach must be in (0, 1]"), e.Message);
-        }
-        Console.WriteLine(failures == 0 ? "walkerground: all passed" : "walkerground: " + failures + " failed");
-        return failures == 0 ? 0 : 1;
+        Expect.Throws<LegworkException>("soft reach 0 refused", () => Model.CreateWalker(args[0], bad), "soft_reach must be in (0, 1]");
+        return Expect.Summary("walkerground");
     }
 }
