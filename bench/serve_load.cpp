@@ -10,6 +10,7 @@
 // "sustained" is the largest N found that kept p99 <= --p99-ms with every
 // frame answered (the doubling steps below it kept it too). --server-pids adds the servers'
 // CPU time per frame (from /proc) and the avatars per core it implies.
+#include <legwork/core/measure.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/io/bvh.hpp>
 #include <legwork/serve/protocol.hpp>
@@ -25,6 +26,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -63,12 +65,30 @@ double cpu_seconds(const std::vector<int>& pids) {
   return total;
 }
 
+// Nanoseconds the processes' threads spent waiting on a run queue for a CPU
+// (Linux /proc/PID/task/TID/schedstat, second field): time other processes on
+// the same cores took from them.
+double runqueue_wait_seconds(const std::vector<int>& pids) {
+  double total = 0;
+  for (int pid : pids) {
+    const std::string dir = "/proc/" + std::to_string(pid) + "/task";
+    std::error_code ec;
+    for (const auto& t : std::filesystem::directory_iterator(dir, ec)) {
+      std::ifstream in(t.path() / "schedstat");
+      unsigned long long run = 0, wait = 0;
+      if (in >> run >> wait) total += static_cast<double>(wait) * 1e-9;
+    }
+  }
+  return total;
+}
+
 struct Run {
   int clients = 0;
   double server_cpu_us_per_frame = 0;  // with --server-pids
+  double server_wait_us_per_frame = 0, client_wait_us_per_frame = 0;  // run-queue waits (CPU taken by others)
   std::uint64_t sent = 0, answered = 0, errors = 0, failed_clients = 0;
   std::vector<double> latency_ms;
-  double p50 = 0, p99 = 0, max = 0, answered_share = 0;
+  double p50 = 0, p90 = 0, p99 = 0, max = 0, answered_share = 0;
 };
 
 constexpr std::uint32_t kWarmupFrames = 45;  // the first half second of each client is not timed
@@ -78,9 +98,10 @@ constexpr long kPeriodUs = 11111;  // 90 Hz
 class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
  public:
   // phase: when in the 11.1 ms frame period this client sends (0..1).
-  ReplayClient(net::io_context& ioc, const std::vector<std::string>& frames, Run& run, std::string method, double seconds,
+  // hello: the session's hello message (JSON text).
+  ReplayClient(net::io_context& ioc, const std::vector<std::string>& frames, Run& run, std::string hello, double seconds,
                int offset, double phase)
-      : ws_(net::make_strand(ioc)), timer_(ioc), frames_(frames), run_(run), method_(std::move(method)), seconds_(seconds),
+      : ws_(net::make_strand(ioc)), timer_(ioc), frames_(frames), run_(run), hello_(std::move(hello)), seconds_(seconds),
         index_(static_cast<std::size_t>(offset) % frames.size()), phase_(phase) {}
 
   void start(const tcp::endpoint& ep) {
@@ -103,7 +124,6 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
   }
 
   void hello() {
-    hello_ = json{{"type", "hello"}, {"version", 1}, {"method", method_}, {"format", "binary"}, {"record", false}}.dump();
     ws_.text(true);
     ws_.async_write(net::buffer(hello_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
       if (ec) return self->fail();
@@ -179,7 +199,7 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
   net::steady_timer timer_;
   const std::vector<std::string>& frames_;
   Run& run_;
-  std::string method_, hello_, out_;
+  std::string hello_, out_;
   double seconds_;
   std::size_t index_;
   double phase_;
@@ -192,17 +212,18 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
 // Clients send at evenly spread phases of the frame period, as independent
 // headsets do; `aligned` makes them all send at once (the worst case).
 Run run_clients(const tcp::endpoint& ep, const std::vector<std::string>& frames, int clients, double seconds,
-                const std::string& method, bool aligned) {
+                const std::string& hello, bool aligned) {
   Run run;
   run.clients = clients;
   net::io_context ioc;
   for (int i = 0; i < clients; ++i)
-    std::make_shared<ReplayClient>(ioc, frames, run, method, seconds, i * 7, aligned ? 0.0 : double(i) / clients)->start(ep);
+    std::make_shared<ReplayClient>(ioc, frames, run, hello, seconds, i * 7, aligned ? 0.0 : double(i) / clients)->start(ep);
   ioc.run_for(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds + 15)));
   auto& l = run.latency_ms;
   std::sort(l.begin(), l.end());
   if (!l.empty()) {
     run.p50 = l[l.size() / 2];
+    run.p90 = l[std::min(l.size() - 1, static_cast<std::size_t>(0.90 * static_cast<double>(l.size())))];
     run.p99 = l[std::min(l.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(l.size())))];
     run.max = l.back();
   }
@@ -212,8 +233,10 @@ Run run_clients(const tcp::endpoint& ep, const std::vector<std::string>& frames,
 
 json to_json(const Run& r) {
   return {{"clients", r.clients},   {"frames_sent", r.sent},   {"poses", r.answered}, {"answered", r.answered_share},
-          {"p50_ms", r.p50},        {"p99_ms", r.p99},         {"max_ms", r.max},     {"errors", r.errors},
+          {"p50_ms", r.p50},        {"p90_ms", r.p90},         {"p99_ms", r.p99},         {"max_ms", r.max},     {"errors", r.errors},
           {"failed_clients", r.failed_clients}, {"server_cpu_us_per_frame", r.server_cpu_us_per_frame},
+          {"server_runqueue_wait_us_per_frame", r.server_wait_us_per_frame},
+          {"client_runqueue_wait_us_per_frame", r.client_wait_us_per_frame},
           {"avatars_per_core_by_cpu", r.server_cpu_us_per_frame > 0 ? 1e6 / (90.0 * r.server_cpu_us_per_frame) : 0.0}};
 }
 
@@ -229,6 +252,11 @@ int main(int argc, char** argv) {
   app.add_option("--clients", clients, "concurrent clients")->check(CLI::Range(1, 5000));
   app.add_option("--seconds", seconds, "streaming time per step")->check(CLI::Range(0.5, 60.0));
   app.add_option("--method", method, "session method");
+  std::vector<std::string> classes;
+  app.add_option("--classes", classes, "hello classes (accent; default: none given, the server recognises the activity)")->delimiter(',');
+  double user_height = -1;
+  app.add_option("--user-height", user_height,
+                 "hello user_height in metres (default: the trial subject's standing height, as the viewer sends; 0: none)");
   app.add_option("--trial", trial, "BVH trial replayed (head + hands)");
   app.add_flag("--ramp", ramp, "double the clients until p99 or answers fail, then narrow the bracket");
   app.add_option("--max-clients", max_clients, "ramp ceiling")->check(CLI::Range(1, 5000));
@@ -243,8 +271,13 @@ int main(int argc, char** argv) {
 
   io::BvhReadOptions ro;
   ro.drop_first_frame = true;
+  const Motion motion = io::load_bvh(trial, ro);
+  if (user_height < 0) user_height = measure_body(motion.skeleton).standing_height;
+  json hello = {{"type", "hello"}, {"version", 1}, {"method", method}, {"format", "binary"}, {"record", false}};
+  if (user_height > 0 && method != "walker") hello["user_height"] = user_height;
+  if (!classes.empty()) hello["classes"] = classes;
   std::vector<std::string> frames;
-  for (auto f : tracker_frames_from_motion(io::load_bvh(trial, ro), 90.0)) {
+  for (auto f : tracker_frames_from_motion(motion, 90.0)) {
     f.foot(kLeft).valid = f.foot(kRight).valid = false;
     frames.push_back(serve::binary_frame(f));
     if (still) break;
@@ -253,15 +286,23 @@ int main(int argc, char** argv) {
   json steps = json::array();
   // One step: n clients for `seconds`; prints and records it; true when ok.
   auto step = [&](int n, bool& answered) {
-    const double cpu0 = cpu_seconds(server_pids);
-    Run r = run_clients(ep, frames, n, seconds, method, aligned);
-    if (r.answered > 0 && !server_pids.empty())
-      r.server_cpu_us_per_frame = 1e6 * (cpu_seconds(server_pids) - cpu0) / static_cast<double>(r.answered);
+    const double cpu0 = cpu_seconds(server_pids), wait0 = runqueue_wait_seconds(server_pids);
+    const double self_wait0 = runqueue_wait_seconds({static_cast<int>(getpid())});
+    Run r = run_clients(ep, frames, n, seconds, hello.dump(), aligned);
+    if (r.answered > 0) {
+      const auto per_frame = [&](double s) { return 1e6 * s / static_cast<double>(r.answered); };
+      r.client_wait_us_per_frame = per_frame(runqueue_wait_seconds({static_cast<int>(getpid())}) - self_wait0);
+      if (!server_pids.empty()) {
+        r.server_cpu_us_per_frame = per_frame(cpu_seconds(server_pids) - cpu0);
+        r.server_wait_us_per_frame = per_frame(runqueue_wait_seconds(server_pids) - wait0);
+      }
+    }
     answered = r.answered_share >= 0.99 && r.failed_clients == 0;
     const bool ok = answered && r.p99 <= p99_limit;
-    std::printf("%-13s clients %5d  sent %8llu  answered %6.2f %%  p50 %6.2f ms  p99 %7.2f ms  max %7.2f ms  server CPU %6.1f us/frame  %s\n",
-                label.c_str(), n, static_cast<unsigned long long>(r.sent), 100 * r.answered_share, r.p50, r.p99, r.max,
-                r.server_cpu_us_per_frame, ok ? "ok" : "over");
+    std::printf("%-13s clients %5d  sent %8llu  answered %6.2f %%  p50 %6.2f ms  p90 %6.2f ms  p99 %7.2f ms  max %7.2f ms  server CPU %6.1f us/frame  "
+                "run-queue wait: server %6.1f, client %6.1f us/frame  %s\n",
+                label.c_str(), n, static_cast<unsigned long long>(r.sent), 100 * r.answered_share, r.p50, r.p90, r.p99, r.max,
+                r.server_cpu_us_per_frame, r.server_wait_us_per_frame, r.client_wait_us_per_frame, ok ? "ok" : "over");
     std::fflush(stdout);
     steps.push_back(to_json(r));
     steps.back()["ok"] = ok;
@@ -283,7 +324,7 @@ int main(int argc, char** argv) {
   }
   std::printf("%s: %d avatars sustained at 90 Hz with p99 <= %.1f ms (method %s)\n", label.c_str(), sustained, p99_limit, method.c_str());
   if (!out.empty()) {
-    std::ofstream(out) << json{{"label", label}, {"method", method}, {"rate_hz", 90}, {"p99_limit_ms", p99_limit}, {"aligned", aligned},
+    std::ofstream(out) << json{{"label", label}, {"method", method}, {"hello", hello}, {"rate_hz", 90}, {"p99_limit_ms", p99_limit}, {"aligned", aligned},
                                {"sustained_avatars", sustained}, {"steps", steps}}
                               .dump(2)
                        << "\n";

@@ -5,10 +5,17 @@
 #   1. one server process pinned to one core (taskset -c 0), and
 #   2. two server processes (cores 0 and 1) behind HAProxy (scripts/serve-cluster.sh).
 # Prints the figures and writes OUT.json (default serve-bench.json).
-#   scripts/serve-bench.sh [--out FILE] [--method ik|accent] [--db FILE] [--seconds S] [--max-clients N] [--build DIR] [--workers N (default 0)]
+#   scripts/serve-bench.sh [--out FILE] [--method ik|accent] [--db FILE] [--classes a,b] [--seconds S] [--max-clients N]
+#                          [--build DIR] [--workers N (default 0)] [--aligned] [--one-only]
+# --classes: the sessions' accent classes (default none: the server recognises the activity);
+# --aligned: clients send at the same instant (default: spread over the frame period);
+# --one-only: skip the two-process HAProxy run.
+# serve_load reports the servers' CPU per frame and their run-queue wait (CPU time other
+# processes took from them): on a shared machine the latency figures include it.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-out=serve-bench.json method=ik db="" seconds=5 max=1280 build="$root/build" workers=0
+out=serve-bench.json method=ik db="" seconds=5 max=1280 build="$root/build" workers=0 one_only=0
+load_args=()
 while [ $# -gt 0 ]; do
   case $1 in
     --out) out=$2; shift 2 ;;
@@ -18,6 +25,9 @@ while [ $# -gt 0 ]; do
     --max-clients) max=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
     --workers) workers=$2; shift 2 ;;
+    --classes) load_args+=(--classes "$2"); shift 2 ;;
+    --aligned) load_args+=(--aligned); shift ;;
+    --one-only) one_only=1; shift ;;
     *) echo "serve-bench: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -32,14 +42,18 @@ ulimit -n 20000 2>/dev/null || true
 # 1. One process on one core, clients direct (the load client runs on the other core).
 "$root/scripts/serve-cluster.sh" start 1 --port "$(free_port)" --dir "$work/c1" --legwork "$legwork" --pin -- "${serve_args[@]}" >/dev/null
 p1=$(grep -o '127.0.0.1:[0-9]*/' "$work/c1/serve-1.log" | head -1 | tr -dc '0-9:' | cut -d: -f2)
-taskset -c 1 "$load" --port "$p1" --server-pids "$(cat "$work/c1/serve-1.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" --label "1 process" --json "$work/one.json"
+taskset -c 1 "$load" --port "$p1" --server-pids "$(cat "$work/c1/serve-1.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "1 process" --json "$work/one.json"
 "$root/scripts/serve-cluster.sh" stop --dir "$work/c1" >/dev/null
 
-# 2. Two processes (one per core) behind HAProxy.
-port=$(free_port)
-"$root/scripts/serve-cluster.sh" start 2 --port "$port" --dir "$work/c2" --legwork "$legwork" --pin -- "${serve_args[@]}" >/dev/null
-"$load" --port "$port" --server-pids "$(cat "$work/c2/serve-1.pid"),$(cat "$work/c2/serve-2.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" --label "2 via haproxy" --json "$work/two.json"
-"$root/scripts/serve-cluster.sh" stop --dir "$work/c2" >/dev/null
+if [ "$one_only" = 1 ]; then
+  echo '{"sustained_avatars": 0, "skipped": true}' > "$work/two.json"
+else
+  # 2. Two processes (one per core) behind HAProxy.
+  port=$(free_port)
+  "$root/scripts/serve-cluster.sh" start 2 --port "$port" --dir "$work/c2" --legwork "$legwork" --pin -- "${serve_args[@]}" >/dev/null
+  "$load" --port "$port" --server-pids "$(cat "$work/c2/serve-1.pid"),$(cat "$work/c2/serve-2.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "2 via haproxy" --json "$work/two.json"
+  "$root/scripts/serve-cluster.sh" stop --dir "$work/c2" >/dev/null
+fi
 
 python3 - "$work/one.json" "$work/two.json" "$out" <<'PY'
 import json, os, sys

@@ -91,6 +91,29 @@ namespace Legwork
         }
     }
 
+    /// <summary>lw_walker_root: how the walker's root travels.</summary>
+    public enum WalkerRoot { Smooth = 0, Pivot = 1 }
+
+    /// <summary>lw_walker_settings; start from WalkerSettings.Default().</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct WalkerSettings
+    {
+        public WalkerRoot Root;        // Smooth: even root, legs hold the planted feet (default); Pivot: document 001
+        public double MaxTurnPerStep;  // radians of heading change per step, >= 0
+        public double SoftReach;       // smooth root: fraction of a leg's length it may straighten to, (0, 1]
+        // The ground walked on (smooth root): the JSON of a path file's "ground" object, e.g.
+        // {"slope": {"origin": [0, 1], "direction": [0, 1], "grade": 0.1}} or {"heightfield": {...}}
+        // (docs/walkcycle.md; stairs are refused); null or "" = the flat floor.
+        [MarshalAs(UnmanagedType.LPStr)] public string GroundJson;
+
+        public static WalkerSettings Default()
+        {
+            WalkerSettings s;
+            Native.lw_walker_settings_default(out s);
+            return s;
+        }
+    }
+
     /// <summary>Raw entry points of liblegwork (DllImport name "legwork").</summary>
     public static class Native
     {
@@ -123,6 +146,9 @@ namespace Legwork
         [DllImport(Lib)] public static extern Status lw_model_create_ik(Skeleton skeleton, out IntPtr model);
         [DllImport(Lib)] public static extern Status lw_model_create_wip(Skeleton skeleton, out IntPtr model);
         [DllImport(Lib)] public static extern Status lw_model_create_walker([MarshalAs(UnmanagedType.LPStr)] string keysJson, out IntPtr model);
+        [DllImport(Lib)] public static extern void lw_walker_settings_default(out WalkerSettings s);
+        [DllImport(Lib)] public static extern Status lw_model_create_walker_with_settings([MarshalAs(UnmanagedType.LPStr)] string keysJson,
+                                                                                          ref WalkerSettings s, out IntPtr model);
         [DllImport(Lib)] public static extern void lw_model_destroy(IntPtr model);
         [DllImport(Lib)] public static extern Method lw_model_method(Model model);
         [DllImport(Lib)] public static extern IntPtr lw_model_skeleton(Model model);
@@ -282,6 +308,15 @@ namespace Legwork
         {
             IntPtr p;
             Native.Check(Native.lw_model_create_walker(keysJsonPath, out p));
+            return new Model(p, null);
+        }
+
+        /// <summary>The walker with settings (root motion, turning, reach, the ground); a bad value
+        /// raises LegworkException naming the field.</summary>
+        public static Model CreateWalker(string keysJsonPath, WalkerSettings settings)
+        {
+            IntPtr p;
+            Native.Check(Native.lw_model_create_walker_with_settings(keysJsonPath, ref settings, out p));
             return new Model(p, null);
         }
 

@@ -8,6 +8,7 @@
 #include <legwork/io/bvh.hpp>
 #include <legwork/serve/avatar.hpp>
 #include <legwork/serve/protocol.hpp>
+#include <legwork/serve/rate_limit.hpp>
 #include <legwork/wip/offline/learn.hpp>
 
 #include <utility>  // before Asio: Boost 1.74 awaitable.hpp uses std::exchange without it
@@ -16,6 +17,7 @@
 #include <boost/beast.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -30,6 +32,17 @@ namespace net = boost::asio;
 using tcp = net::ip::tcp;
 
 class WsSession;
+
+namespace {
+// The `rate` error's message for a dropped frame.
+std::string rate_message(RateVerdict v, double max_rate_hz) {
+  const auto hz = [](double r) { return std::to_string(static_cast<long long>(std::lround(r))); };
+  if (v == RateVerdict::TooFastForTheClock)
+    return "frames arriving above " + hz(max_rate_hz * RateLimiter::kCeilingFactor) +
+           " Hz of the server's clock are dropped (the frames' times t advance faster than real time)";
+  return "frames above " + hz(max_rate_hz) + " Hz are dropped (by the frames' own times t)";
+}
+}  // namespace
 
 struct Server::Impl {
   ServeOptions opt;
@@ -46,7 +59,7 @@ struct Server::Impl {
   std::mutex mu;
   std::map<std::string, std::weak_ptr<WsSession>> sessions;
   std::atomic<int> live{0};
-  std::atomic<std::uint64_t> next_id{1}, opened{0}, closed{0}, frames{0}, errors{0}, refused{0};
+  std::atomic<std::uint64_t> next_id{1}, opened{0}, closed{0}, frames{0}, errors{0}, refused{0}, rate_dropped{0};
   std::atomic<bool> stopping{false};
 
   explicit Impl(ServeOptions o);
@@ -60,7 +73,8 @@ struct Server::Impl {
 
 class WsSession : public std::enable_shared_from_this<WsSession> {
  public:
-  WsSession(tcp::socket&& s, Server::Impl& srv) : ws_(std::move(s)), srv_(srv), id_(srv.new_session_id()) {}
+  WsSession(tcp::socket&& s, Server::Impl& srv)
+      : ws_(std::move(s)), srv_(srv), id_(srv.new_session_id()), rate_(srv.opt.max_rate_hz, SteadyClock::now()) {}
 
   void run(http::request<http::string_body> req) {
     ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
@@ -165,8 +179,11 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     if (h.record.value_or(false) && srv_.opt.record_dir.empty())
       w.warnings.push_back("recording requested but the server has no --record DIR; not recording");
     w.recording = !rec.dir.empty();
+    // dispatch: with --workers 0 the avatar runs inside this session's strand and the
+    // pose is written at once (no handler allocation, no extra scheduler pass); from
+    // a worker thread it is queued to the strand as a post would.
     Sink sink = [weak = weak_from_this(), ex = ws_.get_executor()](Outgoing o) {
-      net::post(ex, [weak, o = std::move(o)]() mutable {
+      net::dispatch(ex, [weak, o = std::move(o)]() mutable {
         if (auto s = weak.lock()) s->send(std::move(o));
       });
     };
@@ -180,20 +197,17 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     if (!avatar_) throw ProtocolError("bad_message", "send hello before frames");
     ++seq_;
     ++srv_.frames;
-    // Rate limit: a token bucket at max_rate_hz with a burst of a quarter second: frames a
-    // network hiccup (or this thread's own stall) delivered together are not dropped.
+    // Rate limit by the frames' own times, with a wall-clock ceiling (rate_limit.hpp).
     const auto now = SteadyClock::now();
-    const double burst = std::max(4.0, srv_.opt.max_rate_hz * 0.25);
-    tokens_ = std::min(burst, tokens_ + std::chrono::duration<double>(now - last_token_).count() * srv_.opt.max_rate_hz);
-    last_token_ = now;
-    if (tokens_ < 1) {
+    const RateVerdict v = rate_.admit(f.time, now);
+    if (v != RateVerdict::Accept) {
+      ++srv_.rate_dropped;
       if (now - last_rate_error_ > std::chrono::seconds(1)) {
         last_rate_error_ = now;
-        error("rate", "frames above " + std::to_string(static_cast<int>(srv_.opt.max_rate_hz)) + " Hz are dropped", seq_, f.time);
+        error("rate", rate_message(v, srv_.opt.max_rate_hz), seq_, f.time);
       }
       return;
     }
-    tokens_ -= 1;
     if (avatar_->push(f, seq_, now)) srv_.workers.schedule(avatar_);
   }
 
@@ -246,8 +260,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   bool writing_ = false, closed_ = false, registered_ = false;
   std::optional<websocket::close_code> closing_after_write_;
   std::uint64_t seq_ = 0;
-  double tokens_ = 4;
-  SteadyClock::time_point last_token_ = SteadyClock::now(), last_rate_error_{};
+  RateLimiter rate_;
+  SteadyClock::time_point last_rate_error_{};
 };
 
 // ---- HTTP session --------------------------------------------------------------
@@ -426,6 +440,7 @@ ServerStats Server::stats() const {
   st.frames = s.frames;
   st.errors = s.errors;
   st.refused = s.refused;
+  st.rate_dropped = s.rate_dropped;
   st.live_sessions = s.live;
   return st;
 }

@@ -1,6 +1,8 @@
 // legwork serve end to end: a server on a free loopback port, Beast clients.
 #include "serve_testing.hpp"
 
+#include <legwork/serve/rate_limit.hpp>
+
 #include <legwork/core/fk.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/io/bvh.hpp>
@@ -17,11 +19,11 @@ namespace {
 using namespace testing;
 
 // Head + hands (+ ankles) of a real CMU trial at 90 Hz, T-pose dropped.
-std::vector<TrackerFrame> trial_frames(const std::string& rel = "walking/07_02.bvh", bool feet = false) {
+std::vector<TrackerFrame> trial_frames(const std::string& rel = "walking/07_02.bvh", bool feet = false, double hz = 90) {
   io::BvhReadOptions o;
   o.drop_first_frame = true;
   const Motion m = io::load_bvh(source_dir() + "/data/cmu/bvh/" + rel, o);
-  auto frames = tracker_frames_from_motion(m, 90.0);
+  auto frames = tracker_frames_from_motion(m, hz);
   if (!feet)
     for (auto& f : frames) f.foot(kLeft).valid = f.foot(kRight).valid = false;
   return frames;
@@ -287,28 +289,78 @@ TEST(Serve, ThousandConnectDisconnectCyclesWhileAnotherClientStreams) {
   EXPECT_EQ(srv.server().stats().sessions_opened, 1001u);
 }
 
-TEST(Serve, RateLimitDropsFramesAboveMaxRateWithAnError) {
+// Sends `frames` as fast as the socket takes them, then reads until the server
+// is quiet; returns the last `rate` error (empty object: none).
+json send_all_and_drain(Client& c, const std::vector<TrackerFrame>& frames) {
+  for (const TrackerFrame& f : frames) c.send_binary(binary_frame(f));
+  json rate = json::object();
+  while (auto m = c.read(std::chrono::milliseconds(500)))
+    if (!m->binary && m->j()["type"] == "error") rate = m->j();
+  return rate;
+}
+
+ServeOptions rate_limited(double hz) {
   ServeOptions o = test_options();
-  o.max_rate_hz = 120;
-  RunningServer srv(o);
+  o.max_rate_hz = hz;
+  o.workers = 0;
+  return o;
+}
+
+// A 90 Hz stream whose last 2 s arrive at once (what the socket delivers after
+// the server's thread stalled, e.g. on a loaded machine): every frame is kept.
+TEST(Serve, RateLimitKeepsAnHonestBacklogDeliveredAtOnce) {
+  RunningServer srv(rate_limited(120));
   Client c(srv.port());
   c.hello();
   const auto frames = trial_frames();
-  ASSERT_GE(frames.size(), 200U);
-  for (std::size_t i = 0; i < 200; ++i) c.send_text(json_frame(frames[i]));  // as fast as the socket takes them
-  int poses = 0;
-  json rate;
-  while (auto m = c.read(std::chrono::milliseconds(500))) {
-    const json j = m->j();
-    if (j["type"] == "pose") ++poses;
-    if (j["type"] == "error") rate = j;
+  ASSERT_GE(frames.size(), 240U);
+  const std::size_t paced = frames.size() - 180;
+  for (std::size_t i = 0; i < paced; ++i) {  // in step with the frames' times
+    c.send_binary(binary_frame(frames[i]));
+    std::this_thread::sleep_for(std::chrono::microseconds(11111));
   }
-  EXPECT_EQ(rate["code"], "rate") << rate.dump();
-  EXPECT_NE(rate["message"].get<std::string>().find("frames above 120 Hz are dropped"), std::string::npos);
-  // at most the quarter-second burst (30 frames) and what 120 Hz refills while the 200
-  // arrive; fewer come back, as a client that does not read keeps only its newest poses
-  EXPECT_GE(poses, 1);
-  EXPECT_LT(poses, 100);
+  const json rate = send_all_and_drain(c, {frames.begin() + static_cast<std::ptrdiff_t>(paced), frames.end()});
+  EXPECT_TRUE(rate.empty()) << rate.dump();
+  EXPECT_EQ(srv.server().stats().frames, frames.size());
+  EXPECT_EQ(srv.server().stats().rate_dropped, 0U);
+}
+
+// A client stamping its frames at 240 Hz (sent as fast as the socket takes
+// them) keeps the quarter-second burst and then 120 Hz of its own time.
+TEST(Serve, RateLimitDropsAClientSendingAboveMaxRateInItsOwnTime) {
+  RunningServer srv(rate_limited(120));
+  Client c(srv.port());
+  c.hello();
+  auto frames = trial_frames("walking/07_02.bvh", false, 240);
+  ASSERT_GE(frames.size(), 400U);
+  frames.resize(400);
+  const json rate = send_all_and_drain(c, frames);
+  ASSERT_EQ(rate.value("code", ""), "rate") << rate.dump();
+  EXPECT_NE(rate["message"].get<std::string>().find("frames above 120 Hz are dropped"), std::string::npos) << rate.dump();
+  const double kept = 120 * RateLimiter::kStreamBurstSeconds + 120 * (frames.back().time - frames.front().time);
+  EXPECT_NEAR(static_cast<double>(frames.size() - srv.server().stats().rate_dropped), kept, 1.0);
+}
+
+// A client whose timestamps run ahead of real time (a second per frame, 600
+// frames as fast as it can) is held by the wall-clock ceiling: two seconds of
+// 120 Hz, then 240 frames per second of the server's clock.
+TEST(Serve, RateLimitBoundsAClientWithFakeTimestamps) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RunningServer srv(rate_limited(120));
+  Client c(srv.port());
+  c.hello();
+  auto frames = trial_frames();
+  frames.resize(200);
+  for (std::size_t i = 0; i < frames.size(); ++i) frames[i].time = static_cast<double>(i);
+  for (int k = 0; k < 2; ++k) frames.insert(frames.end(), frames.begin(), frames.begin() + 200);  // and back in time, twice
+  const json rate = send_all_and_drain(c, frames);
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_EQ(rate.value("code", ""), "rate") << rate.dump();
+  EXPECT_NE(rate["message"].get<std::string>().find("frames arriving above 240 Hz of the server's clock are dropped"), std::string::npos)
+      << rate.dump();
+  const auto kept = static_cast<double>(frames.size() - srv.server().stats().rate_dropped);
+  EXPECT_LE(kept, 120 * RateLimiter::kCeilingBurstSeconds + 240 * elapsed + 1) << "in " << elapsed << " s";
+  EXPECT_GE(kept, 120 * RateLimiter::kCeilingBurstSeconds);
 }
 
 TEST(Serve, SessionLimitRefusesWithBusy) {

@@ -24,7 +24,7 @@ struct ServeOptions {
   std::string vmc_left_serial, vmc_right_serial;  // controller serials; empty: by side at start
   double vmc_rate_hz = 90;    // VMC input sampling and output rate
   int max_sessions = 64;
-  double max_rate_hz = 120;   // per-session frame rate limit (latest sample wins above it)
+  double max_rate_hz = 120;   // per-session frame rate limit by the frames' own times (rate_limit.hpp)
   std::size_t max_message_bytes = 64 * 1024;
   std::string record_dir;     // record sessions here ("" = off)
   double record_max_seconds = 300;
@@ -34,6 +34,7 @@ struct ServeOptions {
 
 struct ServerStats {
   std::uint64_t sessions_opened = 0, sessions_closed = 0, frames = 0, poses = 0, errors = 0, refused = 0;
+  std::uint64_t rate_dropped = 0;  // frames dropped by the rate limit (rate_limit.hpp)
   int live_sessions = 0;
 };
 
