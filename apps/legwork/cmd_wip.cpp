@@ -13,46 +13,46 @@ namespace {
 
 // The Kinect-like noise of the evaluation's noisy run (wip eval, wip tune).
 void add_noise_options(CLI::App* cmd, eval::WipJob& a) {
-  cmd->add_option("--noise", a.noise, "jitter of the noisy run, m (default 0.015)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--noise", a.noise, "jitter of the noisy run, m (default 0.015)")->check(CLI::Range(0.0, 0.2));
   cmd->add_option("--drop-rate", a.drop_rate, "dropped samples in the noisy run (default 0.02)")->check(CLI::Range(0.0, 0.9));
   cmd->add_option("--seed", a.seed, "noise seed (default 1)");
 }
 
 void add_method_options(CLI::App* cmd, eval::WipJob& a) {
-  cmd->add_option("--cutoff", a.cutoff, "low-pass cutoff, Hz (default 4)")->check(CLI::PositiveNumber);
-  cmd->add_option("--h1", a.h1, "lift height threshold H1, m (default 0.1)")->check(CLI::PositiveNumber);
-  cmd->add_option("--v1", a.v1, "rise velocity threshold V1, m/s (default 0.2)")->check(CLI::PositiveNumber);
-  cmd->add_option("--v2", a.v2, "descent velocity threshold V2, m/s (default 0.6)")->check(CLI::PositiveNumber);
+  cmd->add_option("--cutoff", a.cutoff, "low-pass cutoff, Hz (default 4)")->check(positive_up_to(50));
+  cmd->add_option("--h1", a.h1, "lift height threshold H1, m (default 0.1)")->check(positive_up_to(1));
+  cmd->add_option("--v1", a.v1, "rise velocity threshold V1, m/s (default 0.2)")->check(positive_up_to(5));
+  cmd->add_option("--v2", a.v2, "descent velocity threshold V2, m/s (default 0.6)")->check(positive_up_to(10));
   cmd->add_flag("--no-adaptive", a.no_adaptive,
                 "use H1/V1/V2 as fixed thresholds (default: they shrink toward the user's own step)");
   cmd->add_option("--detector", a.detector,
                   "foot-off detection: document (H1/V1/V2 on the 4 Hz height) or adaptive (lighter filter, stance baseline, "
                   "noise-scaled thresholds; default " + a.detector + ")")
       ->check(CLI::IsMember({"document", "adaptive"}));
-  cmd->add_option("--detect-cutoff", a.detect_cutoff, "adaptive detector: low-pass of its signal, Hz")->check(CLI::PositiveNumber);
+  cmd->add_option("--detect-cutoff", a.detect_cutoff, "adaptive detector: low-pass of its signal, Hz")->check(positive_up_to(50));
   cmd->add_option("--baseline-tau", a.baseline_tau, "adaptive detector: stance baseline time constant, s")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_up_to(60));
   cmd->add_option("--noise-factor", a.noise_factor, "adaptive detector: foot-off height >= this x the tracker jitter")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 20.0));
   cmd->add_option("--rise-noise-factor", a.rise_noise_factor,
                   "adaptive detector: foot-off speed >= this (1/s) x the tracker jitter")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 200.0));
   cmd->add_option("--lift-fraction", a.lift_fraction, "adaptive detector: foot-off height >= this x the apex estimate")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--rise-fraction", a.rise_fraction, "adaptive detector: foot-off speed >= this x the peak rise estimate")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--min-lift", a.min_lift, "adaptive detector: lowest foot-off height, m")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--min-rise", a.min_rise, "adaptive detector: lowest foot-off speed, m/s")->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--min-lift", a.min_lift, "adaptive detector: lowest foot-off height, m")->check(CLI::Range(0.0, 0.1));
+  cmd->add_option("--min-rise", a.min_rise, "adaptive detector: lowest foot-off speed, m/s")->check(CLI::Range(0.0, 2.0));
   cmd->add_flag("--raw-height", a.raw_height,
                 "feed the raw height into the equations (default: normalised by the user's step apex)");
   cmd->add_option("--stop-time", a.stop_time, "double support longer than this stops the legs, s (default 1.5)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_up_to(60));
   cmd->add_option("--mapping", a.mapping,
                   "fore-aft IK-target depths: document (equations 1-4, default) or learned (table from real walks)")
       ->check(CLI::IsMember({"document", "learned"}));
   cmd->add_option("--table", a.table, "learned mapping table (default data/wip/learned_mapping.txt; `legwork wip learn`)");
   cmd->add_option("--step-length", a.step_length, "maximum step length S for a 0.8 m leg, m (default 0.6; scaled to the avatar)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_up_to(2));
 }
 // ---- registration ---------------------------------------------------------
 
@@ -88,13 +88,13 @@ void register_wip(CLI::App& app) {
   cmd->add_flag("--keep-first-frame", a->keep_first, "keep BVH frame 0 (dropped by default: CMU's T-pose)");
   add_method_options(cmd, *a);
   auto& s = a->syn;
-  cmd->add_option("--duration", s.duration, "synthetic: seconds (default 20)")->check(CLI::PositiveNumber);
+  cmd->add_option("--duration", s.duration, "synthetic: seconds (default 20)")->check(positive_up_to(1000000));
   cmd->add_option("--stand-time", s.stand_time, "synthetic: standing still at the start, s (default 3)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--cadence", s.cadence, "synthetic: steps per second (default 1.8)")->check(CLI::PositiveNumber);
-  cmd->add_option("--step-height", s.step_height, "synthetic: ankle lift, m (default 0.15)")->check(CLI::PositiveNumber);
+      ->check(CLI::Range(0.0, 600.0));
+  cmd->add_option("--cadence", s.cadence, "synthetic: steps per second (default 1.8)")->check(positive_up_to(10));
+  cmd->add_option("--step-height", s.step_height, "synthetic: ankle lift, m (default 0.15)")->check(positive_up_to(1));
   cmd->add_option("--asymmetry", s.asymmetry, "synthetic: right lift = (1 - a) * left (default 0)")->check(CLI::Range(0.0, 0.9));
-  cmd->add_option("--noise", s.noise, "synthetic: jitter per coordinate, m (default 0.015)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--noise", s.noise, "synthetic: jitter per coordinate, m (default 0.015)")->check(CLI::Range(0.0, 0.2));
   cmd->add_option("--drop-rate", s.drop_rate, "synthetic: dropped-sample probability (default 0.02)")->check(CLI::Range(0.0, 0.9));
   cmd->add_option("--pause", s.pause_start, "synthetic: a 3 s stop starts here, s (default 11; negative = none)");
   cmd->add_option("--seed", s.seed, "synthetic: random seed (default 1)");
@@ -112,7 +112,7 @@ void register_wip(CLI::App& app) {
   ev->add_option("--truth", a->truth, "ground-truth contacts: learned (per-foot stance height, default) or fixed (the former "
                                       "3 cm over a rolling floor)")
       ->check(CLI::IsMember({"learned", "fixed"}));
-  ev->add_option("--limit", a->limit, "evaluate only the first N trials")->check(CLI::PositiveNumber);
+  ev->add_option("--limit", a->limit, "evaluate only the first N trials")->check(CLI::Range(1, 1000000));
   ev->add_flag("--cross-validate-detector", a->cross_validate_detector,
                "also choose the adaptive detector's parameters by cross-validation by subject (as `wip tune`) and "
                "report the held-out figures");
@@ -127,7 +127,7 @@ void register_wip(CLI::App& app) {
   learn->add_option("--data", a->data, "folder of walking BVH trials (default ../shared/data/cmu/bvh/walking)");
   output_file(learn->add_option("--out", a->out, "the learned table (.txt)")->required());
   learn->add_option("--exclude-subjects", a->exclude_subjects, "CMU subjects left out, e.g. 105,16 (for held-out tests)");
-  learn->add_option("--limit", a->limit, "use only the first N trials")->check(CLI::PositiveNumber);
+  learn->add_option("--limit", a->limit, "use only the first N trials")->check(CLI::Range(1, 1000000));
   learn->add_option("--rate", a->rate, "tracker rate, Hz (default 30)")->check(CLI::Range(10.0, 1000.0));
   add_method_options(learn, *a);
   learn->callback([a] { eval::run_wip_learn_job(*a); });
@@ -139,7 +139,7 @@ void register_wip(CLI::App& app) {
       "Example: legwork wip tune --data ../shared/data/cmu/bvh/walking --out wip-tune");
   tune->add_option("--data", a->data, "folder of walking BVH trials (default ../shared/data/cmu/bvh/walking)");
   tune->add_option("--out", a->eval_out, "output folder")->required();
-  tune->add_option("--limit", a->limit, "use only the first N trials")->check(CLI::PositiveNumber);
+  tune->add_option("--limit", a->limit, "use only the first N trials")->check(CLI::Range(1, 1000000));
   add_noise_options(tune, *a);
   tune->callback([a] { eval::run_wip_tune_job(*a); });
   cmd->callback([a, ev, learn, tune] {

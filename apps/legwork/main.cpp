@@ -28,6 +28,18 @@ CLI::Option* output_file(CLI::Option* option) {
   return option->each([name](const std::string& path) { io::prepare_output(path, name); });
 }
 
+CLI::Validator positive_up_to(double max) {
+  const std::string high = CLI::detail::to_string(max);
+  return CLI::Validator(
+      [max, high](std::string& in) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(in, v)) return "Value " + in + " is not a number";
+        if (!(v > 0 && v <= max)) return "Value " + in + " not in range 0 (exclusive) to " + high;
+        return {};
+      },
+      "(0 - " + high + "]");
+}
+
 void MotionInput::add_options(CLI::App* cmd, bool positional, const std::string& name) {
   if (positional) cmd->add_option(name, path, "motion file to read: .bvh, or a .glb (legwork's or another tool's skinned glTF whose rig resolves to roles)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--scale", options.scale, "file units -> metres (0 = detect from the rest-pose height; CMU = 0.056444)")

@@ -25,6 +25,31 @@ set_tests_properties(cli.wip_csv PROPERTIES DEPENDS cli.wip_synthetic)
 legwork_cli_error(wip_no_input "error: [^\n]*give exactly one of --input FILE \\(.csv or .bvh\\) and --synthetic" wip --out ${O}/x.glb)
 legwork_cli_error(wip_speed_gain_range "--speed-gain: Value -1 not in range 0\\.0+ to 20\\.0+" wip --synthetic --speed-gain -1 --out ${O}/x.glb)
 legwork_cli_error(wip_max_speed_range "--max-speed: Value 50 not in range 0\\.0+ to 12\\.0+" wip --synthetic --max-speed 50 --out ${O}/x.glb)
+# Every numeric wip option is checked against a plain range named in the message (CLI11's non-negative and
+# positive checks printed a 300-digit maximum). Each spec: where (wip = `wip --synthetic`, eval = `wip eval`);
+# option; bad value; the message's range as a regex.
+set(r0 "0\\.0+ to")
+set(rp "0 \\(exclusive\\) to")
+foreach(spec IN ITEMS "wip;--noise-factor;-1;${r0} 20\\.0+" "wip;--rise-noise-factor;500;${r0} 200\\.0+"
+                      "wip;--lift-fraction;1.5;${r0} 1\\.0+" "wip;--rise-fraction;-0.1;${r0} 1\\.0+"
+                      "wip;--min-lift;0.5;${r0} 0\\.10*" "wip;--min-rise;3;${r0} 2\\.0+" "wip;--stand-time;-2;${r0} 600\\.0+"
+                      "wip;--noise;0.5;${r0} 0\\.20*" "eval;--noise;-0.01;${r0} 0\\.20*" "wip;--cutoff;-1;${rp} 50"
+                      "wip;--h1;0;${rp} 1" "wip;--detect-cutoff;80;${rp} 50" "wip;--step-length;-0.6;${rp} 2"
+                      "wip;--cadence;0;${rp} 10" "eval;--limit;0;1 to 1000000")
+  list(GET spec 0 where)
+  list(GET spec 1 opt)
+  list(GET spec 2 value)
+  list(GET spec 3 range)
+  string(REGEX REPLACE "^--" "_" name "${opt}")
+  string(REPLACE "-" "_" name "${where}${name}")
+  string(REPLACE "." "\\." value_re "${value}")
+  if(where STREQUAL "eval")
+    set(run wip eval --data ${D}/walking --out ${O}/wip_eval_range)
+  else()
+    set(run wip --synthetic --out ${O}/x.glb)
+  endif()
+  legwork_cli_error(${name}_range "${opt}: Value ${value_re} not in range ${range}" ${run} ${opt} ${value})
+endforeach()
 legwork_cli_error(wip_bad_out "error: [^\n]*--out '[^']*x.txt' must end in .glb or .bvh" wip --synthetic --out ${O}/x.txt)
 legwork_cli_error(wip_bad_plot "error: [^\n]*--plot '[^']*x.jpg' must end in .png" wip --synthetic --out ${O}/x.glb --plot ${O}/x.jpg)
 legwork_cli_error(wip_bad_calibrate "error: [^\n]*--calibrate 'maybe': expected auto, on or off" wip --synthetic --out ${O}/x.glb
