@@ -8,6 +8,7 @@
 #                                 10,000,000), at most LEGWORK_FUZZ_LONG_HOURS
 #                                 hours each (default 6); the corpus persists
 #                                 in build-fuzz/corpus-*/ between runs
+#   scripts/fuzz.sh --long RUNS TARGET...  only those targets (e.g. vmc walk_keys)
 # Each target goes past parsing into the code that consumes the result: BVH
 # and GLB into forward kinematics and the writer; tracker CSV into
 # io::frames_from_table, the frame clock and usable(); walk files into the
@@ -24,9 +25,11 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LEGWORK_FUZZ_BUILD:-$root/build-fuzz}"
 jobs="${LEGWORK_FUZZ_BUILD_JOBS:-2}"
 long=0
+only=()
 if [ "${1:-}" = "--long" ]; then
   long=1
   runs="${2:-10000000}"
+  only=("${@:3}")
 else
   seconds="${1:-45}"
 fi
@@ -41,6 +44,18 @@ CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Re
 # name:weight(% of the bounded run):max_len; the seeds of each are set up below.
 targets=(bvh:20:16384 tracker_csv:10:8192 glb:15:131072 walk_keys:10:16384 path:10:4096 accent_db:15:262144
   protocol:10:4096 vmc:10:4096)
+if [ ${#only[@]} -gt 0 ]; then
+  chosen=()
+  for name in "${only[@]}"; do
+    found=""
+    for t in "${targets[@]}"; do if [ "${t%%:*}" = "$name" ]; then chosen+=("$t"); found=1; fi; done
+    if [ -z "$found" ]; then
+      echo "fuzz.sh: no target '$name'; the targets are: $(for t in "${targets[@]}"; do printf '%s ' "${t%%:*}"; done)" >&2
+      exit 2
+    fi
+  done
+  targets=("${chosen[@]}")
+fi
 ninja -C "$build" -j"$jobs" $(for t in "${targets[@]}"; do printf '%s_fuzz ' "${t%%:*}"; done)
 mkdir -p "$build/artifacts"
 
