@@ -34,13 +34,6 @@ else
   seconds="${1:-45}"
 fi
 
-launcher=()
-if command -v ccache >/dev/null 2>&1; then
-  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-fi
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
-  -DLEGWORK_FUZZ=ON -DLEGWORK_TESTS=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_WERROR=OFF >/dev/null
 # name:weight(% of the bounded run):max_len; the seeds of each are set up below.
 targets=(bvh:20:16384 tracker_csv:10:8192 glb:15:131072 walk_keys:10:16384 path:10:4096 accent_db:15:262144
   protocol:10:4096 vmc:10:4096)
@@ -56,6 +49,13 @@ if [ ${#only[@]} -gt 0 ]; then
   done
   targets=("${chosen[@]}")
 fi
+launcher=()
+if command -v ccache >/dev/null 2>&1; then
+  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
+  -DLEGWORK_FUZZ=ON -DLEGWORK_TESTS=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_WERROR=OFF >/dev/null
 ninja -C "$build" -j"$jobs" $(for t in "${targets[@]}"; do printf '%s_fuzz ' "${t%%:*}"; done)
 mkdir -p "$build/artifacts"
 
