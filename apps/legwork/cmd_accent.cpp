@@ -35,10 +35,10 @@ void register_build(CLI::App& parent) {
   output_file(cmd->add_option("--out", a->out, "database file to write (.lwdb)"))->required();
   cmd->add_option("--classes", a->classes, "comma-separated classes (default: every class present)");
   cmd->add_option("--exclude", a->exclude, "trial files to leave out (e.g. a held-out trial), by manifest path or name");
-  cmd->add_option("--fps", a->cfg.fps, "tracker rate the trials are resampled to (Hz)")->check(CLI::PositiveNumber);
-  cmd->add_option("--hop", a->cfg.hop, "samples between window ends (4 = 44 ms at 90 Hz)")->check(CLI::PositiveNumber);
+  cmd->add_option("--fps", a->cfg.fps, "tracker rate the trials are resampled to (Hz)")->check(positive_number());
+  cmd->add_option("--hop", a->cfg.hop, "samples between window ends (4 = 44 ms at 90 Hz)")->check(positive_number());
   cmd->add_option("--correlation", a->cfg.correlation_threshold, "keep trials whose hand-foot |Pearson r| exceeds this");
-  cmd->add_option("--speeds", a->cfg.speed_variants, "re-timed copies per window (0 = none; 2 = x0.5 and x1.5)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--speeds", a->cfg.speed_variants, "re-timed copies per window (0 = none; 2 = x0.5 and x1.5)")->check(non_negative_number());
   cmd->add_option("--speed-range", a->cfg.speed_range, "largest relative speed change of the re-timed copies")->check(CLI::Range(0.0, 0.9));
   cmd->add_flag("--mirror", a->cfg.mirror, "add left/right mirrored copies of every trial");
   cmd->add_option("--weights", a->weights, "feature group weights position,velocity,acceleration (default 1,1,0.5)");
@@ -92,7 +92,7 @@ void register_run(CLI::App& parent) {
   auto a = std::make_shared<eval::AccentJob>();
   cmd->add_option("--db", a->db, "database built by 'legwork accent build'")->required()->check(CLI::ExistingFile);
   cmd->add_option("--input", a->input, "session: .bvh trial or .csv headset recording")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--scale", a->input_options.scale, "BVH input: file units -> metres (0 = detect)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--scale", a->input_options.scale, "BVH input: file units -> metres (0 = detect)")->check(non_negative_number());
   cmd->add_flag("--drop-first", a->input_options.drop_first, "BVH input: drop frame 0 (the CMU T-pose)");
   cmd->add_flag("--lenient", a->input_options.lenient, "BVH input: accept more motion lines than 'Frames:' declares");
   output_file(cmd->add_option("--out", a->out, "result: .glb or .bvh"))->required();
@@ -103,23 +103,23 @@ void register_run(CLI::App& parent) {
   cmd->add_option("--k", a->k, "matches per hand (the paper used 5)")->capture_default_str()->check(CLI::Range(1, kMaxK));
   cmd->add_option("--k-left", a->k_left, "matches for the left hand (default --k)")->check(CLI::Range(0, kMaxK));
   cmd->add_option("--k-right", a->k_right, "matches for the right hand (default --k)")->check(CLI::Range(0, kMaxK));
-  cmd->add_option("--threshold", a->threshold, "match distance limit in typical-distance units (0 = none)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threshold", a->threshold, "match distance limit in typical-distance units (0 = none)")->check(non_negative_number());
   cmd->add_flag("--no-align", a->no_align, "skip the rotation alignment of candidates");
   cmd->add_flag("--no-smooth", a->no_smooth, "skip the temporal smoothing (both the paper's EWMA and the spring filter)");
   cmd->add_option("--smooth-halflife", a->smooth_halflife,
                   "seconds for the spring filter on the blended rotations to halve an error (0 = the paper's EWMA only)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_flag("--no-limits", a->no_limits, "skip the joint angle limits");
-  cmd->add_option("--height", a->height, "user height in metres (default: the BVH's standing height, or the database's)")->check(CLI::PositiveNumber);
-  cmd->add_option("--exaggerate", a->exaggerate, "scale the input hands about the head before matching")->check(CLI::PositiveNumber);
+  cmd->add_option("--height", a->height, "user height in metres (default: the BVH's standing height, or the database's)")->check(positive_number());
+  cmd->add_option("--exaggerate", a->exaggerate, "scale the input hands about the head before matching")->check(positive_number());
   cmd->add_option("--classes", a->classes, "comma-separated classes to match against (default: all in the database)");
   cmd->add_flag("--no-class-recognition", a->no_class_recognition,
                 "with several classes allowed, search all of them every frame instead of recognising the activity and "
                 "searching only its class");
   cmd->add_option("--class-hold", a->class_hold, "class recognition: seconds another class must stay better before a switch")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--class-margin", a->class_margin, "class recognition: relative cost margin another class needs (0..1)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.99));
@@ -144,7 +144,7 @@ void register_run(CLI::App& parent) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_option("--max-head-tilt", a->max_tilt, "reject candidates whose head tilt differs from the headset's by more than this (degrees, 0 = off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");
   output_file(cmd->add_option("--save-session", a->save_session, "also write the input as a headset session CSV (the format --input reads)"));
   cmd->callback([a] { eval::run_accent_job(*a); });

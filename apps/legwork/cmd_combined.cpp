@@ -31,7 +31,7 @@ void register_eval_combined(CLI::App& app) {
   cmd->add_option("--data", a->data, "folder of walking BVH trials (default ../shared/data/cmu/bvh/walking, else data/cmu/bvh/walking)");
   cmd->add_option("--db", a->db, "database (.lwdb) for the accentuated upper body (the trials may be in it: say so when you report)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--limit", a->limit, "evaluate only the first N trials")->check(CLI::PositiveNumber);
+  cmd->add_option("--limit", a->limit, "evaluate only the first N trials")->check(positive_number());
   output_file(cmd->add_option("--video", a->video, "MP4 of the first trial: the capture beside each method"));
   cmd->add_option("--out", a->out, "write report.md and report.json into this folder");
   cmd->callback([a] {

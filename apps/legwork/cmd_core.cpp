@@ -38,7 +38,7 @@ void register_convert(CLI::App& app) {
   auto opt = std::make_shared<io::ConvertOptions>();
   in->add_options(cmd);
   output_file(cmd->add_option("output", *out, "output file: .bvh or .glb")->required());
-  cmd->add_option("--rate", opt->rate, "resample to this frame rate (Hz, 0 = keep), keeping the duration")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--rate", opt->rate, "resample to this frame rate (Hz, 0 = keep), keeping the duration")->check(non_negative_number());
   cmd->add_flag("--mirror", opt->mirror, "mirror about the character's sagittal plane (swap left and right)");
   cmd->add_option("--frames", opt->frames, "keep frames A:B (inclusive; either side optional, e.g. 1: drops the T-pose)");
   cmd->callback([=] {

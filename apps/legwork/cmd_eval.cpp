@@ -9,8 +9,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
+#include <optional>
 
 namespace legwork::cli {
 namespace {
@@ -20,12 +24,42 @@ struct EvalArgs {
   bool quick = false, no_ablation = false, no_ik = false, skip_no_class = false, keep_first = false, video = false;
   int threads = 0, quick_trials = 4;
   double max_seconds = 0, quick_seconds = 12;
-  // Engine switches (defaults = the engine's own defaults).
+  // Engine switches (unset = the engine's own defaults).
   int hop = -1, k = -1, speed_variants = -1;
-  double threshold = -1, hand_ik = -1, foot_lift_height = -1, foot_lock_slack = -1, foot_swing_speed = -1;
-  double ik_blend_min = -1, ik_blend_near = -1, ik_blend_far = -1, foot_lock_follow = -1, contact_on = -1, contact_off = -1;
+  std::array<std::optional<double>, 11> engine;  // one per kEngineOptions row
   bool mirror = false, exact = false;
 };
+
+// The engine's numeric settings the evaluation can override, one row each:
+// flag, the accent::Settings field it sets, its range and its help.
+struct EngineOption {
+  const char* flag;
+  double accent::Settings::*field;
+  double lo, hi;
+  const char* help;
+};
+constexpr std::array<EngineOption, 11> kEngineOptions{{
+    {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
+    {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
+    {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
+     "engine: metres a released foot is lifted on its way back (0 = slides along the floor)"},
+    {"--foot-lock-slack", &accent::Settings::foot_lock_slack, 0.0, 1.0,
+     "engine: metres the synthesized foot may move from a planted one before the plant creeps (0 = always)"},
+    {"--foot-swing-speed", &accent::Settings::foot_swing_speed, 0.0, 10.0,
+     "engine: m/s above which a free foot is swinging and clears the floor (0 = off)"},
+    {"--ik-blend-min", &accent::Settings::ik_blend_min, 0.0, 1.0,
+     "engine: share of the IK body where the database covers the user (0..1, at most the maximum share)"},
+    {"--ik-blend-near", &accent::Settings::ik_blend_near, 0.0, 100.0,
+     "engine: match distance (typical distances) where the IK body's share starts to rise"},
+    {"--ik-blend-far", &accent::Settings::ik_blend_far, 0.0, 100.0,
+     "engine: match distance (typical distances) where the IK body's share reaches its maximum"},
+    {"--foot-lock-follow", &accent::Settings::foot_lock_follow_seconds, 0.0, 10.0,
+     "engine: seconds a planted foot takes to creep toward the synthesized one (0 = held still)"},
+    {"--contact-on", &accent::Settings::contact_on, 0.0, 1.0,
+     "engine: blended candidate contact above which a foot locks (0..1)"},
+    {"--contact-off", &accent::Settings::contact_off, 0.0, 1.0,
+     "engine: blended candidate contact below which a locked foot lets go (0..1)"},
+}};
 
 void register_eval(CLI::App& app) {
   auto* group = app.add_subcommand("eval", "Evaluate methods against motion-capture ground truth.");
@@ -51,48 +85,24 @@ void register_eval(CLI::App& app) {
                   "cross_dataset with --test)");
   cmd->add_option("--out", a->out, "write report.md, report.json and charts (PNG + SVG) into this folder");
   cmd->add_flag("--quick", a->quick, "a small subset for CI: few trials per class, short clips, 3-step ablation");
-  cmd->add_option("--quick-trials", a->quick_trials, "--quick: trials per class")->check(CLI::PositiveNumber);
+  cmd->add_option("--quick-trials", a->quick_trials, "--quick: trials per class")->check(positive_number());
   cmd->add_option("--max-seconds", a->max_seconds, "score only the first seconds of each test trial (0 = all)");
-  cmd->add_option("--threads", a->threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", a->threads, "worker threads (default: all cores)")->check(non_negative_number());
   cmd->add_flag("--video", a->video, "also write compare.mp4: truth, engine and IK side by side (needs ffmpeg)");
   cmd->add_flag("--no-ablation", a->no_ablation, "skip the ablation variants");
   cmd->add_flag("--no-ik", a->no_ik, "skip the IK baselines (on the database skeleton at the user's height, and on the subject's own skeleton)");
   cmd->add_flag("--skip-no-class", a->skip_no_class,
                 "skip the no-class setting (one database of every class per fold, the class recognised from the input)");
   cmd->add_flag("--keep-first-frame", a->keep_first, "do not drop frame 0 (CMU files start with a T-pose)");
-  cmd->add_option("--hop", a->hop, "engine: window hop in samples")->check(CLI::PositiveNumber);
+  cmd->add_option("--hop", a->hop, "engine: window hop in samples")->check(positive_number());
   cmd->add_option("--k", a->k, "engine: neighbours per hand")->check(CLI::Range(1, 32));
-  cmd->add_option("--threshold", a->threshold, "engine: distance threshold in typical distances (0 = none)")
-      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--speed-variants", a->speed_variants, "engine: speed-augmented copies per window")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--hand-ik", a->hand_ik, "engine: 0..1 pull of the synthesized arms onto the real hands")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--foot-lift-height", a->foot_lift_height,
-                  "engine: metres a released foot is lifted on its way back (0 = slides along the floor)")
-      ->check(CLI::Range(0.0, 0.5));
-  cmd->add_option("--foot-lock-slack", a->foot_lock_slack,
-                  "engine: metres the synthesized foot may move from a planted one before the plant creeps (0 = always)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--foot-swing-speed", a->foot_swing_speed,
-                  "engine: m/s above which a free foot is swinging and clears the floor (0 = off)")
-      ->check(CLI::Range(0.0, 10.0));
-  cmd->add_option("--ik-blend-min", a->ik_blend_min,
-                  "engine: share of the IK body where the database covers the user (0..1, at most the maximum share)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--ik-blend-near", a->ik_blend_near,
-                  "engine: match distance (typical distances) where the IK body's share starts to rise")
-      ->check(CLI::Range(0.0, 100.0));
-  cmd->add_option("--ik-blend-far", a->ik_blend_far,
-                  "engine: match distance (typical distances) where the IK body's share reaches its maximum")
-      ->check(CLI::Range(0.0, 100.0));
-  cmd->add_option("--foot-lock-follow", a->foot_lock_follow,
-                  "engine: seconds a planted foot takes to creep toward the synthesized one (0 = held still)")
-      ->check(CLI::Range(0.0, 10.0));
-  cmd->add_option("--contact-on", a->contact_on, "engine: blended candidate contact above which a foot locks (0..1)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--contact-off", a->contact_off, "engine: blended candidate contact below which a locked foot lets go (0..1)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(non_negative_number());
+  for (std::size_t i = 0; i < kEngineOptions.size(); ++i) {
+    const EngineOption& o = kEngineOptions[i];
+    cmd->add_option(o.flag, a->engine[i], o.help)
+        ->check(std::isinf(o.hi) ? non_negative_number() : CLI::Validator(CLI::Range(o.lo, o.hi)));
+  }
   cmd->add_flag("--mirror", a->mirror, "engine: add mirrored trials to every database");
   cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");
   cmd->callback([a] {
@@ -123,17 +133,8 @@ void register_eval(CLI::App& app) {
     if (a->speed_variants >= 0) opt.build.speed_variants = a->speed_variants;
     opt.build.mirror = a->mirror;
     if (a->k > 0) opt.config.k_left = opt.config.k_right = a->k;
-    if (a->threshold >= 0) opt.config.threshold = a->threshold;
-    if (a->hand_ik >= 0) opt.config.hand_ik = a->hand_ik;
-    if (a->foot_lift_height >= 0) opt.config.foot_lift_height = a->foot_lift_height;
-    if (a->foot_lock_slack >= 0) opt.config.foot_lock_slack = a->foot_lock_slack;
-    if (a->foot_swing_speed >= 0) opt.config.foot_swing_speed = a->foot_swing_speed;
-    if (a->contact_on >= 0) opt.config.contact_on = a->contact_on;
-    if (a->contact_off >= 0) opt.config.contact_off = a->contact_off;
-    if (a->ik_blend_min >= 0) opt.config.ik_blend_min = a->ik_blend_min;
-    if (a->ik_blend_near >= 0) opt.config.ik_blend_near = a->ik_blend_near;
-    if (a->ik_blend_far >= 0) opt.config.ik_blend_far = a->ik_blend_far;
-    if (a->foot_lock_follow >= 0) opt.config.foot_lock_follow_seconds = a->foot_lock_follow;
+    for (std::size_t i = 0; i < kEngineOptions.size(); ++i)
+      if (a->engine[i]) opt.config.*kEngineOptions[i].field = *a->engine[i];
     if (a->exact) opt.config.search = accent::SearchMode::Exact;
     opt.progress = io::status_printer("[eval] ");
 

@@ -147,7 +147,7 @@ void register_render(CLI::App& app) {
   cmd->add_option("--frames", a->frames, "frames A:B (inclusive, either side optional; A:A = one frame)");
   cmd->add_option("--trace", a->trace, "draw this joint's path (joint name, or a role name such as left_ankle)");
   cmd->add_option("--every", a->every, "take every Nth frame for sheet poses / path marks (default: ~6 over the range)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--width", a->width, "picture/video width in pixels (video: even)")->check(CLI::Range(16, 8192));
   cmd->add_option("--height", a->height,
                   "picture/video height in pixels (contact sheets: per view row, width follows the poses)")

@@ -44,9 +44,9 @@ void register_serve(CLI::App& app) {
   cmd->add_option("--vmc-right", o->vmc_right_serial, "serial of the right controller");
   cmd->add_option("--vmc-rate", o->vmc_rate_hz, "VMC input sampling rate, Hz")->capture_default_str()->check(CLI::Range(1.0, 240.0));
   cmd->add_option("--max-sessions", o->max_sessions, "most WebSocket sessions at once")->capture_default_str()->check(CLI::Range(1, 100000));
-  cmd->add_option("--max-rate", o->max_rate_hz, "most frames per second of a session's own time stamps (above: dropped; wall-clock ceiling twice this)")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--max-rate", o->max_rate_hz, "most frames per second of a session's own time stamps (above: dropped; wall-clock ceiling twice this)")->capture_default_str()->check(positive_number());
   cmd->add_option("--record", o->record_dir, "record each session here when it ends: input as tracker CSV, output as BVH");
-  cmd->add_option("--record-max-seconds", o->record_max_seconds, "longest recording per session")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--record-max-seconds", o->record_max_seconds, "longest recording per session")->capture_default_str()->check(positive_number());
   cmd->add_option("--workers", o->workers, "synthesis threads (0: synthesize on the network thread, fastest for one process per core)")->capture_default_str()->check(CLI::Range(0, 256));
   cmd->add_flag("--verbose", o->verbose, "log sessions to stderr");
   cmd->callback([o] {

@@ -33,7 +33,7 @@ void register_walkcycle(CLI::App& app) {
                                        "(the mirrored joint gets the same)");
   cmd->add_option("--path", a->path, "walk along this path (JSON: polyline, bezier, catmull_rom or svg)")->check(CLI::ExistingFile);
   cmd->add_option("--svg-path", a->svg_path, "walk along this SVG path string, metres (x = left, y = forward)");
-  cmd->add_option("--straight", a->straight, "walk this many metres straight ahead (+z)")->check(CLI::PositiveNumber);
+  cmd->add_option("--straight", a->straight, "walk this many metres straight ahead (+z)")->check(positive_number());
   cmd->add_option("--steps", a->steps, "walk exactly this many steps straight ahead, the stop step included (1 to 100000)")
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--root", a->root, "smooth: the root travels evenly, legs by IK (default); pivot: document 001's root, "
@@ -48,7 +48,7 @@ void register_walkcycle(CLI::App& app) {
   output_file(cmd->add_option("--out,-o", a->out, "the walk (or, with no path, the in-place cycle): .bvh or .glb"));
   output_file(cmd->add_option("--cycle-out", a->cycle_out, "the in-place loop (frame N = frame 0 left out): .bvh or .glb"));
   output_file(cmd->add_option("--sheet", a->sheet, "key-pose sheet: the five poses of a step side by side (.png or .svg)"));
-  cmd->add_option("--spacing", a->spacing, "metres between poses on the sheet / in the sliding video")->check(CLI::PositiveNumber);
+  cmd->add_option("--spacing", a->spacing, "metres between poses on the sheet / in the sliding video")->check(positive_number());
   cmd->add_option("--sheet-views", a->sheet_views, "views of the sheet, comma-separated (front, side, three-quarter, top)");
   cmd->add_option("--active", a->active, "sheet: draw this pose opaque, the others x-ray (contact, down, pass, up, next)");
   cmd->add_option("--arc", a->arc, "trace these joints over the cycle: CSV + SVG/PNG with key frames marked, e.g. LeftHand,LeftToeBase");

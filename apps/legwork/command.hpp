@@ -24,6 +24,9 @@ CLI::Option* output_file(CLI::Option* option);
 // A number in (0, max]: CLI11's PositiveNumber / NonNegativeNumber print the largest double (300 digits) as
 // the maximum in their error; this names a plain range ("Value -1 not in range 0 (exclusive) to 50").
 CLI::Validator positive_up_to(double max);
+// A number > 0 / >= 0 with no maximum ("Value -1 must be > 0"), for the same reason.
+CLI::Validator positive_number();
+CLI::Validator non_negative_number();
 
 // Progress of long work on stderr: a live bar on a terminal, whole lines in logs.
 inline io::ProgressPrinter progress_bar(const std::string& what) { return io::progress_printer(what); }

@@ -4,8 +4,10 @@
 #include <legwork/io/errors.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <iostream>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -28,22 +30,34 @@ CLI::Option* output_file(CLI::Option* option) {
   return option->each([name](const std::string& path) { io::prepare_output(path, name); });
 }
 
-CLI::Validator positive_up_to(double max) {
-  const std::string high = CLI::detail::to_string(max);
+namespace {
+// A number above `low` (or at least `low`) and at most `max` (infinity: no maximum), with a
+// message naming the range in plain digits.
+CLI::Validator number_from(double low, bool low_allowed, double max) {
+  const std::string lo = CLI::detail::to_string(low);
+  const std::string high = std::isinf(max) ? std::string{} : CLI::detail::to_string(max);
+  const std::string range = high.empty() ? (low_allowed ? ">= " : "> ") + lo
+                                         : lo + (low_allowed ? "" : " (exclusive)") + " to " + high;
   return CLI::Validator(
-      [max, high](std::string& in) -> std::string {
+      [=](std::string& in) -> std::string {
         double v = 0;
-        if (!CLI::detail::lexical_cast(in, v)) return "Value " + in + " is not a number";
-        if (!(v > 0 && v <= max)) return "Value " + in + " not in range 0 (exclusive) to " + high;
-        return {};
+        if (!CLI::detail::lexical_cast(in, v) || std::isnan(v)) return "Value " + in + " is not a number";
+        const bool above = low_allowed ? v >= low : v > low;
+        if (above && v <= max) return {};
+        return high.empty() ? "Value " + in + " must be " + range : "Value " + in + " not in range " + range;
       },
-      "(0 - " + high + "]");
+      high.empty() ? range : (low_allowed ? "[" : "(") + lo + " - " + high + "]");
 }
+}  // namespace
+
+CLI::Validator positive_up_to(double max) { return number_from(0, false, max); }
+CLI::Validator positive_number() { return number_from(0, false, std::numeric_limits<double>::infinity()); }
+CLI::Validator non_negative_number() { return number_from(0, true, std::numeric_limits<double>::infinity()); }
 
 void MotionInput::add_options(CLI::App* cmd, bool positional, const std::string& name) {
   if (positional) cmd->add_option(name, path, "motion file to read: .bvh, or a .glb (legwork's or another tool's skinned glTF whose rig resolves to roles)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--scale", options.scale, "file units -> metres (0 = detect from the rest-pose height; CMU = 0.056444)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_flag("--drop-first", options.drop_first, "drop frame 0 (the synthetic T-pose of CMU files)");
   cmd->add_flag("--lenient", options.lenient, "accept more motion lines than 'Frames:' declares (extra lines ignored)");
 }

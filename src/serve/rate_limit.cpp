@@ -17,9 +17,8 @@ RateLimiter::RateLimiter(double max_rate_hz, Clock::time_point start)
 RateVerdict RateLimiter::admit(double t, Clock::time_point now) {
   // Stream time: only forward steps refill (a jump back gives nothing; the
   // avatar's clock decides whether the stream restarted).
-  if (have_time_ && t > last_t_ && std::isfinite(t))
-    stream_tokens_ = std::min(stream_burst_, stream_tokens_ + (t - last_t_) * rate_);
   if (std::isfinite(t)) {
+    if (have_time_ && t > last_t_) stream_tokens_ = std::min(stream_burst_, stream_tokens_ + (t - last_t_) * rate_);
     last_t_ = t;
     have_time_ = true;
   }

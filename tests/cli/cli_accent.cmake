@@ -52,3 +52,8 @@ legwork_cli_error(accent_run_height_implausible "error: accent: user height 0.1 
 legwork_cli_error(accent_run_nothing_matched "warning: no frame matched the database \\([0-9]+ of [0-9]+ frames unmatched\\)"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --exaggerate 100 --out ${O}/accent_unmatched.bvh)
 set_tests_properties(cli.accent_run_height_implausible cli.accent_run_nothing_matched PROPERTIES FIXTURES_REQUIRED accent_db)
+# Options with no maximum name their bound in plain digits (CLI11's own checks print a 300-digit maximum).
+legwork_cli_error(accent_run_height_positive "--height: Value -1 must be > 0\n"
+                 accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --height -1 --out ${O}/x.bvh)
+legwork_cli_error(accent_run_threshold_nan "--threshold: Value nan is not a number"
+                 accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --threshold nan --out ${O}/x.bvh)

@@ -44,3 +44,6 @@ legwork_cli_test(eval_prints_help eval)
 set_tests_properties(cli.eval_prints_help PROPERTIES PASS_REGULAR_EXPRESSION "Evaluate methods against motion-capture ground truth.*accent.*combined")
 add_test(NAME cli.bare_legwork_prints_help COMMAND legwork)
 set_tests_properties(cli.bare_legwork_prints_help PROPERTIES PASS_REGULAR_EXPRESSION "Usage: legwork \\[OPTIONS\\] \\[SUBCOMMAND\\].*walkcycle")
+# The engine options (one table in cmd_eval.cpp): each is range-checked and reaches the engine.
+legwork_cli_error(eval_threshold_negative "--threshold: Value -2 must be >= 0\n" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --threshold -2)
+legwork_cli_error(eval_hand_ik_range "--hand-ik: Value 2 not in range 0\\.0+ to 1\\.0*" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --hand-ik 2)

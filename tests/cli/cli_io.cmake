@@ -59,3 +59,4 @@ foreach(clip walking/07_01:317:120 swimming/79_02:301:60)
   set_tests_properties(cli.convert_${stem}_glb_back PROPERTIES DEPENDS cli.convert_${stem}_to_glb
                        PASS_REGULAR_EXPRESSION "${frames} frames at ${hz} Hz, 31 joints")
 endforeach()
+legwork_cli_error(convert_rate_negative "--rate: Value -1 must be >= 0\n" convert ${D}/walking/07_01.bvh ${O}/x.bvh --rate -1)
