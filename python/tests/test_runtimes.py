@@ -33,13 +33,18 @@ def test_ik_equals_the_cli_baseline(cli, db_path, tmp_path):
     cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", tmp_path / "a.bvh",
         "--compare-ik", "--json", report)
     truth = core.resample(legwork.io.read_bvh(str(TRIAL), drop_first=True), 90.0)
-    model = ik.make_model(truth.skeleton)
+    # The baseline gets what the engine gets: the database's skeleton scaled to the user's height.
+    settings = legwork.accent.Settings()
+    settings.user_height = core.measure_body(truth.skeleton)["standing_height"]
+    engine = legwork.accent.make_model(legwork.accent.load_database(str(db_path)), settings)
+    assert json.loads(report.read_text())["ik_skeleton"] == "database skeleton at the user's height"
+    model = ik.make_model(engine.skeleton())
     out, status = drive(ik, model, core.tracker_frames_from_motion(truth))
     assert all(s == core.UpdateStatus.Ok for s in status)
     m = legwork.eval.evaluate_trial(legwork.eval.role_track(out), legwork.eval.role_track(truth))
     assert m.mpjpe_cm == pytest.approx(json.loads(report.read_text())["ik_error"]["full_body_cm"], rel=1e-12)
-    head = truth.skeleton.roles["head"]
-    assert np.abs(out.positions()[:, head] - truth.positions()[:, head]).max() < 1e-6  # the head is placed exactly
+    head, true_head = model.skeleton().roles["head"], truth.skeleton.roles["head"]
+    assert np.abs(out.positions()[:, head] - truth.positions()[:, true_head]).max() < 1e-6  # the head is placed exactly
 
 
 def test_rejected_frames_leave_state_and_pose_untouched():

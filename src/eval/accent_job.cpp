@@ -133,7 +133,9 @@ void run_accent_job(const AccentJob& a) {
   io::write_motion(a.out, result, "motion", "--out");
   io::announce("accentuated motion", a.out);
   Motion ik;
-  if (a.compare_ik) ik = run_ik_baseline(truth.skeleton.names.empty() ? run.output.skeleton : truth.skeleton, frames, fps);
+  // The IK baseline gets what the engine gets (as in `eval accent`): the database's skeleton at the
+  // user's height, never the input's own bone lengths.
+  if (a.compare_ik) ik = run_ik_baseline(run.output.skeleton, frames, fps);
   json j;
   j["input"] = a.input;
   j["database"] = a.db;
@@ -142,6 +144,7 @@ void run_accent_job(const AccentJob& a) {
   j["frames_per_second"] = fig.frames_per_second;
   j["load_ms"] = load_s * 1e3;
   j["statuses"] = fig.statuses;
+  if (a.compare_ik) j["ik_skeleton"] = "database skeleton at the user's height";
   if (!recognized.empty()) j["recognized_classes"] = recognized;
   if (!truth.skeleton.names.empty()) {
     std::printf("vs ground truth:\n");
