@@ -34,7 +34,7 @@ void register_build(CLI::App& parent) {
   cmd->add_option("--data", a->data, "folder laid out like data/cmu (MANIFEST.tsv, bvh/<class>/*.bvh)")->required();
   output_file(cmd->add_option("--out", a->out, "database file to write (.lwdb)"))->required();
   cmd->add_option("--classes", a->classes, "comma-separated classes (default: every class present)");
-  cmd->add_option("--exclude", a->exclude, "trial files to leave out (e.g. a held-out trial), by manifest path or name");
+  cmd->add_option("--exclude", a->exclude, "trial files to leave out (e.g. a held-out trial), by manifest path, file name or pattern ('16_*': subject 16)");
   cmd->add_option("--fps", a->cfg.fps, "tracker rate the trials are resampled to (Hz)")->check(positive_number());
   cmd->add_option("--hop", a->cfg.hop, "samples between window ends (4 = 44 ms at 90 Hz)")->check(positive_number());
   cmd->add_option("--correlation", a->cfg.correlation_threshold, "keep trials whose hand-foot |Pearson r| exceeds this");

@@ -127,13 +127,16 @@ json evaluate_combined(const CombinedEvalRun& run) {
       const wip::LearnedMapping* table = held != tables.end() && held->second ? &*held->second : nullptr;
       combined::Settings learned = settings;
       learned.wip.mapping.depth = wip::DepthMapping::Learned;
-      outputs.emplace("ik", run_ik_baseline(truth.skeleton, frames, rate));
-      outputs.emplace("combined_ik", run_combined(combined::make_model(truth.skeleton, settings), frames, rate));
+      combined::Settings s = settings;
+      s.accent.user_height = learned.accent.user_height = measure_body(truth.skeleton).standing_height;
+      // Every method gets the same information: with a database, the IK bodies too run on its skeleton
+      // at the user's height (as `eval accent`'s baseline); without one, on the trial's own skeleton.
+      const Skeleton body = db ? accent::make_model(*db, s.accent).skeleton() : truth.skeleton;
+      outputs.emplace("ik", run_ik_baseline(body, frames, rate));
+      outputs.emplace("combined_ik", run_combined(combined::make_model(body, settings), frames, rate));
       if (table)
-        outputs.emplace("combined_ik_learned", run_combined(combined::make_model(truth.skeleton, learned, table), frames, rate));
+        outputs.emplace("combined_ik_learned", run_combined(combined::make_model(body, learned, table), frames, rate));
       if (db) {
-        combined::Settings s = settings;
-        s.accent.user_height = learned.accent.user_height = measure_body(truth.skeleton).standing_height;
         outputs.emplace("accent", accent::accentuate(accent::make_model(*db, s.accent), frames, rate).output);
         outputs.emplace("combined_accent", run_combined(combined::make_model(*db, s), frames, rate));
         if (table) outputs.emplace("combined_accent_learned", run_combined(combined::make_model(*db, learned, table), frames, rate));
@@ -157,6 +160,7 @@ json evaluate_combined(const CombinedEvalRun& run) {
   json report;
   report["rate_hz"] = rate;
   report["database"] = run.database.empty() ? json(nullptr) : json(run.database);
+  report["ik_skeleton"] = db ? "database skeleton at the user's height" : "each trial's own skeleton";
   report["blend_time_s"] = settings.blend_time;
   report["methods"] = json::object();
   for (const auto& [method, sum] : sums) report["methods"][method] = sum.mean();

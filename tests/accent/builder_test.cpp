@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <set>
 
 namespace legwork::accent {
@@ -61,11 +62,26 @@ TEST(AccentBuild, ExcludingATrialThatIsNotThereIsAnError) {
   };
   EXPECT_EQ(message({"boxing"}, "nothere.bvh"),
             "exclude 'nothere.bvh' matches no trial of '" + data +
-                "' in the chosen classes (name a file as in the manifest, e.g. 'bvh/boxing/13_18.bvh', or by its file name)");
+                "' in the chosen classes (name a file as in the manifest, e.g. 'bvh/boxing/13_18.bvh', by its file name, or a pattern such as '16_*')");
   EXPECT_NE(message({"boxing"}, "bvh/walking/07_01.bvh").find("matches no trial"), std::string::npos);
   EXPECT_EQ(message({"boxing", "walking"}, "bvh/walking/07_02.bvh"), "(no error)");
   EXPECT_EQ(message({"boxing", "walking"}, "07_02.bvh"), "(no error)");
   EXPECT_EQ(load_trials(data, {"boxing"}, {"13_18.bvh"}).size(), 0u);
+  // Patterns: a subject (file names) or a folder of the manifest (paths).
+  const auto names = [&](const std::vector<std::string>& exclude) {
+    std::vector<std::string> n;
+    for (const auto& t : load_trials(data, {"walking"}, exclude)) n.push_back(std::filesystem::path(t.file).filename().string());
+    return n;
+  };
+  const auto all = names({});
+  const auto without16 = names({"16_*"});
+  EXPECT_EQ(without16.size() + 2, all.size()) << "the sample has two walks of subject 16";
+  for (const auto& n : without16) EXPECT_NE(n.rfind("16_", 0), 0u) << n;
+  EXPECT_EQ(names({"bvh/walking/16_*.bvh"}), without16);
+  EXPECT_EQ(message({"walking"}, "99_*"),
+            "exclude '99_*' matches no trial of '" + data +
+                "' in the chosen classes (name a file as in the manifest, e.g. 'bvh/walking/05_01.bvh', by its file name, "
+                "or a pattern such as '16_*')");
 }
 
 TEST(AccentBuild, SkeletonWithoutHandsIsRejectedPerTrial) {

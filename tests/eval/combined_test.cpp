@@ -2,15 +2,27 @@
 // the capture, unreadable trials listed with their reason.
 #include <legwork/eval/combined.hpp>
 
+#include <legwork/accent/database.hpp>
+#include <legwork/accent/offline/builder.hpp>
+#include <legwork/core/interpolate.hpp>
+#include <legwork/core/measure.hpp>
+#include <legwork/core/tracker.hpp>
 #include <legwork/core/types.hpp>
+#include <legwork/eval/run.hpp>
+#include <legwork/eval/session.hpp>
+#include <legwork/io/bvh.hpp>
 
 #include "testdata.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string>
+
+#include <unistd.h>
 
 using namespace legwork;
 
@@ -58,6 +70,36 @@ TEST(EvalCombined, LearnedLegsAreScoredWithATableWithoutTheTrialsSubject) {
   EXPECT_NE(learned["lower_body_cm"], document["lower_body_cm"]);
   EXPECT_TRUE(std::isfinite(learned["foot_skating_cm"].get<double>()));
   EXPECT_NE(eval::combined_table(report).find("(learned mapping, without the trial's subject)"), std::string::npos);
+}
+
+// With a database every method gets what the engine gets: the IK avatar runs on the database's
+// skeleton at the user's height, not on the held-out walker's own bone lengths.
+TEST(EvalCombined, WithADatabaseTheIkBodiesUseItsSkeletonAtTheUsersHeight) {
+  const std::string held_out = "bvh/walking/07_02.bvh";
+  const auto db_path = std::filesystem::temp_directory_path() / ("legwork_eval_combined_walks_" + std::to_string(getpid()) + ".lwdb");
+  accent::save_database(db_path.string(), accent::build_database(accent::load_trials(testdata::sample("cmu").string(), {"walking"}, {held_out}),
+                                                                 accent::BuildConfig{}));
+  eval::CombinedEvalRun run;
+  run.files = {testdata::sample("cmu/" + held_out).string()};
+  run.database = db_path.string();
+  const auto report = eval::evaluate_combined(run);
+  EXPECT_EQ(report["ik_skeleton"], "database skeleton at the user's height");
+  ASSERT_EQ(report["trials"].size(), 1u);
+  const accent::Database db = accent::load_database(db_path.string());
+  io::BvhReadOptions o;
+  o.drop_first_frame = true;
+  const Motion truth = resample(io::load_bvh(run.files[0], o), db.feature_space().fps);
+  accent::Settings s;
+  s.user_height = measure_body(truth.skeleton).standing_height;
+  const Skeleton body = accent::make_model(db, s).skeleton();
+  double differ = 0;
+  for (std::size_t j = 0; j < body.rest_offsets.size() && j < truth.skeleton.rest_offsets.size(); ++j)
+    differ = std::max(differ, (body.rest_offsets[j] - truth.skeleton.rest_offsets[j]).norm());
+  EXPECT_GT(differ, 0.001) << "the database's bones are not the walker's";
+  const Motion ik = eval::run_ik_baseline(body, tracker_frames_from_motion(truth), db.feature_space().fps);
+  EXPECT_DOUBLE_EQ(report["trials"][0]["ik"]["full_body_cm"].get<double>(),
+                   eval::truth_error(ik, truth)["full_body_cm"].get<double>());
+  std::filesystem::remove(db_path);
 }
 
 TEST(EvalCombined, NoTrialsIsAnError) {

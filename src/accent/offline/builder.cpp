@@ -16,6 +16,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <fnmatch.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -31,9 +33,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// An exclusion names a trial by its manifest path or its file name, or matches either as a
+// shell pattern (fnmatch: '16_*' leaves out subject 16, 'bvh/running/*' a class).
 bool excluded(const std::string& file, const std::vector<std::string>& exclude) {
+  const std::string name = fs::path(file).filename().string();
   for (const auto& e : exclude)
-    if (file == e || fs::path(file).filename() == fs::path(e).filename()) return true;
+    if (file == e || name == fs::path(e).filename().string() || fnmatch(e.c_str(), file.c_str(), FNM_PATHNAME) == 0 ||
+        fnmatch(e.c_str(), name.c_str(), 0) == 0)
+      return true;
   return false;
 }
 
@@ -108,7 +115,7 @@ std::vector<TrialInput> load_trials(const std::string& dir, const std::vector<st
       throw Error("exclude '" + e + "' matches no trial of '" + dir + "'" + (classes.empty() ? "" : " in the chosen classes") +
                   " (name a file as in the manifest, e.g. '" +
                   (catalogue.trials.empty() ? std::string("bvh/walking/07_01.bvh") : catalogue.trials.front().file) +
-                  "', or by its file name)");
+                  "', by its file name, or a pattern such as '16_*')");
   std::vector<io::TrialEntry> chosen;
   for (const auto& t : catalogue.trials)
     if (!excluded(t.file, exclude)) chosen.push_back(t);
