@@ -163,6 +163,56 @@ int main(int argc, char** argv) {
     Feat f2=[&](size_t i,int f){ auto& r=rows[i]; return std::vector<double>{r.c[f], r.c[1-f], r.lead<0?0.5:(r.lead==f?1.0:0.0), std::min(r.since,1.2), std::min(since_own_strike[i][f],1.5), std::min(since_own_off[i][f],1.5), std::min(since_own_strike[i][1-f],1.5), std::min(since_own_off[i][1-f],1.5)}; };
     auto p2=knn(f2, 20); report("knn + own/other timing", p2); report_excl("knn + own/other timing", p2, "09_12"); breakdown(p2);
   }
+  {  // standing (not walking) frames: the table's pause entries, or a constant learned standing depth
+    Pred ps = base, pc = base;
+    for (auto& s : subjects()) {
+      auto tab = wip::build_learned_mapping(samples_of(s));
+      double sum=0; int n=0; for(auto& r:rows) if(r.subject!=s && !r.walking && r.t>=0.5) for(int f=0;f<2;++f){ sum+=r.z[f]/r.leg; n++; }
+      for (size_t i=0;i<rows.size();++i) { auto& r=rows[i]; if (r.subject!=s || r.walking) continue;
+        for (int f=0;f<2;++f) { int lead = r.lead<0?-1:r.lead==f?1:0; ps[i][f] = r.leg*tab.depth(r.c[f], r.c[1-f], lead, r.since, 0.5*(r.apex[0]+r.apex[1]), 1/r.stride); pc[i][f] = r.leg*sum/n; } }
+    }
+    std::printf("dbg %g %g %g %zu\n", ps[100][0], pc[100][0], base[100][0], ps.size()); report("standing: table", ps); report("standing: constant", pc);
+  }
+  // Amplitude with the running swing fraction (duty factor) as a third predictor.
+  for (double tau : {1.0, 2.0, 4.0}) {
+    std::vector<double> sf(rows.size(), 0.3);
+    for (size_t i=0;i<rows.size();++i){ bool first = i==0 || rows[i-1].trial!=rows[i].trial; double v = first?0.3:sf[i-1];
+      double dt = first?0:rows[i].t-rows[i-1].t; if (rows[i].walking) { double x = 0.5*((rows[i].ph[0]!=0)+(rows[i].ph[1]!=0)); v += (x-v)*(1-std::exp(-dt/tau)); } sf[i]=v; }
+    Pred pa(rows.size(), {0,0});
+    std::map<std::string,double> tcount; for (auto& r : rows) if (r.walking && r.lead>=0 && r.t>=0.5) tcount[r.trial]+=1;
+    for (auto& s : subjects()) {
+      auto tab = wip::build_learned_mapping(samples_of(s));
+      // LS: amp ~ 1, apex, cadence, sf over training samples (walking, lead known)
+      double A[4][4]={{0}}, B[4]={0}, lo=1e9, hi=-1e9;
+      for (size_t i=0;i<rows.size();++i){ auto& r=rows[i]; if(r.subject==s||!r.walking||r.lead<0||r.t<0.5) continue; double a=trial_amp[r.trial]; if(!(a>1e-3)) continue;
+        double x[4]={1, 0.5*(r.apex[0]+r.apex[1]), 1/r.stride, sf[i]}; double wt = tcount[r.trial] > 0 ? 1.0/tcount[r.trial] : 0; for(int u=0;u<4;++u){ B[u]+=wt*x[u]*a; for(int w=0;w<4;++w) A[u][w]+=wt*x[u]*x[w]; } lo=std::min(lo,a); hi=std::max(hi,a); }
+      // solve 4x4 (Gauss)
+      double M[4][5]; for(int u=0;u<4;++u){ for(int w=0;w<4;++w) M[u][w]=A[u][w]; M[u][4]=B[u]; }
+      for(int c=0;c<4;++c){ int piv=c; for(int u=c+1;u<4;++u) if(std::abs(M[u][c])>std::abs(M[piv][c])) piv=u; for(int w=0;w<5;++w) std::swap(M[c][w],M[piv][w]);
+        for(int u=0;u<4;++u) if(u!=c){ double f=M[u][c]/M[c][c]; for(int w=0;w<5;++w) M[u][w]-=f*M[c][w]; } }
+      double co[4]; for(int u=0;u<4;++u) co[u]=M[u][4]/M[u][u];
+      if (s=="105") std::printf("  tau %.0f fold 105 amp = %.3f + %.3f apex + %.3f cadence + %.3f swing fraction\n", tau, co[0],co[1],co[2],co[3]);
+      for (size_t i=0;i<rows.size();++i){ auto& r=rows[i]; if(r.subject!=s||!r.walking) continue;
+        double amp = std::clamp(co[0]+co[1]*0.5*(r.apex[0]+r.apex[1])+co[2]/r.stride+co[3]*sf[i], lo, hi);
+        for(int f=0;f<2;++f){ int lead = r.lead<0?-1:r.lead==f?1:0; pa[i][f] = r.leg*amp*tab.lookup(r.c[f], r.c[1-f], lead, r.since); }
+        if (tau==2.0 && (r.trial=="07_10"||r.trial=="105_24"||r.trial=="16_13") && std::fmod(r.t,1.0)<0.034) std::printf("   %s t %.1f amp new %.3f old %.3f true %.3f sf %.2f [%g %g]\n", r.trial.c_str(), r.t, amp, tab.amplitude(0.5*(r.apex[0]+r.apex[1]),1/r.stride), trial_amp[r.trial], sf[i], lo, hi); }
+    }
+    char nm[64]; std::snprintf(nm, sizeof nm, "amp + swing fraction tau %.0f", tau); report(nm, pa); report_excl(nm, pa, "09_12");
+    if (tau == 1.0) {
+      // then a gain over the steps since walking started (fitted on these predictions), then a constant standing depth
+      const int B=6; Pred pg = pa;
+      for (auto& s : subjects()) {
+        double sxy[B+1]={0}, sxx[B+1]={0};
+        auto bin=[&](double v,int& b,double& w){ double x=std::min(v,6.0)/4.0/1.5*B; b=std::min((int)x,B-1); w=x-b; };
+        for(size_t i=0;i<rows.size();++i){ auto& r=rows[i]; if(r.subject==s||!r.walking||r.t<0.5) continue; for(int f=0;f<2;++f){ int b; double w; bin(nsteps[i],b,w); double x=pa[i][f], y=r.z[f];
+          sxy[b]+=(1-w)*x*y; sxx[b]+=(1-w)*x*x; sxy[b+1]+=w*x*y; sxx[b+1]+=w*x*x; } }
+        double g[B+1]; for(int b=0;b<=B;++b) g[b]= sxx[b]>1e-9? sxy[b]/sxx[b] : 1;
+        double sum=0; int n=0; for(auto& r:rows) if(r.subject!=s && !r.walking && r.t>=0.5) for(int f=0;f<2;++f){ sum+=r.z[f]/r.leg; n++; }
+        for(size_t i=0;i<rows.size();++i){ auto& r=rows[i]; if(r.subject!=s) continue; for(int f=0;f<2;++f){ int b; double w; bin(nsteps[i],b,w); pg[i][f]= r.walking ? pa[i][f]*((1-w)*g[b]+w*g[b+1]) : r.leg*sum/n; } }
+      }
+      report("amp+sf, steps gain, standing const", pg); report_excl("amp+sf, steps gain, standing const", pg, "09_12"); breakdown(pg); oracles(pg);
+    }
+  }
   // oracle: truth-amplitude per trial with table shape
   return 0;
 }
