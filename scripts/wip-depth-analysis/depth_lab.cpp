@@ -171,7 +171,7 @@ int main(int argc, char** argv) {
       for (size_t i=0;i<rows.size();++i) { auto& r=rows[i]; if (r.subject!=s || r.walking) continue;
         for (int f=0;f<2;++f) { int lead = r.lead<0?-1:r.lead==f?1:0; ps[i][f] = r.leg*tab.depth(r.c[f], r.c[1-f], lead, r.since, 0.5*(r.apex[0]+r.apex[1]), 1/r.stride); pc[i][f] = r.leg*sum/n; } }
     }
-    std::printf("dbg %g %g %g %zu\n", ps[100][0], pc[100][0], base[100][0], ps.size()); report("standing: table", ps); report("standing: constant", pc);
+    report("standing: table", ps); report("standing: constant", pc);
   }
   // Amplitude with the running swing fraction (duty factor) as a third predictor.
   for (double tau : {1.0, 2.0, 4.0}) {
