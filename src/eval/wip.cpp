@@ -220,6 +220,56 @@ std::vector<StillSegment> still_segments(const Motion& m, const std::string& nam
   return out;
 }
 
+namespace {
+
+// The pelvis's travel per sample (DepthTrack::travel_*): direction and speed over +-kTravelWindow s, the
+// direction's turn rate between the windows ending and starting at the sample, and its cosine with `forward`.
+void fill_travel(DepthTrack& d, const std::vector<Vec3>& forward, double rate) {
+  const int n = static_cast<int>(d.pelvis.size());
+  const int w = std::max(1, static_cast<int>(std::lround(kTravelWindow * rate)));
+  std::vector<double> direction(static_cast<std::size_t>(n), 0.0);
+  d.travel_speed.assign(static_cast<std::size_t>(n), 0.0);
+  d.travel_turn_deg_s.assign(static_cast<std::size_t>(n), 0.0);
+  d.travel_along.assign(static_cast<std::size_t>(n), 1.0);
+  for (int i = 0; i < n; ++i) {
+    const int a = std::max(0, i - w), b = std::min(n - 1, i + w);
+    Vec3 step = d.pelvis[static_cast<std::size_t>(b)] - d.pelvis[static_cast<std::size_t>(a)];
+    step.y() = 0;
+    const auto iu = static_cast<std::size_t>(i);
+    d.travel_speed[iu] = b > a ? step.norm() * rate / (b - a) : 0.0;
+    direction[iu] = std::atan2(step.x(), step.z());
+    if (step.norm() > 1e-9 && std::isfinite(forward[iu].x())) d.travel_along[iu] = step.normalized().dot(forward[iu]);
+  }
+  for (int i = 0; i < n; ++i) {
+    const int a = std::max(0, i - w), b = std::min(n - 1, i + w);
+    if (b <= a) continue;
+    const double turn = std::remainder(direction[static_cast<std::size_t>(b)] - direction[static_cast<std::size_t>(a)], 2 * kPi);
+    d.travel_turn_deg_s[static_cast<std::size_t>(i)] = std::abs(turn) * 180 / kPi * rate / (b - a);
+  }
+}
+
+}  // namespace
+
+const char* depth_segment_name(DepthSegment s) {
+  switch (s) {
+    case DepthSegment::Straight: return "walking straight";
+    case DepthSegment::Turning: return "walking, travel direction turning";
+    case DepthSegment::Slow: return "walking, pelvis slow (turns on the spot, start/stop shuffles)";
+    case DepthSegment::Backward: return "walking backward or sideways";
+    case DepthSegment::NotWalking: return "not walking (before the first step, after the stop rule)";
+  }
+  return "?";
+}
+
+DepthSegment depth_segment(const DepthTrack& d, std::size_t i, bool walking) {
+  if (i >= d.travel_speed.size()) return walking ? DepthSegment::Straight : DepthSegment::NotWalking;
+  const bool moving = d.travel_speed[i] >= kSlowTravel;
+  if (walking && moving && d.travel_along[i] < kBackwardCosine) return DepthSegment::Backward;
+  if (!walking) return DepthSegment::NotWalking;
+  if (!moving) return DepthSegment::Slow;
+  return d.travel_turn_deg_s[i] > kTurnRate ? DepthSegment::Turning : DepthSegment::Straight;
+}
+
 DepthTrack true_depths(const Motion& m, double rate) {
   const auto& r = m.skeleton.roles;
   for (Role need : {Role::Pelvis, Role::LeftHip, Role::RightHip, Role::LeftAnkle, Role::RightAnkle})
@@ -250,12 +300,14 @@ DepthTrack true_depths(const Motion& m, double rate) {
   d.time.resize(static_cast<std::size_t>(n));
   double yaw = NAN, lo = 0, hi = 0;
   bool first = true;
+  std::vector<Vec3> forwards(static_cast<std::size_t>(n), Vec3::Zero());
   for (int i = 0; i < n; ++i) {
     Vec3 left = Vec3::Zero();
     for (int k = std::max(0, i - w); k <= std::min(n - 1, i + w); ++k) left += hipline[static_cast<std::size_t>(k)];
     left.y() = 0;
     const Vec3 forward = left.normalized().cross(Vec3::UnitY());  // +x (left) x +y (up) = +z (forward)
     const auto iu = static_cast<std::size_t>(i);
+    forwards[iu] = forward;
     d.time[iu] = i / rate;
     for (int f = 0; f < 2; ++f) d.z[f][iu] = (ankle[f][iu] - pelvis[iu]).dot(forward);
     const double a = std::atan2(forward.x(), forward.z());
@@ -266,6 +318,7 @@ DepthTrack true_depths(const Motion& m, double rate) {
     first = false;
   }
   d.heading_range_deg = (hi - lo) * 180 / kPi;
+  fill_travel(d, forwards, rate);
   return d;
 }
 
@@ -340,6 +393,8 @@ WipTrialEval evaluate_wip_trial(const Motion& trial, const std::string& name, co
       e.baseline_z[f][i] = base.z[f];
       if (e.frames[i].time < opt.settle) continue;
       e.depth.add(e.frames[i].z[f], e.true_depth.z[f][i]);
+      e.depth_segment[static_cast<int>(depth_segment(e.true_depth, i, e.frames[i].walking))].add(e.frames[i].z[f],
+                                                                                               e.true_depth.z[f][i]);
       e.baseline_depth.add(base.z[f], e.true_depth.z[f][i]);
     }
   }
@@ -391,11 +446,15 @@ void evaluate_learned_depth(const Motion& trial, const wip::LearnedMapping& tabl
   const auto frames = wip::run_wip(model, tracker_frames_from_motion(trial, settings.signal.rate), ro).frames;
   const std::size_t n = std::min(frames.size(), e.true_depth.time.size());
   e.depth_learned = {};
+  for (auto& a : e.learned_segment) a = {};
   for (int f = 0; f < 2; ++f) {
     e.learned_z[f].assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
       e.learned_z[f][i] = frames[i].z[f];
-      if (frames[i].time >= opt.settle) e.depth_learned.add(frames[i].z[f], e.true_depth.z[f][i]);
+      if (frames[i].time < opt.settle) continue;
+      e.depth_learned.add(frames[i].z[f], e.true_depth.z[f][i]);
+      e.learned_segment[static_cast<int>(depth_segment(e.true_depth, i, frames[i].walking))].add(frames[i].z[f],
+                                                                                               e.true_depth.z[f][i]);
     }
   }
   e.depth_learned.finish();
@@ -635,6 +694,7 @@ struct Totals {
   std::vector<StillSegment> still;
   Agreement depth, base;
   Agreement depth_class[2], learned, learned_class[2];  // [0] normal, [1] turning walks
+  Agreement depth_segment[kDepthSegments], learned_segment[kDepthSegments];
   int learned_trials = 0;
   std::vector<SpeedTrial> speed;
   nlohmann::json trials = nlohmann::json::array();
@@ -655,10 +715,12 @@ void add_trial(const WipTrialEval& e, const WipTrialEval& ef, Totals& t) {
   t.depth.merge(e.depth);
   t.base.merge(e.baseline_depth);
   t.depth_class[e.turning ? 1 : 0].merge(e.depth);
+  for (int k = 0; k < kDepthSegments; ++k) t.depth_segment[k].merge(e.depth_segment[k]);
   if (e.depth_learned.samples > 1) {
     ++t.learned_trials;
     t.learned.merge(e.depth_learned);
     t.learned_class[e.turning ? 1 : 0].merge(e.depth_learned);
+    for (int k = 0; k < kDepthSegments; ++k) t.learned_segment[k].merge(e.learned_segment[k]);
   }
   t.trials.push_back({{"trial", e.name},
                       {"duration_s", e.duration},
@@ -774,6 +836,26 @@ nlohmann::json depth_mapping_json(const WipEvalSummary& s) {
           {"turning_if_heading_range_deg_over", kTurningDegrees}};
 }
 
+// One segment's agreement with its share of the pooled squared error and the pooled RMS without it.
+nlohmann::json segment_json(const Agreement& a, const Agreement& pooled) {
+  nlohmann::json j = agreement_json(a);
+  if (j.is_null()) return j;
+  j["share_of_squared_error"] = num(pooled.se2 > 0 ? a.se2 / pooled.se2 : NAN);
+  const int rest = pooled.samples - a.samples;
+  j["pooled_rms_cm_without"] = rest > 0 ? num(100 * std::sqrt((pooled.se2 - a.se2) / rest)) : nullptr;
+  return j;
+}
+
+// Both mappings' depth by DepthSegment.
+nlohmann::json depth_segments_json(const WipEvalSummary& s) {
+  nlohmann::json j = nlohmann::json::array();
+  for (int k = 0; k < kDepthSegments; ++k)
+    j.push_back({{"segment", depth_segment_name(static_cast<DepthSegment>(k))},
+                 {"document", segment_json(s.depth_segment[k], s.depth)},
+                 {"learned_cv_by_subject", segment_json(s.learned_segment[k], s.learned)}});
+  return j;
+}
+
 // Both step detectors side by side (document = before, adaptive = after) and
 // the adaptive one's cross-validation by subject when it ran.
 nlohmann::json detectors_json(const WipEvalSummary& s) {
@@ -844,6 +926,7 @@ nlohmann::json summary_json(const WipEvalRun& run, const WipEvalSummary& s, cons
   j["baseline_depth_correlation"] = num(s.baseline_depth.correlation);
   j["baseline_depth_rms_cm"] = 100 * s.baseline_depth.rms;
   j["depth_by_mapping"] = depth_mapping_json(s);
+  j["depth_by_segment"] = depth_segments_json(s);
   j["detectors"] = detectors_json(s);
   j["walking_speed"] = speed_json(s.speed);
   j["trials"] = s.trials;
@@ -874,6 +957,27 @@ std::string agreement_cell(const Agreement& a) {
   return "r " + na(a.correlation, "%.3f") + ", RMS " + na(100 * a.rms, "%.1f") + " cm";
 }
 
+// Where the depth error comes from: each DepthSegment's share of the pooled squared error, both mappings.
+std::string depth_segments_markdown(const WipEvalSummary& s) {
+  std::ostringstream md;
+  md << "\n### IK-target depth by segment\n\nFrames by what the body does (pelvis path over +-" << kTravelWindow
+     << " s): backward or sideways = travelling more than 60 degrees off the heading at >= " << kSlowTravel
+     << " m/s while walking; slow = pelvis under " << kSlowTravel << " m/s; turning = travel direction turning faster than "
+     << kTurnRate << " degrees/s. Share = the segment's part of the mapping's pooled squared error.\n\n"
+     << "| segment | samples | document | learned (cross-validated by subject) | learned: share of squared error | "
+        "learned: pooled RMS without it |\n|---|---|---|---|---|---|\n";
+  for (int k = 0; k < kDepthSegments; ++k) {
+    const Agreement& l = s.learned_segment[k];
+    const bool known = l.samples > 0 && s.learned.se2 > 0 && s.learned.samples > l.samples;
+    md << "| " << depth_segment_name(static_cast<DepthSegment>(k)) << " | " << s.depth_segment[k].samples << " | "
+       << agreement_cell(s.depth_segment[k]) << " | " << agreement_cell(l) << " | "
+       << (known ? na(100 * l.se2 / s.learned.se2, "%.1f %%") : "n/a") << " | "
+       << (known ? na(100 * std::sqrt((s.learned.se2 - l.se2) / (s.learned.samples - l.samples)), "%.2f cm") : "n/a")
+       << " |\n";
+  }
+  return md.str();
+}
+
 std::string depth_markdown(const WipEvalSummary& s) {
   std::ostringstream md;
   md << "\n## IK-target depth vs the real feet, by mapping\n\nThe learned mapping is cross-validated by subject: "
@@ -884,7 +988,7 @@ std::string depth_markdown(const WipEvalSummary& s) {
      << " | " << agreement_cell(s.depth) << " |\n"
      << "| learned, cross-validated by subject | " << agreement_cell(s.learned_normal) << " | "
      << agreement_cell(s.learned_turning) << " | " << agreement_cell(s.learned) << " |\n";
-  return md.str();
+  return md.str() + depth_segments_markdown(s);
 }
 
 std::string speed_markdown(const SpeedSummary& v) {
@@ -974,6 +1078,12 @@ void finish_summary(const Totals& t, WipEvalSummary& s) {
   Agreement* parts[] = {&s.depth_normal, &s.depth_turning, &s.learned, &s.learned_normal, &s.learned_turning};
   const Agreement* from[] = {&t.depth_class[0], &t.depth_class[1], &t.learned, &t.learned_class[0], &t.learned_class[1]};
   for (int i = 0; i < 5; ++i) *parts[i] = *from[i], parts[i]->finish();
+  for (int k = 0; k < kDepthSegments; ++k) {
+    s.depth_segment[k] = t.depth_segment[k];
+    s.depth_segment[k].finish();
+    s.learned_segment[k] = t.learned_segment[k];
+    s.learned_segment[k].finish();
+  }
   s.learned_trials = t.learned_trials;
   s.steps = combine(t.clean);
   s.steps_noisy = combine(t.noisy);

@@ -270,6 +270,34 @@ TEST(LearnedMapping, TrialsThatTurnAroundAreTurningWalks) {
   EXPECT_LT(straight.heading_range_deg, kTurningDegrees);
 }
 
+// The depth error's segments from the capture: 07_01 walks straight ahead;
+// 09_12 ("navigate - walk forward, backward, sideways") walks forward for its
+// first 7 s and backward and sideways after, which the segments show.
+TEST(DepthSegments, BackwardAndSidewaysWalkingIsFoundWhereTheCaptureDoesIt) {
+  const auto straight = true_depths(load("cmu/bvh/walking/07_01.bvh"), 30);
+  int forward = 0, backward = 0;
+  for (std::size_t i = 0; i < straight.time.size(); ++i) {
+    const auto s = depth_segment(straight, i, true);
+    forward += s == DepthSegment::Straight ? 1 : 0;
+    backward += s == DepthSegment::Backward ? 1 : 0;
+  }
+  EXPECT_EQ(backward, 0);
+  EXPECT_GT(forward, static_cast<int>(0.8 * static_cast<double>(straight.time.size())));
+  EXPECT_EQ(depth_segment(straight, 30, false), DepthSegment::NotWalking);
+  LEGWORK_REQUIRE_SHARED_CMU();
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  const auto nav = true_depths(io::load_bvh((testdata::shared_cmu() / "bvh" / "walking" / "09_12.bvh").string(), opt), 30);
+  int early = 0, late = 0, late_frames = 0;
+  for (std::size_t i = 0; i < nav.time.size(); ++i) {
+    const bool back = depth_segment(nav, i, true) == DepthSegment::Backward;
+    if (nav.time[i] < 7) early += back ? 1 : 0;
+    else late += back ? 1 : 0, ++late_frames;
+  }
+  EXPECT_EQ(early, 0);
+  EXPECT_GT(late, late_frames / 4) << late << " of " << late_frames << " frames after 7 s";
+}
+
 TEST(RealWalking, FullSharedSetKeepsStepF1Above90Percent) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const Motion cycle = wip::extract_walk_cycle(load("cmu/bvh/walking/07_01.bvh"));

@@ -90,7 +90,28 @@ struct DepthTrack {
   std::vector<double> z[2];
   std::vector<Vec3> pelvis;      // world pelvis position per sample (walking speed, wip_speed.hpp)
   double heading_range_deg = 0;  // max - min of the (unwrapped) walking heading over the trial
+  // The pelvis's travel per sample (horizontal path over +-kTravelWindow s): speed (m/s), how fast its
+  // direction turns (degrees/s, between the windows ending and starting here) and the cosine between the
+  // travel direction and the walking heading (1 forward, -1 backward, 0 sideways).
+  std::vector<double> travel_speed, travel_turn_deg_s, travel_along;
 };
+
+// What the body does at a sample, for the depth error's breakdown by segment
+// (report "IK-target depth by segment"): checked in this order, a walking
+// frame (the method's flag) whose pelvis travels more than 60 degrees off the
+// heading at >= kSlowTravel is Backward (backward or sideways walking: the
+// ankle heights cannot show it), a frame the method is not walking is
+// NotWalking (before the first step, after the stop rule), a pelvis slower than
+// kSlowTravel is Slow (turns on the spot, start and stop shuffles), a travel
+// direction turning faster than kTurnRate is Turning, else Straight.
+enum class DepthSegment { Straight, Turning, Slow, Backward, NotWalking };
+inline constexpr int kDepthSegments = 5;
+inline constexpr double kTravelWindow = 0.27;    // s
+inline constexpr double kSlowTravel = 0.25;      // m/s
+inline constexpr double kTurnRate = 45;          // degrees/s
+inline constexpr double kBackwardCosine = 0.5;   // travel more than 60 degrees off the heading
+const char* depth_segment_name(DepthSegment s);  // "walking straight", ...
+DepthSegment depth_segment(const DepthTrack& d, std::size_t sample, bool walking);
 // Trials whose heading spans more than this are "turning" walks in the report.
 inline constexpr double kTurningDegrees = 90;
 DepthTrack true_depths(const Motion& m, double rate);
@@ -131,7 +152,9 @@ struct WipTrialEval {
   std::string subject;                 // CMU subject (the name before '_'): the cross-validation fold
   bool turning = false;                // true_depth.heading_range_deg > kTurningDegrees
   std::vector<wip::LearnSample> learn; // training samples of the clean run (learned mapping)
+  Agreement depth_segment[kDepthSegments];    // the document's mapping by DepthSegment
   Agreement depth_learned;             // learned mapping, table built without this subject (samples 0 = n/a)
+  Agreement learned_segment[kDepthSegments];  // the same by DepthSegment
   std::vector<double> learned_z[2];    // its IK-target depths per frame
   SpeedTrial speed;                    // the avatar's travel against the pelvis's (clean run)
 };
@@ -184,6 +207,8 @@ struct WipEvalSummary {
   // mapping and the learned one cross-validated by subject.
   Agreement depth_normal, depth_turning, learned, learned_normal, learned_turning;
   int learned_trials = 0;
+  // Both mappings by DepthSegment (where the depth error comes from).
+  Agreement depth_segment[kDepthSegments], learned_segment[kDepthSegments];
   DetectorSummary detectors[2];      // [0] the document's detector (before), [1] the adaptive one (after)
   bool cross_validated = false;      // the adaptive detector's parameters were also chosen by subject (below)
   StrictScore cv_strict, cv_noisy;   // held-out subjects pooled
