@@ -144,7 +144,8 @@ int main(int argc, char** argv) {
   const char* qn[] = {"mean of both feet's last apex / estimate", "min", "own foot", "lead foot (landed last)", "max", "steps since walking started"};
   for (int qv=0; qv<6; ++qv) {
     auto q=[&](size_t i,int f){ auto& r=rows[i]; double a0=last_apex[i][0]/std::max(r.apex[0],0.03), a1=last_apex[i][1]/std::max(r.apex[1],0.03);
-      if (qv==5) return std::min(nsteps[i],6.0)/4.0; double v = qv==0?0.5*(a0+a1): qv==1?std::min(a0,a1): qv==2?(f?a1:a0): qv==3?(r.lead<0?0.5*(a0+a1):(r.lead?a1:a0)) : std::max(a0,a1); return std::clamp(v,0.0,1.5); };
+      if (qv==5) return std::min(nsteps[i],6.0)/4.0;
+      double v = qv==0?0.5*(a0+a1): qv==1?std::min(a0,a1): qv==2?(f?a1:a0): qv==3?(r.lead<0?0.5*(a0+a1):(r.lead?a1:a0)) : std::max(a0,a1); return std::clamp(v,0.0,1.5); };
     const int B=6; Pred pg(rows.size(), {0,0});
     for (auto& s : subjects()) {
       double sxy[B+1]={0}, sxx[B+1]={0};
