@@ -378,6 +378,7 @@ CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys) {
   if (keys.floor_clamp) add_floor_lift(m);
   m.floor_clamp = keys.floor_clamp;
   share_lookups(m);
+  m.step_travel = straight_pivot_travel(m, 8).back().norm() / 2.0;
   return m;
 }
 

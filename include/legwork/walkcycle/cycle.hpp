@@ -78,6 +78,10 @@ struct CycleModel {
   std::array<Pose, kKeyCount + 1> step_keys;
   Pose stand;  // standing pose, root at (0, stand_height, 0)
   bool floor_clamp = true;  // sample_cycle adds floor_lift (no foot below the floor)
+  // The pivoting walk's travel per step, metres (straight_pivot_travel at 8
+  // samples per frame, half of one cycle's; the floor lift does not change
+  // it), computed by build_cycle; < 0 = not computed.
+  double step_travel = -1;
   FootPivots left, right;
 
   double half_cycle() const { return frames_per_cycle / 2.0; }

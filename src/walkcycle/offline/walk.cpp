@@ -39,6 +39,7 @@ Vec3 planted_offset(const Vec3& world_prev, const Vec3& model_now, double theta)
 }  // namespace
 
 double step_length(const CycleModel& m) {
+  if (m.step_travel >= 0) return m.step_travel;  // (build_cycle's, the same figure)
   return straight_pivot_travel(m, 8).back().norm() / 2.0;  // (fine steps: the figure does not depend on the output rate)
 }
 
