@@ -38,19 +38,26 @@ struct Extended {
     return (1 - u) * q[i] + u * q[i + 1];
   }
   // Exact integral over [a, b] (trapezoids between whole frames); `whole`:
-  // at(k) of the whole frames k from `first` on, computed once for every window.
-  Vec3 integral(double a, double b, std::span<const Vec3> whole, double first) const {
+  // at(k) of the whole frames k from `first` on, and `piece`: the trapezoid
+  // from k - 1 to k, computed once for every window (the same values).
+  Vec3 integral(double a, double b, std::span<const Vec3> whole, std::span<const Vec3> piece, double first) const {
     Vec3 sum = Vec3::Zero();
     double x = a;
     Vec3 fx = at(a);
-    while (x < b) {
-      const double k = std::floor(x) + 1.0;
+    const auto size = static_cast<std::ptrdiff_t>(whole.size());
+    double k = std::floor(x) + 1.0;  // (= floor(x) + 1 each time)
+    for (auto i = static_cast<std::ptrdiff_t>(k - first); x < b; k += 1.0, ++i) {
       const double next = std::min(b, k);
-      const auto i = static_cast<std::size_t>(k - first);
-      const Vec3 fn = next == k && k >= first && i < whole.size() ? whole[i] : at(next);
-      sum += 0.5 * (next - x) * (fx + fn);
+      const bool cached = next == k && i >= 1 && i < size;
+      if (cached && x == k - 1.0) {
+        sum += piece[static_cast<std::size_t>(i)];
+        fx = whole[static_cast<std::size_t>(i)];
+      } else {
+        const Vec3 fn = cached ? whole[static_cast<std::size_t>(i)] : at(next);
+        sum += 0.5 * (next - x) * (fx + fn);
+        fx = fn;
+      }
       x = next;
-      fx = fn;
     }
     return sum;
   }
@@ -65,10 +72,12 @@ std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool res
   // The windows reach whole frames first ... last; their values (extended beyond the ends) once.
   const double first = std::floor(-0.5 * width), last = std::ceil(static_cast<double>(q.size()) - 1 + 0.5 * width);
   std::vector<Vec3> whole(static_cast<std::size_t>(last - first) + 1);
+  std::vector<Vec3> piece(whole.size(), Vec3::Zero());
   for (std::size_t i = 0; i < whole.size(); ++i) whole[i] = e.at(first + static_cast<double>(i));
+  for (std::size_t i = 1; i < whole.size(); ++i) piece[i] = 0.5 * 1.0 * (whole[i - 1] + whole[i]);
   for (std::size_t f = 0; f < q.size(); ++f) {
     const double x = static_cast<double>(f);
-    out[f] = e.integral(x - 0.5 * width, x + 0.5 * width, whole, first) / width;
+    out[f] = e.integral(x - 0.5 * width, x + 0.5 * width, whole, piece, first) / width;
   }
   return out;
 }
