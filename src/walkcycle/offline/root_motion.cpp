@@ -140,35 +140,6 @@ std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const 
   return holds;
 }
 
-// Where a foot stands on stairs over a plant: the extent of its heel, ball
-// and toe tip along the stairs, and of its ball alone (metres from the
-// stairs' origin, over every frame of the plant).
-struct FootExtent {
-  double lo = 1e300, hi = -1e300, ball_lo = 1e300, ball_hi = -1e300;
-};
-
-// Stairs: a foot that would stand across a tread's edge is moved along the
-// stairs, the least it takes (1 cm steps, up to a tread's depth), until its
-// ball stays at least 2 cm from an edge, its heel is not lower than the
-// tread under the ball (it may overhang the tread below, as on real stairs)
-// and its toe tip stays 2 cm short of the riser ahead (a foot rolled on its
-// ball moves its toe base forward by up to a centimetre). Returns the move
-// (metres) and the tread's height in `height`.
-double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
-  auto h = [&](double s) { return ground.height(ground.origin + s * ground.direction); };
-  const double margin = 0.02;
-  for (int i = 0; i <= static_cast<int>(ground.run / 0.01); ++i)
-    for (int sign : {-1, 1}) {
-      const double d = sign * 0.01 * i, tread = h(e.ball_lo + d);
-      if (h(e.ball_lo + d - margin) != tread || h(e.ball_hi + d + margin) != tread) continue;
-      if (h(e.lo + d) > tread || h(e.hi + d + margin) > tread) continue;
-      height = tread;
-      return d;
-    }
-  height = std::max(h(e.lo), h(e.hi));
-  return 0.0;
-}
-
 // Stairs: each stance foot is planted flat on a tread (fit_on_tread, over
 // its whole stance); between two plants the swing carries it from one to
 // the next - along the stairs over the whole swing, up over its first 60 %
