@@ -162,7 +162,7 @@ double follow_ground(const Model& model, State& s, double frames, double stairs_
   if (ground.flat()) return 0.0;
   double target = 1e300;  // the lowest: the leg reaching down is the one that runs out of reach
   for (const Vec3& p : s.feet) target = std::min(target, ground.height(yaw_rotation(s.heading) * p + s.offset));
-  if (ground.stepped()) return stairs_height;  // (smooth already: plant_feet)
+  if (ground.stepped()) target = stairs_height;  // (the lower foot's height: plant_feet)
   if (!s.rise_started) {
     s.rise = {target, target};
     s.rise_started = true;
@@ -240,18 +240,9 @@ double plant_feet(const Model& model, State& s, const StanceAt& st, std::array<F
     s.stance_was[i] = stance;
   }
   s.plants_started = true;
-  // The pelvis's height: the stance foot's tread at mid-stance, easing
-  // (smoothstep) from one stance's tread to the next's between mid-stances:
-  // from the swing foot's last tread in the first half of the step, to its
-  // landing tread (fixed from mid-step) in the second; C1 at the seams.
-  const auto stance_side = static_cast<std::size_t>(st.left ? 1 : 0), swing_side = 1 - stance_side;
-  const double u = std::clamp((s.time - st.step * half) / half, 0.0, 1.0);
-  const double here = s.plant_on[stance_side].height;
-  if (u < 0.5) {
-    const double before = s.plant_on[swing_side].height;
-    return before + smoothstep(0.5 + u) * (here - before);
-  }
-  return here + smoothstep(u - 0.5) * (s.plant_next[swing_side].height - here);
+  // The pelvis follows the lower foot (its plant, or its swing's height):
+  // the leg reaching down is the one that runs out of reach.
+  return std::min(hold[0].lift, hold[1].lift);
 }
 
 // Stairs: the cycle's rate, easing (over about a step) to Settings::stairs_cadence
@@ -285,9 +276,10 @@ void smooth_frame(const Model& model, State& s, double frames, const StanceAt& s
     const double need = std::max(drop, solve_legs(model, ground, out, s.smooth - s.offset + Vec3(0, rise, 0), s.heading, st, hold,
                                                   s.plan_space, s.model_space, false, nullptr, kStairsReachMargin));
     if (!s.drop_started) s.drop_stage = {need, need}, s.drop_started = true;
-    const double a = 1.0 - std::exp(-frames / (0.25 * m.half_cycle()));
-    s.drop_stage[0] = need > s.drop_stage[0] ? need : s.drop_stage[0] + a * (need - s.drop_stage[0]);
-    drop = s.drop_stage[0];
+    const double a = 1.0 - std::exp(-frames / (0.125 * m.half_cycle()));
+    s.drop_stage[0] += a * (need - s.drop_stage[0]);
+    s.drop_stage[1] += a * (s.drop_stage[0] - s.drop_stage[1]);
+    drop = std::max(0.0, 2 * s.drop_stage[0] - s.drop_stage[1]);
     follow_cadence(model, s, frames);
   }
   if (info) info->pelvis_drop = drop;
