@@ -68,8 +68,8 @@ struct Settings {
   // walk_path): where the swing foot will land is predicted from the cycle
   // and the heading (exact once the step's heading is latched, at mid-swing,
   // when the plant is fixed), the swing carries the foot up early or down
-  // late, the pelvis follows the mean height of the two feet's plants and
-  // drops as far as the legs need to reach them.
+  // late, the pelvis follows the lower foot's height and drops as far as
+  // the legs need to reach the treads (both followed smoothly).
   Ground ground;
   // Stairs: the cycle's rate while a foot's plant is higher or lower than
   // the other's (people climb and descend at a slower cadence than they walk
