@@ -379,7 +379,7 @@ void tabulate_landing(Model::SmoothRoot& sr, const CycleModel& m) {
   }
 }
 
-// The walker's ground: finite, a consistent height field, not stairs, and
+// The walker's ground: finite, a consistent height field or stairs, and
 // only with the smooth root (only the legs can put the feet on it).
 void check_ground(const Settings& s) {
   const Ground& g = s.ground;
@@ -398,8 +398,6 @@ void check_ground(const Settings& s) {
   if (g.stepped() && (!std::isfinite(g.rise) || !(g.run >= 0.2) || !std::isfinite(g.run) || g.count < 1 ||
                       std::abs(g.direction.norm() - 1.0) > 1e-6))
     throw Error("walker: ground: stairs need a finite rise, a run of at least 0.2 m, at least one step and a unit direction");
-  if (!(s.stairs_cadence > 0 && s.stairs_cadence <= 1))
-    throw Error("walker: stairs_cadence must be in (0, 1] (a fraction of the cycle's rate), got " + std::to_string(s.stairs_cadence));
 }
 
 }  // namespace
@@ -415,6 +413,9 @@ Model make_model(const CycleModel& cycle, const Settings& settings) {
     throw Error("walker: the start position and heading must be finite");
   if (!(settings.soft_reach > 0 && settings.soft_reach <= 1))
     throw Error("walker: soft_reach must be in (0, 1] (a fraction of the leg's length), got " + std::to_string(settings.soft_reach));
+  if (!(settings.stairs_cadence > 0 && settings.stairs_cadence <= 1))
+    throw Error("walker: stairs_cadence must be in (0, 1] (a fraction of the cycle's rate), got " +
+                std::to_string(settings.stairs_cadence));
   check_ground(settings);
   if (settings.root != RootMotion::Smooth && settings.root != RootMotion::Pivot)
     throw Error("walker: root must be RootMotion::Smooth or RootMotion::Pivot, got " + std::to_string(static_cast<int>(settings.root)));
