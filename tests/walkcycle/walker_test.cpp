@@ -437,8 +437,9 @@ TEST(Walker, ClimbsTheStairsOnTheTreads) {
       EXPECT_LE(c.penetration_mm, 2.0) << w;
       EXPECT_GE(tr.ball_margin_mm, 0.0) << w;  // no ball that is down over an edge
       EXPECT_NEAR(end.y() - settings.ground.height(end), end_flat.y(), 0.03) << w;  // standing as tall on the landing
-      // (Not asserted: the pelvis's vertical acceleration, above issue 14's 10 m/s^2 over the flat walk's on
-      // some walks - the walk's own stride takes two treads a step; see docs/walkcycle.md.)
+      // (Not asserted: the pelvis's vertical acceleration, within issue 14's 10 m/s^2 over the flat walk's
+      // except the sneak going up, 12.4 - the walk's own stride takes two or three treads a step;
+      // see docs/walkcycle.md.)
       EXPECT_LT(end.z(), end_flat.z()) << w;  // the slower cadence on the flight
     }
   }
