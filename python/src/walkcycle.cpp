@@ -45,8 +45,8 @@ void bind_walkcycle(pb::module_& m) {
       .def(
           "set_ground", [](Settings& s, const std::string& json) { s.ground = parse_ground_json(json, "Settings.set_ground"); },
           "json"_a,
-          "The ground walked on: the JSON text of a path file's \"ground\" object (slope or heightfield; stairs are\n"
-          "refused by make_model); legwork.Error naming the field at fault.")
+          "The ground walked on: the JSON text of a path file's \"ground\" object (slope, heightfield or stairs);\n"
+          "legwork.Error naming the field at fault.")
       .def_property_readonly("ground", [](const Settings& s) { return s.ground.describe(); },
                              "the ground walked on, described: 'flat', 'slope 12.0 % over 4.00 m', 'height field ...'");
   def_model_state<Model, State>(m, static_cast<void (*)(const Model&, State&)>(&reset), "Immutable walker model (owns its cycle).",

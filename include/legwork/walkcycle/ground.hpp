@@ -67,7 +67,7 @@ double fit_on_tread(const Ground& ground, const FootExtent& e, double& height);
 // turned on a slope moves its other point sideways by the turn times their
 // height difference, which is what makes the switch from heel to ball slip;
 // fading the turn out keeps that near a millimetre on a 12 % grade. Flat
-// ground and stairs (planted flat on the treads by walk_path) leave the foot
+// ground and stairs (planted flat on the treads by walk_path and the live walker) leave the foot
 // alone. Returns the turn applied.
 Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_ball, Transform& ankle, Quat& full);
 
