@@ -102,8 +102,8 @@ namespace Legwork
         public double MaxTurnPerStep;  // radians of heading change per step, >= 0
         public double SoftReach;       // smooth root: fraction of a leg's length it may straighten to, (0, 1]
         // The ground walked on (smooth root): the JSON of a path file's "ground" object, e.g.
-        // {"slope": {"origin": [0, 1], "direction": [0, 1], "grade": 0.1}} or {"heightfield": {...}}
-        // (docs/walkcycle.md; stairs are refused); null or "" = the flat floor.
+        // {"slope": {"origin": [0, 1], "direction": [0, 1], "grade": 0.1}}, {"heightfield": {...}} or
+        // {"stairs": {...}} (docs/walkcycle.md); null or "" = the flat floor.
         [MarshalAs(UnmanagedType.LPStr)] public string GroundJson;
 
         public static WalkerSettings Default()

@@ -1,6 +1,6 @@
 // The walker's settings through Legwork.cs (issue 14): the defaults, a ramp
-// ground on which the planted foot stays on the ground, and a bad ground
-// refused naming the field. Run by CTest (csharp.walker_ground).
+// ground on which the planted foot stays on the ground, stairs climbed with
+// the feet on the treads, and a bad ground refused naming the field. Run by CTest (csharp.walker_ground).
 //   mono walkerground.exe WALK.json
 using System;
 using Legwork;
@@ -22,7 +22,10 @@ static class WalkerGround
     // Walks 5 s straight ahead (+z); returns the mean over the last second of the
     // lowest foot joint's (ankle or toes) height above the ramp's ground under it,
     // and the left ankle's mean z then.
-    static double Clearance(Model model, out double endZ)
+    static double Clearance(Model model, out double endZ) { return ClearanceOn(model, Ground, out endZ); }
+
+    // The same over any ground (its height at z).
+    static double ClearanceOn(Model model, Func<double, double> ground, out double endZ)
     {
         Avatar avatar = Avatar.Create(model);
         int[] ankle = { Joint(model, "LeftFoot"), Joint(model, "RightFoot") };
@@ -43,7 +46,7 @@ static class WalkerGround
             if (i < frames - 30) continue;
             double lowest = double.MaxValue;
             foreach (int a in foot)
-                lowest = Math.Min(lowest, world[3 * a + 1] - Ground(world[3 * a + 2]));
+                lowest = Math.Min(lowest, world[3 * a + 1] - ground(world[3 * a + 2]));
             sum += lowest;
             sumZ += world[3 * ankle[0] + 2];
             ++n;
@@ -84,7 +87,8 @@ static class WalkerGround
         Model flat = Model.CreateWalker(args[0], s);
         s.GroundJson = "{\"slope\": {\"origin\": [0, " + RampStart + "], \"direction\": [0, 1], \"grade\": " + Grade + "}}";
         Model ramp = Model.CreateWalker(args[0], s);
-        double flatBelowRamp = Clearance(flat, out flatZ), onRamp = Clearance(ramp, out rampZ);
+        double flatBelowRamp = Clearance(flat, out flatZ), onRamp = Clearance(ramp, out rampZ), flatEndZ;
+        double onFloor = ClearanceOn(flat, z => 0.0, out flatEndZ);
         double onFlat = flatBelowRamp + Ground(flatZ);
         Expect.That("walked up the ramp", Ground(rampZ) > 0.25, string.Format("left ankle at z {0:F2} m, ground {1:F3} m", rampZ, Ground(rampZ)));
         Expect.That("the flat walker's feet end below the ramp", flatBelowRamp < -0.2, string.Format("{0:F3} m", flatBelowRamp));
@@ -96,6 +100,20 @@ static class WalkerGround
                string.Format("{0:F3} m above the floor, {1:F3} m above the ramp (bound {2:F3} m)", onFlat, onRamp, Grade * footLength));
         flat.Dispose();
         ramp.Dispose();
+
+        // Stairs (the shipped stairs.json's flight: 5 x 0.15 m from z = 1.5 m,
+        // 0.36 m treads): each foot planted flat on a tread, so the lowest foot
+        // joint ends as high above the landing as it was above the floor.
+        WalkerSettings st = WalkerSettings.Default();
+        st.GroundJson = "{\"stairs\": {\"origin\": [0, 1.5], \"direction\": [0, 1], \"rise\": 0.15, \"run\": 0.36, \"count\": 5}}";
+        Model stairs = Model.CreateWalker(args[0], st);
+        double stairsZ;
+        double aboveLanding = ClearanceOn(stairs, z => z < 1.5 ? 0.0 : 0.15 * Math.Min(5, Math.Floor((z - 1.5) / 0.36) + 1), out stairsZ);
+        Expect.That("climbed the stairs", stairsZ > 1.5 + 5 * 0.36, string.Format("left ankle at z {0:F2} m", stairsZ));
+        // (Within issue 14's 2 mm for feet on the ground.)
+        Expect.That("feet as high above the landing as above the floor", Math.Abs(aboveLanding - onFloor) <= 0.002,
+                    string.Format("{0:F4} m above the floor, {1:F4} m above the landing", onFloor, aboveLanding));
+        stairs.Dispose();
 
         WalkerSettings bad = WalkerSettings.Default();
         bad.GroundJson = "{\"slope\": {\"origin\": [0, 0.5], \"direction\": [0, 1], \"grade\": 0.5}}";

@@ -194,7 +194,7 @@ typedef struct lw_walker_settings {
   double soft_reach;         /* smooth root: fraction of a leg's length it may straighten to, (0, 1] */
   /* The ground walked on (smooth root): the JSON text of a path file's "ground"
    * object, e.g. {"slope": {"origin": [0, 1], "direction": [0, 1], "grade": 0.1}}
-   * or {"heightfield": {...}} (docs/walkcycle.md; stairs are refused); NULL or
+   * or {"heightfield": {...}} or {"stairs": {...}} (docs/walkcycle.md); NULL or
    * "" = the flat floor. Copied by lw_model_create_walker_with_settings. */
   const char* ground_json;
 } lw_walker_settings;

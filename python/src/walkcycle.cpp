@@ -41,11 +41,12 @@ void bind_walkcycle(pb::module_& m) {
       .def_readwrite("root", &Settings::root, "RootMotion.Smooth (default: even travel, legs by IK) or RootMotion.Pivot")
       .def_readwrite("soft_reach", &Settings::soft_reach, "smooth root: fraction of a leg's length it may straighten to, (0, 1]")
       .def_readwrite("turn_on_ball", &Settings::turn_on_ball, "smooth root: the stance foot turns on its ball on turns (default True)")
+      .def_readwrite("stairs_cadence", &Settings::stairs_cadence, "stairs: the cycle's rate on the flight, (0, 1] (default 0.8)")
       .def(
           "set_ground", [](Settings& s, const std::string& json) { s.ground = parse_ground_json(json, "Settings.set_ground"); },
           "json"_a,
-          "The ground walked on: the JSON text of a path file's \"ground\" object (slope or heightfield; stairs are\n"
-          "refused by make_model); legwork.Error naming the field at fault.")
+          "The ground walked on: the JSON text of a path file's \"ground\" object (slope, heightfield or stairs);\n"
+          "legwork.Error naming the field at fault.")
       .def_property_readonly("ground", [](const Settings& s) { return s.ground.describe(); },
                              "the ground walked on, described: 'flat', 'slope 12.0 % over 4.00 m', 'height field ...'");
   def_model_state<Model, State>(m, static_cast<void (*)(const Model&, State&)>(&reset), "Immutable walker model (owns its cycle).",
@@ -63,7 +64,8 @@ void bind_walkcycle(pb::module_& m) {
       .def_readonly("pelvis_drop", &Info::pelvis_drop, "smooth root: metres the pelvis is lowered so the legs reach")
       .def_readonly("foot_roll", &Info::foot_roll, "smooth root: largest roll of a foot out of reach, radians")
       .def_readonly("reach_limited", &Info::reach_limited, "smooth root: a leg needed more than soft_reach")
-      .def_readonly("ground_rise", &Info::ground_rise, "smooth root: metres the pelvis is raised by the ground under the feet");
+      .def_readonly("ground_rise", &Info::ground_rise, "smooth root: metres the pelvis is raised by the ground under the feet")
+      .def_readonly("cadence", &Info::cadence, "the cycle's rate (1; Settings.stairs_cadence on stairs)");
   def_update(m, &update,
              "One frame: the head device's yaw steers (held when not usable); the walk advances by the frame's dt;\n"
              "`out` (a legwork.core.Pose of model.skeleton()) gets the world pose; returns legwork.core.UpdateStatus.");

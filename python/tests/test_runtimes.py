@@ -288,7 +288,29 @@ def test_walker_walks_the_ground_it_is_given():
     assert info.ground_rise > 0.3
     with pytest.raises(legwork.Error, match="Settings.set_ground: slope: grade"):
         settings.set_ground('{"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.5}}')
-    stairs = walkcycle.Settings()
-    stairs.set_ground('{"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "run": 0.3, "count": 3}}')
-    with pytest.raises(legwork.Error, match="stairs are not supported by the live walker"):
-        walkcycle.make_model(cycle, stairs)
+
+
+def test_walker_climbs_stairs():
+    # The shipped stairs.json's flight (5 x 0.15 m from z = 1.5 m), at the stairs cadence.
+    walk = walkcycle.load_walk(str(SOURCE / "data/walks/normal.json"))
+    cycle = walkcycle.build_cycle(walk.skeleton, walk.keys)
+    settings = walkcycle.Settings()
+    assert settings.stairs_cadence == 0.8
+    settings.set_ground('{"stairs": {"origin": [0, 1.5], "direction": [0, 1], "rise": 0.15, "run": 0.36, "count": 5}}')
+    assert settings.ground == "stairs up, 5 steps of 0.150 m rise, 0.360 m run"
+    model = walkcycle.make_model(cycle, settings)
+    state, pose, info = walkcycle.State(model), core.Pose(model.skeleton()), walkcycle.Info()
+    first, cadences = None, []
+    for i in range(150):  # 5 s at 30 Hz, straight up the flight
+        f = core.TrackerFrame(i / 30.0)
+        f.set(core.Device.Head, np.array([0.0, 1.7, 0.0]), np.array([1.0, 0, 0, 0]))
+        walkcycle.update(model, f, state, pose, info)
+        root = np.array(pose.translations[0])
+        first = root[1] if first is None else first
+        cadences.append(info.cadence)
+    assert root[2] > 1.5 + 5 * 0.36  # past the last riser
+    assert abs(root[1] - 0.75 - first) < 0.03  # as high above the landing as above the floor
+    assert min(cadences) < 0.85  # slower on the flight
+    settings.stairs_cadence = 0.0
+    with pytest.raises(legwork.Error, match="stairs_cadence must be in"):
+        walkcycle.make_model(cycle, settings)

@@ -55,6 +55,13 @@ Vec3 fallback_pole(const Vec3& d) {
   return out;
 }
 
+// a.slerp(w, b): at w = 1 (a target's rotation taken fully) it is b on a's
+// side of the sphere, which slerp reaches as 0 a + (+-1) b - without its acos and sines.
+Quat toward(const Quat& a, double w, const Quat& b) {
+  if (w != 1.0) return a.slerp(w, b);
+  return a.dot(b) < 0 ? Quat(-b.coeffs()) : b;
+}
+
 }  // namespace
 
 TwoBoneChain left_leg(const Skeleton& s) { return chain_of(s, Role::LeftHip, Role::LeftKnee, Role::LeftAnkle); }
@@ -126,7 +133,7 @@ void solve_two_bone(const Skeleton& skel, const TwoBoneChain& chain, const TwoBo
   // Remove the rounding drift so the end lands exactly.
   model[eu].translation = c_new;
   if (wr > 0 && std::isfinite(target.rotation.coeffs().sum()))
-    model[eu].rotation = model[eu].rotation.slerp(wr, target.rotation.normalized()).normalized();
+    model[eu].rotation = toward(model[eu].rotation, wr, target.rotation.normalized()).normalized();
 
   // Write local rotations for every joint whose model frame changed.
   write_local(skel, chain.root, model, pose);

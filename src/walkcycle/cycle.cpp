@@ -18,31 +18,51 @@ Quat positive_w(Quat q) {
 
 double wrap(double t, double period) { return t - period * std::floor(t / period); }
 
-// Cubic Hermite on one periodic channel; keys in [first, first+count).
-Vec3 eval_channel(const CycleModel& m, const CycleModel::Channel& c, double t) {
-  if (c.count == 1) return m.key_value[static_cast<std::size_t>(c.first)];
-  const double n = m.frames_per_cycle;
-  const double* times = m.key_time.data() + c.first;
+// Where a time falls among a channel's keys: the segment [i, next] and the
+// cubic Hermite weights of its two values and two slopes (the slopes' weights
+// include the segment's length).
+// (No default values: sample_cycle keeps an uninitialised array of them, each filled before use.)
+struct Segment {
+  int i, next;
+  double c0, c1, c2, c3;
+};
+
+Segment locate(const double* times, int count, double n, double t) {
+  Segment s;  // NOLINT(cppcoreguidelines-pro-type-member-init): every field is set below
   // Last key at or before t (keys are few; a linear scan is fastest).
-  int i = c.count - 1;
+  s.i = count - 1;
   if (t < times[0]) {
     t += n;
   } else {
-    for (int k = 1; k < c.count; ++k)
+    for (int k = 1; k < count; ++k)
       if (times[k] > t) {
-        i = k - 1;
+        s.i = k - 1;
         break;
       }
   }
-  const int next = i + 1 == c.count ? 0 : i + 1;
-  const double t0 = times[i];
-  const double t1 = times[next] + (next == 0 ? n : 0.0);
+  s.next = s.i + 1 == count ? 0 : s.i + 1;
+  const double t0 = times[s.i];
+  const double t1 = times[s.next] + (s.next == 0 ? n : 0.0);
   const double h = t1 - t0;
   const double u = (t - t0) / h;
   const double u2 = u * u, u3 = u2 * u;
-  const auto a = static_cast<std::size_t>(c.first + i), b = static_cast<std::size_t>(c.first + next);
-  return (2 * u3 - 3 * u2 + 1) * m.key_value[a] + (u3 - 2 * u2 + u) * h * m.key_slope[a] +
-         (-2 * u3 + 3 * u2) * m.key_value[b] + (u3 - u2) * h * m.key_slope[b];
+  s.c0 = 2 * u3 - 3 * u2 + 1;
+  s.c1 = (u3 - 2 * u2 + u) * h;
+  s.c2 = -2 * u3 + 3 * u2;
+  s.c3 = (u3 - u2) * h;
+  return s;
+}
+
+Vec3 blend(const CycleModel& m, const CycleModel::Channel& c, const Segment& s) {
+  if (c.count == 1) return m.key_value[static_cast<std::size_t>(c.first)];
+  const auto a = static_cast<std::size_t>(c.first + s.i), b = static_cast<std::size_t>(c.first + s.next);
+  return s.c0 * m.key_value[a] + s.c1 * m.key_slope[a] + s.c2 * m.key_value[b] + s.c3 * m.key_slope[b];
+}
+
+// Cubic Hermite on one periodic channel; keys in [first, first+count).
+Vec3 eval_channel(const CycleModel& m, const CycleModel::Channel& c, double t) {
+  if (c.count == 1) return m.key_value[static_cast<std::size_t>(c.first)];
+  return blend(m, c, locate(m.key_time.data() + c.first, c.count, m.frames_per_cycle, t));
 }
 
 struct Entry {
@@ -250,6 +270,40 @@ CycleModel::Channel root_channel(CycleModel& m, const WalkKeys& keys, const std:
   return add_channel(m, std::move(e), false);
 }
 
+// The sampling shortcuts (results equal to the bit to evaluating every
+// channel on its own): channels with the same key times share one segment
+// lookup, and a rotation channel whose keys and slopes are all +0 (or that
+// has one key) is the same rotation at any time, computed once.
+void share_lookups(CycleModel& m) {
+  auto same_times = [&](const CycleModel::TimeGroup& g, const CycleModel::Channel& c) {
+    return g.count == c.count && std::equal(m.key_time.begin() + g.first, m.key_time.begin() + g.first + g.count,
+                                            m.key_time.begin() + c.first);
+  };
+  auto group = [&](CycleModel::Channel& c) {
+    c.times = -1;
+    if (c.count < 2) return;
+    for (std::size_t g = 0; g < m.time_groups.size(); ++g)
+      if (same_times(m.time_groups[g], c)) return void(c.times = static_cast<int>(g));
+    if (static_cast<int>(m.time_groups.size()) == CycleModel::max_time_groups) return;
+    c.times = static_cast<int>(m.time_groups.size());
+    m.time_groups.push_back({c.first, c.count});
+  };
+  auto positive_zero = [](const Vec3& v) { return v.x() == 0 && v.y() == 0 && v.z() == 0; };
+  m.time_groups.clear();
+  for (auto& c : m.rotation) {
+    c.fixed = c.count == 1;
+    for (int k = 0; k < c.count && !c.fixed; ++k) {
+      const auto i = static_cast<std::size_t>(c.first + k);
+      if (!positive_zero(m.key_value[i]) || !positive_zero(m.key_slope[i])) break;
+      if (k + 1 == c.count) c.fixed = true;
+    }
+    c.value = c.ref * rotation_exp(eval_channel(m, c, 0.0));
+    if (!c.fixed) group(c);
+  }
+  group(m.root_offset);
+  group(m.floor_lift);
+}
+
 }  // namespace
 
 CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys) {
@@ -323,19 +377,27 @@ CycleModel build_cycle(const Skeleton& skel, const WalkKeys& keys) {
   m.root_offset = root_channel(m, keys, offsets, shift);
   if (keys.floor_clamp) add_floor_lift(m);
   m.floor_clamp = keys.floor_clamp;
+  share_lookups(m);
+  m.step_travel = straight_pivot_travel(m, 8).back().norm() / 2.0;
   return m;
 }
 
 void sample_cycle(const CycleModel& m, double frame, PoseRef out) {
   const double t = wrap(frame, m.frames_per_cycle);
+  std::array<Segment, CycleModel::max_time_groups> segments;
+  for (std::size_t g = 0; g < m.time_groups.size(); ++g)
+    segments[g] = locate(m.key_time.data() + m.time_groups[g].first, m.time_groups[g].count, m.frames_per_cycle, t);
+  auto value = [&](const CycleModel::Channel& c) {
+    return c.times >= 0 ? blend(m, c, segments[static_cast<std::size_t>(c.times)]) : eval_channel(m, c, t);
+  };
   const int n = m.skeleton.joint_count();
   for (int j = 0; j < n; ++j) {
     const auto& c = m.rotation[static_cast<std::size_t>(j)];
-    out.rotations[static_cast<std::size_t>(j)] = c.ref * rotation_exp(eval_channel(m, c, t));
+    out.rotations[static_cast<std::size_t>(j)] = c.fixed ? c.value : c.ref * rotation_exp(value(c));
     out.translations[static_cast<std::size_t>(j)] = m.skeleton.rest_offsets[static_cast<std::size_t>(j)];
   }
-  out.translations[0] = Vec3(0, m.stand_height, 0) + eval_channel(m, m.root_offset, t);
-  if (m.floor_clamp && m.floor_lift.count > 0) out.translations[0] += eval_channel(m, m.floor_lift, t);
+  out.translations[0] = Vec3(0, m.stand_height, 0) + value(m.root_offset);
+  if (m.floor_clamp && m.floor_lift.count > 0) out.translations[0] += value(m.floor_lift);
 }
 
 double lowest_foot_height(const CycleModel& m, ConstPoseRef pose) {

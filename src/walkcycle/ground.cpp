@@ -50,6 +50,21 @@ std::string Ground::describe() const {
   return buf;
 }
 
+double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
+  auto h = [&](double s) { return ground.height(ground.origin + s * ground.direction); };
+  const double margin = 0.02;
+  for (int i = 0; i <= static_cast<int>(ground.run / 0.01); ++i)
+    for (int sign : {-1, 1}) {
+      const double d = sign * 0.01 * i, tread = h(e.ball_lo + d);
+      if (h(e.ball_lo + d - margin) != tread || h(e.ball_hi + d + margin) != tread) continue;
+      if (h(e.lo + d) > tread || h(e.hi + d + margin) > tread) continue;
+      height = tread;
+      return d;
+    }
+  height = std::max(h(e.lo), h(e.hi));
+  return 0.0;
+}
+
 Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_ball, Transform& ankle, Quat& full) {
   full = Quat::Identity();
   if (ground.flat() || ground.stepped()) return full;  // (stairs: planted flat by plant_on_treads)

@@ -235,4 +235,30 @@ TEST(ServeMethods, WalkerWalksTheHellosGround) {
   EXPECT_NE(message_of([&] { make_method(res, o); }).find("hello.ground: slope: grade 0.900000"), std::string::npos);
 }
 
+// `legwork serve`'s walker up the stairs of hello "ground" (the shipped
+// stairs.json's: 5 x 0.15 m from z = 1.5 m): it ends on the landing, 0.75 m
+// up, as high above it as it started above the floor (within the step's bob).
+TEST(ServeMethods, WalkerClimbsTheHellosStairs) {
+  Resources res;
+  res.walks_dir = std::string(LEGWORK_SOURCE_DIR) + "/data/walks";
+  MethodOptions o = options("walker");
+  o.ground = R"({"stairs": {"origin": [0, 1.5], "direction": [0, 1], "rise": 0.15, "run": 0.36, "count": 5}})";
+  const auto method = make_method(res, o);
+  Pose pose(method->skeleton());
+  MethodInfo info;
+  double first = 0;
+  for (int f = 0; f < 150; ++f) {
+    TrackerFrame frame;
+    frame.time = f / 30.0;
+    frame.head() = {Vec3(0, 1.7, 0), Quat::Identity(), true};
+    ASSERT_EQ(method->update(frame, pose.ref(), info), UpdateStatus::Ok);
+    if (f == 0) first = pose.translations[0].y();
+  }
+  const Vec3 end = pose.translations[0];
+  std::printf("[serve] walker up the stairs: root %.3f m above the floor at the start, %.3f m above the landing at z %.2f m\n", first,
+              end.y() - 0.75, end.z());
+  EXPECT_GT(end.z(), 1.5 + 5 * 0.36);  // past the last riser
+  EXPECT_NEAR(end.y() - 0.75, first, 0.03);
+}
+
 }  // namespace legwork::serve

@@ -50,7 +50,22 @@ struct CycleModel {
     int first = 0;
     int count = 0;
     Quat ref = Quat::Identity();  // rotation channels: mean key rotation
+    // Channels with the same key times share one segment lookup per sample:
+    // the index into `time_groups` (-1: looked up on its own).
+    int times = -1;
+    // A rotation channel that never moves (one key, or every key at the mean:
+    // a joint no key poses): sample_cycle writes `value`, the spline's exact
+    // result at any time.
+    bool fixed = false;
+    Quat value = Quat::Identity();
   };
+  // Key times shared by channels (the keys of a channel in the group, [first, first + count)).
+  struct TimeGroup {
+    int first = 0;
+    int count = 0;
+  };
+  static constexpr int max_time_groups = 32;
+  std::vector<TimeGroup> time_groups;  // at most max_time_groups
   std::vector<Channel> rotation;  // per joint
   Channel root_offset;            // Vec3 values (x side, y height, z forward)
   Channel floor_lift;             // (0, lift, 0): keeps the feet above the floor (count 0 = none)
@@ -63,6 +78,10 @@ struct CycleModel {
   std::array<Pose, kKeyCount + 1> step_keys;
   Pose stand;  // standing pose, root at (0, stand_height, 0)
   bool floor_clamp = true;  // sample_cycle adds floor_lift (no foot below the floor)
+  // The pivoting walk's travel per step, metres (straight_pivot_travel at 8
+  // samples per frame, half of one cycle's; the floor lift does not change
+  // it), computed by build_cycle; < 0 = not computed.
+  double step_travel = -1;
   FootPivots left, right;
 
   double half_cycle() const { return frames_per_cycle / 2.0; }

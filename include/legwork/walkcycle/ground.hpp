@@ -40,6 +40,23 @@ struct Ground {
   std::string describe() const;
 };
 
+// Where a foot stands on stairs over a plant: the extent of its heel, ball
+// and toe tip along the stairs, and of its ball alone (metres from the
+// stairs' origin, over every frame of the plant).
+struct FootExtent {
+  double lo = 1e300, hi = -1e300, ball_lo = 1e300, ball_hi = -1e300;
+};
+
+// Stairs (walk_path's plants and the live walker's): a foot that would stand
+// across a tread's edge is moved along the stairs, the least it takes (1 cm
+// steps, up to a tread's depth), until its ball stays at least 2 cm from an
+// edge, its heel is not lower than the tread under the ball (it may overhang
+// the tread below, as on real stairs) and its toe tip stays 2 cm short of
+// the riser ahead (a foot rolled on its ball moves its toe base forward by
+// up to a centimetre). Returns the move (metres along the stairs'
+// direction) and the tread's height in `height`. No allocation.
+double fit_on_tread(const Ground& ground, const FootExtent& e, double& height);
+
 // The foot of a plan walked on the flat floor put on the ground: placed on
 // `anchor` (the ball if `anchor_ball`, else the heel: the point it pivots
 // on) raised by the ground height under it, and turned rigidly towards the
@@ -50,7 +67,7 @@ struct Ground {
 // turned on a slope moves its other point sideways by the turn times their
 // height difference, which is what makes the switch from heel to ball slip;
 // fading the turn out keeps that near a millimetre on a 12 % grade. Flat
-// ground and stairs (planted flat on the treads by walk_path) leave the foot
+// ground and stairs (planted flat on the treads by walk_path and the live walker) leave the foot
 // alone. Returns the turn applied.
 Quat fit_to_ground(const Ground& ground, const FootPivots& foot, bool anchor_ball, Transform& ankle, Quat& full);
 

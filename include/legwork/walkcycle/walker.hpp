@@ -59,14 +59,22 @@ struct Settings {
   // false: it turns with the body about its pivot (twisting in place).
   bool turn_on_ball = true;
   double soft_reach = 0.98;                  // smooth root: fraction of a leg's length it may straighten to, (0, 1]
-  // Smooth root: the ground walked on (a slope or a height field, the same
-  // type as a path file's "ground"; stairs are refused: the live walker
-  // does not know its footsteps ahead to plant them on treads). The feet are
-  // put on it by the legs' IK (fit_to_ground, as walk_path), the pelvis
-  // rises by the mean ground height under the heels and balls, followed
-  // smoothly (two first-order stages of a quarter step with their lag
-  // compensated: a constant grade is followed exactly).
+  // Smooth root: the ground walked on (a slope, a height field or stairs,
+  // the same type as a path file's "ground"). The feet are put on it by the
+  // legs' IK (fit_to_ground, as walk_path), the pelvis rises by the ground
+  // under the feet, followed smoothly (two first-order stages of a quarter
+  // step with their lag compensated: a constant grade is followed exactly).
+  // On stairs each footstep is planted flat on a tread (fit_on_tread, as
+  // walk_path): where the swing foot will land is predicted from the cycle
+  // and the heading (exact once the step's heading is latched, at mid-swing,
+  // when the plant is fixed), the swing carries the foot up early or down
+  // late, the pelvis follows the lower foot's height and drops as far as
+  // the legs need to reach the treads (both followed smoothly).
   Ground ground;
+  // Stairs: the cycle's rate while a foot's plant is higher or lower than
+  // the other's (people climb and descend at a slower cadence than they walk
+  // on the flat), reached smoothly (over about a step); (0, 1].
+  double stairs_cadence = 0.8;
 };
 
 class Model {
@@ -86,6 +94,12 @@ class Model {
     std::vector<double> drop;      // pelvis drop, metres (>= 0)
     std::array<LegIk, 2> legs;     // right, left
     LegJoints joints;              // the joints the legs' IK needs
+    // Stairs only: the straight walk's travel of the swing foot's heel from
+    // each sample to its landing (the next step's start), character frame,
+    // metres; and each foot's (right, left) ball and toe tip ahead of its heel
+    // standing flat, metres.
+    std::vector<Vec3> to_landing;
+    std::array<std::array<double, 2>, 2> foot_reach{};
   };
   const SmoothRoot& smooth_root() const { return smooth_; }
 
@@ -122,6 +136,19 @@ struct State {
   std::array<StanceTurn, 2> turn{};  // smooth root: right, left foot turning on its ball (legs.hpp)
   std::array<double, 2> rise{};      // smooth root on uneven ground: the pelvis's rise, two follower stages, metres
   bool rise_started = false;
+  // Stairs: each foot's (right, left) plant - the tread it stands on (or
+  // last stood on) and the one its swing lands on: height and move along
+  // the stairs (fit_on_tread), metres.
+  struct Plant {
+    double height = 0, move = 0;
+  };
+  std::array<Plant, 2> plant_on{}, plant_next{};
+  std::array<bool, 2> stance_was{};  // the foot bore the weight last frame
+  std::array<bool, 2> next_fixed{};  // its landing is fixed (the step's heading is latched)
+  bool plants_started = false;       // the plants are set (the first frame puts each foot where it stands)
+  std::array<double, 2> drop_stage{};  // stairs: the pelvis drop following the legs' need, two follower stages, metres
+  bool drop_started = false;
+  double rate = 1;                   // stairs: the cycle's rate (Settings::stairs_cadence on the flight)
   // Scratch (sized once, no meaning between frames): FK of the plan's pose and of the solved one.
   std::vector<Transform> plan_space, model_space;
 };
@@ -142,6 +169,7 @@ struct Info {
   // Smooth root only:
   double pelvis_drop = 0;       // metres the pelvis is lowered so the legs reach
   double ground_rise = 0;       // metres the pelvis is raised by the ground under the feet
+  double cadence = 1;           // the cycle's rate (1; Settings::stairs_cadence on stairs)
   double foot_roll = 0;         // largest roll of a foot out of reach, radians (either foot)
   bool reach_limited = false;   // a leg needed more than soft_reach (its foot was pulled in)
 };

@@ -37,17 +37,27 @@ struct Extended {
     const double u = x - static_cast<double>(i);
     return (1 - u) * q[i] + u * q[i + 1];
   }
-  // Exact integral over [a, b] (trapezoids between whole frames).
-  Vec3 integral(double a, double b) const {
+  // Exact integral over [a, b] (trapezoids between whole frames); `whole`:
+  // at(k) of the whole frames k from `first` on, and `piece`: the trapezoid
+  // from k - 1 to k, computed once for every window (the same values).
+  Vec3 integral(double a, double b, std::span<const Vec3> whole, std::span<const Vec3> piece, double first) const {
     Vec3 sum = Vec3::Zero();
     double x = a;
     Vec3 fx = at(a);
-    while (x < b) {
-      const double next = std::min(b, std::floor(x) + 1.0);
-      const Vec3 fn = at(next);
-      sum += 0.5 * (next - x) * (fx + fn);
+    const auto size = static_cast<std::ptrdiff_t>(whole.size());
+    double k = std::floor(x) + 1.0;  // (= floor(x) + 1 each time)
+    for (auto i = static_cast<std::ptrdiff_t>(k - first); x < b; k += 1.0, ++i) {
+      const double next = std::min(b, k);
+      const bool cached = next == k && i >= 1 && i < size;
+      if (cached && x == k - 1.0) {
+        sum += piece[static_cast<std::size_t>(i)];
+        fx = whole[static_cast<std::size_t>(i)];
+      } else {
+        const Vec3 fn = cached ? whole[static_cast<std::size_t>(i)] : at(next);
+        sum += 0.5 * (next - x) * (fx + fn);
+        fx = fn;
+      }
       x = next;
-      fx = fn;
     }
     return sum;
   }
@@ -59,9 +69,15 @@ std::vector<Vec3> window_average(std::span<const Vec3> q, double width, bool res
   std::vector<Vec3> out(q.begin(), q.end());
   if (q.size() < 2 || !(width > 0)) return out;
   const Extended e(q, width, rest_at_end);
+  // The windows reach whole frames first ... last; their values (extended beyond the ends) once.
+  const double first = std::floor(-0.5 * width), last = std::ceil(static_cast<double>(q.size()) - 1 + 0.5 * width);
+  std::vector<Vec3> whole(static_cast<std::size_t>(last - first) + 1);
+  std::vector<Vec3> piece(whole.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < whole.size(); ++i) whole[i] = e.at(first + static_cast<double>(i));
+  for (std::size_t i = 1; i < whole.size(); ++i) piece[i] = 0.5 * 1.0 * (whole[i - 1] + whole[i]);
   for (std::size_t f = 0; f < q.size(); ++f) {
     const double x = static_cast<double>(f);
-    out[f] = e.integral(x - 0.5 * width, x + 0.5 * width) / width;
+    out[f] = e.integral(x - 0.5 * width, x + 0.5 * width, whole, piece, first) / width;
   }
   return out;
 }
@@ -122,35 +138,6 @@ std::vector<std::array<FootHold, 2>> hold_stance_yaw(const CycleModel& m, const 
     holds[static_cast<std::size_t>(f)] = turns.at(f, g, labels[static_cast<std::size_t>(f)]);
   }
   return holds;
-}
-
-// Where a foot stands on stairs over a plant: the extent of its heel, ball
-// and toe tip along the stairs, and of its ball alone (metres from the
-// stairs' origin, over every frame of the plant).
-struct FootExtent {
-  double lo = 1e300, hi = -1e300, ball_lo = 1e300, ball_hi = -1e300;
-};
-
-// Stairs: a foot that would stand across a tread's edge is moved along the
-// stairs, the least it takes (1 cm steps, up to a tread's depth), until its
-// ball stays at least 2 cm from an edge, its heel is not lower than the
-// tread under the ball (it may overhang the tread below, as on real stairs)
-// and its toe tip stays 2 cm short of the riser ahead (a foot rolled on its
-// ball moves its toe base forward by up to a centimetre). Returns the move
-// (metres) and the tread's height in `height`.
-double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
-  auto h = [&](double s) { return ground.height(ground.origin + s * ground.direction); };
-  const double margin = 0.02;
-  for (int i = 0; i <= static_cast<int>(ground.run / 0.01); ++i)
-    for (int sign : {-1, 1}) {
-      const double d = sign * 0.01 * i, tread = h(e.ball_lo + d);
-      if (h(e.ball_lo + d - margin) != tread || h(e.ball_hi + d + margin) != tread) continue;
-      if (h(e.lo + d) > tread || h(e.hi + d + margin) > tread) continue;
-      height = tread;
-      return d;
-    }
-  height = std::max(h(e.lo), h(e.hi));
-  return 0.0;
 }
 
 // Stairs: each stance foot is planted flat on a tread (fit_on_tread, over
@@ -230,15 +217,25 @@ struct FrameSolver {
   std::vector<Transform> before, g;  // FK of the plan's pose, of the moved pose (the legs' joints)
   LegIk legs[2];
   LegJoints leg_joints_;
+  std::vector<Transform> kept;  // the plan's FK of every frame, the legs' joints (kept by the first pass for the second)
   FrameSolver(const CycleModel& model, const Ground& gr, const WalkOptions& o, const Motion& motion)
       : m(model), ground(gr), opt(o), before(static_cast<std::size_t>(motion.joint_count())), g(before.size()),
         leg_joints_(leg_joints(model)) {
     forward_kinematics(motion.skeleton, motion.frame(0), before);
     legs[0] = leg_of(motion.skeleton, false, before);
     legs[1] = leg_of(motion.skeleton, true, before);
+    if (!leg_joints_.all) kept.resize(static_cast<std::size_t>(motion.frame_count()) * leg_joints_.list().size());
   }
-  // The plan's frame to solve next: its FK (`before`, the legs' joints).
-  void plan(ConstPoseRef pose) { leg_kinematics(m.skeleton, leg_joints_, pose, before); }
+  // The plan's frame f to solve next: its FK (`before`, the legs' joints),
+  // computed and kept (`again` false) or recalled.
+  void plan(int f, ConstPoseRef pose, bool again) {
+    if (leg_joints_.all) return leg_kinematics(m.skeleton, leg_joints_, pose, before);
+    const std::span<const int> joints = leg_joints_.list();
+    Transform* k = kept.data() + static_cast<std::size_t>(f) * joints.size();
+    if (!again) leg_kinematics(m.skeleton, leg_joints_, pose, before);
+    for (std::size_t i = 0; i < joints.size(); ++i)
+      again ? void(before[static_cast<std::size_t>(joints[i])] = k[i]) : void(k[i] = before[static_cast<std::size_t>(joints[i])]);
+  }
   // A frame of the plan (after plan(pose)): the first pass (r = nullptr)
   // measures the drop needed and leaves `pose` alone; the second moves and solves it.
   double solve(PoseRef pose, const Vec3& shift, double heading, const FrameLabel& label, const std::array<FootHold, 2>& hold,
@@ -332,7 +329,7 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   std::vector<double> drop(static_cast<std::size_t>(n));
   StanceTurns turns(m, std::span<const FrameLabel>(r.labels).first(turns_in_pass ? static_cast<std::size_t>(n) : 0), step_frames);
   for (int f = 0; f < n; ++f) {
-    solver.plan(motion.frame(f));
+    solver.plan(f, motion.frame(f), false);
     if (turns_in_pass) holds[static_cast<std::size_t>(f)] = turns.at(f, solver.before, r.labels[static_cast<std::size_t>(f)]);
     drop[static_cast<std::size_t>(f)] = solver.solve(motion.frame(f), shift[static_cast<std::size_t>(f)], r.heading[static_cast<std::size_t>(f)],
                                                      r.labels[static_cast<std::size_t>(f)], holds[static_cast<std::size_t>(f)], nullptr);
@@ -347,7 +344,7 @@ void smooth_root_motion(const CycleModel& m, const Ground& ground, std::span<con
   for (int f = 0; f < n; ++f) {
     const Vec3 d = shift[static_cast<std::size_t>(f)] + lowered[static_cast<std::size_t>(f)];
     r.pelvis_drop_max = std::max(r.pelvis_drop_max, -lowered[static_cast<std::size_t>(f)].y());
-    solver.plan(motion.frame(f));
+    solver.plan(f, motion.frame(f), true);
     solver.solve(motion.frame(f), d, r.heading[static_cast<std::size_t>(f)], r.labels[static_cast<std::size_t>(f)],
                  holds[static_cast<std::size_t>(f)], &r);
   }

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <unordered_map>
 
 namespace legwork::walkcycle {
 
@@ -39,6 +40,7 @@ Vec3 planted_offset(const Vec3& world_prev, const Vec3& model_now, double theta)
 }  // namespace
 
 double step_length(const CycleModel& m) {
+  if (m.step_travel >= 0) return m.step_travel;  // (build_cycle's, the same figure)
   return straight_pivot_travel(m, 8).back().norm() / 2.0;  // (fine steps: the figure does not depend on the output rate)
 }
 
@@ -241,6 +243,18 @@ class PathWalk {
   Vec3 last_here = Vec3::Zero();
   int written = 0;
   Pose local, stand_blend, world;
+  FootPoints local_feet{};  // the foot points of `local` (local_pose)
+  // The cycle's poses sampled so far and their foot points, by cycle time
+  // within the cycle (sample_cycle's wrap): a walk's frames come back to the
+  // same cycle times (every cycle when the output rate divides the cycle's),
+  // each sampled once (the same values; at most kSampledMax kept).
+  struct Sampled {
+    Pose pose;
+    FootPoints feet;
+  };
+  static constexpr std::size_t kSampledMax = 512;
+  std::unordered_map<double, std::size_t> sampled_at;
+  std::vector<Sampled> sampled;
   FootPoints prev{};
   Vec3 c = Vec3::Zero();
   double theta_prev = 0;
@@ -430,12 +444,27 @@ void PathWalk::decide_headings(int f, double t) {
 // Local (in-place) pose: the cycle, blended into the standing pose while
 // stopping (returns whether it is).
 bool PathWalk::local_pose(double t) {
-  sample_cycle(m, t, local.ref());
+  const double period = m.frames_per_cycle;
+  const auto known = sampled_at.find(t - period * std::floor(t / period));
+  if (known != sampled_at.end()) {
+    const Sampled& k = sampled[known->second];
+    std::copy(k.pose.rotations.begin(), k.pose.rotations.end(), local.rotations.begin());
+    std::copy(k.pose.translations.begin(), k.pose.translations.end(), local.translations.begin());
+    local_feet = k.feet;
+  } else {
+    sample_cycle(m, t, local.ref());
+    local_feet = foot_points(m, local);
+    if (sampled.size() < kSampledMax) {
+      sampled_at.emplace(t - period * std::floor(t / period), sampled.size());
+      sampled.push_back({local, local_feet});
+    }
+  }
   const bool stopping = stop_step >= 0 && opt.stop;
   const double w = std::max(stopping ? final_weight(t, half, stop_step, amp) : 0.0, stairs_weight_at(t));
   if (w > 0) {
     blend_poses(local, m.stand, w, stand_blend.ref());
     std::swap(local, stand_blend);
+    local_feet = foot_points(m, local);
   }
   return stopping && t >= stop_step * half;
 }
@@ -571,7 +600,7 @@ void PathWalk::run() {
       throw Error("walk: more than the limit of " + std::to_string(opt.max_frames) + " frames; is the path reachable?");
     decide_headings(f, t);
     const bool stopping = local_pose(t);
-    const FootPoints cur = foot_points(m, local);
+    const FootPoints cur = local_feet;
     const double theta = heading_at(t);
     const FrameLabel label = label_at(t, stopping);
     place(f, theta, cur, label);
