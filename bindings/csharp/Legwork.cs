@@ -105,6 +105,7 @@ namespace Legwork
         // {"slope": {"origin": [0, 1], "direction": [0, 1], "grade": 0.1}}, {"heightfield": {...}} or
         // {"stairs": {...}} (docs/walkcycle.md); null or "" = the flat floor.
         [MarshalAs(UnmanagedType.LPStr)] public string GroundJson;
+        public double StairsCadence;   // stairs: the cycle's rate on the flight, a fraction of the flat walk's, (0, 1] (ABI 5)
 
         public static WalkerSettings Default()
         {
@@ -180,7 +181,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 4;
+        public const uint AbiVersion = 5;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

@@ -120,6 +120,9 @@ static class WalkerGround
         Expect.Throws<LegworkException>("too steep a ramp refused", () => Model.CreateWalker(args[0], bad),
                                         "lw_walker_settings.ground_json: slope: grade");
         bad = WalkerSettings.Default();
+        bad.StairsCadence = 1.5;
+        Expect.Throws<LegworkException>("stairs cadence above 1 refused", () => Model.CreateWalker(args[0], bad), "stairs_cadence must be in (0, 1]");
+        bad = WalkerSettings.Default();
         bad.SoftReach = 0;
         Expect.Throws<LegworkException>("soft reach 0 refused", () => Model.CreateWalker(args[0], bad), "soft_reach must be in (0, 1]");
         return Expect.Summary("walkerground");

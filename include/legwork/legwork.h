@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 4u
+#define LW_ABI_VERSION 5u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -197,6 +197,9 @@ typedef struct lw_walker_settings {
    * or {"heightfield": {...}} or {"stairs": {...}} (docs/walkcycle.md); NULL or
    * "" = the flat floor. Copied by lw_model_create_walker_with_settings. */
   const char* ground_json;
+  /* Stairs: the cycle's rate while climbing or descending, a fraction of the
+   * flat walk's, (0, 1] (default 0.8; ABI 5). */
+  double stairs_cadence;
 } lw_walker_settings;
 LW_API void lw_walker_settings_default(lw_walker_settings* s);
 /* The walker with settings (`s` NULL = defaults); a bad value is

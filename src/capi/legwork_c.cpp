@@ -417,7 +417,7 @@ void lw_walker_settings_default(lw_walker_settings* s) {
   if (!s) return;
   const walkcycle::Settings d;
   *s = lw_walker_settings{d.root == walkcycle::RootMotion::Pivot ? LW_WALKER_ROOT_PIVOT : LW_WALKER_ROOT_SMOOTH, d.max_turn_per_step,
-                          d.soft_reach, nullptr};
+                          d.soft_reach, nullptr, d.stairs_cadence};
 }
 
 lw_status lw_model_create_walker_with_settings(const char* keys_json_path, const lw_walker_settings* s, lw_model** out) {
@@ -435,7 +435,10 @@ lw_status lw_model_create_walker_with_settings(const char* keys_json_path, const
       return fail(LW_ERROR_INVALID_ARGUMENT, std::string(where) + ": soft_reach must be in (0, 1]");
     settings.root = s->root == LW_WALKER_ROOT_PIVOT ? walkcycle::RootMotion::Pivot : walkcycle::RootMotion::Smooth;
     settings.max_turn_per_step = s->max_turn_per_step;
+    if (!(s->stairs_cadence > 0 && s->stairs_cadence <= 1))
+      return fail(LW_ERROR_INVALID_ARGUMENT, std::string(where) + ": stairs_cadence must be in (0, 1]");
     settings.soft_reach = s->soft_reach;
+    settings.stairs_cadence = s->stairs_cadence;
   }
   if (s && s->ground_json && *s->ground_json) {
     try {

@@ -434,6 +434,29 @@ TEST(CApi, WalkerClimbsStairs) {
   EXPECT_NEAR(root[1] - 0.75, first[1], 0.03);
   lw_avatar_destroy(avatar);
   lw_model_destroy(model);
+  // The stairs cadence reaches the walker: slower on the flight, less ground covered in the same time.
+  EXPECT_EQ(s.stairs_cadence, 0.8);
+  double reached[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    s.stairs_cadence = k == 0 ? 1.0 : 0.5;
+    ASSERT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &model), LW_OK) << lw_last_error();
+    ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
+    for (int i = 0; i < 150; ++i) {
+      f.time = i / 30.0;
+      ASSERT_EQ(lw_avatar_update(avatar, &f), LW_OK);
+    }
+    ASSERT_EQ(lw_avatar_pose(avatar, nullptr, root, nullptr, 0), LW_OK);
+    reached[k] = root[2];
+    lw_avatar_destroy(avatar);
+    lw_model_destroy(model);
+  }
+  std::printf("[capi] 5 s toward the stairs: z %.2f m at cadence 1, %.2f m at 0.5\n", reached[0], reached[1]);
+  EXPECT_LT(reached[1], reached[0] - 0.3);
+  s.stairs_cadence = 0;
+  lw_model* bad = nullptr;
+  EXPECT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &bad), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(lw_last_error()).find("stairs_cadence must be in (0, 1]"), std::string::npos) << lw_last_error();
+  EXPECT_EQ(bad, nullptr);
 }
 
 TEST(CApi, BadInputGivesAStatusAndAMessage) {
