@@ -66,7 +66,7 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
   if (k <= 0) return 0;
   const auto& d = db.impl();
   int n = 0;  // out[] holds squared distances until the end
-  if (mode == SearchMode::BruteForce || !d.all.tree[0]) {
+  if (mode == SearchMode::BruteForce || !d.indexed) {
     const float* feats = reinterpret_cast<const float*>(d.features[hand]);
     // Seeds first: a tight bound from the start rejects most rows on the prefix.
     for (int w : seeds)
@@ -105,13 +105,14 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
       if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) rs.add(w);
     const nanoflann::SearchParams params(32, mode == SearchMode::Fast ? eps : 0.0f);
     const int budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
-    bool every_class = true;
-    for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) every_class = every_class && allowed(class_mask, c);
-    if (every_class || d.index.size() != d.meta.ranges.size()) {
+    if (d.index.size() != d.meta.ranges.size() || d.meta.ranges.size() <= 1) {  // one class: one tree pair
       rs.base = 0;
       rs.budget = budget;
-      d.all.tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
+      if (d.all.tree[static_cast<std::size_t>(hand)]) d.all.tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
     } else {
+      // Each allowed class's tree, each with the whole check budget (every
+      // class allowed costs more than one tree over every window did; the
+      // class recognition searches one class).
       for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) {
         if (!allowed(class_mask, c) || d.meta.ranges[c].first == d.meta.ranges[c].second) continue;
         rs.base = d.meta.ranges[c].first;
