@@ -43,6 +43,7 @@ struct FullDistanceResult {
   float worstDist() const { return n == k ? out[n - 1].distance : std::numeric_limits<float>::max(); }
   bool full() const { return n == k; }
   bool addPoint(float, std::uint32_t index) {
+    if (budget == 0) return false;  // spent in an earlier tree
     add(base + static_cast<int>(index));
     return budget < 0 || --budget > 0;  // false stops the tree search
   }
@@ -56,6 +57,30 @@ struct FullDistanceResult {
 };
 
 bool allowed(std::span<const unsigned char> mask, std::size_t c) { return mask.empty() || (c < mask.size() && mask[c]); }
+
+// The allowed class whose tree's root box is nearest the query (squared
+// distance over the tree's dimensions); ranges.size() when none is allowed.
+std::size_t nearest_class_tree(const Database::Impl& d, int hand, const Feature& query,
+                               std::span<const unsigned char> class_mask) {
+  std::size_t best = d.meta.ranges.size();
+  float best_d2 = std::numeric_limits<float>::max();
+  for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) {
+    const KdTree* tree = d.index[c].tree[static_cast<std::size_t>(hand)].get();
+    if (!allowed(class_mask, c) || !tree) continue;
+    float d2 = 0;
+    for (int i = 0; i < kTreeDim; ++i) {
+      const auto& box = tree->root_bbox[static_cast<std::size_t>(i)];
+      const float q = query[static_cast<std::size_t>(i)];
+      const float out = q < box.low ? box.low - q : q > box.high ? q - box.high : 0.0f;
+      d2 += out * out;
+    }
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = c;
+    }
+  }
+  return best;
+}
 
 }  // namespace
 
@@ -110,13 +135,18 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
       rs.budget = budget;
       if (d.all.tree[static_cast<std::size_t>(hand)]) d.all.tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
     } else {
-      // Each allowed class's tree, each with the whole check budget (every
-      // class allowed costs more than one tree over every window did; the
-      // class recognition searches one class).
-      for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) {
-        if (!allowed(class_mask, c) || d.meta.ranges[c].first == d.meta.ranges[c].second) continue;
+      // Each allowed class's tree, nearest root box first, sharing one check
+      // budget (as one tree over every allowed window would spend it): the
+      // nearest class's tree gets most of it, and the k-th best distance
+      // found so far prunes the others.
+      const std::size_t first = nearest_class_tree(d, hand, query, class_mask);
+      rs.budget = budget;
+      for (std::size_t i = 0; i <= d.meta.ranges.size() && rs.budget != 0; ++i) {
+        const std::size_t c = i == 0 ? first : i - 1;
+        if (c >= d.meta.ranges.size() || (i > 0 && c == first) || !allowed(class_mask, c) ||
+            d.meta.ranges[c].first == d.meta.ranges[c].second)
+          continue;
         rs.base = d.meta.ranges[c].first;
-        rs.budget = budget;
         d.index[c].tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
       }
     }
