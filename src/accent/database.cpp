@@ -18,6 +18,20 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+// XXH3-64 (Debian libxxhash-dev): the file checksum runs at 20-40 GB/s
+// instead of the ~1 GB/s of a serial FNV multiply chain. On x86-64 the
+// library's runtime dispatch picks its AVX2/AVX-512 kernel (twice the
+// baseline SSE2 speed on the project machine).
+#define XXH_STATIC_LINKING_ONLY
+#include <xxhash.h>
+#if defined(__x86_64__) && __has_include(<xxh_x86dispatch.h>)
+#define XXH_DISPATCH_DISABLE_REPLACE
+#include <xxh_x86dispatch.h>
+#define LEGWORK_XXH3_UPDATE XXH3_64bits_update_dispatch
+#else
+#define LEGWORK_XXH3_UPDATE XXH3_64bits_update
+#endif
+
 namespace legwork::accent {
 namespace {
 
@@ -216,7 +230,9 @@ const T* section(const Database::Impl& d, std::uint64_t offset, std::uint64_t co
   return reinterpret_cast<const T*>(d.base + offset);
 }
 
-void validate_contents(const Database::Impl& d, const std::string& source, bool scan_data);
+void validate_meta(const DatabaseMeta& m, const std::string& source);
+void scan_contents(const Database::Impl& d, const std::string& source);
+std::uint64_t checksum_and_scan(const Database::Impl& d, bool& contents_ok);
 void build_trees(Database::Impl& d, int leaf_size);
 
 // Maps the pages of [offset, offset + bytes) of a mapped file in one call
@@ -249,9 +265,10 @@ void open_block(Database::Impl& d, const std::string& source, bool verify, bool 
   if (h.feature_dim != static_cast<std::uint32_t>(kDim) || h.window != static_cast<std::uint32_t>(kWindow))
     fail(source, "feature layout (" + std::to_string(h.feature_dim) + " dims, window " + std::to_string(h.window) +
                      ") differs from this build's");
+  bool contents_ok = true;
   if (verify) {
     prefault(d, 0, d.size);  // every byte is read
-    const std::uint64_t sum = block_checksum({d.base, d.size});
+    const std::uint64_t sum = checksum_and_scan(d, contents_ok);
     if (sum != h.checksum) fail(source, "checksum mismatch: the file is corrupted");
   }
   const char* meta = reinterpret_cast<const char*>(section<char>(d, h.meta_offset, h.meta_bytes, source, "metadata"));
@@ -271,7 +288,8 @@ void open_block(Database::Impl& d, const std::string& source, bool verify, bool 
   for (std::uint32_t w = 0; w < h.window_count; ++w)
     if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count)
       fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
-  validate_contents(d, source, verify);
+  validate_meta(d.meta, source);
+  if (!contents_ok) scan_contents(d, source);  // names what the fast scan flagged
   const std::byte* section_at = section<std::byte>(d, h.index_offset, h.index_bytes, source, "search index");
   if (index && !verify) prefault(d, h.index_offset, h.index_bytes);
   if (index && !load_index(d, {section_at, h.index_bytes}, source)) build_trees(d, kIndexLeafSize);
@@ -279,10 +297,11 @@ void open_block(Database::Impl& d, const std::string& source, bool verify, bool 
 
 // Contents beyond the checksum: a checksum-valid file can still hold values
 // that make every result wrong while reporting 'matched'. Metadata is always
-// checked; with `scan_data` (the checksum pass reads every byte anyway) every
-// pose is a finite unit quaternion and every feature and head axis is finite.
-void validate_contents(const Database::Impl& d, const std::string& source, bool scan_data) {
-  const DatabaseMeta& m = d.meta;
+// checked; with the checksum pass (which reads every byte anyway) every pose
+// is a finite unit quaternion, every feature, alignment point and head axis is
+// finite and every contact 0 or 1: checksum_and_scan tests that per chunk
+// while the chunk is in cache, and scan_contents names the first offender.
+void validate_meta(const DatabaseMeta& m, const std::string& source) {
   auto positive = [&](double v, double max, const char* what) {
     if (!(v > 0 && v <= max))
       fail(source, std::string(what) + " is " + std::to_string(v) + ", expected a finite value in (0, " +
@@ -296,7 +315,10 @@ void validate_contents(const Database::Impl& d, const std::string& source, bool 
     if (!std::isfinite(v)) fail(source, "feature scale is not finite");
   for (double v : m.space.projection)
     if (!std::isfinite(v)) fail(source, "feature projection is not finite");
-  if (!scan_data) return;
+}
+
+void scan_contents(const Database::Impl& d, const std::string& source) {
+  const DatabaseMeta& m = d.meta;
   const std::uint32_t joints = d.header.joint_count;
   for (std::uint32_t p = 0; p < d.header.pose_count; ++p)
     for (std::uint32_t j = 0; j < joints; ++j) {
@@ -314,6 +336,85 @@ void validate_contents(const Database::Impl& d, const std::string& source, bool 
     for (std::uint32_t w = 0; w < d.header.window_count; ++w)
       for (float v : d.features[hand][w])
         if (!std::isfinite(v)) fail(source, "feature of window " + std::to_string(w) + " is not finite");
+  for (std::uint32_t w = 0; w < d.header.window_count; ++w)
+    for (float v : d.align[w])
+      if (!std::isfinite(v)) fail(source, "alignment point of window " + std::to_string(w) + " is not finite");
+}
+
+// The data sections the checksum pass also scans, by element kind. Only
+// sections that lie inside the file are listed (one that does not is refused
+// by name after the checksum).
+enum class Scan { Finite, UnitQuat, Bits01 };
+struct ScanRange {
+  std::uint64_t begin, end;
+  Scan kind;
+};
+
+std::size_t scan_ranges(const Database::Impl& d, std::array<ScanRange, 6>& out) {
+  const FileHeader& h = d.header;
+  const std::uint64_t w = h.window_count, p = h.pose_count;
+  const ScanRange all[6] = {{h.feature_offset[0], w * sizeof(Feature), Scan::Finite},
+                            {h.feature_offset[1], w * sizeof(Feature), Scan::Finite},
+                            {h.align_offset, w * sizeof(AlignXZ), Scan::Finite},
+                            {h.pose_offset, p * h.joint_count * 16, Scan::UnitQuat},
+                            {h.head_up_offset, p * 12, Scan::Finite},
+                            {h.contact_offset, p * 2, Scan::Bits01}};
+  std::size_t n = 0;
+  for (const ScanRange& r : all)  // `end` holds the byte count here
+    if (r.begin % 4 == 0 && r.begin <= d.size && r.end <= d.size - r.begin) out[n++] = {r.begin, r.begin + r.end, r.kind};
+  return n;
+}
+
+// True when every element starting in [from, to) of range r is valid. Written
+// without early exits so the compiler vectorizes it; conservative (a float
+// norm test slightly tighter than scan_contents' double one).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// AVX-512 / AVX2 copies chosen at load time (glibc ifunc): 2-4x the lanes of
+// the SSE2 baseline, so the scan keeps up with the hash.
+__attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
+bool scan_chunk(const std::byte* base, const ScanRange& r, std::uint64_t from, std::uint64_t to) {
+  const std::uint64_t step = r.kind == Scan::UnitQuat ? 16 : r.kind == Scan::Finite ? 4 : 1;
+  const std::uint64_t a = std::max(from, r.begin), b = std::min(to, r.end);
+  if (a >= b) return true;
+  const std::uint64_t first = r.begin + (a - r.begin + step - 1) / step * step;
+  const std::uint64_t count = first < b ? (std::min(b + step - 1, r.end) - first) / step : 0;
+  const std::byte* at = base + first;
+  std::uint32_t bad = 0;
+  if (r.kind == Scan::Bits01) {
+    const auto* c = reinterpret_cast<const std::uint8_t*>(at);
+    for (std::uint64_t i = 0; i < count; ++i) bad |= c[i] & 0xfeu;
+  } else if (r.kind == Scan::Finite) {
+    const auto* u = reinterpret_cast<const std::uint32_t*>(at);
+    for (std::uint64_t i = 0; i < count; ++i) bad |= static_cast<std::uint32_t>((u[i] & 0x7f800000u) == 0x7f800000u);
+  } else {
+    const auto* q = reinterpret_cast<const float*>(at);
+    for (std::uint64_t i = 0; i < count; ++i) {
+      const float n2 = q[4 * i] * q[4 * i] + q[4 * i + 1] * q[4 * i + 1] + q[4 * i + 2] * q[4 * i + 2] + q[4 * i + 3] * q[4 * i + 3];
+      bad |= static_cast<std::uint32_t>(!(std::fabs(n2 - 1.0f) < 0.999e-3f));
+    }
+  }
+  return bad == 0;
+}
+
+// The checksum of the block (as block_checksum) and, chunk by chunk while the
+// chunk is in cache, the content scan; contents_ok = false when anything looked wrong.
+std::uint64_t checksum_and_scan(const Database::Impl& d, bool& contents_ok) {
+  std::array<ScanRange, 6> ranges{};
+  const std::size_t nr = scan_ranges(d, ranges);
+  XXH3_state_t state;
+  XXH3_64bits_reset(&state);
+  FileHeader zeroed = d.header;
+  zeroed.checksum = 0;
+  LEGWORK_XXH3_UPDATE(&state, &zeroed, sizeof zeroed);
+  constexpr std::uint64_t kChunk = 128 * 1024;
+  contents_ok = true;
+  for (std::uint64_t at = sizeof(FileHeader); at < d.size; at += kChunk) {
+    const std::uint64_t end = std::min<std::uint64_t>(d.size, at + kChunk);
+    LEGWORK_XXH3_UPDATE(&state, d.base + at, end - at);
+    for (std::size_t r = 0; r < nr; ++r) contents_ok = scan_chunk(d.base, ranges[r], at, end) && contents_ok;
+  }
+  return XXH3_64bits_digest(&state);
 }
 
 // Builds the KD-trees from the features (files of another nanoflann node
@@ -323,12 +424,15 @@ void build_trees(Database::Impl& d, int leaf_size) {
   d.index.resize(d.meta.classes.size());
   d.all = ClassIndex{};
   d.leaf_size = leaf_size;
+  d.indexed = true;
   const auto params = nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(leaf_size));
-  for (int hand = 0; hand < 2; ++hand) {
-    d.all.cloud[hand] = {reinterpret_cast<const float*>(d.features[hand]), d.header.window_count};
-    if (d.header.window_count) d.all.tree[hand] = std::make_unique<KdTree>(kTreeDim, d.all.cloud[hand], params);
+  if (d.meta.classes.size() <= 1) {  // one class: its trees cover every window
+    for (int hand = 0; hand < 2; ++hand) {
+      d.all.cloud[hand] = {reinterpret_cast<const float*>(d.features[hand]), d.header.window_count};
+      if (d.header.window_count) d.all.tree[hand] = std::make_unique<KdTree>(kTreeDim, d.all.cloud[hand], params);
+    }
+    return;
   }
-  if (d.meta.classes.size() == 1) return;  // the class tree would equal the whole-database tree
   for (std::size_t c = 0; c < d.meta.classes.size(); ++c) {
     const auto [a, b] = d.meta.ranges[c];
     for (int hand = 0; hand < 2; ++hand) {
@@ -342,26 +446,21 @@ void build_trees(Database::Impl& d, int leaf_size) {
 }  // namespace
 
 std::uint64_t block_checksum(std::span<const std::byte> block) {
-  // 64-bit FNV-1a over 8-byte words with an extra shift-xor mix: catches
-  // truncation, bit flips and overwrites (not an integrity seal against tampering).
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  auto mix = [&h](std::uint64_t w) {
-    h ^= w;
-    h *= 0x100000001b3ull;
-    h ^= h >> 29;
-  };
-  const std::size_t n = block.size();
-  constexpr std::size_t kSumAt = offsetof(FileHeader, checksum);
-  for (std::size_t i = 0; i + 8 <= n; i += 8) {
-    std::uint64_t w;
-    std::memcpy(&w, block.data() + i, 8);
-    if (i == kSumAt) w = 0;
-    mix(w);
+  // XXH3-64 of the whole block with the header's checksum field zeroed:
+  // catches truncation, bit flips and overwrites (not an integrity seal
+  // against tampering). Format version 4; version 3 used a serial FNV-1a.
+  XXH3_state_t state;
+  XXH3_64bits_reset(&state);
+  if (block.size() < sizeof(FileHeader)) {
+    LEGWORK_XXH3_UPDATE(&state, block.data(), block.size());
+    return XXH3_64bits_digest(&state);
   }
-  std::uint64_t tail = 0;
-  std::memcpy(&tail, block.data() + (n & ~std::size_t{7}), n & 7);
-  mix(tail ^ n);
-  return h;
+  FileHeader zeroed;
+  std::memcpy(&zeroed, block.data(), sizeof zeroed);
+  zeroed.checksum = 0;
+  LEGWORK_XXH3_UPDATE(&state, &zeroed, sizeof zeroed);
+  LEGWORK_XXH3_UPDATE(&state, block.data() + sizeof zeroed, block.size() - sizeof zeroed);
+  return XXH3_64bits_digest(&state);
 }
 
 std::vector<std::byte> serialize_block(const BlockParts& p) {
@@ -465,7 +564,7 @@ void Database::pose_rotation(int pose, std::span<Quat> out) const {
 }
 std::span<const std::byte> Database::bytes() const { return {impl_->base, impl_->size}; }
 bool Database::is_mapped() const { return impl_->map != nullptr; }
-bool Database::has_index() const { return impl_->all.tree[0] != nullptr; }
+bool Database::has_index() const { return impl_->indexed; }
 
 void Database::build_index(int leaf_size) {
   if (has_index() && impl_->leaf_size == leaf_size) return;  // stored in the block

@@ -35,7 +35,7 @@ struct FileHeader {
   std::uint64_t pose_offset;                   // float[pose_count][joint_count][4]
   std::uint64_t head_up_offset;                // float[pose_count][3]: the head's up axis, model space
   std::uint64_t contact_offset;                // uint8[pose_count][2]: foot in contact (left, right), 0/1
-  std::uint64_t index_offset, index_bytes;     // the stored KD-trees (version 3; layout in database_index.cpp)
+  std::uint64_t index_offset, index_bytes;     // the stored KD-trees (since version 3; layout in database_index.cpp)
 };
 static_assert(sizeof(FileHeader) == 144);
 
@@ -63,9 +63,11 @@ struct ClassIndex {
   std::array<std::unique_ptr<KdTree>, 2> tree;
 };
 
-// The stored index (database_index.cpp). Trees in order: the whole database's
-// (left, right hand), then per class (left, right) when there is more than one
-// class. Each tree is nanoflann's own serialization (saveIndex) of a tree
+// The stored index (database_index.cpp). Trees in order: per class (left,
+// right hand); a one-class database has one pair over every window (in `all`).
+// (Version 3 also stored a whole-database pair beside the class trees: it
+// doubled the index and its load time; searches over several classes now
+// walk their class trees with one shared result set.) Each tree is nanoflann's own serialization (saveIndex) of a tree
 // over kTreeDim dimensions with leaves of kIndexLeafSize points.
 inline constexpr int kIndexLeafSize = 16;
 // Serializes the trees over `features` (per hand, window-major) and the class ranges.
@@ -108,9 +110,10 @@ struct Database::Impl {
   const float* head_up = nullptr;
   const std::uint8_t* contacts = nullptr;
 
-  std::vector<ClassIndex> index;  // per class, empty until build_index()
-  ClassIndex all;                 // over every window (sessions that allow every class)
+  std::vector<ClassIndex> index;  // per class when there is more than one class
+  ClassIndex all;                 // a one-class database's trees (over every window)
   int leaf_size = kIndexLeafSize; // of the trees above
+  bool indexed = false;           // the trees above are built or loaded
 
   ~Impl();
 };

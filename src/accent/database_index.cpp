@@ -1,4 +1,5 @@
-// The KD-tree search index stored in the database block (format version 3),
+// The KD-tree search index stored in the database block (format version 3;
+// since version 4 one tree pair per class, no whole-database pair),
 // so a database loads with its index in milliseconds instead of rebuilding
 // the trees at every load.
 //
@@ -16,11 +17,10 @@
 // a message even when the checksum is not verified).
 #include "database_impl.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <istream>
 #include <sstream>
-#include <streambuf>
 
 namespace legwork::accent {
 namespace {
@@ -47,23 +47,16 @@ constexpr std::uint32_t kNodeBytes = sizeof(Node);
   throw Error("accent database '" + source + "': search index " + what + "; rebuild it with 'legwork accent build'");
 }
 
-// The point ranges of the stored trees, in section order.
+// The point ranges of the stored trees, in section order: per class (left,
+// right hand); a one-class database's pair covers every window.
 std::vector<std::pair<std::size_t, std::size_t>> tree_ranges(std::size_t windows,
                                                              const std::vector<std::pair<int, int>>& ranges) {
-  std::vector<std::pair<std::size_t, std::size_t>> out(2, {0, windows});
-  if (ranges.size() > 1)
-    for (auto [a, b] : ranges)
-      for (int hand = 0; hand < 2; ++hand) out.emplace_back(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
+  if (ranges.size() <= 1) return std::vector<std::pair<std::size_t, std::size_t>>(2, {0, windows});
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (auto [a, b] : ranges)
+    for (int hand = 0; hand < 2; ++hand) out.emplace_back(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
   return out;
 }
-
-// Reads the stream over a span without copying it.
-struct SpanBuf : std::streambuf {
-  explicit SpanBuf(std::span<const std::byte> s) {
-    char* b = const_cast<char*>(reinterpret_cast<const char*>(s.data()));
-    setg(b, b, b + s.size());
-  }
-};
 
 // A bounded reader over one tree's bytes.
 class Cursor {
@@ -91,54 +84,106 @@ class Cursor {
   std::size_t tree_;
 };
 
-// The nodes in pre-order: children both present or both absent, leaves
-// inside the point range, split dimensions inside the tree's, bounded depth,
-// and the nodes end exactly at the tree's last byte.
-void check_nodes(Cursor& c, std::size_t points) {
-  std::vector<int> depth{0};  // stack of the depths of nodes still to read
-  std::size_t nodes = 0;
-  while (!depth.empty()) {
-    const int at = depth.back();
-    depth.pop_back();
-    if (at > kMaxTreeDepth) c.fail("deeper than " + std::to_string(kMaxTreeDepth) + " levels");
-    if (++nodes > 2 * points + 1) c.fail("has more nodes than its points allow");
-    const Node n = c.read<Node>("node list");
-    const bool c1 = n.child1 != nullptr, c2 = n.child2 != nullptr;
-    if (c1 != c2) c.fail("node " + std::to_string(nodes - 1) + " has one child");
-    if (!c1) {
-      if (!(n.node_type.lr.left <= n.node_type.lr.right && n.node_type.lr.right <= points))
-        c.fail("leaf " + std::to_string(nodes - 1) + " points outside the tree's " + std::to_string(points) + " points");
-      continue;
-    }
-    if (n.node_type.sub.divfeat < 0 || n.node_type.sub.divfeat >= kTreeDim || !std::isfinite(n.node_type.sub.divlow) ||
-        !std::isfinite(n.node_type.sub.divhigh))
-      c.fail("node " + std::to_string(nodes - 1) + " has an invalid split");
-    depth.push_back(at + 1);  // child2, read after child1's subtree
-    depth.push_back(at + 1);  // child1
-  }
-  if (c.left() != 0) c.fail(std::to_string(c.left()) + " bytes after its last node");
-}
+// Where a stored tree's parts lie in its serialization (nanoflann's saveIndex:
+// point count, dimensions, bounding box, leaf size, permutation, nodes).
+struct TreeLayout {
+  std::size_t bbox_at = 0, leaf_at = 0, perm_at = 0, nodes_at = 0;
+};
 
 // One tree's serialization, checked field by field against `points`.
-void check_tree(std::span<const std::byte> blob, std::size_t points, const std::string& source, std::size_t tree) {
+TreeLayout check_tree(std::span<const std::byte> blob, std::size_t points, const std::string& source, std::size_t tree) {
   Cursor c(blob, source, tree);
+  TreeLayout t;
   if (c.read<std::uint64_t>("point count") != points) c.fail("point count differs from its class's windows");
   if (c.read<std::int32_t>("dimensions") != kTreeDim) c.fail("dimension count differs");
+  t.bbox_at = c.pos();
   for (int i = 0; i < 2 * kTreeDim; ++i)
     if (!std::isfinite(c.read<float>("bounding box"))) c.fail("bounding box is not finite");
+  t.leaf_at = c.pos();
   const auto leaf = c.read<std::uint64_t>("leaf size");
   if (leaf == 0 || leaf > points + 1) c.fail("leaf size " + std::to_string(leaf) + " is invalid");
   if (c.read<std::uint64_t>("permutation size") != points) c.fail("permutation size differs from its point count");
   if (c.left() / 4 < points) c.fail("permutation runs past its end");
-  std::vector<bool> seen(points, false);
+  t.perm_at = c.pos();
+  std::vector<std::uint8_t> seen(points, 0);
+  std::uint32_t out_of_range = 0;
   for (std::size_t i = 0; i < points; ++i) {
     std::uint32_t v;
     std::memcpy(&v, c.here() + 4 * i, 4);
-    if (v >= points || seen[v]) c.fail("permutation entry " + std::to_string(i) + " is out of range or repeated");
-    seen[v] = true;
+    const bool inside = v < points;
+    out_of_range |= !inside;
+    seen[inside ? v : 0] = 1;
+  }
+  std::size_t distinct = 0;
+  for (std::uint8_t s : seen) distinct += s;
+  if (out_of_range || distinct != points) {  // name the first offending entry
+    std::fill(seen.begin(), seen.end(), 0);
+    for (std::size_t i = 0; i < points; ++i) {
+      std::uint32_t v;
+      std::memcpy(&v, c.here() + 4 * i, 4);
+      if (v >= points || seen[v]) c.fail("permutation entry " + std::to_string(i) + " is out of range or repeated");
+      seen[v] = 1;
+    }
   }
   c.skip(4 * points);
-  check_nodes(c, points);
+  t.nodes_at = c.pos();
+  return t;
+}
+
+// Copies the nodes (pre-order) into one pool allocation and links them,
+// checking each as it goes: children both present or both absent, leaves
+// inside the point range, split dimensions inside the tree's, bounded depth,
+// and the nodes end exactly at the tree's last byte.
+Node* link_nodes(KdTree& tree, Cursor& c, std::size_t points) {
+  const std::size_t count = c.left() / sizeof(Node);
+  if (count == 0) c.fail("node list runs past its end");
+  Node* nodes = tree.pool.template allocate<Node>(count);
+  std::memcpy(static_cast<void*>(nodes), c.here(), count * sizeof(Node));
+  Node* root = nullptr;
+  std::vector<std::pair<Node**, int>> todo{{&root, 0}};  // slots still to fill, with their depth
+  todo.reserve(2 * kMaxTreeDepth + 4);
+  std::size_t i = 0;
+  while (!todo.empty()) {
+    const auto [slot, at] = todo.back();
+    todo.pop_back();
+    if (at > kMaxTreeDepth) c.fail("deeper than " + std::to_string(kMaxTreeDepth) + " levels");
+    if (i >= count) c.fail("node list runs past its end");
+    if (i + 1 > 2 * points + 1) c.fail("has more nodes than its points allow");
+    Node& n = nodes[i++];
+    *slot = &n;
+    const bool c1 = n.child1 != nullptr, c2 = n.child2 != nullptr;
+    if (c1 != c2) c.fail("node " + std::to_string(i - 1) + " has one child");
+    if (!c1) {
+      if (!(n.node_type.lr.left <= n.node_type.lr.right && n.node_type.lr.right <= points))
+        c.fail("leaf " + std::to_string(i - 1) + " points outside the tree's " + std::to_string(points) + " points");
+      continue;
+    }
+    if (n.node_type.sub.divfeat < 0 || n.node_type.sub.divfeat >= kTreeDim || !std::isfinite(n.node_type.sub.divlow) ||
+        !std::isfinite(n.node_type.sub.divhigh))
+      c.fail("node " + std::to_string(i - 1) + " has an invalid split");
+    todo.push_back({&n.child2, at + 1});  // read after child1's subtree
+    todo.push_back({&n.child1, at + 1});
+  }
+  if (const std::size_t extra = c.left() - i * sizeof(Node); extra != 0)
+    c.fail(std::to_string(extra) + " bytes after its last node");
+  return root;
+}
+
+// Fills `tree` from a checked serialization directly (what nanoflann's
+// loadIndex does through an istream, one node allocation and stream read per
+// node): the permutation in one copy, the nodes in one pool allocation.
+void fill_tree(KdTree& tree, std::span<const std::byte> blob, const TreeLayout& t, std::size_t points,
+               const std::string& source, std::size_t index) {
+  tree.m_size = points;
+  tree.m_size_at_index_build = points;
+  tree.dim = kTreeDim;
+  std::memcpy(tree.root_bbox.data(), blob.data() + t.bbox_at, sizeof(tree.root_bbox));
+  std::memcpy(&tree.m_leaf_max_size, blob.data() + t.leaf_at, sizeof(std::uint64_t));
+  tree.vAcc.resize(points);
+  std::memcpy(tree.vAcc.data(), blob.data() + t.perm_at, 4 * points);
+  Cursor c(blob, source, index);
+  c.skip(t.nodes_at);
+  tree.root_node = link_nodes(tree, c, points);
 }
 
 }  // namespace
@@ -193,6 +238,7 @@ bool load_index(Database::Impl& d, std::span<const std::byte> section, const std
     bad(source, "holds " + std::to_string(h.tree_count) + " trees, expected " + std::to_string(trees.size()));
   if ((section.size() - sizeof h) / sizeof(TreeEntry) < trees.size()) bad(source, "tree table runs past the section");
   std::vector<TreeEntry> entries(trees.size());
+  std::vector<TreeLayout> layouts(trees.size());
   for (std::size_t t = 0; t < trees.size(); ++t)
     std::memcpy(&entries[t], section.data() + sizeof h + t * sizeof(TreeEntry), sizeof(TreeEntry));
   for (std::size_t t = 0; t < trees.size(); ++t) {
@@ -202,22 +248,22 @@ bool load_index(Database::Impl& d, std::span<const std::byte> section, const std
     if (e.offset > section.size() || e.bytes > section.size() - e.offset)
       bad(source, "tree " + std::to_string(t) + " lies outside the section (truncated?)");
     if ((points == 0) != (e.bytes == 0)) bad(source, "tree " + std::to_string(t) + " is empty but its class is not, or the reverse");
-    if (points) check_tree(section.subspan(e.offset, e.bytes), points, source, t);
+    if (points) layouts[t] = check_tree(section.subspan(e.offset, e.bytes), points, source, t);
   }
   d.index.clear();
   d.index.resize(d.meta.classes.size());
   d.all = ClassIndex{};
   d.leaf_size = static_cast<int>(h.leaf_size);
+  d.indexed = true;
   for (std::size_t t = 0; t < trees.size(); ++t) {
     const std::size_t hand = t % 2;
-    ClassIndex& ci = t < 2 ? d.all : d.index[(t - 2) / 2];
+    ClassIndex& ci = d.meta.classes.size() <= 1 ? d.all : d.index[t / 2];
     ci.cloud[hand] = {reinterpret_cast<const float*>(d.features[hand] + trees[t].first), trees[t].second - trees[t].first};
     if (entries[t].bytes == 0) continue;
     ci.tree[hand] = std::make_unique<KdTree>(kTreeDim, ci.cloud[hand],
                                              nanoflann::KDTreeSingleIndexAdaptorParams(h.leaf_size, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex));
-    SpanBuf buf(section.subspan(entries[t].offset, entries[t].bytes));
-    std::istream in(&buf);
-    ci.tree[hand]->loadIndex(in);
+    fill_tree(*ci.tree[hand], section.subspan(entries[t].offset, entries[t].bytes), layouts[t], ci.cloud[hand].count,
+              source, t);
   }
   return true;
 }

@@ -43,6 +43,7 @@ struct FullDistanceResult {
   float worstDist() const { return n == k ? out[n - 1].distance : std::numeric_limits<float>::max(); }
   bool full() const { return n == k; }
   bool addPoint(float, std::uint32_t index) {
+    if (budget == 0) return false;  // spent in an earlier tree
     add(base + static_cast<int>(index));
     return budget < 0 || --budget > 0;  // false stops the tree search
   }
@@ -57,6 +58,30 @@ struct FullDistanceResult {
 
 bool allowed(std::span<const unsigned char> mask, std::size_t c) { return mask.empty() || (c < mask.size() && mask[c]); }
 
+// The allowed class whose tree's root box is nearest the query (squared
+// distance over the tree's dimensions); ranges.size() when none is allowed.
+std::size_t nearest_class_tree(const Database::Impl& d, int hand, const Feature& query,
+                               std::span<const unsigned char> class_mask) {
+  std::size_t best = d.meta.ranges.size();
+  float best_d2 = std::numeric_limits<float>::max();
+  for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) {
+    const KdTree* tree = d.index[c].tree[static_cast<std::size_t>(hand)].get();
+    if (!allowed(class_mask, c) || !tree) continue;
+    float d2 = 0;
+    for (int i = 0; i < kTreeDim; ++i) {
+      const auto& box = tree->root_bbox[static_cast<std::size_t>(i)];
+      const float q = query[static_cast<std::size_t>(i)];
+      const float out = q < box.low ? box.low - q : q > box.high ? q - box.high : 0.0f;
+      d2 += out * out;
+    }
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = c;
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 int search_knn(const Database& db, int hand, const Feature& query, int k, SearchMode mode, float eps,
@@ -66,7 +91,7 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
   if (k <= 0) return 0;
   const auto& d = db.impl();
   int n = 0;  // out[] holds squared distances until the end
-  if (mode == SearchMode::BruteForce || !d.all.tree[0]) {
+  if (mode == SearchMode::BruteForce || !d.indexed) {
     const float* feats = reinterpret_cast<const float*>(d.features[hand]);
     // Seeds first: a tight bound from the start rejects most rows on the prefix.
     for (int w : seeds)
@@ -105,17 +130,23 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
       if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) rs.add(w);
     const nanoflann::SearchParams params(32, mode == SearchMode::Fast ? eps : 0.0f);
     const int budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
-    bool every_class = true;
-    for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) every_class = every_class && allowed(class_mask, c);
-    if (every_class || d.index.size() != d.meta.ranges.size()) {
+    if (d.index.size() != d.meta.ranges.size() || d.meta.ranges.size() <= 1) {  // one class: one tree pair
       rs.base = 0;
       rs.budget = budget;
-      d.all.tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
+      if (d.all.tree[static_cast<std::size_t>(hand)]) d.all.tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
     } else {
-      for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) {
-        if (!allowed(class_mask, c) || d.meta.ranges[c].first == d.meta.ranges[c].second) continue;
+      // Each allowed class's tree, nearest root box first, sharing one check
+      // budget (as one tree over every allowed window would spend it): the
+      // nearest class's tree gets most of it, and the k-th best distance
+      // found so far prunes the others.
+      const std::size_t first = nearest_class_tree(d, hand, query, class_mask);
+      rs.budget = budget;
+      for (std::size_t i = 0; i <= d.meta.ranges.size() && rs.budget != 0; ++i) {
+        const std::size_t c = i == 0 ? first : i - 1;
+        if (c >= d.meta.ranges.size() || (i > 0 && c == first) || !allowed(class_mask, c) ||
+            d.meta.ranges[c].first == d.meta.ranges[c].second)
+          continue;
         rs.base = d.meta.ranges[c].first;
-        rs.budget = budget;
         d.index[c].tree[static_cast<std::size_t>(hand)]->findNeighbors(rs, query.data(), params);
       }
     }

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -123,6 +124,27 @@ TEST(DatabaseFile, ChecksumValidButAbsurdContentsAreRejectedByName) {
   std::memset(zero.data() + h.pose_offset + 16 * 5, 0, 16);
   write_with_checksum(bad, zero);
   EXPECT_NE(load_error(bad).find("pose 0 joint '"), std::string::npos) << load_error(bad);
+
+  // The checksum pass scans every data section in cache-sized chunks; what it
+  // flags is named by section and element.
+  auto align = block;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(align.data() + h.align_offset + sizeof(AlignXZ) * 2 + 4, &nan, 4);
+  write_with_checksum(bad, align);
+  EXPECT_NE(load_error(bad).find("alignment point of window 2 is not finite"), std::string::npos) << load_error(bad);
+  auto feature = block;
+  const float inf = std::numeric_limits<float>::infinity();
+  std::memcpy(feature.data() + h.feature_offset[1] + sizeof(Feature) * 3, &inf, 4);
+  write_with_checksum(bad, feature);
+  EXPECT_NE(load_error(bad).find("feature of window 3 is not finite"), std::string::npos) << load_error(bad);
+  auto contact = block;
+  contact[h.contact_offset + 5] = std::byte{2};
+  write_with_checksum(bad, contact);
+  EXPECT_NE(load_error(bad).find("foot contact of pose 2 is neither 0 nor 1"), std::string::npos) << load_error(bad);
+  auto last = block;  // the last pose's last joint: the scan reaches the section's end
+  std::memset(last.data() + h.pose_offset + std::size_t{h.pose_count} * h.joint_count * 16 - 16, 0, 16);
+  write_with_checksum(bad, last);
+  EXPECT_NE(load_error(bad).find("pose " + std::to_string(h.pose_count - 1) + " joint '"), std::string::npos) << load_error(bad);
 
   for (const auto& [key, value, expect] : {std::tuple{"height_m", "0", "height_m is 0.000000"},
                                            std::tuple{"typical_distance", "-1", "typical_distance is -1.000000"}}) {

@@ -157,10 +157,13 @@ TEST_F(SampleDb, BadFilesAreRejectedWithClearMessages) {
   expect_error(version, "version 7");
   auto old = good;
   old[8] = std::byte{1};  // a version 1 file (no foot contacts): rebuild
-  expect_error(old, "format version 1, but this legwork reads version 3; rebuild it with 'legwork accent build'");
+  expect_error(old, "format version 1, but this legwork reads version 4; rebuild it with 'legwork accent build'");
   auto v2 = good;
   v2[8] = std::byte{2};  // a version 2 file (no stored search index): rebuild
-  expect_error(v2, "format version 2, but this legwork reads version 3; rebuild it");
+  expect_error(v2, "format version 2, but this legwork reads version 4; rebuild it");
+  auto v3 = good;
+  v3[8] = std::byte{3};  // a version 3 file (FNV-1a checksum): rebuild
+  expect_error(v3, "format version 3, but this legwork reads version 4; rebuild it with 'legwork accent build'");
   auto magic = good;
   magic[0] = std::byte{'X'};
   expect_error(magic, "not a legwork accent database");

@@ -76,7 +76,7 @@ struct Settings {
   // other classes), so each is scored about twice per class_seconds. The active class
   // changes only when another's smoothed cost is lower by the fraction
   // class_margin for class_hold_seconds (hysteresis). false: every allowed
-  // class is searched every frame (the whole-database tree).
+  // class is searched every frame (their class trees, one shared check budget).
   bool recognize_class = true;
   double class_seconds = 0.5;
   double class_margin = 0.1;

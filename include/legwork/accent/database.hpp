@@ -23,9 +23,10 @@
 
 namespace legwork::accent {
 
-// 2: per-pose foot contacts; 3: the KD-tree search index is stored in the file
-// (older files are refused with a "rebuild" message).
-inline constexpr std::uint32_t kFormatVersion = 3;
+// 2: per-pose foot contacts; 3: the KD-tree search index is stored in the file;
+// 4: the checksum is XXH3-64 (was a serial FNV-1a). Older files are refused
+// with a "rebuild" message.
+inline constexpr std::uint32_t kFormatVersion = 4;
 
 // Where a window came from (for reports and leave-one-out checks).
 struct WindowSource {
@@ -122,7 +123,7 @@ class Database {
 };
 
 struct LoadOptions {
-  bool verify_checksum = true;  // hash the whole file (about 10 ms per 100 MB)
+  bool verify_checksum = true;  // hash (XXH3-64) and scan the whole file (a few ms per 50 MB)
   bool build_index = true;      // KD-trees for the Exact/Fast search modes (read from the file's index section)
   bool use_mmap = true;         // false: read into memory
 };
