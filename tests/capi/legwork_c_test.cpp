@@ -366,6 +366,33 @@ TEST(CApi, WalkerRootIsSmoothByDefaultAndPivotOnRequest) {
   EXPECT_EQ(bad, nullptr);
 }
 
+// The walker with settings `s` for `frames` frames at 30 Hz (the head still: the walker walks
+// straight ahead on its own); the root at the first and the last frame.
+struct WalkerRun {
+  double first[3] = {0, 0, 0}, last[3] = {0, 0, 0};
+};
+WalkerRun walk_straight(const std::string& walk, const lw_walker_settings& s, int frames) {
+  WalkerRun r;
+  lw_model* model = nullptr;
+  if (lw_model_create_walker_with_settings(walk.c_str(), &s, &model) != LW_OK) {
+    ADD_FAILURE() << lw_last_error();
+    return r;
+  }
+  lw_avatar* avatar = nullptr;
+  EXPECT_EQ(lw_avatar_create(model, &avatar), LW_OK);
+  lw_frame f{};
+  f.devices[LW_HEAD] = {{0, 1.7, 0}, {1, 0, 0, 0}, 1};
+  for (int i = 0; i < frames; ++i) {
+    f.time = i / 30.0;
+    EXPECT_EQ(lw_avatar_update(avatar, &f), LW_OK);
+    EXPECT_EQ(lw_avatar_pose(avatar, nullptr, r.last, nullptr, 0), LW_OK);
+    if (i == 0) std::copy(r.last, r.last + 3, r.first);
+  }
+  lw_avatar_destroy(avatar);
+  lw_model_destroy(model);
+  return r;
+}
+
 // The walker on a ground given through the C API (the JSON of a path file's
 // "ground"): up a 10 % slope the root rises with the ground (as high above it
 // at the end as at the start, within the step's bob); a bad or stairs ground
@@ -376,27 +403,15 @@ TEST(CApi, WalkerWalksTheGroundItIsGiven) {
   lw_walker_settings_default(&s);
   EXPECT_EQ(s.ground_json, nullptr);
   s.ground_json = R"({"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.1}})";
-  lw_model* model = nullptr;
-  ASSERT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &model), LW_OK) << lw_last_error();
-  lw_avatar* avatar = nullptr;
-  ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
-  lw_frame f{};
-  f.devices[LW_HEAD] = {{0, 1.7, 0}, {1, 0, 0, 0}, 1};
-  double first[3] = {0, 0, 0}, root[3] = {0, 0, 0};
-  for (int i = 0; i < 150; ++i) {
-    f.time = i / 30.0;
-    ASSERT_EQ(lw_avatar_update(avatar, &f), LW_OK);
-    ASSERT_EQ(lw_avatar_pose(avatar, nullptr, root, nullptr, 0), LW_OK);
-    if (i == 0) std::copy(root, root + 3, first);
-  }
+  const WalkerRun run = walk_straight(walk, s, 150);
+  const double* first = run.first;
+  const double* root = run.last;
   const double ground_end = 0.1 * std::max(0.0, root[2] - 0.5);
   std::printf("[capi] walker up a 10 %% slope: root %.3f m above the ground at the start, %.3f m at the end (z %.2f m)\n", first[1],
               root[1] - ground_end, root[2]);
   EXPECT_GT(root[2], 4.0);  // walked up the slope
   // (The pelvis follows the lower foot: up to half a stride's rise, 36 mm, below the feet's mean.)
   EXPECT_NEAR(root[1] - ground_end, first[1], 0.1 * 0.36 + 0.01);
-  lw_avatar_destroy(avatar);
-  lw_model_destroy(model);
   lw_model* bad = nullptr;
   s.ground_json = R"({"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.5}})";
   EXPECT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &bad), LW_ERROR_INVALID_ARGUMENT);
@@ -415,43 +430,19 @@ TEST(CApi, WalkerClimbsStairs) {
   lw_walker_settings s;
   lw_walker_settings_default(&s);
   s.ground_json = R"({"stairs": {"origin": [0, 1.5], "direction": [0, 1], "rise": 0.15, "run": 0.36, "count": 5}})";
-  lw_model* model = nullptr;
-  ASSERT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &model), LW_OK) << lw_last_error();
-  lw_avatar* avatar = nullptr;
-  ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
-  lw_frame f{};
-  f.devices[LW_HEAD] = {{0, 1.7, 0}, {1, 0, 0, 0}, 1};
-  double first[3] = {0, 0, 0}, root[3] = {0, 0, 0};
-  for (int i = 0; i < 150; ++i) {
-    f.time = i / 30.0;
-    ASSERT_EQ(lw_avatar_update(avatar, &f), LW_OK);
-    ASSERT_EQ(lw_avatar_pose(avatar, nullptr, root, nullptr, 0), LW_OK);
-    if (i == 0) std::copy(root, root + 3, first);
-  }
+  const WalkerRun run = walk_straight(walk, s, 150);
   std::printf("[capi] walker up the stairs: root %.3f m above the floor at the start, %.3f m above the landing at z %.2f m\n",
-              first[1], root[1] - 0.75, root[2]);
-  EXPECT_GT(root[2], 1.5 + 5 * 0.36);  // past the last riser
-  EXPECT_NEAR(root[1] - 0.75, first[1], 0.03);
-  lw_avatar_destroy(avatar);
-  lw_model_destroy(model);
+              run.first[1], run.last[1] - 0.75, run.last[2]);
+  EXPECT_GT(run.last[2], 1.5 + 5 * 0.36);  // past the last riser
+  EXPECT_NEAR(run.last[1] - 0.75, run.first[1], 0.03);
   // The stairs cadence reaches the walker: slower on the flight, less ground covered in the same time.
   EXPECT_EQ(s.stairs_cadence, 0.8);
-  double reached[2] = {0, 0};
-  for (int k = 0; k < 2; ++k) {
-    s.stairs_cadence = k == 0 ? 1.0 : 0.5;
-    ASSERT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &model), LW_OK) << lw_last_error();
-    ASSERT_EQ(lw_avatar_create(model, &avatar), LW_OK);
-    for (int i = 0; i < 150; ++i) {
-      f.time = i / 30.0;
-      ASSERT_EQ(lw_avatar_update(avatar, &f), LW_OK);
-    }
-    ASSERT_EQ(lw_avatar_pose(avatar, nullptr, root, nullptr, 0), LW_OK);
-    reached[k] = root[2];
-    lw_avatar_destroy(avatar);
-    lw_model_destroy(model);
-  }
-  std::printf("[capi] 5 s toward the stairs: z %.2f m at cadence 1, %.2f m at 0.5\n", reached[0], reached[1]);
-  EXPECT_LT(reached[1], reached[0] - 0.3);
+  s.stairs_cadence = 1.0;
+  const double at_1 = walk_straight(walk, s, 150).last[2];
+  s.stairs_cadence = 0.5;
+  const double at_half = walk_straight(walk, s, 150).last[2];
+  std::printf("[capi] 5 s toward the stairs: z %.2f m at cadence 1, %.2f m at 0.5\n", at_1, at_half);
+  EXPECT_LT(at_half, at_1 - 0.3);
   s.stairs_cadence = 0;
   lw_model* bad = nullptr;
   EXPECT_EQ(lw_model_create_walker_with_settings(walk.c_str(), &s, &bad), LW_ERROR_INVALID_ARGUMENT);

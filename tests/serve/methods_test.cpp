@@ -165,6 +165,21 @@ TEST(ServeMethods, WipAndCombinedDescribeTheirLegs) {
   EXPECT_STREQ(find_info(info, "legs")->text, "wip");
 }
 
+// A walker method driven 5 s at 30 Hz with the head still (it walks on its own): the root at the
+// end, and the root's height at the first frame in `first`.
+Vec3 walk_five_seconds(Method& method, double& first) {
+  Pose pose(method.skeleton());
+  MethodInfo info;
+  for (int f = 0; f < 150; ++f) {
+    TrackerFrame frame;
+    frame.time = f / 30.0;
+    frame.head() = {Vec3(0, 1.7, 0), Quat::Identity(), true};
+    EXPECT_EQ(method.update(frame, pose.ref(), info), UpdateStatus::Ok);
+    if (f == 0) first = pose.translations[0].y();
+  }
+  return pose.translations[0];
+}
+
 }  // namespace
 // The walker method: a shipped walk steered by the head's yaw, its root
 // smooth by default and pivoting on request (hello "walk", "root"), bad
@@ -217,17 +232,8 @@ TEST(ServeMethods, WalkerWalksTheHellosGround) {
   MethodOptions o = options("walker");
   o.ground = R"({"slope": {"origin": [0, 0.5], "direction": [0, 1], "grade": 0.1}})";
   const auto method = make_method(res, o);
-  Pose pose(method->skeleton());
-  MethodInfo info;
   double first = 0;
-  for (int f = 0; f < 150; ++f) {
-    TrackerFrame frame;
-    frame.time = f / 30.0;
-    frame.head() = {Vec3(0, 1.7, 0), Quat::Identity(), true};
-    ASSERT_EQ(method->update(frame, pose.ref(), info), UpdateStatus::Ok);
-    if (f == 0) first = pose.translations[0].y();
-  }
-  const Vec3 end = pose.translations[0];
+  const Vec3 end = walk_five_seconds(*method, first);
   EXPECT_GT(end.z(), 4.0);
   // As high above the ground as at the start (the pelvis follows the lower foot: up to half a stride's rise below).
   EXPECT_NEAR(end.y() - 0.1 * (end.z() - 0.5), first, 0.1 * 0.36 + 0.01);
@@ -244,17 +250,8 @@ TEST(ServeMethods, WalkerClimbsTheHellosStairs) {
   MethodOptions o = options("walker");
   o.ground = R"({"stairs": {"origin": [0, 1.5], "direction": [0, 1], "rise": 0.15, "run": 0.36, "count": 5}})";
   const auto method = make_method(res, o);
-  Pose pose(method->skeleton());
-  MethodInfo info;
   double first = 0;
-  for (int f = 0; f < 150; ++f) {
-    TrackerFrame frame;
-    frame.time = f / 30.0;
-    frame.head() = {Vec3(0, 1.7, 0), Quat::Identity(), true};
-    ASSERT_EQ(method->update(frame, pose.ref(), info), UpdateStatus::Ok);
-    if (f == 0) first = pose.translations[0].y();
-  }
-  const Vec3 end = pose.translations[0];
+  const Vec3 end = walk_five_seconds(*method, first);
   std::printf("[serve] walker up the stairs: root %.3f m above the floor at the start, %.3f m above the landing at z %.2f m\n", first,
               end.y() - 0.75, end.z());
   EXPECT_GT(end.z(), 1.5 + 5 * 0.36);  // past the last riser
