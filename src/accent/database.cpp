@@ -368,9 +368,13 @@ std::size_t scan_ranges(const Database::Impl& d, std::array<ScanRange, 6>& out) 
 // True when every element starting in [from, to) of range r is valid. Written
 // without early exits so the compiler vectorizes it; conservative (a float
 // norm test slightly tighter than scan_contents' double one).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 // AVX-512 / AVX2 copies chosen at load time (glibc ifunc): 2-4x the lanes of
-// the SSE2 baseline, so the scan keeps up with the hash.
+// the SSE2 baseline, so the scan keeps up with the hash. Not under the
+// sanitizers: the ifunc resolver runs while the program is being relocated,
+// before their runtimes start, and ThreadSanitizer's instrumented resolver
+// crashes there.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_THREAD__) && \
+    !defined(__SANITIZE_ADDRESS__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 bool scan_chunk(const std::byte* base, const ScanRange& r, std::uint64_t from, std::uint64_t to) {
