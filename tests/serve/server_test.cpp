@@ -358,12 +358,20 @@ TEST(Serve, RateLimitBoundsAClientWithFakeTimestamps) {
   for (int k = 0; k < 2; ++k) frames.insert(frames.end(), frames.begin(), frames.begin() + 200);  // and back in time, twice
   const json rate = send_all_and_drain(c, frames);
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  ASSERT_EQ(rate.value("code", ""), "rate") << rate.dump();
-  EXPECT_NE(rate["message"].get<std::string>().find("frames arriving above 240 Hz of the server's clock are dropped"), std::string::npos)
-      << rate.dump();
-  const auto kept = static_cast<double>(frames.size() - srv.server().stats().rate_dropped);
+  const std::uint64_t dropped = srv.server().stats().rate_dropped;
+  const auto kept = static_cast<double>(frames.size() - dropped);
   EXPECT_LE(kept, 120 * RateLimiter::kCeilingBurstSeconds + 240 * elapsed + 1) << "in " << elapsed << " s";
   EXPECT_GE(kept, 120 * RateLimiter::kCeilingBurstSeconds);
+  // The ceiling is wall-clock: on a machine too slow to send faster than 240 Hz (e.g. under
+  // ThreadSanitizer) nothing is over it, and the bound above is all there is to check.
+  if (dropped > 0) {
+    ASSERT_EQ(rate.value("code", ""), "rate") << rate.dump();
+    EXPECT_NE(rate["message"].get<std::string>().find("frames arriving above 240 Hz of the server's clock are dropped"),
+              std::string::npos)
+        << rate.dump();
+  } else {
+    std::printf("[serve] %zu frames in %.2f s: never above the wall-clock ceiling\n", frames.size(), elapsed);
+  }
 }
 
 TEST(Serve, SessionLimitRefusesWithBusy) {
