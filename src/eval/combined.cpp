@@ -131,13 +131,15 @@ json evaluate_combined(const CombinedEvalRun& run) {
       s.accent.user_height = learned.accent.user_height = measure_body(truth.skeleton).standing_height;
       // Every method gets the same information: with a database, the IK bodies too run on its skeleton
       // at the user's height (as `eval accent`'s baseline); without one, on the trial's own skeleton.
-      const Skeleton body = db ? accent::make_model(*db, s.accent).skeleton() : truth.skeleton;
+      std::optional<accent::Model> accent_model;  // built once: its skeleton serves the IK bodies
+      if (db) accent_model.emplace(accent::make_model(*db, s.accent));
+      const Skeleton& body = accent_model ? accent_model->skeleton() : truth.skeleton;
       outputs.emplace("ik", run_ik_baseline(body, frames, rate));
       outputs.emplace("combined_ik", run_combined(combined::make_model(body, settings), frames, rate));
       if (table)
         outputs.emplace("combined_ik_learned", run_combined(combined::make_model(body, learned, table), frames, rate));
       if (db) {
-        outputs.emplace("accent", accent::accentuate(accent::make_model(*db, s.accent), frames, rate).output);
+        outputs.emplace("accent", accent::accentuate(*accent_model, frames, rate).output);
         outputs.emplace("combined_accent", run_combined(combined::make_model(*db, s), frames, rate));
         if (table) outputs.emplace("combined_accent_learned", run_combined(combined::make_model(*db, learned, table), frames, rate));
       }

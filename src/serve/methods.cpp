@@ -195,6 +195,9 @@ struct WalkerRuntime : Contract<walkcycle::Model, walkcycle::State, walkcycle::I
     if (opt.root != "smooth" && opt.root != "pivot") throw Error("root '" + opt.root + "' is not one of: smooth, pivot");
     s.root = opt.root == "pivot" ? walkcycle::RootMotion::Pivot : walkcycle::RootMotion::Smooth;
     if (!opt.ground.empty()) s.ground = walkcycle::parse_ground_json(opt.ground, "hello.ground");
+    s.max_turn_per_step = opt.max_turn_per_step;
+    s.soft_reach = opt.soft_reach;
+    s.stairs_cadence = opt.stairs_cadence;
     const auto names = walks(res);
     if (std::find(names.begin(), names.end(), opt.walk) == names.end())
       throw Error("walk '" + opt.walk + "' is not one of this server's walks (" + join(names) + ")");

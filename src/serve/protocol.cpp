@@ -107,6 +107,9 @@ Hello parse_hello(const json& j) {
     if (!g->is_object()) fail("bad_message", "hello.ground must be an object (a path file's \"ground\": slope or heightfield)");
     h.method.ground = g->dump();
   }
+  if (auto x = j.find("max_turn_per_step"); x != j.end()) h.method.max_turn_per_step = number(*x, "hello.max_turn_per_step");
+  if (auto x = j.find("soft_reach"); x != j.end()) h.method.soft_reach = number(*x, "hello.soft_reach");
+  if (auto x = j.find("stairs_cadence"); x != j.end()) h.method.stairs_cadence = number(*x, "hello.stairs_cadence");
   if (auto d = j.find("detector"); d != j.end() && !d->is_null()) {
     if (!d->is_string()) fail("bad_message", "hello.detector must be a string (\"document\" or \"adaptive\")");
     h.method.detector = d->get<std::string>();

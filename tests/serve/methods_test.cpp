@@ -258,4 +258,30 @@ TEST(ServeMethods, WalkerClimbsTheHellosStairs) {
   EXPECT_NEAR(end.y() - 0.75, first, 0.03);
 }
 
+// The hello's walker settings reach the walker: on the same stairs a slower
+// stairs_cadence gets less far in 5 s (the flight is climbed at that share of
+// the cycle's rate); out-of-range values are refused with the walker's message.
+TEST(ServeMethods, WalkerSettingsFromTheHello) {
+  Resources res;
+  res.walks_dir = std::string(LEGWORK_SOURCE_DIR) + "/data/walks";
+  MethodOptions o = options("walker");
+  o.ground = R"({"stairs": {"origin": [0, 1.0], "direction": [0, 1], "rise": 0.15, "run": 0.36, "count": 12}})";
+  double reached[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    o.stairs_cadence = k == 0 ? 1.0 : 0.5;
+    double first = 0;
+    reached[k] = walk_five_seconds(*make_method(res, o), first).z();
+  }
+  std::printf("[serve] walker on 12 stairs in 5 s: z %.2f m at stairs_cadence 1, %.2f m at 0.5\n", reached[0], reached[1]);
+  EXPECT_GT(reached[0], reached[1] + 0.5);
+  o.stairs_cadence = 0;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "walker: stairs_cadence must be in (0, 1] (a fraction of the cycle's rate), got 0.000000");
+  o.stairs_cadence = 0.8;
+  o.soft_reach = 1.5;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "walker: soft_reach must be in (0, 1] (a fraction of the leg's length), got 1.500000");
+  o.soft_reach = 0.98;
+  o.max_turn_per_step = -1;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "walker: max_turn_per_step must be a finite angle >= 0 (radians), got -1.000000");
+}
+
 }  // namespace legwork::serve

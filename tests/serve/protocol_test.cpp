@@ -122,6 +122,15 @@ TEST(Protocol, WalkAndRootAreHelloFields) {
   EXPECT_EQ(d.method.ground, "");
   const Hello g = parse_text(R"({"type":"hello","version":1,"method":"walker","ground":{"slope":{"origin":[0,1],"direction":[0,1],"grade":0.1}}})").hello;
   EXPECT_EQ(g.method.ground, R"({"slope":{"direction":[0,1],"grade":0.1,"origin":[0,1]}})");
+  // The walker's settings: absent, the walker's defaults; given, as sent (ranges are the walker's: ServeMethods).
+  EXPECT_EQ(d.method.max_turn_per_step, walkcycle::Settings{}.max_turn_per_step);
+  EXPECT_EQ(d.method.soft_reach, walkcycle::Settings{}.soft_reach);
+  EXPECT_EQ(d.method.stairs_cadence, walkcycle::Settings{}.stairs_cadence);
+  const Hello w =
+      parse_text(R"({"type":"hello","version":1,"method":"walker","max_turn_per_step":0.2,"soft_reach":0.9,"stairs_cadence":0.5})").hello;
+  EXPECT_EQ(w.method.max_turn_per_step, 0.2);
+  EXPECT_EQ(w.method.soft_reach, 0.9);
+  EXPECT_EQ(w.method.stairs_cadence, 0.5);
 }
 
 TEST(Protocol, BadMessagesNameTheProblem) {
@@ -139,6 +148,7 @@ TEST(Protocol, BadMessagesNameTheProblem) {
   EXPECT_EQ(message(R"({"type":"hello","version":1,"recognize_class":"yes"})"),
             "bad_message: hello.recognize_class must be true or false");
   EXPECT_EQ(message(R"({"type":"hello","version":1,"root":1})"), "bad_message: hello.root must be a string");
+  EXPECT_EQ(message(R"({"type":"hello","version":1,"stairs_cadence":"slow"})"), "bad_value: hello.stairs_cadence is not a number (got string)");
   EXPECT_EQ(message(R"({"type":"hello","version":1,"ground":"hill"})"),
             "bad_message: hello.ground must be an object (a path file's \"ground\": slope or heightfield)");
   EXPECT_EQ(message(R"({"type":"options","recognize_class":1})"), "bad_message: options.recognize_class must be true or false");

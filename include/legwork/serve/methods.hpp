@@ -5,6 +5,7 @@
 // Adapting the server to a runtime API change touches only methods.cpp.
 #include <legwork/core/motion.hpp>
 #include <legwork/core/tracker.hpp>
+#include <legwork/walkcycle/walker.hpp>
 
 #include <array>
 #include <memory>
@@ -49,6 +50,11 @@ struct MethodOptions {
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
   std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)
+  // walker: walkcycle::Settings' max_turn_per_step (radians), soft_reach and
+  // stairs_cadence; the walker's defaults, checked by walkcycle::make_model.
+  double max_turn_per_step = walkcycle::Settings{}.max_turn_per_step;
+  double soft_reach = walkcycle::Settings{}.soft_reach;
+  double stairs_cadence = walkcycle::Settings{}.stairs_cadence;
 };
 
 // Per-frame diagnostics as a flat list of name -> number or name -> text
