@@ -97,14 +97,24 @@ void GaitMachine::init(const GaitSettings& p) {
   down_estimate = p.v2 / std::max(p.velocity_fraction, 1e-6);
 }
 
+bool GaitMachine::at_rest(const GaitSettings& p) const {
+  return p.rest_time > 0 && phase == GaitPhase::DoubleSupport && rest >= p.rest_time;
+}
+
 double GaitMachine::h1(const GaitSettings& p) const {
-  if (p.detector == StepDetector::Adaptive)
-    return std::min(std::max({p.lift_fraction * apex_estimate, p.noise_factor * noise, p.min_lift}), p.h1);
+  if (p.detector == StepDetector::Adaptive) {
+    double lift = std::max({p.lift_fraction * apex_estimate, p.noise_factor * noise, p.min_lift});
+    if (at_rest(p)) lift = std::min(lift, std::max({p.rest_lift, p.rest_noise_factor * noise, p.min_lift}));
+    return std::min(lift, p.h1);
+  }
   return p.adaptive ? std::clamp(p.height_fraction * apex_estimate, p.min_h1, p.h1) : p.h1;
 }
 double GaitMachine::v1(const GaitSettings& p) const {
-  if (p.detector == StepDetector::Adaptive)
-    return std::min(std::max({p.rise_fraction * up_estimate, p.rise_noise_factor * noise, p.min_rise}), p.v1);
+  if (p.detector == StepDetector::Adaptive) {
+    double rise = std::max({p.rise_fraction * up_estimate, p.rise_noise_factor * noise, p.min_rise});
+    if (at_rest(p)) rise = std::min(rise, std::max({p.rest_rise, p.rise_noise_factor * noise, p.min_rise}));
+    return std::min(rise, p.v1);
+  }
   return p.adaptive ? std::clamp(p.velocity_fraction * up_estimate, p.min_v1, p.v1) : p.v1;
 }
 double GaitMachine::v2(const GaitSettings& p) const {
@@ -145,7 +155,10 @@ unsigned GaitMachine::update(const GaitSettings& p, double h, double v, double c
   }
   switch (phase) {
     case GaitPhase::DoubleSupport:
-      if (time_in_phase >= p.min_stance_time && h > H1 && v > V1 && confidence >= p.lost_confidence) {
+      // The rise condition: this frame, or (rise_memory) within the last rise_memory s of a rise still going on.
+      since_fast = v > V1 ? 0.0 : v > 0 ? since_fast + dt : 1e9;
+      if (time_in_phase >= p.min_stance_time && h > H1 && (v > V1 || (v > 0 && since_fast <= p.rise_memory)) &&
+          confidence >= p.lost_confidence) {
         apex = h;
         peak_up = v;
         peak_down = 0;

@@ -342,6 +342,7 @@ bool track_feet(const Model& m, const TrackerFrame& frame, State& st, double dt,
     s.push(p.signal, ok ? d.position.y() : 0.0, ok, dt, support);
     if (p.gait.detector == StepDetector::Adaptive) {
       st.gait[f].noise = s.noise;
+      st.gait[f].rest = st.ds_time;  // both feet down until the last frame
       ev[f] = st.gait[f].update(p.gait, s.hd, s.vd, s.confidence, dt);
     } else {
       ev[f] = st.gait[f].update(p.gait, s.h, s.v, s.confidence, dt);
