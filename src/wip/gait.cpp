@@ -130,6 +130,7 @@ unsigned GaitMachine::update(const GaitSettings& p, double h, double v, double c
   unsigned ev = kEventNone;
   auto go = [&](GaitPhase next, unsigned e) {
     phase = next;
+    steady = 0;
     time_in_phase = 0;
     ev |= e;
   };
@@ -178,7 +179,8 @@ unsigned GaitMachine::update(const GaitSettings& p, double h, double v, double c
         go(GaitPhase::TerminalSwing, kEventTerminal);
       break;
     case GaitPhase::TerminalSwing:
-      if (h < land || (h < H1 && v > -V1 && time_in_phase > dt * 1.5))
+      steady = std::abs(v) < V1 ? steady + dt : 0.0;
+      if (h < land || (h < H1 && v > -V1 && time_in_phase > dt * 1.5) || (p.settle_time > 0 && steady >= p.settle_time))
         finish_swing(kEventFootStrike);
       break;
   }

@@ -124,6 +124,9 @@ struct GaitSettings {
   // The rise condition holds for this long after the detection speed last exceeded the threshold while the
   // height still rises (a small step's speed peaks before its height crosses the threshold). 0 = same frame.
   double rise_memory = 0;          // s
+  // A foot in terminal swing whose detection height stops changing (|v| < V1) for this long has landed
+  // above its old stance level (it rests on its toes, or the floor changed): foot-strike. 0 = off.
+  double settle_time = 0;          // s
 };
 
 // What happened on one update.
@@ -148,6 +151,7 @@ struct GaitMachine {
   double noise = 0;                 // tracker jitter of this foot (adaptive detector), m
   double rest = 0;                  // s both feet have been down before this frame (adaptive detector)
   double since_fast = 1e9;          // s since the detection speed last exceeded V1 in this rise
+  double steady = 0;                // s the detection height has been steady in terminal swing
 
   void init(const GaitSettings& p);
   double h1(const GaitSettings& p) const;
