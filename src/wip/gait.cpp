@@ -156,10 +156,7 @@ unsigned GaitMachine::update(const GaitSettings& p, double h, double v, double c
   }
   switch (phase) {
     case GaitPhase::DoubleSupport:
-      // The rise condition: this frame, or (rise_memory) within the last rise_memory s of a rise still going on.
-      since_fast = v > V1 ? 0.0 : v > 0 ? since_fast + dt : 1e9;
-      if (time_in_phase >= p.min_stance_time && h > H1 && (v > V1 || (v > 0 && since_fast <= p.rise_memory)) &&
-          confidence >= p.lost_confidence) {
+      if (time_in_phase >= p.min_stance_time && h > H1 && v > V1 && confidence >= p.lost_confidence) {
         apex = h;
         peak_up = v;
         peak_down = 0;

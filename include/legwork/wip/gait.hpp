@@ -113,20 +113,17 @@ struct GaitSettings {
   double rise_noise_factor = 20.0; // foot-off speed >= this (per second) * tracker jitter
   double min_lift = 0.01;          // m: lowest foot-off height above the stance baseline
   double min_rise = 0.05;          // m/s: lowest foot-off speed
-  // Start steps (adaptive detector): once both feet have been down for rest_time s (standing, a pause, the
+  // Start steps (adaptive detector; issue 13, chosen by `wip tune` held out by subject, docs/wip.md): once both feet have been down for rest_time s (standing, a pause, the
   // start of a session), a foot-off needs only rest_lift above the stance baseline rising at rest_rise (never
   // more than the walking thresholds above, never less than the jitter floors): start, stop and turn shuffles
   // lift the ankle 2-4 cm, below 20 % of a walking step's apex. 0 = off.
-  double rest_time = 0;            // s
+  double rest_time = 0.5;          // s
   double rest_lift = 0.02;         // m
   double rest_rise = 0.1;          // m/s
-  double rest_noise_factor = 2.5;  // start steps: foot-off height >= this x tracker jitter
-  // The rise condition holds for this long after the detection speed last exceeded the threshold while the
-  // height still rises (a small step's speed peaks before its height crosses the threshold). 0 = same frame.
-  double rise_memory = 0;          // s
+  double rest_noise_factor = 3.5;  // start steps: foot-off height >= this x tracker jitter
   // A foot in terminal swing whose detection height stops changing (|v| < V1) for this long has landed
   // above its old stance level (it rests on its toes, or the floor changed): foot-strike. 0 = off.
-  double settle_time = 0;          // s
+  double settle_time = 0.3;        // s
 };
 
 // What happened on one update.
@@ -150,7 +147,6 @@ struct GaitMachine {
   int swings = 0;
   double noise = 0;                 // tracker jitter of this foot (adaptive detector), m
   double rest = 0;                  // s both feet have been down before this frame (adaptive detector)
-  double since_fast = 1e9;          // s since the detection speed last exceeded V1 in this rise
   double steady = 0;                // s the detection height has been steady in terminal swing
 
   void init(const GaitSettings& p);
