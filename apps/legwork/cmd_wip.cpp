@@ -43,6 +43,19 @@ void add_method_options(CLI::App* cmd, eval::WipJob& a) {
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--min-lift", a.min_lift, "adaptive detector: lowest foot-off height, m")->check(CLI::Range(0.0, 0.1));
   cmd->add_option("--min-rise", a.min_rise, "adaptive detector: lowest foot-off speed, m/s")->check(CLI::Range(0.0, 2.0));
+  cmd->add_option("--rest-time", a.rest_time,
+                  "adaptive detector: both feet down this long (s) -> start-step thresholds (default 0.5; 0 = off)")
+      ->check(CLI::Range(0.0, 60.0));
+  cmd->add_option("--rest-lift", a.rest_lift, "adaptive detector: start steps' lowest foot-off height, m (default 0.02)")
+      ->check(CLI::Range(0.0, 0.1));
+  cmd->add_option("--rest-rise", a.rest_rise, "adaptive detector: start steps' lowest foot-off speed, m/s (default 0.1)")
+      ->check(CLI::Range(0.0, 2.0));
+  cmd->add_option("--rest-noise-factor", a.rest_noise_factor,
+                  "adaptive detector: start steps' foot-off height >= this x the tracker jitter (default 3.5)")
+      ->check(CLI::Range(0.0, 20.0));
+  cmd->add_option("--settle-time", a.settle_time,
+                  "adaptive detector: a terminal swing steady this long (s) has landed (default 0.3; 0 = off)")
+      ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag("--raw-height", a.raw_height,
                 "feed the raw height into the equations (default: normalised by the user's step apex)");
   cmd->add_option("--stop-time", a.stop_time, "double support longer than this stops the legs, s (default 1.5)")

@@ -47,7 +47,15 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("noise_factor", &GaitSettings::noise_factor)
       .def_readwrite("rise_noise_factor", &GaitSettings::rise_noise_factor)
       .def_readwrite("min_lift", &GaitSettings::min_lift, "metres")
-      .def_readwrite("min_rise", &GaitSettings::min_rise, "m/s");
+      .def_readwrite("min_rise", &GaitSettings::min_rise, "m/s")
+      .def_readwrite("rest_time", &GaitSettings::rest_time,
+                     "seconds both feet down before the start-step thresholds apply (0 = off)")
+      .def_readwrite("rest_lift", &GaitSettings::rest_lift, "start steps: lowest foot-off height, metres")
+      .def_readwrite("rest_rise", &GaitSettings::rest_rise, "start steps: lowest foot-off speed, m/s")
+      .def_readwrite("rest_noise_factor", &GaitSettings::rest_noise_factor,
+                     "start steps: foot-off height >= this x the tracker jitter")
+      .def_readwrite("settle_time", &GaitSettings::settle_time,
+                     "seconds of steady height in terminal swing that count as landed (0 = off)");
   pb::enum_<SpeedModel>(m, "SpeedModel").value("StepSpeed", SpeedModel::StepSpeed).value("StepFrequency", SpeedModel::StepFrequency);
   pb::enum_<DepthMapping>(m, "DepthMapping", "Fore-aft IK-target depths: the document's equations or the learned table.")
       .value("Document", DepthMapping::Document)

@@ -70,6 +70,11 @@ wip::Settings wip_settings(const WipJob& a, double rate) {
   p.gait.min_lift = a.min_lift;
   p.gait.min_rise = a.min_rise;
   p.gait.rise_noise_factor = a.rise_noise_factor;
+  p.gait.rest_time = a.rest_time;
+  p.gait.rest_lift = a.rest_lift;
+  p.gait.rest_rise = a.rest_rise;
+  p.gait.rest_noise_factor = a.rest_noise_factor;
+  p.gait.settle_time = a.settle_time;
   p.mapping.normalise_height = !a.raw_height;
   p.mapping.stop_time = a.stop_time;
   p.mapping.max_speed = a.max_speed;

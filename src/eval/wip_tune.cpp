@@ -21,30 +21,44 @@ void DetectorParams::apply(wip::Settings& s) const {
   s.gait.noise_factor = noise_factor;
   s.gait.rise_noise_factor = rise_noise_factor;
   s.gait.rise_fraction = rise_fraction;
+  s.gait.rest_time = rest_time;
+  s.gait.rest_noise_factor = rest_noise_factor;
+  s.gait.settle_time = settle_time;
 }
 
 DetectorParams DetectorParams::of(const wip::Settings& s) {
   return {s.signal.detect_cutoff, s.gait.lift_fraction, s.gait.min_lift, s.gait.min_rise, s.gait.noise_factor,
-          s.gait.rise_noise_factor, s.gait.rise_fraction};
+          s.gait.rise_noise_factor, s.gait.rise_fraction, s.gait.rest_time, s.gait.rest_noise_factor, s.gait.settle_time};
 }
 
 std::string DetectorParams::describe() const {
-  char b[256];
+  char b[384];
+  char rest[128] = "no start steps";
+  if (rest_time > 0)
+    std::snprintf(rest, sizeof rest, "start steps after %g s at rest (>= %g x jitter)", rest_time, rest_noise_factor);
   std::snprintf(b, sizeof b,
-                "cutoff %g Hz, lift >= max(%g x apex, %g x jitter, %g cm), rise >= max(%g x peak rise, %g x jitter /s, %g m/s)",
-                detect_cutoff, lift_fraction, noise_factor, 100 * min_lift, rise_fraction, rise_noise_factor, min_rise);
+                "cutoff %g Hz, lift >= max(%g x apex, %g x jitter, %g cm), rise >= max(%g x peak rise, %g x jitter /s, %g m/s), "
+                "%s, settle %g s",
+                detect_cutoff, lift_fraction, noise_factor, 100 * min_lift, rise_fraction, rise_noise_factor, min_rise, rest,
+                settle_time);
   return b;
 }
 
 std::vector<DetectorParams> default_detector_grid() {
+  // The walking thresholds (min lift 1 cm, min rise 0.05 m/s: their alternatives 1.5 cm, 0.1 m/s changed
+  // almost nothing in the former 972-point grid) x the start steps: off (the former detector), after 0.5 s
+  // at rest above 3.5 or 4 x jitter, after 1 s above 3.5 x jitter (with the steady landing).
+  struct Rest {
+    double time, noise, settle;
+  };
+  const Rest rests[] = {{0, 3.5, 0}, {0.5, 3.5, 0.3}, {0.5, 4.0, 0.3}, {1.0, 3.5, 0.3}};
   std::vector<DetectorParams> g;
-  for (double dc : {6.0, 8.0, 10.0})
-    for (double lf : {0.1, 0.15, 0.2})
-      for (double ml : {0.01, 0.015})
-        for (double mr : {0.05, 0.1})
-          for (double nf : {2.5, 3.0, 3.5})
-            for (double rn : {10.0, 20.0, 30.0})
-              for (double rf : {0.2, 0.3, 0.4}) g.push_back({dc, lf, ml, mr, nf, rn, rf});
+  for (const Rest& r : rests)
+    for (double dc : {6.0, 8.0, 10.0})
+      for (double lf : {0.1, 0.15, 0.2})
+        for (double nf : {2.5, 3.0, 3.5})
+          for (double rn : {10.0, 20.0, 30.0})
+            for (double rf : {0.2, 0.3, 0.4}) g.push_back({dc, lf, 0.01, 0.05, nf, rn, rf, r.time, r.noise, r.settle});
   return g;
 }
 
@@ -193,7 +207,8 @@ nlohmann::json counts_json(const DetectionCounts& c) {
 nlohmann::json params_json(const DetectorParams& p) {
   return {{"detect_cutoff_hz", p.detect_cutoff}, {"lift_fraction", p.lift_fraction}, {"min_lift_m", p.min_lift},
           {"min_rise_mps", p.min_rise},          {"noise_factor", p.noise_factor},   {"rise_noise_factor", p.rise_noise_factor},
-          {"rise_fraction", p.rise_fraction}};
+          {"rise_fraction", p.rise_fraction},     {"rest_time_s", p.rest_time},      {"rest_noise_factor", p.rest_noise_factor},
+          {"settle_time_s", p.settle_time}};
 }
 
 }  // namespace

@@ -97,14 +97,24 @@ void GaitMachine::init(const GaitSettings& p) {
   down_estimate = p.v2 / std::max(p.velocity_fraction, 1e-6);
 }
 
+bool GaitMachine::at_rest(const GaitSettings& p) const {
+  return p.rest_time > 0 && phase == GaitPhase::DoubleSupport && rest >= p.rest_time;
+}
+
 double GaitMachine::h1(const GaitSettings& p) const {
-  if (p.detector == StepDetector::Adaptive)
-    return std::min(std::max({p.lift_fraction * apex_estimate, p.noise_factor * noise, p.min_lift}), p.h1);
+  if (p.detector == StepDetector::Adaptive) {
+    double lift = std::max({p.lift_fraction * apex_estimate, p.noise_factor * noise, p.min_lift});
+    if (at_rest(p)) lift = std::min(lift, std::max({p.rest_lift, p.rest_noise_factor * noise, p.min_lift}));
+    return std::min(lift, p.h1);
+  }
   return p.adaptive ? std::clamp(p.height_fraction * apex_estimate, p.min_h1, p.h1) : p.h1;
 }
 double GaitMachine::v1(const GaitSettings& p) const {
-  if (p.detector == StepDetector::Adaptive)
-    return std::min(std::max({p.rise_fraction * up_estimate, p.rise_noise_factor * noise, p.min_rise}), p.v1);
+  if (p.detector == StepDetector::Adaptive) {
+    double rise = std::max({p.rise_fraction * up_estimate, p.rise_noise_factor * noise, p.min_rise});
+    if (at_rest(p)) rise = std::min(rise, std::max({p.rest_rise, p.rise_noise_factor * noise, p.min_rise}));
+    return std::min(rise, p.v1);
+  }
   return p.adaptive ? std::clamp(p.velocity_fraction * up_estimate, p.min_v1, p.v1) : p.v1;
 }
 double GaitMachine::v2(const GaitSettings& p) const {
@@ -120,6 +130,7 @@ unsigned GaitMachine::update(const GaitSettings& p, double h, double v, double c
   unsigned ev = kEventNone;
   auto go = [&](GaitPhase next, unsigned e) {
     phase = next;
+    steady = 0;
     time_in_phase = 0;
     ev |= e;
   };
@@ -165,7 +176,8 @@ unsigned GaitMachine::update(const GaitSettings& p, double h, double v, double c
         go(GaitPhase::TerminalSwing, kEventTerminal);
       break;
     case GaitPhase::TerminalSwing:
-      if (h < land || (h < H1 && v > -V1 && time_in_phase > dt * 1.5))
+      steady = std::abs(v) < V1 ? steady + dt : 0.0;
+      if (h < land || (h < H1 && v > -V1 && time_in_phase > dt * 1.5) || (p.settle_time > 0 && steady >= p.settle_time))
         finish_swing(kEventFootStrike);
       break;
   }

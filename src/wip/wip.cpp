@@ -107,6 +107,18 @@ Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef 
   if (!(mp.speed_gain >= 0))
     throw Error("walking-in-place settings: speed_gain " + std::to_string(mp.speed_gain) +
                 " must be >= 0 (0 = the detector's calibrated gain)");
+  {
+    const auto& g = settings.gait;
+    const std::pair<const char*, double> start[] = {{"rest_time", g.rest_time},
+                                                    {"rest_lift", g.rest_lift},
+                                                    {"rest_rise", g.rest_rise},
+                                                    {"rest_noise_factor", g.rest_noise_factor},
+                                                    {"settle_time", g.settle_time}};
+    for (const auto& [name, value] : start)
+      if (!(value >= 0) || !std::isfinite(value))
+        throw Error(std::string("walking-in-place settings: gait.") + name + " " + std::to_string(value) +
+                    " must be finite and >= 0 (0 = off)");
+  }
 
   m.base_pose_ = Pose(s);
   std::vector<Transform> g(static_cast<std::size_t>(s.joint_count()));
@@ -342,6 +354,7 @@ bool track_feet(const Model& m, const TrackerFrame& frame, State& st, double dt,
     s.push(p.signal, ok ? d.position.y() : 0.0, ok, dt, support);
     if (p.gait.detector == StepDetector::Adaptive) {
       st.gait[f].noise = s.noise;
+      st.gait[f].rest = st.ds_time;  // both feet down until the last frame
       ev[f] = st.gait[f].update(p.gait, s.hd, s.vd, s.confidence, dt);
     } else {
       ev[f] = st.gait[f].update(p.gait, s.h, s.v, s.confidence, dt);

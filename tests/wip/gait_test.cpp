@@ -226,11 +226,45 @@ TEST(Gait, AdaptiveThresholdRisesWithTrackerJitterAndInventsNoStep) {
     return p;
   };
   const auto clean = run(walk, 20.0, 30.0, 0.1, adaptive_model()), shaky = run(noisy, 20.0, 30.0, 0.1, adaptive_model());
-  EXPECT_NEAR(clean.back().h1[kLeft], 0.2 * clean.back().apex_estimate[kLeft], 1e-9);
+  // Standing after the steps: the start-step height threshold (docs/wip.md), below the walking one (20 % of the apex).
+  EXPECT_NEAR(clean.back().h1[kLeft], adaptive_model().settings().gait.rest_lift, 1e-9);
+  EXPECT_LT(clean.back().h1[kLeft], 0.2 * clean.back().apex_estimate[kLeft]);
   EXPECT_GT(shaky.back().h1[kLeft], clean.back().h1[kLeft] + 0.02);
   int false_steps = 0;
   for (const auto& f : shaky) false_steps += f.time > 8 && ((f.events[0] | f.events[1]) & kEventFootOff) ? 1 : 0;
   EXPECT_EQ(false_steps, 0);
+}
+
+// Five 0.2 m steps per foot, 2 s standing, then a 3 cm shuffle of the left foot (a start or turn shuffle):
+// below 20 % of the user's apex (4 cm), so the walking thresholds miss it; after both feet have rested for
+// rest_time (0.5 s) the start-step thresholds (2 cm, 0.1 m/s) see it. The same shuffle 0.25 s after the last
+// step landed is not a start step. No step is invented while standing.
+TEST(Gait, StartStepThresholdsAfterRestSeeAShuffleTheWalkingThresholdsMiss) {
+  auto steps = [](double t, double shuffle_at) {
+    double l = 0, r = 0;
+    for (int k = 0; k < 5; ++k) l += bump(t, 1.0 + 1.2 * k, 1.5 + 1.2 * k, 0.2), r += bump(t, 1.6 + 1.2 * k, 2.1 + 1.2 * k, 0.2);
+    l += bump(t, shuffle_at, shuffle_at + 0.3, 0.03);
+    return std::pair{l, r};
+  };
+  static const Model no_rest = [] {
+    Settings s;
+    s.gait.rest_time = 0;
+    return make_model(testdata::sample_skeleton(), s);
+  }();
+  ASSERT_GT(adaptive_model().settings().gait.rest_time, 0);
+  const Heights after_rest = [&](double t) { return steps(t, 9.0); };
+  const auto with = run(after_rest, 11.0, 30.0, 0.1, adaptive_model()), without = run(after_rest, 11.0, 30.0, 0.1, no_rest);
+  EXPECT_TRUE(std::isfinite(first_event_time(with, kLeft, kEventFootOff, 8.9)));
+  EXPECT_FALSE(std::isfinite(first_event_time(without, kLeft, kEventFootOff, 8.9)));
+  int standing = 0;
+  for (const auto& f : with) standing += f.time > 7.2 && f.time < 8.95 && ((f.events[0] | f.events[1]) & kEventFootOff) ? 1 : 0;
+  EXPECT_EQ(standing, 0);
+  EXPECT_NEAR(with.back().h1[kLeft], adaptive_model().settings().gait.rest_lift, 1e-9) << "start-step threshold while standing";
+  EXPECT_GT(without.back().h1[kLeft], 0.035) << "the walking threshold";
+  // 0.25 s after the last step landed (no rest yet): the walking thresholds apply and the shuffle stays unseen.
+  const Heights mid_walk = [&](double t) { return steps(t, 7.15); };
+  const auto walk = run(mid_walk, 8.0, 30.0, 0.1, adaptive_model());
+  EXPECT_EQ(count_events(walk, kLeft, kEventFootOff), 5);
 }
 
 TEST(Gait, LostTrackingPutsTheFootDownWithoutNan) {

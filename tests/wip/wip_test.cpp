@@ -302,5 +302,32 @@ TEST(Model, SpeedGainDefaultsToTheDetectorsAndBadOnesAreRefused) {
   }
 }
 
+// The start-step and steady-landing settings (Python and library users set them directly) are checked by name.
+TEST(Model, BadStartStepSettingsAreRefusedNamingTheField) {
+  const Settings good = walk_model().settings();
+  struct Case {
+    const char* name;
+    double GaitSettings::*field;
+  };
+  for (const Case& c : {Case{"rest_time", &GaitSettings::rest_time}, Case{"rest_lift", &GaitSettings::rest_lift},
+                        Case{"rest_rise", &GaitSettings::rest_rise}, Case{"rest_noise_factor", &GaitSettings::rest_noise_factor},
+                        Case{"settle_time", &GaitSettings::settle_time}})
+    for (double bad : {-0.5, std::nan(""), std::numeric_limits<double>::infinity()}) {
+      Settings s = good;
+      s.gait.*c.field = bad;
+      try {
+        make_model(walk_model().skeleton(), s);
+        ADD_FAILURE() << c.name << " " << bad << " accepted";
+      } catch (const Error& e) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.rfind(std::string("walking-in-place settings: gait.") + c.name + " ", 0), 0u) << m;
+        EXPECT_NE(m.find("must be finite and >= 0 (0 = off)"), std::string::npos) << m;
+      }
+    }
+  Settings off = good;
+  off.gait.rest_time = off.gait.settle_time = 0;  // 0 = off is accepted
+  EXPECT_NO_THROW(make_model(walk_model().skeleton(), off));
+}
+
 }  // namespace
 }  // namespace legwork::wip

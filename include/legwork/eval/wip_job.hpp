@@ -26,6 +26,9 @@ struct WipJob {
   double noise_factor = wip::GaitSettings{}.noise_factor, lift_fraction = wip::GaitSettings{}.lift_fraction;
   double rise_fraction = wip::GaitSettings{}.rise_fraction, min_lift = wip::GaitSettings{}.min_lift;
   double min_rise = wip::GaitSettings{}.min_rise, rise_noise_factor = wip::GaitSettings{}.rise_noise_factor;
+  double rest_time = wip::GaitSettings{}.rest_time, rest_lift = wip::GaitSettings{}.rest_lift;
+  double rest_rise = wip::GaitSettings{}.rest_rise, rest_noise_factor = wip::GaitSettings{}.rest_noise_factor;
+  double settle_time = wip::GaitSettings{}.settle_time;
   wip::SyntheticOptions syn;
   std::string data, eval_out, truth = "learned";  // eval
   double noise = 0.015, drop_rate = 0.02;

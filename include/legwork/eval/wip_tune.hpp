@@ -20,11 +20,14 @@ namespace legwork::eval {
 struct DetectorParams {
   double detect_cutoff = 10, lift_fraction = 0.2, min_lift = 0.01, min_rise = 0.05;
   double noise_factor = 2.5, rise_noise_factor = 20, rise_fraction = 0.2;
+  // Start steps after both feet rest (wip::GaitSettings rest_*; rest_time 0 = off) and the steady
+  // terminal swing's landing (settle_time, 0 = off).
+  double rest_time = 0.5, rest_noise_factor = 3.5, settle_time = 0.3;
   void apply(wip::Settings& s) const;  // sets the adaptive detector and these fields
   static DetectorParams of(const wip::Settings& s);
   std::string describe() const;  // "cutoff 8 Hz, lift 0.2 x apex, ..."
 };
-// The grid searched (972 points; docs/wip.md).
+// The grid searched (972 points: 243 of the walking thresholds x 4 start-step variants; docs/wip.md).
 std::vector<DetectorParams> default_detector_grid();
 
 // A trial prepared once: its true swings, still segments and tracker frames

@@ -106,13 +106,25 @@ struct GaitSettings {
   double min_h1 = 0.03, min_v1 = 0.08;  // noise floors for the adaptive thresholds
   double estimate_rate = 0.3;      // EMA weight of each new step in the estimates
   // Adaptive detector (detector == Adaptive): the values `legwork wip tune` chose on all 57 shared
-  // walks; held out by subject the same rule scores strict F1 0.947 / noisy 0.929 (docs/wip.md).
+  // walks; held out by subject the same rule scores strict F1 0.972 / noisy 0.949 with the start steps
+  // below (0.955 / 0.950 without; docs/wip.md).
   double lift_fraction = 0.2;      // foot-off height >= fraction * apex estimate
   double rise_fraction = 0.2;      // foot-off speed >= fraction * peak rise estimate
   double noise_factor = 2.5;       // foot-off height >= factor * tracker jitter
   double rise_noise_factor = 20.0; // foot-off speed >= this (per second) * tracker jitter
   double min_lift = 0.01;          // m: lowest foot-off height above the stance baseline
   double min_rise = 0.05;          // m/s: lowest foot-off speed
+  // Start steps (adaptive detector; issue 13, chosen by `wip tune` held out by subject, docs/wip.md): once both feet have been down for rest_time s (standing, a pause, the
+  // start of a session), a foot-off needs only rest_lift above the stance baseline rising at rest_rise (never
+  // more than the walking thresholds above, never less than the jitter floors): start, stop and turn shuffles
+  // lift the ankle 2-4 cm, below 20 % of a walking step's apex. 0 = off.
+  double rest_time = 0.5;          // s
+  double rest_lift = 0.02;         // m
+  double rest_rise = 0.1;          // m/s
+  double rest_noise_factor = 3.5;  // start steps: foot-off height >= this x tracker jitter
+  // A foot in terminal swing whose detection height stops changing (|v| < V1) for this long has landed
+  // above its old stance level (it rests on its toes, or the floor changed): foot-strike. 0 = off.
+  double settle_time = 0.3;        // s
 };
 
 // What happened on one update.
@@ -135,11 +147,15 @@ struct GaitMachine {
   double apex_estimate = 0, up_estimate = 0, down_estimate = 0;
   int swings = 0;
   double noise = 0;                 // tracker jitter of this foot (adaptive detector), m
+  double rest = 0;                  // s both feet have been down before this frame (adaptive detector)
+  double steady = 0;                // s the detection height has been steady in terminal swing
 
   void init(const GaitSettings& p);
   double h1(const GaitSettings& p) const;
   double v1(const GaitSettings& p) const;
   double v2(const GaitSettings& p) const;
+  // The adaptive detector's start thresholds apply (rest_time > 0, this foot down, both feet down that long).
+  bool at_rest(const GaitSettings& p) const;
   // One step of the machine; returns the events that fired. h, v: the
   // detector's signal (FootSignal h, v for the document's detector; hd, vd
   // with `noise` set for the adaptive one).
