@@ -53,7 +53,8 @@ std::string Ground::describe() const {
 double fit_on_tread(const Ground& ground, const FootExtent& e, double& height) {
   auto h = [&](double s) { return ground.height(ground.origin + s * ground.direction); };
   const double margin = 0.02;
-  for (int i = 0; i <= static_cast<int>(ground.run / 0.01); ++i)
+  const int steps = static_cast<int>(std::clamp(ground.run, 0.0, Ground::kMaxRun) / 0.01);  // (a NaN run searches none)
+  for (int i = 0; i <= steps; ++i)
     for (int sign : {-1, 1}) {
       const double d = sign * 0.01 * i, tread = h(e.ball_lo + d);
       if (h(e.ball_lo + d - margin) != tread || h(e.ball_hi + d + margin) != tread) continue;

@@ -405,9 +405,9 @@ void check_ground(const Settings& s) {
                 " x " + std::to_string(g.columns) + " and " + std::to_string(g.heights.size()) + " heights");
   for (double h : g.heights)
     if (!std::isfinite(h)) throw Error("walker: ground: a height field's heights must be finite");
-  if (g.stepped() && (!std::isfinite(g.rise) || !(g.run >= 0.2) || !std::isfinite(g.run) || g.count < 1 ||
+  if (g.stepped() && (!std::isfinite(g.rise) || !(g.run >= Ground::kMinRun && g.run <= Ground::kMaxRun) || g.count < 1 ||
                       std::abs(g.direction.norm() - 1.0) > 1e-6))
-    throw Error("walker: ground: stairs need a finite rise, a run of at least 0.2 m, at least one step and a unit direction");
+    throw Error("walker: ground: stairs need a finite rise, a run of 0.2 to 5 m, at least one step and a unit direction");
 }
 
 }  // namespace

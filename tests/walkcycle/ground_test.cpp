@@ -75,7 +75,10 @@ TEST(Ground, BadGroundsAreNamed) {
   EXPECT_EQ(msg(R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.3, "run": 0.3, "count": 3}})"),
             "p.json: ground: stairs: rise 0.300000: expected metres, 0 < |rise| <= 0.2 (higher steps than the legs can take)");
   EXPECT_EQ(msg(R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "run": 0.1, "count": 3}})"),
-            "p.json: ground: stairs: run 0.100000: expected metres >= 0.2 (a tread a foot fits on)");
+            "p.json: ground: stairs: run 0.1: expected metres, 0.2 to 5 (a tread a foot fits on; longer is a landing)");
+  // Found by path_fuzz: a finite but absurd tread (1e308) overflowed the walker's tread search.
+  EXPECT_EQ(msg(R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "run": 1e308, "count": 3}})"),
+            "p.json: ground: stairs: run 1e+308: expected metres, 0.2 to 5 (a tread a foot fits on; longer is a landing)");
   EXPECT_EQ(msg(R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "run": 0.3, "count": 2.5}})"),
             "p.json: ground: stairs: count: expected a whole number of steps, 1 to 50");
   EXPECT_EQ(msg(R"({"stairs": {"origin": [0, 1], "direction": [0, 1], "rise": 0.15, "count": 3}})"),

@@ -29,6 +29,7 @@ struct Ground {
   int columns = 0, rows = 0;       // height field: grid size (x, z)
   std::vector<double> heights;     // height field: row-major, rows * columns
   double rise = 0, run = 1;        // stairs: height of a step, depth of a tread, metres
+  static constexpr double kMinRun = 0.2, kMaxRun = 5.0;  // stairs: tread depths a foot fits on / the walker searches
   int count = 0;                   // stairs: number of steps
 
   bool flat() const { return kind == Kind::Flat; }

@@ -112,7 +112,11 @@ Ground parse_stairs(const json& o, std::string_view source) {
   if (!(std::abs(g.rise) > 0 && std::abs(g.rise) <= 0.2))
     fail(source, "rise " + std::to_string(g.rise) + ": expected metres, 0 < |rise| <= 0.2 (higher steps than the legs can take)");
   g.run = number(o, "run", source);
-  if (!(g.run >= 0.2)) fail(source, "run " + std::to_string(g.run) + ": expected metres >= 0.2 (a tread a foot fits on)");
+  if (!(g.run >= Ground::kMinRun && g.run <= Ground::kMaxRun)) {
+    char run[32];
+    std::snprintf(run, sizeof run, "%g", g.run);
+    fail(source, std::string("run ") + run + ": expected metres, 0.2 to 5 (a tread a foot fits on; longer is a landing)");
+  }
   const double count = number(o, "count", source);
   if (!(count >= 1 && count <= 50 && count == std::floor(count))) fail(source, "count: expected a whole number of steps, 1 to 50");
   g.count = static_cast<int>(count);
