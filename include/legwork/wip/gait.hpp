@@ -125,6 +125,9 @@ struct GaitSettings {
   // A foot in terminal swing whose detection height stops changing (|v| < V1) for this long has landed
   // above its old stance level (it rests on its toes, or the floor changed): foot-strike. 0 = off.
   double settle_time = 0.3;        // s
+  // A swing cannot land (adaptive detector) before this long after its foot-off: a jitter dip during a low step
+  // used to land it after one or two frames, and the next rise counted a second step (split swings). 0 = off.
+  double min_swing_time = 0.1;     // s (chosen by `wip tune` held out by subject, docs/wip.md)
 };
 
 // What happened on one update.
@@ -149,6 +152,7 @@ struct GaitMachine {
   double noise = 0;                 // tracker jitter of this foot (adaptive detector), m
   double rest = 0;                  // s both feet have been down before this frame (adaptive detector)
   double steady = 0;                // s the detection height has been steady in terminal swing
+  double swing_time = 0;            // s since this foot's foot-off (in swing)
 
   void init(const GaitSettings& p);
   double h1(const GaitSettings& p) const;
