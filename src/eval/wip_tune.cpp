@@ -49,7 +49,8 @@ std::string DetectorParams::describe() const {
 std::vector<DetectorParams> default_detector_grid() {
   // The walking thresholds (min lift 1 cm, min rise 0.05 m/s: their alternatives 1.5 cm, 0.1 m/s changed
   // almost nothing in the former 972-point grid) x the start steps: off (the former detector), after 0.5 s
-  // at rest above 3.5 or 4 x jitter, after 1 s above 3.5 x jitter (with the steady landing).
+  // at rest above 3.5 or 4 x jitter, after 1 s above 3.5 x jitter (with the steady landing) x the minimum swing
+  // time: off, 0.1 s, 0.15 s.
   struct Rest {
     double time, noise, settle;
   };

@@ -106,8 +106,8 @@ struct GaitSettings {
   double min_h1 = 0.03, min_v1 = 0.08;  // noise floors for the adaptive thresholds
   double estimate_rate = 0.3;      // EMA weight of each new step in the estimates
   // Adaptive detector (detector == Adaptive): the values `legwork wip tune` chose on all 57 shared
-  // walks; held out by subject the same rule scores strict F1 0.972 / noisy 0.949 with the start steps
-  // below (0.955 / 0.950 without; docs/wip.md).
+  // walks; held out by subject the same rule scores strict F1 0.972 / noisy 0.951 with the start steps and
+  // the minimum swing below (0.972 / 0.949 without the minimum swing, 0.955 / 0.950 without both; docs/wip.md).
   double lift_fraction = 0.2;      // foot-off height >= fraction * apex estimate
   double rise_fraction = 0.2;      // foot-off speed >= fraction * peak rise estimate
   double noise_factor = 2.5;       // foot-off height >= factor * tracker jitter
