@@ -56,6 +56,9 @@ void add_method_options(CLI::App* cmd, eval::WipJob& a) {
   cmd->add_option("--settle-time", a.settle_time,
                   "adaptive detector: a terminal swing steady this long (s) has landed (default 0.3; 0 = off)")
       ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--min-swing-time", a.min_swing_time,
+                  "adaptive detector: no landing before this long (s) after a foot-off (default 0.1; 0 = off)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--raw-height", a.raw_height,
                 "feed the raw height into the equations (default: normalised by the user's step apex)");
   cmd->add_option("--stop-time", a.stop_time, "double support longer than this stops the legs, s (default 1.5)")

@@ -55,7 +55,9 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("rest_noise_factor", &GaitSettings::rest_noise_factor,
                      "start steps: foot-off height >= this x the tracker jitter")
       .def_readwrite("settle_time", &GaitSettings::settle_time,
-                     "seconds of steady height in terminal swing that count as landed (0 = off)");
+                     "seconds of steady height in terminal swing that count as landed (0 = off)")
+      .def_readwrite("min_swing_time", &GaitSettings::min_swing_time,
+                     "seconds after a foot-off before the swing can land (0 = off)");
   pb::enum_<SpeedModel>(m, "SpeedModel").value("StepSpeed", SpeedModel::StepSpeed).value("StepFrequency", SpeedModel::StepFrequency);
   pb::enum_<DepthMapping>(m, "DepthMapping", "Fore-aft IK-target depths: the document's equations or the learned table.")
       .value("Document", DepthMapping::Document)

@@ -131,6 +131,17 @@ def test_wip_speed_gain_zero_takes_the_detectors_calibrated_gain():
     assert wip.step_speed_gain(s) == 3.0
 
 
+def test_wip_min_swing_time_is_a_setting_checked_by_make_model():
+    s = wip.Settings()
+    assert s.gait.min_swing_time == pytest.approx(0.1)  # the default `wip tune` chose (docs/wip.md)
+    walk = legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/05_01.bvh"), drop_first=True)
+    s.gait.min_swing_time = 0.0  # 0 = off
+    wip.make_model(walk.skeleton, s)
+    s.gait.min_swing_time = -0.1
+    with pytest.raises(Exception, match=r"gait\.min_swing_time -0\.100000 must be finite and >= 0"):
+        wip.make_model(walk.skeleton, s)
+
+
 def test_wip_step_detector_is_a_setting_and_the_adaptive_one_lifts_earlier():
     walk = legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/05_01.bvh"), drop_first=True)
     assert wip.Settings().gait.detector in (wip.StepDetector.Document, wip.StepDetector.Adaptive)

@@ -32,7 +32,7 @@ double* field(wip::Settings& s, const std::string& k) {
       {"estimate_rate", &g.estimate_rate}, {"land_fraction", &g.land_fraction}, {"min_stance_time", &g.min_stance_time},
       {"velocity_fraction", &g.velocity_fraction},
       {"rest_time", &g.rest_time}, {"rest_lift", &g.rest_lift}, {"rest_rise", &g.rest_rise}, {"rest_noise_factor", &g.rest_noise_factor},
-      {"settle_time", &g.settle_time},
+      {"settle_time", &g.settle_time}, {"min_swing_time", &g.min_swing_time},
   };
   auto it = m.find(k);
   if (it == m.end()) {

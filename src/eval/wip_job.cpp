@@ -75,6 +75,7 @@ wip::Settings wip_settings(const WipJob& a, double rate) {
   p.gait.rest_rise = a.rest_rise;
   p.gait.rest_noise_factor = a.rest_noise_factor;
   p.gait.settle_time = a.settle_time;
+  p.gait.min_swing_time = a.min_swing_time;
   p.mapping.normalise_height = !a.raw_height;
   p.mapping.stop_time = a.stop_time;
   p.mapping.max_speed = a.max_speed;

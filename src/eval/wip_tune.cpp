@@ -24,11 +24,13 @@ void DetectorParams::apply(wip::Settings& s) const {
   s.gait.rest_time = rest_time;
   s.gait.rest_noise_factor = rest_noise_factor;
   s.gait.settle_time = settle_time;
+  s.gait.min_swing_time = min_swing_time;
 }
 
 DetectorParams DetectorParams::of(const wip::Settings& s) {
   return {s.signal.detect_cutoff, s.gait.lift_fraction, s.gait.min_lift, s.gait.min_rise, s.gait.noise_factor,
-          s.gait.rise_noise_factor, s.gait.rise_fraction, s.gait.rest_time, s.gait.rest_noise_factor, s.gait.settle_time};
+          s.gait.rise_noise_factor, s.gait.rise_fraction, s.gait.rest_time, s.gait.rest_noise_factor, s.gait.settle_time,
+          s.gait.min_swing_time};
 }
 
 std::string DetectorParams::describe() const {
@@ -38,16 +40,17 @@ std::string DetectorParams::describe() const {
     std::snprintf(rest, sizeof rest, "start steps after %g s at rest (>= %g x jitter)", rest_time, rest_noise_factor);
   std::snprintf(b, sizeof b,
                 "cutoff %g Hz, lift >= max(%g x apex, %g x jitter, %g cm), rise >= max(%g x peak rise, %g x jitter /s, %g m/s), "
-                "%s, settle %g s",
+                "%s, settle %g s, min swing %g s",
                 detect_cutoff, lift_fraction, noise_factor, 100 * min_lift, rise_fraction, rise_noise_factor, min_rise, rest,
-                settle_time);
+                settle_time, min_swing_time);
   return b;
 }
 
 std::vector<DetectorParams> default_detector_grid() {
   // The walking thresholds (min lift 1 cm, min rise 0.05 m/s: their alternatives 1.5 cm, 0.1 m/s changed
   // almost nothing in the former 972-point grid) x the start steps: off (the former detector), after 0.5 s
-  // at rest above 3.5 or 4 x jitter, after 1 s above 3.5 x jitter (with the steady landing).
+  // at rest above 3.5 or 4 x jitter, after 1 s above 3.5 x jitter (with the steady landing) x the minimum swing
+  // time: off, 0.1 s, 0.15 s.
   struct Rest {
     double time, noise, settle;
   };
@@ -58,7 +61,9 @@ std::vector<DetectorParams> default_detector_grid() {
       for (double lf : {0.1, 0.15, 0.2})
         for (double nf : {2.5, 3.0, 3.5})
           for (double rn : {10.0, 20.0, 30.0})
-            for (double rf : {0.2, 0.3, 0.4}) g.push_back({dc, lf, 0.01, 0.05, nf, rn, rf, r.time, r.noise, r.settle});
+            for (double rf : {0.2, 0.3, 0.4})
+              for (double ms : {0.0, 0.1, 0.15})
+                g.push_back({dc, lf, 0.01, 0.05, nf, rn, rf, r.time, r.noise, r.settle, ms});
   return g;
 }
 
@@ -208,7 +213,7 @@ nlohmann::json params_json(const DetectorParams& p) {
   return {{"detect_cutoff_hz", p.detect_cutoff}, {"lift_fraction", p.lift_fraction}, {"min_lift_m", p.min_lift},
           {"min_rise_mps", p.min_rise},          {"noise_factor", p.noise_factor},   {"rise_noise_factor", p.rise_noise_factor},
           {"rise_fraction", p.rise_fraction},     {"rest_time_s", p.rest_time},      {"rest_noise_factor", p.rest_noise_factor},
-          {"settle_time_s", p.settle_time}};
+          {"settle_time_s", p.settle_time},       {"min_swing_time_s", p.min_swing_time}};
 }
 
 }  // namespace

@@ -145,6 +145,9 @@ unsigned GaitMachine::update(const GaitSettings& p, double h, double v, double c
     }
     go(GaitPhase::DoubleSupport, e);
   };
+  if (in_swing(phase)) swing_time += dt;
+  // The adaptive detector's minimum swing (min_swing_time): no landing before it.
+  const bool can_land = p.detector != StepDetector::Adaptive || !(p.min_swing_time > 0) || swing_time >= p.min_swing_time;
   if (in_swing(phase)) {
     apex = std::max(apex, h);
     peak_up = std::max(peak_up, v);
@@ -160,24 +163,25 @@ unsigned GaitMachine::update(const GaitSettings& p, double h, double v, double c
         apex = h;
         peak_up = v;
         peak_down = 0;
+        swing_time = 0;
         go(GaitPhase::InitialSwing, kEventFootOff);
       }
       break;
     case GaitPhase::InitialSwing:
-      if (h < land)
+      if (can_land && h < land)
         finish_swing(kEventFootStrike);
       else if (v < V1 || time_in_phase > p.max_ascent_time)
         go(GaitPhase::MidSwing, kEventMidSwing);
       break;
     case GaitPhase::MidSwing:
-      if (h < land)
+      if (can_land && h < land)
         finish_swing(kEventFootStrike);
       else if (v < -V2 || h < H1)
         go(GaitPhase::TerminalSwing, kEventTerminal);
       break;
     case GaitPhase::TerminalSwing:
       steady = std::abs(v) < V1 ? steady + dt : 0.0;
-      if (h < land || (h < H1 && v > -V1 && time_in_phase > dt * 1.5) || (p.settle_time > 0 && steady >= p.settle_time))
+      if (can_land && (h < land || (h < H1 && v > -V1 && time_in_phase > dt * 1.5) || (p.settle_time > 0 && steady >= p.settle_time)))
         finish_swing(kEventFootStrike);
       break;
   }

@@ -113,11 +113,15 @@ Model make_model(const Skeleton& avatar, const Settings& settings, ConstPoseRef 
                                                     {"rest_lift", g.rest_lift},
                                                     {"rest_rise", g.rest_rise},
                                                     {"rest_noise_factor", g.rest_noise_factor},
-                                                    {"settle_time", g.settle_time}};
+                                                    {"settle_time", g.settle_time},
+                                                    {"min_swing_time", g.min_swing_time}};
     for (const auto& [name, value] : start)
       if (!(value >= 0) || !std::isfinite(value))
         throw Error(std::string("walking-in-place settings: gait.") + name + " " + std::to_string(value) +
                     " must be finite and >= 0 (0 = off)");
+    if (g.min_swing_time > 1.0)
+      throw Error("walking-in-place settings: gait.min_swing_time " + std::to_string(g.min_swing_time) +
+                  " s must be <= 1 (a swing shorter than that could never land)");
   }
 
   m.base_pose_ = Pose(s);

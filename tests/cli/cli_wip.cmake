@@ -37,7 +37,8 @@ foreach(spec IN ITEMS "wip;--noise-factor;-1;${r0} 20\\.0+" "wip;--rise-noise-fa
                       "wip;--h1;0;${rp} 1" "wip;--detect-cutoff;80;${rp} 50" "wip;--step-length;-0.6;${rp} 2"
                       "wip;--cadence;0;${rp} 10" "eval;--limit;0;1 to 1000000"
                       "wip;--rest-time;-1;${r0} 60\\.0+" "wip;--rest-lift;0.5;${r0} 0\\.10*" "eval;--rest-rise;3;${r0} 2\\.0+"
-                      "wip;--rest-noise-factor;-2;${r0} 20\\.0+" "wip;--settle-time;11;${r0} 10\\.0+")
+                      "wip;--rest-noise-factor;-2;${r0} 20\\.0+" "wip;--settle-time;11;${r0} 10\\.0+"
+                      "wip;--min-swing-time;2;${r0} 1\\.0+")
   list(GET spec 0 where)
   list(GET spec 1 opt)
   list(GET spec 2 value)

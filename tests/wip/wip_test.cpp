@@ -311,7 +311,8 @@ TEST(Model, BadStartStepSettingsAreRefusedNamingTheField) {
   };
   for (const Case& c : {Case{"rest_time", &GaitSettings::rest_time}, Case{"rest_lift", &GaitSettings::rest_lift},
                         Case{"rest_rise", &GaitSettings::rest_rise}, Case{"rest_noise_factor", &GaitSettings::rest_noise_factor},
-                        Case{"settle_time", &GaitSettings::settle_time}})
+                        Case{"settle_time", &GaitSettings::settle_time},
+                        Case{"min_swing_time", &GaitSettings::min_swing_time}})
     for (double bad : {-0.5, std::nan(""), std::numeric_limits<double>::infinity()}) {
       Settings s = good;
       s.gait.*c.field = bad;
@@ -325,8 +326,16 @@ TEST(Model, BadStartStepSettingsAreRefusedNamingTheField) {
       }
     }
   Settings off = good;
-  off.gait.rest_time = off.gait.settle_time = 0;  // 0 = off is accepted
+  off.gait.rest_time = off.gait.settle_time = off.gait.min_swing_time = 0;  // 0 = off is accepted
   EXPECT_NO_THROW(make_model(walk_model().skeleton(), off));
+  Settings long_swing = good;
+  long_swing.gait.min_swing_time = 1.5;  // a swing shorter than that could never land
+  try {
+    make_model(walk_model().skeleton(), long_swing);
+    ADD_FAILURE() << "min_swing_time 1.5 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("gait.min_swing_time 1.500000 s must be <= 1"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -29,6 +29,7 @@ struct WipJob {
   double rest_time = wip::GaitSettings{}.rest_time, rest_lift = wip::GaitSettings{}.rest_lift;
   double rest_rise = wip::GaitSettings{}.rest_rise, rest_noise_factor = wip::GaitSettings{}.rest_noise_factor;
   double settle_time = wip::GaitSettings{}.settle_time;
+  double min_swing_time = wip::GaitSettings{}.min_swing_time;
   wip::SyntheticOptions syn;
   std::string data, eval_out, truth = "learned";  // eval
   double noise = 0.015, drop_rate = 0.02;

@@ -23,11 +23,13 @@ struct DetectorParams {
   // Start steps after both feet rest (wip::GaitSettings rest_*; rest_time 0 = off) and the steady
   // terminal swing's landing (settle_time, 0 = off).
   double rest_time = 0.5, rest_noise_factor = 3.5, settle_time = 0.3;
+  double min_swing_time = 0.1;  // no landing before this long after the foot-off (0 = off)
   void apply(wip::Settings& s) const;  // sets the adaptive detector and these fields
   static DetectorParams of(const wip::Settings& s);
   std::string describe() const;  // "cutoff 8 Hz, lift 0.2 x apex, ..."
 };
-// The grid searched (972 points: 243 of the walking thresholds x 4 start-step variants; docs/wip.md).
+// The grid searched (2916 points: 243 of the walking thresholds x 4 start-step variants x 3 minimum swing
+// times; docs/wip.md).
 std::vector<DetectorParams> default_detector_grid();
 
 // A trial prepared once: its true swings, still segments and tracker frames

@@ -106,8 +106,8 @@ struct GaitSettings {
   double min_h1 = 0.03, min_v1 = 0.08;  // noise floors for the adaptive thresholds
   double estimate_rate = 0.3;      // EMA weight of each new step in the estimates
   // Adaptive detector (detector == Adaptive): the values `legwork wip tune` chose on all 57 shared
-  // walks; held out by subject the same rule scores strict F1 0.972 / noisy 0.949 with the start steps
-  // below (0.955 / 0.950 without; docs/wip.md).
+  // walks; held out by subject the same rule scores strict F1 0.972 / noisy 0.951 with the start steps and
+  // the minimum swing below (0.972 / 0.949 without the minimum swing, 0.955 / 0.950 without both; docs/wip.md).
   double lift_fraction = 0.2;      // foot-off height >= fraction * apex estimate
   double rise_fraction = 0.2;      // foot-off speed >= fraction * peak rise estimate
   double noise_factor = 2.5;       // foot-off height >= factor * tracker jitter
@@ -125,6 +125,9 @@ struct GaitSettings {
   // A foot in terminal swing whose detection height stops changing (|v| < V1) for this long has landed
   // above its old stance level (it rests on its toes, or the floor changed): foot-strike. 0 = off.
   double settle_time = 0.3;        // s
+  // A swing cannot land (adaptive detector) before this long after its foot-off: a jitter dip during a low step
+  // used to land it after one or two frames, and the next rise counted a second step (split swings). 0 = off.
+  double min_swing_time = 0.1;     // s (chosen by `wip tune` held out by subject, docs/wip.md)
 };
 
 // What happened on one update.
@@ -149,6 +152,7 @@ struct GaitMachine {
   double noise = 0;                 // tracker jitter of this foot (adaptive detector), m
   double rest = 0;                  // s both feet have been down before this frame (adaptive detector)
   double steady = 0;                // s the detection height has been steady in terminal swing
+  double swing_time = 0;            // s since this foot's foot-off (in swing)
 
   void init(const GaitSettings& p);
   double h1(const GaitSettings& p) const;
