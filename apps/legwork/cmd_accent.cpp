@@ -138,6 +138,12 @@ void register_run(CLI::App& parent) {
                   "it always creeps)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--travel-weight", a->travel_weight,
+                  "weight of the user's head travel (horizontal speed over 0.2 and 0.6 s, vertical velocity, height) "
+                  "against the hand features when ranking candidates: walking users get walking legs (0 = hand "
+                  "features only)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
   cmd->add_option("--foot-swing-speed", a->foot_swing_speed,
                   "m/s above which a free foot counts as swinging and is lifted to clear the floor by --foot-lift-height "
                   "(0 = off)")

@@ -15,20 +15,10 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 namespace legwork::cli {
 namespace {
-
-struct EvalArgs {
-  std::string data, manifest, test, test_manifest, classes, protocols, out;
-  bool quick = false, no_ablation = false, no_ik = false, skip_no_class = false, keep_first = false, video = false;
-  int threads = 0, quick_trials = 4;
-  double max_seconds = 0, quick_seconds = 12;
-  // Engine switches (unset = the engine's own defaults).
-  int hop = -1, k = -1, speed_variants = -1;
-  std::array<std::optional<double>, 11> engine;  // one per kEngineOptions row
-  bool mirror = false, exact = false;
-};
 
 // The engine's numeric settings the evaluation can override, one row each:
 // flag, the accent::Settings field it sets, its range and its help.
@@ -38,7 +28,7 @@ struct EngineOption {
   double lo, hi;
   const char* help;
 };
-constexpr std::array<EngineOption, 11> kEngineOptions{{
+constexpr std::array<EngineOption, 12> kEngineOptions{{
     {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
     {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
     {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
@@ -47,6 +37,9 @@ constexpr std::array<EngineOption, 11> kEngineOptions{{
      "engine: metres the synthesized foot may move from a planted one before the plant creeps (0 = always)"},
     {"--foot-swing-speed", &accent::Settings::foot_swing_speed, 0.0, 10.0,
      "engine: m/s above which a free foot is swinging and clears the floor (0 = off)"},
+    {"--travel-weight", &accent::Settings::travel_weight, 0.0, 100.0,
+     "engine: weight of the user's head travel (speed, vertical velocity, height) against the hand features when "
+     "ranking candidates (0 = hand features only)"},
     {"--ik-blend-min", &accent::Settings::ik_blend_min, 0.0, 1.0,
      "engine: share of the IK body where the database covers the user (0..1, at most the maximum share)"},
     {"--ik-blend-near", &accent::Settings::ik_blend_near, 0.0, 100.0,
@@ -60,6 +53,21 @@ constexpr std::array<EngineOption, 11> kEngineOptions{{
     {"--contact-off", &accent::Settings::contact_off, 0.0, 1.0,
      "engine: blended candidate contact below which a locked foot lets go (0..1)"},
 }};
+
+struct EvalArgs {
+  std::string data, manifest, test, test_manifest, classes, protocols, out;
+  bool quick = false, no_ablation = false, no_ik = false, skip_no_class = false, keep_first = false, video = false;
+  int threads = 0, quick_trials = 4;
+  double max_seconds = 0, quick_seconds = 12;
+  // Engine switches (unset = the engine's own defaults).
+  int hop = -1, k = -1, speed_variants = -1;
+  std::array<std::optional<double>, kEngineOptions.size()> engine;  // one per kEngineOptions row
+  bool mirror = false, exact = false;
+};
+
+// One override slot per option row: a row added to the table without growing
+// the slots would write past them (it did once).
+static_assert(std::tuple_size_v<decltype(EvalArgs::engine)> == kEngineOptions.size());
 
 void register_eval(CLI::App& app) {
   auto* group = app.add_subcommand("eval", "Evaluate methods against motion-capture ground truth.");

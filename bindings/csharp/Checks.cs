@@ -32,6 +32,10 @@ static class Checks
         Expect.That("swing speed default", bad.FootSwingSpeed > 0, "FootSwingSpeed " + bad.FootSwingSpeed);
         bad.FootLiftHeight = 0.9;
         Expect.Throws<LegworkException>("foot lift out of range", () => Model.CreateAccent(db, bad), "foot_lift_height must be between 0 and 0.5 metres");
+        bad = AccentSettings.Default();
+        Expect.That("travel weight default", bad.TravelWeight == 2, "TravelWeight " + bad.TravelWeight);
+        bad.TravelWeight = -1;
+        Expect.Throws<LegworkException>("travel weight out of range", () => Model.CreateAccent(db, bad), "travel_weight must be between 0 and 100 (0 = off)");
 
         Model model = Model.CreateAccent(db, AccentSettings.Default());
         Avatar avatar = Avatar.Create(model);

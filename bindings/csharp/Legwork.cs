@@ -82,6 +82,7 @@ namespace Legwork
         public double FootLiftHeight; // metres (0..0.5) a released foot is lifted on its way back; 0 = slides (ABI 3)
         public double FootLockSlack;  // metres (0..1) the synthesized foot may move from a plant before it creeps (ABI 4)
         public double FootSwingSpeed; // m/s (0..10) above which a free foot swings clear of the floor; 0 = off (ABI 4)
+        public double TravelWeight;   // (0..100) weight of the user's head travel against the hand features; 0 = off (ABI 6)
 
         public static AccentSettings Default()
         {
@@ -181,7 +182,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 5;
+        public const uint AbiVersion = 6;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 5u
+#define LW_ABI_VERSION 6u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -150,6 +150,8 @@ typedef struct lw_accent_settings {
                               after it; 0 = it always creeps (ABI 4) */
   double foot_swing_speed; /* m/s (0..10) above which a free foot is swinging and is lifted to clear the floor by
                               foot_lift_height; 0 = off (ABI 4) */
+  double travel_weight;    /* (0..100) weight of the user's head travel (horizontal speed, vertical velocity, height)
+                              against the hand features when ranking candidates; 0 = hand features only (ABI 6) */
 } lw_accent_settings;
 LW_API void lw_accent_settings_default(lw_accent_settings* s);
 /* The database must outlive the model. */

@@ -103,6 +103,9 @@ void bind_settings(pb::module_& m) {
                      "metres the synthesized foot may move from a planted foot before the plant creeps after it (0 = it always creeps)")
       .def_readwrite("foot_swing_speed", &Settings::foot_swing_speed,
                      "m/s above which a free foot counts as swinging and is lifted to clear the floor by foot_lift_height (0 = off)")
+      .def_readwrite("travel_weight", &Settings::travel_weight,
+                     "weight (0..100) of the user's head travel (horizontal speed over 0.2 and 0.6 s, vertical velocity, "
+                     "height over body height) against the hand features when ranking candidates (0 = hand features only)")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
                      "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
       .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")

@@ -197,6 +197,24 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
         accent.make_model(db, s)
 
 
+def test_travel_weight_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path):
+    """Settings.travel_weight is the CLI's --travel-weight: the same motion either way, and it changes the motion
+    (0 = hand features only); out of range it is an error naming the setting."""
+    out_bvh = tmp_path / "travel.bvh"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--travel-weight", "0")
+    s = settings_for(truth)
+    assert s.travel_weight == pytest.approx(2.0)  # the default
+    default = accent.accentuate_motion(db, s, truth)["motion"]
+    s.travel_weight = 0.0
+    hands_only = accent.accentuate_motion(db, s, truth)["motion"]
+    back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
+    assert np.abs(back.positions() - hands_only.positions()).max() < 2e-4
+    assert np.abs(default.positions() - hands_only.positions()).max() > 1e-3
+    s.travel_weight = -1.0
+    with pytest.raises(legwork.Error, match=r"travel_weight must be between 0 and 100 \(0 = off\)"):
+        accent.make_model(db, s)
+
+
 def test_bad_settings_and_arrays(db, truth):
     s = accent.Settings()
     s.classes = ["walking", "flying"]

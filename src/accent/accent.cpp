@@ -83,6 +83,8 @@ void check_settings(const Database& db, const Settings& cfg) {
   if (!(cfg.class_seconds >= 0) || !(cfg.class_hold_seconds >= 0) || !(cfg.class_margin >= 0 && cfg.class_margin < 1) ||
       !std::isfinite(cfg.class_seconds) || !std::isfinite(cfg.class_hold_seconds))
     throw Error("accent: class recognition needs class_seconds >= 0, class_hold_seconds >= 0 and 0 <= class_margin < 1");
+  if (!std::isfinite(cfg.travel_weight) || cfg.travel_weight < 0 || cfg.travel_weight > 100)
+    throw Error("accent: travel_weight must be between 0 and 100 (0 = off)");
   if (!(cfg.ik_blend_near < cfg.ik_blend_far) || !std::isfinite(cfg.ik_blend_far) || !(cfg.ik_blend_seconds >= 0))
     throw Error("accent: IK blend needs ik_blend_near < ik_blend_far and ik_blend_seconds >= 0");
 }
@@ -314,9 +316,43 @@ int tilt_gate(const Model& model, const State& st, std::span<Match> m) {
   return static_cast<int>(kept);
 }
 
+// The head position at input time t, interpolated from the ring (the oldest
+// sample before the buffer).
+Vec3 head_at(const State& st, double t) {
+  auto at = [&](int k) -> const State::Sample& { return st.ring[static_cast<std::size_t>((st.ring_head - k + kRing) % kRing)]; };
+  for (int k = 0; k < st.ring_size; ++k) {
+    const State::Sample& a = at(k);
+    if (a.t <= t + 1e-9) {
+      if (k == 0 || a.t >= t - 1e-9) return a.head;
+      const State::Sample& b = at(k - 1);
+      const double u = (t - a.t) / (b.t - a.t);
+      return (1 - u) * a.head + u * b.head;
+    }
+  }
+  return at(st.ring_size - 1).head;
+}
+
+// The user's travel (database.hpp, Travel) from the headset's trajectory, in
+// database space: displacements over the last seconds (less when the ring or
+// the session is shorter) divided by the user/database height ratio.
+void live_travel(const Model& model, State& st) {
+  const State::Sample& now = st.ring[static_cast<std::size_t>(st.ring_head)];
+  const double oldest = st.ring[static_cast<std::size_t>((st.ring_head - (st.ring_size - 1) + kRing) % kRing)].t;
+  const double inv_scale = 1.0 / model.scale();
+  auto velocity = [&](double seconds) -> Vec3 {
+    const double t = std::max(now.t - seconds, oldest), span = now.t - t;
+    return span > 1e-6 ? Vec3((now.head - head_at(st, t)) * (inv_scale / span)) : Vec3::Zero();
+  };
+  const Vec3 a = velocity(kTravelShort), b = velocity(kTravelLong), v = velocity(kTravelVertical);
+  st.travel = {static_cast<float>(std::hypot(a.x(), a.z())), static_cast<float>(std::hypot(b.x(), b.z())),
+               static_cast<float>(v.y()), static_cast<float>(now.head.y() * inv_scale / model.database().height())};
+}
+
 // Gather: each hand's k nearest windows within the threshold, seeded by the
 // last frame's matches. Gate: drop candidates whose head tilt differs from the
-// user's. Returns the number kept.
+// user's. With a travel weight, twice as many are gathered and the k of lowest
+// hand + travel cost kept (then ordered by hand distance again, so the first
+// is still the nearest by hand). Returns the number kept.
 int gather_matches(const Model& model, State& st, int h, double threshold) {
   const Settings& cfg = model.settings();
   const Database& db = model.database();
@@ -328,13 +364,40 @@ int gather_matches(const Model& model, State& st, int h, double threshold) {
   for (int i = 0; i < ns; ++i) seeds[static_cast<std::size_t>(i)] = m[static_cast<std::size_t>(i)].window;
   // With the head-tilt gate, look further so k candidates usually survive it.
   const int k_search = cfg.max_head_tilt_deg > 0 ? std::min(kMaxK, k + std::max(3, k / 3)) : k;
+  const bool travel = cfg.travel_weight > 0;
+  const std::span<Match> found = travel ? std::span<Match>(st.candidates) : std::span<Match>(m);
+  const int k_fetch = travel ? std::min(2 * kMaxK, 2 * k_search) : k_search;
   const std::span<const unsigned char> mask = st.active_class >= 0 ? std::span<const unsigned char>(st.active_mask) : model.class_mask();
-  int got = search_knn(db, h, st.live[hu], k_search, cfg.search, cfg.fast_eps, mask, m,
+  int got = search_knn(db, h, st.live[hu], k_fetch, cfg.search, cfg.fast_eps, mask, found,
                        std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)), cfg.fast_max_checks);
   if (threshold > 0)
-    while (got > 0 && m[static_cast<std::size_t>(got - 1)].distance > threshold) --got;
-  if (cfg.max_head_tilt_deg > 0) got = std::min(tilt_gate(model, st, std::span<Match>(m.data(), static_cast<std::size_t>(got))), k);
-  return got;
+    while (got > 0 && found[static_cast<std::size_t>(got - 1)].distance > threshold) --got;
+  if (cfg.max_head_tilt_deg > 0) got = tilt_gate(model, st, found.first(static_cast<std::size_t>(got)));
+  if (!travel) return std::min(got, k);
+  // Re-rank by hand distance (typical units) + weight x travel distance (spread units).
+  const Travel& scale = db.travel_scale();
+  const double inv_typical = 1.0 / db.typical_distance();
+  for (int i = 0; i < got; ++i) {
+    const Travel& c = db.travel(found[static_cast<std::size_t>(i)].window);
+    float t2 = 0;
+    for (std::size_t d = 0; d < kTravelDim; ++d) {
+      const float x = (c[d] - st.travel[d]) * scale[d];
+      t2 += x * x;
+    }
+    st.candidate_cost[static_cast<std::size_t>(i)] =
+        static_cast<float>(found[static_cast<std::size_t>(i)].distance * inv_typical + cfg.travel_weight * std::sqrt(t2));
+  }
+  const int keep = std::min(got, k);
+  for (int i = 0; i < keep; ++i) {  // selection of the `keep` lowest costs (got <= 64)
+    int best = i;
+    for (int j = i + 1; j < got; ++j)
+      if (st.candidate_cost[static_cast<std::size_t>(j)] < st.candidate_cost[static_cast<std::size_t>(best)]) best = j;
+    std::swap(st.candidate_cost[static_cast<std::size_t>(i)], st.candidate_cost[static_cast<std::size_t>(best)]);
+    std::swap(found[static_cast<std::size_t>(i)], found[static_cast<std::size_t>(best)]);
+  }
+  std::sort(found.begin(), found.begin() + keep, [](const Match& a, const Match& b) { return a.distance < b.distance; });
+  std::copy(found.begin(), found.begin() + keep, m.begin());
+  return keep;
 }
 
 // Align: each candidate's root rotated about y by the weighted closed-form
@@ -564,6 +627,7 @@ bool blend_candidates(const Model& model, State& st, double threshold, double dt
   fill_align(w[0], w[1], query_xz);
   for (int h = 0; h < 2; ++h) model.database().feature_space().project(w[h], st.live[static_cast<std::size_t>(h)]);
   if (model.recognizes_class()) recognize_class(model, st, dt);
+  if (model.settings().travel_weight > 0) live_travel(model, st);
   for (int h = 0; h < 2; ++h) {
     st.match_count[static_cast<std::size_t>(h)] = gather_matches(model, st, h, threshold);
     align_matches(model, st, h, threshold, query_xz);

@@ -68,6 +68,7 @@ json meta_json(const DatabaseMeta& p) {
                    {"group_weight", p.space.group_weight},
                    {"projection", p.space.projection}};
   j["typical_distance"] = p.typical_distance;
+  j["travel_scale"] = p.travel_scale;
   j["classes"] = p.classes;
   json ranges = json::array();
   for (auto [a, b] : p.ranges) ranges.push_back({a, b});
@@ -202,6 +203,7 @@ void parse_meta(DatabaseMeta& m, const std::string& text, const std::string& sou
   m.space.group_weight = r.get<std::array<double, 3>>(f, "features", "group_weight");
   m.space.projection = r.get<std::array<double, kDim * kDim>>(f, "features", "projection");
   m.typical_distance = r.get<double>(j, "", "typical_distance");
+  m.travel_scale = r.get<Travel>(j, "", "travel_scale");
   m.classes = r.get<std::vector<std::string>>(j, "", "classes");
   m.ranges.clear();
   const json& ranges = r.array(j, "", "class_ranges");
@@ -284,6 +286,7 @@ void open_block(Database::Impl& d, const std::string& source, bool verify, bool 
   d.poses = section<float>(d, h.pose_offset, std::uint64_t{h.pose_count} * h.joint_count * 4, source, "poses");
   d.head_up = section<float>(d, h.head_up_offset, std::uint64_t{h.pose_count} * 3, source, "head up axes");
   d.contacts = section<std::uint8_t>(d, h.contact_offset, std::uint64_t{h.pose_count} * 2, source, "foot contacts");
+  d.travel = section<Travel>(d, h.travel_offset, h.window_count, source, "head travel");
   if (!verify) prefault(d, h.source_offset, std::uint64_t{h.window_count} * sizeof(WindowSource));
   for (std::uint32_t w = 0; w < h.window_count; ++w)
     if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count)
@@ -315,6 +318,8 @@ void validate_meta(const DatabaseMeta& m, const std::string& source) {
     if (!std::isfinite(v)) fail(source, "feature scale is not finite");
   for (double v : m.space.projection)
     if (!std::isfinite(v)) fail(source, "feature projection is not finite");
+  for (float v : m.travel_scale)
+    if (!(v > 0 && v <= 1e6f)) fail(source, "travel_scale is " + std::to_string(v) + ", expected a finite value in (0, 1e6]; rebuild the database");
 }
 
 void scan_contents(const Database::Impl& d, const std::string& source) {
@@ -339,6 +344,9 @@ void scan_contents(const Database::Impl& d, const std::string& source) {
   for (std::uint32_t w = 0; w < d.header.window_count; ++w)
     for (float v : d.align[w])
       if (!std::isfinite(v)) fail(source, "alignment point of window " + std::to_string(w) + " is not finite");
+  for (std::uint32_t w = 0; w < d.header.window_count; ++w)
+    for (float v : d.travel[w])
+      if (!std::isfinite(v)) fail(source, "head travel of window " + std::to_string(w) + " is not finite");
 }
 
 // The data sections the checksum pass also scans, by element kind. Only
@@ -350,15 +358,16 @@ struct ScanRange {
   Scan kind;
 };
 
-std::size_t scan_ranges(const Database::Impl& d, std::array<ScanRange, 6>& out) {
+std::size_t scan_ranges(const Database::Impl& d, std::array<ScanRange, 7>& out) {
   const FileHeader& h = d.header;
   const std::uint64_t w = h.window_count, p = h.pose_count;
-  const ScanRange all[6] = {{h.feature_offset[0], w * sizeof(Feature), Scan::Finite},
+  const ScanRange all[7] = {{h.feature_offset[0], w * sizeof(Feature), Scan::Finite},
                             {h.feature_offset[1], w * sizeof(Feature), Scan::Finite},
                             {h.align_offset, w * sizeof(AlignXZ), Scan::Finite},
                             {h.pose_offset, p * h.joint_count * 16, Scan::UnitQuat},
                             {h.head_up_offset, p * 12, Scan::Finite},
-                            {h.contact_offset, p * 2, Scan::Bits01}};
+                            {h.contact_offset, p * 2, Scan::Bits01},
+                            {h.travel_offset, w * sizeof(Travel), Scan::Finite}};
   std::size_t n = 0;
   for (const ScanRange& r : all)  // `end` holds the byte count here
     if (r.begin % 4 == 0 && r.begin <= d.size && r.end <= d.size - r.begin) out[n++] = {r.begin, r.begin + r.end, r.kind};
@@ -404,7 +413,7 @@ bool scan_chunk(const std::byte* base, const ScanRange& r, std::uint64_t from, s
 // The checksum of the block (as block_checksum) and, chunk by chunk while the
 // chunk is in cache, the content scan; contents_ok = false when anything looked wrong.
 std::uint64_t checksum_and_scan(const Database::Impl& d, bool& contents_ok) {
-  std::array<ScanRange, 6> ranges{};
+  std::array<ScanRange, 7> ranges{};
   const std::size_t nr = scan_ranges(d, ranges);
   XXH3_state_t state;
   XXH3_64bits_reset(&state);
@@ -496,6 +505,7 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   h.pose_offset = place(p.poses.size() * sizeof(float));
   h.head_up_offset = place(p.head_up.size() * sizeof(float));
   h.contact_offset = place(p.contacts.size());
+  h.travel_offset = place(nw * sizeof(Travel));
   const std::vector<std::byte> index =
       serialize_index({p.features[0].data(), p.features[1].data()}, nw, p.meta.ranges);
   h.index_offset = place(index.size());
@@ -512,6 +522,7 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   put(h.pose_offset, p.poses.data(), p.poses.size() * sizeof(float));
   put(h.head_up_offset, p.head_up.data(), p.head_up.size() * sizeof(float));
   put(h.contact_offset, p.contacts.data(), p.contacts.size());
+  put(h.travel_offset, p.travel.data(), nw * sizeof(Travel));
   put(h.index_offset, index.data(), index.size());
   put(0, &h, sizeof(h));
   h.checksum = block_checksum(block);
@@ -562,6 +573,8 @@ std::array<bool, 2> Database::contact(int pose) const {
   const std::uint8_t* c = impl_->contacts + static_cast<std::ptrdiff_t>(pose) * 2;
   return {c[0] != 0, c[1] != 0};
 }
+const Travel& Database::travel(int window) const { return impl_->travel[window]; }
+const Travel& Database::travel_scale() const { return impl_->meta.travel_scale; }
 void Database::pose_rotation(int pose, std::span<Quat> out) const {
   const auto r = pose_rotations(pose);
   for (std::size_t j = 0; j < out.size(); ++j) out[j] = Quat(r[4 * j], r[4 * j + 1], r[4 * j + 2], r[4 * j + 3]);

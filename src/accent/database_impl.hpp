@@ -19,7 +19,7 @@ namespace legwork::accent {
 inline constexpr char kMagic[8] = {'L', 'W', 'A', 'C', 'C', 'E', 'N', 'T'};
 inline constexpr std::uint32_t kEndianTag = 0x01020304u;
 
-// Fixed header at offset 0 (little-endian; 144 bytes).
+// Fixed header at offset 0 (little-endian; 152 bytes).
 struct FileHeader {
   char magic[8];
   std::uint32_t version;
@@ -36,8 +36,9 @@ struct FileHeader {
   std::uint64_t head_up_offset;                // float[pose_count][3]: the head's up axis, model space
   std::uint64_t contact_offset;                // uint8[pose_count][2]: foot in contact (left, right), 0/1
   std::uint64_t index_offset, index_bytes;     // the stored KD-trees (since version 3; layout in database_index.cpp)
+  std::uint64_t travel_offset;                 // Travel[window_count]: the performer's head travel (since version 5)
 };
-static_assert(sizeof(FileHeader) == 144);
+static_assert(sizeof(FileHeader) == 152);
 
 std::uint64_t block_checksum(std::span<const std::byte> block);
 
@@ -88,6 +89,7 @@ struct DatabaseMeta {
   BuildSettings settings;
   FeatureSpace space;
   double typical_distance = 1;
+  Travel travel_scale{1, 1, 1, 1};  // 1 / standard deviation of each travel term over the windows
   std::vector<std::string> classes;
   std::vector<std::pair<int, int>> ranges;
   std::vector<TrialInfo> trials;
@@ -109,6 +111,7 @@ struct Database::Impl {
   const float* poses = nullptr;
   const float* head_up = nullptr;
   const std::uint8_t* contacts = nullptr;
+  const Travel* travel = nullptr;
 
   std::vector<ClassIndex> index;  // per class when there is more than one class
   ClassIndex all;                 // a one-class database's trees (over every window)
@@ -127,6 +130,7 @@ struct BlockParts {
   std::vector<float> poses;  // pose_count * joint_count * 4
   std::vector<float> head_up;  // pose_count * 3
   std::vector<std::uint8_t> contacts;  // pose_count * 2
+  std::vector<Travel> travel;          // window_count
 };
 std::vector<std::byte> serialize_block(const BlockParts& parts);
 

@@ -91,6 +91,7 @@ void run_accent_job(const AccentJob& a) {
   cfg.foot_lift_height = a.foot_lift_height;
   cfg.foot_lock_slack = a.foot_lock_slack;
   cfg.foot_swing_speed = a.foot_swing_speed;
+  cfg.travel_weight = a.travel_weight;
   const double fps = db.feature_space().fps;
   std::vector<TrackerFrame> frames;
   Motion truth;

@@ -405,6 +405,7 @@ json report_json(const EvalResult& r) {
                         {"foot_lift_height", v.config.foot_lift_height},
                         {"foot_lock_slack", v.config.foot_lock_slack},
                         {"foot_swing_speed", v.config.foot_swing_speed},
+                        {"travel_weight", v.config.travel_weight},
                         {"ik_blend_min", v.config.ik_blend_min},
                         {"ik_blend_max", v.config.ik_blend_max},
                         {"search", v.config.search == accent::SearchMode::Fast    ? "fast"

@@ -314,6 +314,7 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
     x.config.hand_ik = 0;
     x.config.foot_lock = false;
     x.config.ik_blend_min = x.config.ik_blend_max = 0;
+    x.config.travel_weight = 0;
   };
   add("nn", "NN only (document's settings, no alignment, no smoothing)", [&](Variant& x) {
     paper(x);
@@ -362,6 +363,8 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
   // well-covered cross-trial folds; docs/accent.md).
   add("ik_floor_0.3", "IK body's share at least 0.3 (ik_blend_min = 0.3)", [](Variant& x) { x.config.ik_blend_min = 0.3; });
   add("ik_floor_0.5", "IK body's share at least 0.5 (ik_blend_min = 0.5)", [](Variant& x) { x.config.ik_blend_min = 0.5; });
+  add("no_travel", "no travel terms in the match (travel_weight = 0: hand features only)",
+      [](Variant& x) { x.config.travel_weight = 0; });
   add("no_swing_clearance", "swinging feet not lifted clear of the floor (foot_swing_speed = 0)",
       [](Variant& x) { x.config.foot_swing_speed = 0; });
   return v;

@@ -92,6 +92,7 @@ Hello parse_hello(const json& j) {
   if (auto rc = j.find("recognize_class"); rc != j.end()) h.method.recognize_class = boolean(*rc, "hello.recognize_class");
   if (auto fl = j.find("foot_lift_height"); fl != j.end()) h.method.foot_lift_height = number(*fl, "hello.foot_lift_height");
   if (auto fs = j.find("foot_lock_slack"); fs != j.end()) h.method.foot_lock_slack = number(*fs, "hello.foot_lock_slack");
+  if (auto tw = j.find("travel_weight"); tw != j.end()) h.method.travel_weight = number(*tw, "hello.travel_weight");
   if (auto fw = j.find("foot_swing_speed"); fw != j.end()) h.method.foot_swing_speed = number(*fw, "hello.foot_swing_speed");
   if (auto u = j.find("user_height"); u != j.end() && !u->is_null()) h.method.user_height = number(*u, "hello.user_height");
   if (auto mp = j.find("mapping"); mp != j.end() && !mp->is_null()) {

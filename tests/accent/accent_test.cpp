@@ -157,6 +157,23 @@ TEST_F(HeldOut, NoClassGivenRecognisesTheActivityWithHysteresis) {
   EXPECT_LT(e_rec, e_told + 0.01);
 }
 
+// Mean distance between the input's and the output's knees and ankles (metres).
+double lower_body_error(const Motion& input90, const Motion& out) {
+  const auto& ri = input90.skeleton.roles;
+  const auto& ro = out.skeleton.roles;
+  double sum = 0;
+  int n = 0;
+  for (int f = 0; f < out.frame_count(); ++f) {
+    const auto pi = joint_positions(input90.skeleton, input90.frame(f));
+    const auto po = joint_positions(out.skeleton, out.frame(f));
+    for (Role r : {Role::LeftKnee, Role::RightKnee, Role::LeftAnkle, Role::RightAnkle}) {
+      sum += (pi[static_cast<std::size_t>(ri[r])] - po[static_cast<std::size_t>(ro[r])]).norm();
+      ++n;
+    }
+  }
+  return sum / std::max(n, 1);
+}
+
 // Horizontal slide of each ankle from frame f to f + 1 (metres), per foot.
 std::array<std::vector<double>, 2> ankle_slides(const Motion& m) {
   std::array<std::vector<double>, 2> out;
@@ -174,6 +191,38 @@ std::array<std::vector<double>, 2> ankle_slides(const Motion& m) {
   }
   return out;
 }
+
+// The user's travel in the match (Settings::travel_weight): on the held-out
+// walk (07_02) against a database of walking, running and boxing, the legs
+// come from candidates that travel like the user, so the knees and ankles
+// are nearer the truth and their horizontal travel frame to frame nearer
+// the truth's than with hand features only (travel_weight 0).
+TEST_F(HeldOut, TheUsersTravelInTheMatchBringsTheLegsNearerTheTruth) {
+  Settings on, off;
+  on.user_height = off.user_height = measure_body(input_->skeleton).standing_height;
+  ASSERT_EQ(on.travel_weight, 2.0);  // the default
+  off.travel_weight = 0;
+  const AccentRun with = accentuate_motion(*db_, on, *input_), without = accentuate_motion(*db_, off, *input_);
+  const double e_with = lower_body_error(*input_, with.output), e_without = lower_body_error(*input_, without.output);
+  // Ankle travel: mean |output slide - truth slide| per frame and foot.
+  const auto truth = ankle_slides(*input_);
+  auto slide_error = [&](const AccentRun& run) {
+    const auto s = ankle_slides(run.output);
+    double sum = 0;
+    int n = 0;
+    for (std::size_t foot = 0; foot < 2; ++foot)
+      for (std::size_t f = 0; f < std::min(s[foot].size(), truth[foot].size()); ++f, ++n) sum += std::abs(s[foot][f] - truth[foot][f]);
+    return sum / std::max(n, 1);
+  };
+  const double s_with = slide_error(with), s_without = slide_error(without);
+  std::printf("[ figures  ] travel weight 2 vs 0: knees+ankles %.2f vs %.2f cm, ankle slide error %.3f vs %.3f cm/frame, "
+              "%.0f vs %.0f frames/s\n",
+              100 * e_with, 100 * e_without, 100 * s_with, 100 * s_without, with.output.frame_count() / with.seconds,
+              without.output.frame_count() / without.seconds);
+  EXPECT_LT(e_with, e_without);
+  EXPECT_LT(s_with, s_without);
+}
+
 
 // Foot locking: a locked ankle stays where it touched down (held still with
 // foot_lock_follow_seconds = 0), and where the capture's own feet are planted
@@ -580,6 +629,8 @@ TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
           "foot_lock_slack must be between 0 and 1 metre");
   refused(&Settings::foot_swing_speed, {-1.0, 11.0, std::numeric_limits<double>::infinity()},
           "foot_swing_speed must be between 0 and 10 m/s");
+  refused(&Settings::travel_weight, {-0.5, 101.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()},
+          "travel_weight must be between 0 and 100 (0 = off)");
 }
 
 }  // namespace

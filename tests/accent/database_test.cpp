@@ -93,6 +93,61 @@ TEST_F(SampleDb, FootContactsAlternateInWalkingAndSwapWhenMirrored) {
   EXPECT_EQ(mirrored, n);
 }
 
+// A real format-4 file (the boxing sample database as format 4 wrote it, no
+// head travel) is refused by name with the rebuild message.
+TEST(DatabaseFormat, AFormat4FileIsRefusedWithTheRebuildMessage) {
+  const std::string path = std::string(LEGWORK_SOURCE_DIR) + "/tests/accent/data/format4_boxing.lwdb";
+  try {
+    (void)load_database(path);
+    FAIL() << "a format-4 file loaded";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "accent database '" + path +
+                                         "': format version 4, but this legwork reads version 5; rebuild it with 'legwork accent build'");
+  }
+}
+
+// Format 5 stores the performer's head travel per window: it survives the
+// file round trip bit for bit, and it is what the trials did: running
+// windows travel faster than walking ones, which travel faster than boxing
+// ones (the boxer stays on the spot), and upright performers' heads sit at
+// 85-100 % of the body height.
+TEST_F(SampleDb, HeadTravelIsStoredPerWindowAndFollowsTheTrials) {
+  const fs::path path = temp_file("travel.lwdb");
+  save_database(path.string(), *db_);
+  const Database loaded = load_database(path.string());
+  ASSERT_EQ(loaded.window_count(), db_->window_count());
+  for (int d = 0; d < kTravelDim; ++d) {
+    EXPECT_EQ(loaded.travel_scale()[static_cast<std::size_t>(d)], db_->travel_scale()[static_cast<std::size_t>(d)]);
+    EXPECT_GT(db_->travel_scale()[static_cast<std::size_t>(d)], 0.0f);
+  }
+  for (int w = 0; w < db_->window_count(); ++w) ASSERT_EQ(loaded.travel(w), db_->travel(w)) << "window " << w;
+  fs::remove(path);
+  std::map<std::string, std::array<double, 3>> mean;  // class -> short speed, long speed, height; window count
+  std::map<std::string, int> count;
+  for (int w = 0; w < db_->window_count(); ++w) {
+    const auto& src = db_->source(w);
+    if (src.speed != 0) continue;
+    const std::string& cls = db_->classes()[src.cls];
+    const Travel& t = db_->travel(w);
+    mean[cls][0] += t[0], mean[cls][1] += t[1], mean[cls][2] += t[3];
+    ++count[cls];
+  }
+  for (auto& [cls, m] : mean)
+    for (double& v : m) v /= count[cls];
+  std::printf("[ figures  ] head speed 0.2 s / 0.6 s (m/s), height / body height: running %.2f / %.2f, %.2f; walking "
+              "%.2f / %.2f, %.2f; boxing %.2f / %.2f, %.2f\n",
+              mean["running"][0], mean["running"][1], mean["running"][2], mean["walking"][0], mean["walking"][1],
+              mean["walking"][2], mean["boxing"][0], mean["boxing"][1], mean["boxing"][2]);
+  EXPECT_GT(mean["running"][1], mean["walking"][1]);
+  EXPECT_GT(mean["walking"][1], mean["boxing"][1]);
+  EXPECT_GT(mean["walking"][1], 0.8);  // CMU walks: about 1.2-1.4 m/s
+  EXPECT_LT(mean["walking"][1], 2.0);
+  for (const char* cls : {"walking", "running", "boxing"}) {
+    EXPECT_GT(mean[cls][2], 0.85) << cls;
+    EXPECT_LT(mean[cls][2], 1.0) << cls;
+  }
+}
+
 TEST_F(SampleDb, ClassesAreContiguousAndEveryWindowHasItsSource) {
   ASSERT_EQ(db_->classes().size(), 5u);  // basketball, boxing, climbing_ladder, running, walking
   int expect_first = 0;
@@ -157,13 +212,16 @@ TEST_F(SampleDb, BadFilesAreRejectedWithClearMessages) {
   expect_error(version, "version 7");
   auto old = good;
   old[8] = std::byte{1};  // a version 1 file (no foot contacts): rebuild
-  expect_error(old, "format version 1, but this legwork reads version 4; rebuild it with 'legwork accent build'");
+  expect_error(old, "format version 1, but this legwork reads version 5; rebuild it with 'legwork accent build'");
   auto v2 = good;
   v2[8] = std::byte{2};  // a version 2 file (no stored search index): rebuild
-  expect_error(v2, "format version 2, but this legwork reads version 4; rebuild it");
+  expect_error(v2, "format version 2, but this legwork reads version 5; rebuild it");
   auto v3 = good;
   v3[8] = std::byte{3};  // a version 3 file (FNV-1a checksum): rebuild
-  expect_error(v3, "format version 3, but this legwork reads version 4; rebuild it with 'legwork accent build'");
+  expect_error(v3, "format version 3, but this legwork reads version 5; rebuild it with 'legwork accent build'");
+  auto v4 = good;
+  v4[8] = std::byte{4};  // a version 4 file (no head travel): rebuild
+  expect_error(v4, "format version 4, but this legwork reads version 5; rebuild it with 'legwork accent build'");
   auto magic = good;
   magic[0] = std::byte{'X'};
   expect_error(magic, "not a legwork accent database");

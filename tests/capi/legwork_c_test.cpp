@@ -486,6 +486,11 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
   EXPECT_NE(std::string(lw_last_error()).find("foot_swing_speed must be between 0 and 10 m/s"), std::string::npos) << lw_last_error();
   s.foot_swing_speed = 0.8;
+  EXPECT_DOUBLE_EQ(s.travel_weight, legwork::accent::Settings{}.travel_weight);  // ABI 6: the engine's default
+  s.travel_weight = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("travel_weight must be between 0 and 100 (0 = off)"), std::string::npos) << lw_last_error();
+  s.travel_weight = 0;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

@@ -80,6 +80,9 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   o.foot_swing_speed = -1;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "foot_swing_speed -1.000000 m/s is outside [0, 10]");
   o.foot_swing_speed = 0.8;
+  o.travel_weight = -2;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "travel_weight -2.000000 is outside [0, 100] (0 = off)");
+  o.travel_weight = 4;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];

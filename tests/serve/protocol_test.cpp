@@ -104,6 +104,13 @@ TEST(Protocol, FootSlackAndSwingSpeedAreHelloFields) {
   EXPECT_EQ(given.foot_swing_speed, 0.0);
 }
 
+// The travel terms' weight (accent::Settings::travel_weight) is a hello field; absent, the engine's default.
+TEST(Protocol, TravelWeightIsAHelloField) {
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.travel_weight, accent::Settings{}.travel_weight);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"travel_weight":0})").hello.method.travel_weight, 0.0);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"travel_weight":4.5})").hello.method.travel_weight, 4.5);
+}
+
 // The released feet's lift (accent::Settings::foot_lift_height) is a hello field; absent, the engine's default.
 TEST(Protocol, FootLiftHeightIsAHelloField) {
   EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.foot_lift_height, accent::Settings{}.foot_lift_height);

@@ -131,6 +131,15 @@ struct Settings {
   double ik_blend_min = 0.1, ik_blend_max = 1.0;
   double ik_blend_near = 1.5, ik_blend_far = 3.0;
   double ik_blend_seconds = 0.5;
+  // The user's travel in the match: each hand's search retrieves twice its
+  // usual candidates by hand features, then keeps the k with the lowest
+  // hand distance / typical distance + travel_weight x travel distance, where
+  // the travel distance compares the headset's travel (horizontal speed over
+  // 0.2 and 0.6 s, vertical velocity, height over body height; database.hpp,
+  // Travel) with the candidate's, each term in units of its spread over the
+  // database. Walking, running and jumping users get legs that travel. 0 =
+  // off (hand features only).
+  double travel_weight = 2.0;
 };
 
 // How the frame's pose was made (Info::match).
@@ -249,6 +258,7 @@ struct State {
   std::array<std::array<Match, kMaxK>, 2> matches{};
   std::array<int, 2> match_count{0, 0};
   std::array<Feature, 2> live{};
+  Travel travel{};  // the user's head travel this frame (database space; Settings::travel_weight)
   // Foot locking (Settings::foot_lock), per foot (0 left, 1 right).
   struct FootLock {
     bool locked = false;
@@ -285,6 +295,8 @@ struct State {
   std::vector<Quat> spring_rot; // spring filter: filtered local rotations...
   std::vector<Vec3> spring_vel; // ...and their angular velocities
   // Scratch (no meaning between frames).
+  std::array<Match, 2 * kMaxK> candidates{};  // the travel re-rank's candidates
+  std::array<float, 2 * kMaxK> candidate_cost{};
   std::array<std::array<Quat, kMaxK>, 2> root_aligned{};
   std::array<std::array<double, kMaxK>, 2> weight{}, confidence{};
   std::array<std::array<const float*, kMaxK>, 2> pose_rot{};  // each candidate's pose rotations

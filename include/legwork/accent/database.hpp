@@ -25,8 +25,20 @@ namespace legwork::accent {
 
 // 2: per-pose foot contacts; 3: the KD-tree search index is stored in the file;
 // 4: the checksum is XXH3-64 (was a serial FNV-1a). Older files are refused
+// 5: per-window head travel (Travel) and its spread. Older files are refused
 // with a "rebuild" message.
-inline constexpr std::uint32_t kFormatVersion = 4;
+inline constexpr std::uint32_t kFormatVersion = 5;
+
+// The performer's travel at a window's end, from the head trajectory (the
+// user's is measured the same way from the headset): horizontal head speed
+// over the last kTravelShort and kTravelLong seconds (m/s), vertical head
+// velocity over the last kTravelVertical seconds (m/s, up positive) and head
+// height over standing body height. Speeds are in database space (the user's
+// divided by the user/database height ratio) and, for a time-scaled window,
+// at the played speed.
+inline constexpr int kTravelDim = 4;
+using Travel = std::array<float, kTravelDim>;
+inline constexpr double kTravelShort = 0.2, kTravelLong = 0.6, kTravelVertical = 0.1;
 
 // Where a window came from (for reports and leave-one-out checks).
 struct WindowSource {
@@ -99,6 +111,11 @@ class Database {
   // floor in the candidate pose (detected from foot height and speed at build
   // time; never while the head was far from upright, e.g. swimming).
   std::array<bool, 2> contact(int pose) const;
+  // The performer's head travel at the end of a window (Travel above), and
+  // 1 / its standard deviation per term over the database (the scale the
+  // engine's travel distance uses).
+  const Travel& travel(int window) const;
+  const Travel& travel_scale() const;
 
   // Serialized block (what save() writes; in memory or mapped).
   std::span<const std::byte> bytes() const;

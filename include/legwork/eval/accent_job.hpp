@@ -24,6 +24,7 @@ struct AccentJob {
   double foot_lift_height = accent::Settings{}.foot_lift_height;
   double foot_lock_slack = accent::Settings{}.foot_lock_slack;
   double foot_swing_speed = accent::Settings{}.foot_swing_speed;
+  double travel_weight = accent::Settings{}.travel_weight;
 };
 
 // "fast", "exact", "brute" -> the search mode; throws naming --mode otherwise.

@@ -47,6 +47,8 @@ struct MethodOptions {
   // accent::Settings::foot_lock_slack (metres) and foot_swing_speed (m/s), the engine's defaults.
   double foot_lock_slack = 0.0;
   double foot_swing_speed = 0.5;
+  // accent (and combined's upper body): accent::Settings::travel_weight, the engine's default (0 = off).
+  double travel_weight = 2.0;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
   std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)

@@ -56,6 +56,14 @@ std::vector<Vec3> head_relative(const Motion& m, const std::vector<Vec3>& pos, R
   return out;
 }
 
+std::vector<Vec3> joint_path(const Motion& m, const std::vector<Vec3>& pos, Role role) {
+  const int nj = m.joint_count();
+  const auto j = static_cast<std::size_t>(m.skeleton.roles[role]);
+  std::vector<Vec3> out(static_cast<std::size_t>(m.frame_count()));
+  for (int f = 0; f < m.frame_count(); ++f) out[static_cast<std::size_t>(f)] = pos[static_cast<std::size_t>(f) * static_cast<std::size_t>(nj) + j];
+  return out;
+}
+
 Vec3 sample_path(const std::vector<Vec3>& path, double frame) {
   const double last = static_cast<double>(path.size() - 1);
   frame = std::clamp(frame, 0.0, last);
@@ -63,6 +71,35 @@ Vec3 sample_path(const std::vector<Vec3>& path, double frame) {
   const std::size_t i1 = std::min(i0 + 1, path.size() - 1);
   const double t = frame - static_cast<double>(i0);
   return t == 0.0 ? path[i0] : Vec3((1 - t) * path[i0] + t * path[i1]);
+}
+
+// The travel terms (database.hpp, Travel) at source frame `end` of a head path
+// played at `speed` (source frames per played frame): displacements over the
+// last played seconds, shorter at the start of a trial.
+Travel head_travel(const std::vector<Vec3>& head, int end, double speed, double fps, double height) {
+  const Vec3 now = head[static_cast<std::size_t>(end)];
+  auto velocity = [&](double seconds) -> Vec3 {
+    const double from = std::max(0.0, end - seconds * fps * speed);
+    const double played = (end - from) / (fps * speed);
+    return played > 0 ? Vec3((now - sample_path(head, from)) / played) : Vec3::Zero();
+  };
+  const Vec3 a = velocity(kTravelShort), b = velocity(kTravelLong), v = velocity(kTravelVertical);
+  return {static_cast<float>(std::hypot(a.x(), a.z())), static_cast<float>(std::hypot(b.x(), b.z())),
+          static_cast<float>(v.y()), static_cast<float>(now.y() / height)};
+}
+
+// 1 / standard deviation of each travel term over the windows.
+Travel travel_scale(const std::vector<Travel>& travel) {
+  Travel out{1, 1, 1, 1};
+  if (travel.empty()) return out;
+  for (int d = 0; d < kTravelDim; ++d) {
+    double sum = 0, sum2 = 0;
+    for (const Travel& t : travel) sum += t[static_cast<std::size_t>(d)], sum2 += double{t[static_cast<std::size_t>(d)]} * t[static_cast<std::size_t>(d)];
+    const double n = static_cast<double>(travel.size()), mean = sum / n;
+    const double sd = std::sqrt(std::max(sum2 / n - mean * mean, 0.0));
+    out[static_cast<std::size_t>(d)] = static_cast<float>(1.0 / std::max(sd, 1e-3));
+  }
+  return out;
 }
 
 // The 72 x 27 matrix W with raw_feature(w) = W * (stacked window positions).
@@ -206,12 +243,14 @@ PreparedTrial prepare_trial(const TrialInput& t, const Skeleton& reference, cons
   p.contacts = foot_contacts(p.motion);
   p.hands[0] = head_relative(p.motion, pos, Role::LeftHand);
   p.hands[1] = head_relative(p.motion, pos, Role::RightHand);
+  p.head = joint_path(p.motion, pos, Role::Head);
   if (cfg.mirror) {
     p.mirrored = mirror_motion(p.motion);
     const auto mpos = joint_positions(p.mirrored);
     p.mirrored_hands[0] = head_relative(p.mirrored, mpos, Role::LeftHand);
     p.mirrored_hands[1] = head_relative(p.mirrored, mpos, Role::RightHand);
     p.mirrored_contacts = foot_contacts(p.mirrored);
+    p.mirrored_head = joint_path(p.mirrored, mpos, Role::Head);
   }
   p.kept = true;
   return p;
@@ -230,6 +269,7 @@ void add_trial_windows(const PreparedTrial* t, std::uint32_t trial_index, int he
     const Motion& m = mir ? t->mirrored : t->motion;
     const auto& hands = mir ? t->mirrored_hands : t->hands;
     const auto& contacts = mir ? t->mirrored_contacts : t->contacts;
+    const auto& head = mir ? t->mirrored_head : t->head;
     for (int e = kWindow - 1; e < m.frame_count(); e += cfg.hop) {
       const auto pose = static_cast<std::uint32_t>(parts.poses.size() / (static_cast<std::size_t>(nj) * 4));
       const auto fr = m.frame(e);
@@ -259,6 +299,7 @@ void add_trial_windows(const PreparedTrial* t, std::uint32_t trial_index, int he
         AlignXZ a;
         fill_align(w[0], w[1], a);
         parts.align.push_back(a);
+        parts.travel.push_back(head_travel(head, e, s, cfg.fps, parts.meta.height));
         parts.sources.push_back({pose, trial_index, static_cast<std::uint32_t>(e), static_cast<std::uint16_t>(parts.meta.classes.size() - 1),
                                  static_cast<std::uint8_t>(si), static_cast<std::uint8_t>(mir)});
       }
@@ -395,6 +436,7 @@ Database assemble_database(std::span<const PreparedTrial* const> trials, const S
 
   project_features(windows, cfg, parts);
   parts.meta.typical_distance = typical_distance(parts, cfg.typical_samples);
+  parts.meta.travel_scale = travel_scale(parts.travel);
 
   auto block = serialize_block(parts);
   if (report) {

@@ -79,6 +79,8 @@ struct PreparedTrial {
   // Per frame, 1 while the left [0] / right [1] foot is planted (foot_contacts
   // on foot height and speed), for `motion` and `mirrored`.
   std::array<std::vector<char>, 2> contacts, mirrored_contacts;
+  // Per frame, the head joint's world position (metres), for the travel terms.
+  std::vector<Vec3> head, mirrored_head;
 };
 
 // The skeleton a database of these trials uses: that of the first trial on the
