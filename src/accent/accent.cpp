@@ -350,7 +350,8 @@ void live_travel(const Model& model, State& st) {
 
 // Gather: each hand's k nearest windows within the threshold, seeded by the
 // last frame's matches. Gate: drop candidates whose head tilt differs from the
-// user's. With a travel weight, twice as many are gathered and the k of lowest
+// user's. With a travel weight, 1.5 times as many are gathered (twice cost twice
+// the CPU for 0.13 cm more, docs/accent.md) and the k of lowest
 // hand + travel cost kept (then ordered by hand distance again, so the first
 // is still the nearest by hand). Returns the number kept.
 int gather_matches(const Model& model, State& st, int h, double threshold) {
@@ -366,7 +367,7 @@ int gather_matches(const Model& model, State& st, int h, double threshold) {
   const int k_search = cfg.max_head_tilt_deg > 0 ? std::min(kMaxK, k + std::max(3, k / 3)) : k;
   const bool travel = cfg.travel_weight > 0;
   const std::span<Match> found = travel ? std::span<Match>(st.candidates) : std::span<Match>(m);
-  const int k_fetch = travel ? std::min(2 * kMaxK, 2 * k_search) : k_search;
+  const int k_fetch = travel ? std::min(2 * kMaxK, k_search + k_search / 2) : k_search;
   const std::span<const unsigned char> mask = st.active_class >= 0 ? std::span<const unsigned char>(st.active_mask) : model.class_mask();
   int got = search_knn(db, h, st.live[hu], k_fetch, cfg.search, cfg.fast_eps, mask, found,
                        std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)), cfg.fast_max_checks);

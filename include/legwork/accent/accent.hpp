@@ -131,7 +131,7 @@ struct Settings {
   double ik_blend_min = 0.1, ik_blend_max = 1.0;
   double ik_blend_near = 1.5, ik_blend_far = 3.0;
   double ik_blend_seconds = 0.5;
-  // The user's travel in the match: each hand's search retrieves twice its
+  // The user's travel in the match: each hand's search retrieves 1.5 times its
   // usual candidates by hand features, then keeps the k with the lowest
   // hand distance / typical distance + travel_weight x travel distance, where
   // the travel distance compares the headset's travel (horizontal speed over
