@@ -14,11 +14,18 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <string>
+
+#include <unistd.h>
 
 using namespace legwork;
 
 namespace {
-std::string gltf_temp(const std::string& name) { return (std::filesystem::temp_directory_path() / name).string(); }
+// Per process: ctest runs each test in its own process, two at a time, and a
+// file shared between them was read while another test rewrote it (CI, session 10).
+std::string gltf_temp(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string();
+}
 
 // Keep the test fast: the first `frames` real frames.
 Motion first_frames(const Motion& m, int frames) {
@@ -154,7 +161,9 @@ Glb sample_glb() {
   static const std::string bytes = [] {
     const std::string path = gltf_temp("legwork_crafted_base.glb");
     io::write_glb(path, first_frames(testdata::load_sample("cmu/bvh/walking/07_01.bvh"), 20));
-    return io::read_binary_file(path);
+    std::string b = io::read_binary_file(path);
+    std::filesystem::remove(path);
+    return b;
   }();
   return Glb::parse(bytes);
 }
@@ -236,6 +245,7 @@ TEST(Gltf, SampleTimeJustBelowTheLastKeyStaysInTheKeys) {
   const int samples = m.frame_count() - 1;
   const double fps = samples / (last * (1 - std::ldexp(1.0, -30)));  // last sample at last * (1 - 2^-30)
   const Motion back = io::read_glb(path, fps);
+  std::filesystem::remove(path);
   ASSERT_EQ(back.frame_count(), samples + 1);
   const auto a = joint_positions(m.skeleton, m.frame(m.frame_count() - 1));
   const auto b = joint_positions(back.skeleton, back.frame(back.frame_count() - 1));
