@@ -44,23 +44,19 @@ bool excluded(const std::string& file, const std::vector<std::string>& exclude) 
   return false;
 }
 
-std::vector<Vec3> head_relative(const Motion& m, const std::vector<Vec3>& pos, Role role) {
-  const int nj = m.joint_count();
-  const auto head = static_cast<std::size_t>(m.skeleton.roles[Role::Head]);
-  const auto j = static_cast<std::size_t>(m.skeleton.roles[role]);
-  std::vector<Vec3> out(static_cast<std::size_t>(m.frame_count()));
-  for (int f = 0; f < m.frame_count(); ++f) {
-    const std::size_t b = static_cast<std::size_t>(f) * static_cast<std::size_t>(nj);
-    out[static_cast<std::size_t>(f)] = pos[b + j] - pos[b + head];
-  }
-  return out;
-}
-
+// A joint's world path over the motion's frames (pos: joint_positions(m)).
 std::vector<Vec3> joint_path(const Motion& m, const std::vector<Vec3>& pos, Role role) {
   const int nj = m.joint_count();
   const auto j = static_cast<std::size_t>(m.skeleton.roles[role]);
   std::vector<Vec3> out(static_cast<std::size_t>(m.frame_count()));
   for (int f = 0; f < m.frame_count(); ++f) out[static_cast<std::size_t>(f)] = pos[static_cast<std::size_t>(f) * static_cast<std::size_t>(nj) + j];
+  return out;
+}
+
+// A joint's path relative to the head's path (same length).
+std::vector<Vec3> head_relative(const Motion& m, const std::vector<Vec3>& pos, Role role, const std::vector<Vec3>& head) {
+  std::vector<Vec3> out = joint_path(m, pos, role);
+  for (std::size_t f = 0; f < out.size(); ++f) out[f] -= head[f];
   return out;
 }
 
@@ -186,10 +182,11 @@ double hand_foot_correlation(const Motion& m) {
   const std::array<Role, 2> feet{Role::LeftAnkle, Role::RightAnkle};
   double sum = 0;
   int n = 0;
+  const auto head = joint_path(m, pos, Role::Head);
   for (Role h : hands) {
-    const auto hp = head_relative(m, pos, h);
+    const auto hp = head_relative(m, pos, h, head);
     for (Role f : feet) {
-      const auto fp = head_relative(m, pos, f);
+      const auto fp = head_relative(m, pos, f, head);
       for (int a = 0; a < 3; ++a) {
         std::vector<double> x(hp.size()), y(fp.size());
         for (std::size_t i = 0; i < hp.size(); ++i) x[i] = hp[i][a], y[i] = fp[i][a];
@@ -241,16 +238,16 @@ PreparedTrial prepare_trial(const TrialInput& t, const Skeleton& reference, cons
   }
   const auto pos = joint_positions(p.motion);
   p.contacts = foot_contacts(p.motion);
-  p.hands[0] = head_relative(p.motion, pos, Role::LeftHand);
-  p.hands[1] = head_relative(p.motion, pos, Role::RightHand);
   p.head = joint_path(p.motion, pos, Role::Head);
+  p.hands[0] = head_relative(p.motion, pos, Role::LeftHand, p.head);
+  p.hands[1] = head_relative(p.motion, pos, Role::RightHand, p.head);
   if (cfg.mirror) {
     p.mirrored = mirror_motion(p.motion);
     const auto mpos = joint_positions(p.mirrored);
-    p.mirrored_hands[0] = head_relative(p.mirrored, mpos, Role::LeftHand);
-    p.mirrored_hands[1] = head_relative(p.mirrored, mpos, Role::RightHand);
-    p.mirrored_contacts = foot_contacts(p.mirrored);
     p.mirrored_head = joint_path(p.mirrored, mpos, Role::Head);
+    p.mirrored_hands[0] = head_relative(p.mirrored, mpos, Role::LeftHand, p.mirrored_head);
+    p.mirrored_hands[1] = head_relative(p.mirrored, mpos, Role::RightHand, p.mirrored_head);
+    p.mirrored_contacts = foot_contacts(p.mirrored);
   }
   p.kept = true;
   return p;
