@@ -18,11 +18,17 @@
 #include <map>
 #include <sstream>
 
+#include <unistd.h>
+
 using namespace legwork;
 
 namespace {
 
-std::string reader_temp(const std::string& name) { return (std::filesystem::temp_directory_path() / name).string(); }
+// Per process: ctest runs each test in its own process, two at a time, and two
+// tests writing the same clip's file raced (fresh-clone ctest, session 10).
+std::string reader_temp(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string();
+}
 
 // The numbers of a BVH text's MOTION section after the Frame Time line.
 std::vector<double> motion_numbers(const std::string& text) {
