@@ -19,7 +19,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <span>
 #include <sstream>
 
 namespace legwork::accent {
@@ -186,6 +188,33 @@ void fill_tree(KdTree& tree, std::span<const std::byte> blob, const TreeLayout& 
   tree.root_node = link_nodes(tree, c, points);
 }
 
+// nanoflann's saveIndex writes each node as it lies in memory: its child
+// pointers (heap addresses) and, in split nodes, the union's unused bytes.
+// Both are rewritten so that the same database saves to the same bytes: a
+// zeroed node with only its fields, children as the marker 1 (the loader
+// only asks whether a child is there, then links the real ones).
+void canonical_nodes(std::string& blob, std::size_t points, std::size_t tree) {
+  const auto bytes = std::as_bytes(std::span(blob.data(), blob.size()));
+  const TreeLayout layout = check_tree(bytes, points, "(being saved)", tree);
+  Node* const there = reinterpret_cast<Node*>(std::uintptr_t{1});
+  for (std::size_t at = layout.nodes_at; at + sizeof(Node) <= blob.size(); at += sizeof(Node)) {
+    Node n, z;
+    std::memcpy(static_cast<void*>(&n), blob.data() + at, sizeof(Node));
+    std::memset(static_cast<void*>(&z), 0, sizeof(Node));
+    if (n.child1 == nullptr && n.child2 == nullptr) {
+      z.node_type.lr.left = n.node_type.lr.left;
+      z.node_type.lr.right = n.node_type.lr.right;
+    } else {
+      z.node_type.sub.divfeat = n.node_type.sub.divfeat;
+      z.node_type.sub.divlow = n.node_type.sub.divlow;
+      z.node_type.sub.divhigh = n.node_type.sub.divhigh;
+      z.child1 = n.child1 ? there : nullptr;
+      z.child2 = n.child2 ? there : nullptr;
+    }
+    std::memcpy(blob.data() + at, static_cast<const void*>(&z), sizeof(Node));
+  }
+}
+
 }  // namespace
 
 std::vector<std::byte> serialize_index(const std::array<const Feature*, 2>& features, std::size_t windows,
@@ -203,6 +232,7 @@ std::vector<std::byte> serialize_index(const std::array<const Feature*, 2>& feat
     std::ostringstream out(std::ios::binary);
     tree.saveIndex(out);
     blobs.push_back(std::move(out).str());
+    canonical_nodes(blobs.back(), b - a, t);
   }
   IndexSection h{};
   std::memcpy(h.tag, kIndexTag, sizeof kIndexTag);

@@ -84,6 +84,30 @@ std::string load_error_unverified(const fs::path& p) {
 
 // Declared sizes and indices in the index section are never trusted: with the
 // checksum recomputed (or not verified) a damaged index is refused by name.
+// The same database saves to the same bytes (reproducible builds, caches,
+// checksums of artifacts): the stored trees held heap addresses (each node's
+// child pointers) and uninitialised union bytes, so two saves differed in
+// ~9,600 bytes of the sample database.
+TEST(DatabaseIndex, TheSameDatabaseSavesToTheSameBytes) {
+  const std::vector<std::string> trials = {"walking/07_01", "running/09_01", "boxing/13_18"};
+  const Database first = testing::indexed_database(trials);
+  const Database second = testing::indexed_database(trials);  // built while the first is alive: other addresses
+  const fs::path a = temp_dir() / "same_a.lwdb", b = temp_dir() / "same_b.lwdb", c = temp_dir() / "same_c.lwdb";
+  save_database(a.string(), first);
+  save_database(b.string(), second);
+  const std::vector<std::byte> bytes = read_all(a);
+  EXPECT_TRUE(bytes == read_all(b)) << "two builds of the same trials saved different bytes";
+  save_database(c.string(), load_database(a.string()));  // loaded, then saved again
+  EXPECT_TRUE(bytes == read_all(c)) << "a loaded database saved again differs from its file";
+  // ...and the canonical file still loads with its index and searches.
+  const Database loaded = load_database(c.string());
+  ASSERT_TRUE(loaded.has_index());
+  std::array<Match, 4> m;
+  EXPECT_EQ(search_knn(loaded, 0, loaded.feature(0, 10), 4, SearchMode::Exact, 0, {}, m), 4);
+  EXPECT_EQ(m[0].distance, 0.0f);
+  for (const auto& p : {a, b, c}) fs::remove(p);
+}
+
 TEST(DatabaseIndex, DamagedStoredIndexIsRejectedByName) {
   const fs::path good = temp_dir() / "index_good.lwdb", bad = temp_dir() / "index_bad.lwdb";
   save_database(good.string(), testing::indexed_database({"walking/07_01", "running/09_01"}));
