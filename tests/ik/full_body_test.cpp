@@ -11,12 +11,16 @@
 #include <limits>
 #include <optional>
 
+#include "pose_checks.hpp"
 #include "alloc_counter.hpp"
 #include "cmu_sample.hpp"
 #include "testdata.hpp"
 
 namespace legwork::ik {
 namespace {
+
+using testdata::finite_pose;
+using testdata::same_pose;
 
 Motion load90(const std::string& rel) { return resample(testdata::load_sample(rel), 90.0); }
 
@@ -39,18 +43,6 @@ std::vector<TrackerFrame> trackers_of(const Motion& m) {
     out.push_back(tracker_of(m.skeleton, g, f / m.fps));
   }
   return out;
-}
-
-bool finite_pose(const Pose& p) {
-  for (std::size_t j = 0; j < p.rotations.size(); ++j)
-    if (!p.rotations[j].coeffs().allFinite() || !p.translations[j].allFinite()) return false;
-  return true;
-}
-
-bool same_pose(const Pose& a, const Pose& b) {
-  for (std::size_t j = 0; j < a.rotations.size(); ++j)
-    if (a.rotations[j].coeffs() != b.rotations[j].coeffs() || a.translations[j] != b.translations[j]) return false;
-  return true;
 }
 
 // One avatar on the sample walk at 90 Hz, with its tracker frames.

@@ -25,11 +25,15 @@
 
 #include "accent/accent_testing.hpp"
 #include "cmu_sample.hpp"
+#include "pose_checks.hpp"
 // Last: it replaces the global operator new for this test program.
 #include "alloc_counter.hpp"
 
 namespace legwork::serve {
 namespace {
+
+using testdata::finite_pose;
+using testdata::same_pose;
 
 constexpr double kRate = 60.0;     // frames per second of the fault stream
 constexpr double kRecover = 1.0;   // seconds after good data returns: Ok again (the stated guarantee)
@@ -76,18 +80,6 @@ MethodOptions options(const std::string& method) {
   o.method = method;
   if (method == "accent" || method == "combined") o.classes = {"walking"};
   return o;
-}
-
-bool finite(const Pose& p) {
-  for (std::size_t j = 0; j < p.rotations.size(); ++j)
-    if (!p.rotations[j].coeffs().allFinite() || !p.translations[j].allFinite()) return false;
-  return true;
-}
-
-bool same(const Pose& a, const Pose& b) {
-  for (std::size_t j = 0; j < a.rotations.size(); ++j)
-    if (a.rotations[j].coeffs() != b.rotations[j].coeffs() || a.translations[j] != b.translations[j]) return false;
-  return true;
 }
 
 // A fault: frames [begin, end) of the stream are altered (or dropped) by `apply`.
@@ -173,9 +165,9 @@ TEST_P(Streams, FaultsNeverPoisonOrFreezeTheStream) {
     MethodInfo info;
     UpdateStatus s = UpdateStatus::Ok;
     allocations += alloc_count::count_allocations([&] { s = tested->update(f, pose.ref(), info); });
-    ASSERT_TRUE(finite(pose)) << name << ": non-finite pose at t = " << t;
+    ASSERT_TRUE(finite_pose(pose)) << name << ": non-finite pose at t = " << t;
     if (s == UpdateStatus::Rejected) {
-      ASSERT_TRUE(same(before, pose)) << name << ": a rejected frame changed the pose at t = " << t;
+      ASSERT_TRUE(same_pose(before, pose)) << name << ": a rejected frame changed the pose at t = " << t;
     }
     if (s != UpdateStatus::Rejected && usable(f.head())) last_head = f.head().position;
     if (head_driven(name)) {  // wip travels on from the user's steps; the walker walks from where it starts
@@ -240,7 +232,7 @@ TEST_P(Streams, AnHourOfGoodDataStaysOkFiniteAndAllocatesNothing) {
     UpdateStatus s = UpdateStatus::Ok;
     allocations += alloc_count::count_allocations([&] { s = method->update(f, pose.ref(), info); });
     not_ok += s != UpdateStatus::Ok;
-    ASSERT_TRUE(finite(pose)) << name << ": non-finite pose at t = " << f.time;
+    ASSERT_TRUE(finite_pose(pose)) << name << ": non-finite pose at t = " << f.time;
     if (head_driven(name)) {
       ASSERT_LT((pose.translations[0] - f.head().position).norm(), 1.5) << name << ": the root left the head at t = " << f.time;
     }

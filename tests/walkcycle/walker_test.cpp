@@ -10,6 +10,7 @@
 
 #include "alloc_counter.hpp"
 #include "cmu_sample.hpp"
+#include "pose_checks.hpp"
 #include "testdata.hpp"
 #include "walk_samples.hpp"
 
@@ -22,6 +23,9 @@ using namespace legwork::walkcycle;
 
 namespace {
 
+using testdata::finite_pose;
+using testdata::same_pose;
+
 CycleModel cycle(const std::string& name) {
   const Skeleton& s = testdata::sample_skeleton();
   return build_cycle(s, read_walk_keys(testdata::walk_keys_file(name), s));
@@ -33,18 +37,6 @@ TrackerFrame steer(double time, double heading) {
   f.time = time;
   f.head() = {Vec3(0, 1.7, 0), Quat(Eigen::AngleAxisd(heading, Vec3::UnitY())), true};
   return f;
-}
-
-bool same_pose(const Pose& a, const Pose& b) {
-  for (std::size_t j = 0; j < a.rotations.size(); ++j)
-    if (a.rotations[j].coeffs() != b.rotations[j].coeffs() || a.translations[j] != b.translations[j]) return false;
-  return true;
-}
-
-bool finite_pose(const Pose& p) {
-  for (std::size_t j = 0; j < p.rotations.size(); ++j)
-    if (!p.rotations[j].coeffs().allFinite() || !p.translations[j].allFinite()) return false;
-  return true;
 }
 
 }  // namespace
