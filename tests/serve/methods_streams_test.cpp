@@ -47,7 +47,6 @@ std::vector<TrackerFrame> long_walk(double rate, double seconds) {
     d.y() = 0;
     return d;
   }();
-  const double period = static_cast<double>(one.size()) / rate;
   std::vector<TrackerFrame> out;
   const auto n = static_cast<std::size_t>(seconds * rate);
   out.reserve(n);
@@ -56,7 +55,6 @@ std::vector<TrackerFrame> long_walk(double rate, double seconds) {
     TrackerFrame f = one[i % one.size()];
     f.time = static_cast<double>(i) / rate;
     for (auto& d : f.devices) d.position += static_cast<double>(rep) * travel;
-    (void)period;
     out.push_back(f);
   }
   return out;
@@ -75,7 +73,7 @@ Resources resources() {
   return r;
 }
 
-MethodOptions options(const std::string& method) {
+MethodOptions stream_options(const std::string& method) {
   MethodOptions o;
   o.method = method;
   if (method == "accent" || method == "combined") o.classes = {"walking"};
@@ -128,8 +126,8 @@ bool head_driven(const std::string& method) { return method == "accent" || metho
 TEST_P(Streams, FaultsNeverPoisonOrFreezeTheStream) {
   const std::string name = GetParam();
   const Resources res = resources();
-  const auto clean = make_method(res, options(name));
-  const auto tested = make_method(res, options(name));
+  const auto clean = make_method(res, stream_options(name));
+  const auto tested = make_method(res, stream_options(name));
   const Skeleton& skel = tested->skeleton();
   const int wrist[2] = {skel.require("LeftHand"), skel.require("RightHand")};
   Pose ref(skel), pose(skel);
@@ -223,7 +221,7 @@ TEST_P(Streams, FaultsNeverPoisonOrFreezeTheStream) {
 // avatar's memory is what its State took when it was made.
 TEST_P(Streams, AnHourOfGoodDataStaysOkFiniteAndAllocatesNothing) {
   const std::string name = GetParam();
-  const auto method = make_method(resources(), options(name));
+  const auto method = make_method(resources(), stream_options(name));
   Pose pose(method->skeleton());
   const auto frames = long_walk(30.0, 3600.0);
   long allocations = 0, not_ok = 0;
