@@ -7,7 +7,10 @@
 #   scripts/fuzz.sh --long [RUNS] each target until RUNS executions (default
 #                                 10,000,000), at most LEGWORK_FUZZ_LONG_HOURS
 #                                 hours each (default 6); the corpus persists
-#                                 in build-fuzz/corpus-*/ between runs
+#                                 in build-fuzz/corpus-*/ between runs; on a
+#                                 shared machine LEGWORK_FUZZ_TIMEOUT=60 (s, wall
+#                                 clock; default 10) keeps a starved process from
+#                                 reporting false timeouts
 #   scripts/fuzz.sh --long RUNS TARGET...  only those targets (e.g. vmc walk_keys)
 # Each target goes past parsing into the code that consumes the result: BVH
 # and GLB into forward kinematics and the writer; tracker CSV into
@@ -34,6 +37,11 @@ else
   seconds="${1:-45}"
 fi
 
+timeout="${LEGWORK_FUZZ_TIMEOUT:-10}"
+if ! [[ "$timeout" =~ ^[1-9][0-9]{0,4}$ ]]; then
+  echo "fuzz.sh: LEGWORK_FUZZ_TIMEOUT is '$timeout'; expected whole seconds from 1 to 99999" >&2
+  exit 2
+fi
 # name:weight(% of the bounded run):max_len; the seeds of each are set up below.
 targets=(bvh:20:16384 tracker_csv:10:8192 glb:15:131072 walk_keys:10:16384 path:10:4096 accent_db:15:262144
   protocol:10:4096 vmc:10:4096)
@@ -118,7 +126,7 @@ run() {  # name seeds dict max_len seconds|runs
   echo "fuzz: $name (${limit[*]})" >&2
   local rc=0
   "$build/fuzz/${name}_fuzz" "$corpus" "$seed_dir" -dict="$dict" "${limit[@]}" -max_len="$max_len" \
-    -timeout=10 -rss_limit_mb=2560 -artifact_prefix="$build/artifacts/$name-" -print_final_stats=1 2>"$log" || rc=$?
+    -timeout="$timeout" -rss_limit_mb=2560 -artifact_prefix="$build/artifacts/$name-" -print_final_stats=1 2>"$log" || rc=$?
   local execs speed
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
