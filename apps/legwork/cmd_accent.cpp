@@ -144,6 +144,11 @@ void register_run(CLI::App& parent) {
                   "features only)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--max-head-height-diff", a->max_head_height_diff,
+                  "while the user stands upright, reject candidates whose head is lower than the user's by more than "
+                  "this share of body height (a lying swimmer under a standing user; 0 = off)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 2.0));
   cmd->add_option("--foot-swing-speed", a->foot_swing_speed,
                   "m/s above which a free foot counts as swinging and is lifted to clear the floor by --foot-lift-height "
                   "(0 = off)")

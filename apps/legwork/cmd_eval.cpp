@@ -28,7 +28,7 @@ struct EngineOption {
   double lo, hi;
   const char* help;
 };
-constexpr std::array<EngineOption, 12> kEngineOptions{{
+constexpr std::array<EngineOption, 13> kEngineOptions{{
     {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
     {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
     {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
@@ -52,6 +52,8 @@ constexpr std::array<EngineOption, 12> kEngineOptions{{
      "engine: blended candidate contact above which a foot locks (0..1)"},
     {"--contact-off", &accent::Settings::contact_off, 0.0, 1.0,
      "engine: blended candidate contact below which a locked foot lets go (0..1)"},
+    {"--max-head-height-diff", &accent::Settings::max_head_height_diff, 0.0, 2.0,
+     "engine: reject candidates whose head height over body height differs from the user's by more than this (0 = off)"},
 }};
 
 struct EvalArgs {

@@ -36,6 +36,10 @@ static class Checks
         Expect.That("travel weight default", bad.TravelWeight == 2, "TravelWeight " + bad.TravelWeight);
         bad.TravelWeight = -1;
         Expect.Throws<LegworkException>("travel weight out of range", () => Model.CreateAccent(db, bad), "travel_weight must be between 0 and 100 (0 = off)");
+        bad = AccentSettings.Default();
+        Expect.That("head height gate default", bad.MaxHeadHeightDiff == 0.15, "MaxHeadHeightDiff " + bad.MaxHeadHeightDiff);
+        bad.MaxHeadHeightDiff = 3;
+        Expect.Throws<LegworkException>("head height gate out of range", () => Model.CreateAccent(db, bad), "max_head_height_diff must be between 0 and 2");
 
         Model model = Model.CreateAccent(db, AccentSettings.Default());
         Avatar avatar = Avatar.Create(model);

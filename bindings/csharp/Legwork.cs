@@ -83,6 +83,7 @@ namespace Legwork
         public double FootLockSlack;  // metres (0..1) the synthesized foot may move from a plant before it creeps (ABI 4)
         public double FootSwingSpeed; // m/s (0..10) above which a free foot swings clear of the floor; 0 = off (ABI 4)
         public double TravelWeight;   // (0..100) weight of the user's head travel against the hand features; 0 = off (ABI 6)
+        public double MaxHeadHeightDiff; // (0..2) an upright user's candidates at most this share of height lower in the head; 0 = off (ABI 7)
 
         public static AccentSettings Default()
         {
@@ -182,7 +183,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 6;
+        public const uint AbiVersion = 7;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

@@ -106,6 +106,9 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("travel_weight", &Settings::travel_weight,
                      "weight (0..100) of the user's head travel (horizontal speed over 0.2 and 0.6 s, vertical velocity, "
                      "height over body height) against the hand features when ranking candidates (0 = hand features only)")
+      .def_readwrite("max_head_height_diff", &Settings::max_head_height_diff,
+                     "while the user stands upright, reject candidates whose head is lower than the user's by more than "
+                     "this share of body height (0..2; 0 = off)")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
                      "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
       .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")

@@ -215,6 +215,24 @@ def test_travel_weight_setting_equals_the_cli_option(cli, db, db_path, truth, tm
         accent.make_model(db, s)
 
 
+def test_head_height_gate_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path):
+    """Settings.max_head_height_diff is the CLI's --max-head-height-diff: the same motion either way (its effect on
+    a standing user against lying swimmers is tests/accent's AStandingUserGetsNoLyingBodyUnderTheHead); out of range
+    it is an error naming the setting."""
+    out_bvh = tmp_path / "gate.bvh"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh,
+        "--max-head-height-diff", "0.3")
+    s = settings_for(truth)
+    assert s.max_head_height_diff == pytest.approx(0.15)  # the default
+    s.max_head_height_diff = 0.3
+    gated = accent.accentuate_motion(db, s, truth)["motion"]
+    back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
+    assert np.abs(back.positions() - gated.positions()).max() < 2e-4
+    s.max_head_height_diff = 2.5
+    with pytest.raises(legwork.Error, match=r"max_head_height_diff must be between 0 and 2"):
+        accent.make_model(db, s)
+
+
 def test_bad_settings_and_arrays(db, truth):
     s = accent.Settings()
     s.classes = ["walking", "flying"]

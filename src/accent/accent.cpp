@@ -85,6 +85,8 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: class recognition needs class_seconds >= 0, class_hold_seconds >= 0 and 0 <= class_margin < 1");
   if (!std::isfinite(cfg.travel_weight) || cfg.travel_weight < 0 || cfg.travel_weight > 100)
     throw Error("accent: travel_weight must be between 0 and 100 (0 = off)");
+  if (!std::isfinite(cfg.max_head_height_diff) || cfg.max_head_height_diff < 0 || cfg.max_head_height_diff > 2)
+    throw Error("accent: max_head_height_diff must be between 0 and 2 (a share of the body's height; 0 = off)");
   if (!(cfg.ik_blend_near < cfg.ik_blend_far) || !std::isfinite(cfg.ik_blend_far) || !(cfg.ik_blend_seconds >= 0))
     throw Error("accent: IK blend needs ik_blend_near < ik_blend_far and ik_blend_seconds >= 0");
 }
@@ -302,19 +304,35 @@ void window_at(const Model& model, const State& st, int hand, HandWindow& out) {
   }
 }
 
-// Head-tilt gate: keeps (in order, at the front) the candidates whose head is
-// about as upright as the user's (yaw-free test). Returns the number kept.
-int tilt_gate(const Model& model, const State& st, std::span<Match> m) {
+// A user whose head is at least this share of their standing height up is
+// upright (standing, walking, running: 0.90-0.97 in the shared trials).
+constexpr double kUprightHeadHeight = 0.8;
+
+// Posture gate: keeps (in order, at the front) the candidates whose head is
+// about as upright as the user's (yaw-free test, max_head_tilt_deg) and, while
+// the user is upright, not lower than the user's by more than
+// max_head_height_diff of the body's height (the user's st.travel[3] against
+// the window's stored Travel[3]): a lying or crouching body never goes under a
+// standing user's head. A lower user is not gated by height (a swimmer's head
+// height is the bench's, not the stroke's). Returns the number kept.
+int posture_gate(const Model& model, const State& st, std::span<Match> m) {
   const Database& db = model.database();
+  const Settings& cfg = model.settings();
   const double user_tilt = std::acos(std::clamp((st.last_head_rot * Vec3::UnitY()).y(), -1.0, 1.0));
-  const double limit = deg2rad(model.settings().max_head_tilt_deg);
+  const double limit = cfg.max_head_tilt_deg > 0 ? deg2rad(cfg.max_head_tilt_deg) : 10.0;
+  const float lowest = cfg.max_head_height_diff > 0 && st.travel[3] >= kUprightHeadHeight
+                           ? static_cast<float>(st.travel[3] - cfg.max_head_height_diff)
+                           : -1e9f;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < m.size(); ++i) {
     const Vec3 up = db.head_up(static_cast<int>(db.source(m[i].window).pose));
-    if (std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) <= limit) m[kept++] = m[i];
+    if (std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) <= limit && db.travel(m[i].window)[3] >= lowest)
+      m[kept++] = m[i];
   }
   return static_cast<int>(kept);
 }
+
+bool gates_posture(const Settings& cfg) { return cfg.max_head_tilt_deg > 0 || cfg.max_head_height_diff > 0; }
 
 // The head position at input time t, interpolated from the ring (the oldest
 // sample before the buffer).
@@ -363,8 +381,8 @@ int gather_matches(const Model& model, State& st, int h, double threshold) {
   std::array<int, kMaxK> seeds;
   const int ns = st.match_count[hu];
   for (int i = 0; i < ns; ++i) seeds[static_cast<std::size_t>(i)] = m[static_cast<std::size_t>(i)].window;
-  // With the head-tilt gate, look further so k candidates usually survive it.
-  const int k_search = cfg.max_head_tilt_deg > 0 ? std::min(kMaxK, k + std::max(3, k / 3)) : k;
+  // With the posture gate, look further so k candidates usually survive it.
+  const int k_search = gates_posture(cfg) ? std::min(kMaxK, k + std::max(3, k / 3)) : k;
   const bool travel = cfg.travel_weight > 0;
   const std::span<Match> found = travel ? std::span<Match>(st.candidates) : std::span<Match>(m);
   const int k_fetch = travel ? std::min(2 * kMaxK, k_search + k_search / 2) : k_search;
@@ -373,7 +391,7 @@ int gather_matches(const Model& model, State& st, int h, double threshold) {
                        std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)), cfg.fast_max_checks);
   if (threshold > 0)
     while (got > 0 && found[static_cast<std::size_t>(got - 1)].distance > threshold) --got;
-  if (cfg.max_head_tilt_deg > 0) got = tilt_gate(model, st, found.first(static_cast<std::size_t>(got)));
+  if (gates_posture(cfg)) got = posture_gate(model, st, found.first(static_cast<std::size_t>(got)));
   if (!travel) return std::min(got, k);
   // Re-rank by hand distance (typical units) + weight x travel distance (spread units).
   const Travel& scale = db.travel_scale();
@@ -551,10 +569,10 @@ double probe_class(const Model& model, State& st, int c) {
     const int seed = st.class_seed[cu][hu];
     // A probe needs the nearest window only, seeded by the class's last best:
     // kProbeChecks full distances (fewer if the frame's budget is smaller).
-    const int n = search_knn(db, h, st.live[hu], cfg.max_head_tilt_deg > 0 ? 6 : 1, cfg.search, cfg.fast_eps, st.probe_mask, m,
+    const int n = search_knn(db, h, st.live[hu], gates_posture(cfg) ? 6 : 1, cfg.search, cfg.fast_eps, st.probe_mask, m,
                              std::span<const int>(&seed, seed >= 0 ? 1 : 0),
                              cfg.fast_max_checks > 0 ? std::min(kProbeChecks, cfg.fast_max_checks) : 0);
-    const int kept = cfg.max_head_tilt_deg > 0 ? tilt_gate(model, st, std::span<Match>(m.data(), static_cast<std::size_t>(n))) : n;
+    const int kept = gates_posture(cfg) ? posture_gate(model, st, std::span<Match>(m.data(), static_cast<std::size_t>(n))) : n;
     if (n > 0) st.class_seed[cu][hu] = m[0].window;
     cost += kept > 0 ? std::min(far, m[0].distance / typical) : far;
   }
@@ -627,8 +645,8 @@ bool blend_candidates(const Model& model, State& st, double threshold, double dt
   AlignXZ query_xz;
   fill_align(w[0], w[1], query_xz);
   for (int h = 0; h < 2; ++h) model.database().feature_space().project(w[h], st.live[static_cast<std::size_t>(h)]);
+  if (model.settings().travel_weight > 0 || model.settings().max_head_height_diff > 0) live_travel(model, st);
   if (model.recognizes_class()) recognize_class(model, st, dt);
-  if (model.settings().travel_weight > 0) live_travel(model, st);
   for (int h = 0; h < 2; ++h) {
     st.match_count[static_cast<std::size_t>(h)] = gather_matches(model, st, h, threshold);
     align_matches(model, st, h, threshold, query_xz);

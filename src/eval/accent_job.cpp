@@ -92,6 +92,7 @@ void run_accent_job(const AccentJob& a) {
   cfg.foot_lock_slack = a.foot_lock_slack;
   cfg.foot_swing_speed = a.foot_swing_speed;
   cfg.travel_weight = a.travel_weight;
+  cfg.max_head_height_diff = a.max_head_height_diff;
   const double fps = db.feature_space().fps;
   std::vector<TrackerFrame> frames;
   Motion truth;

@@ -406,6 +406,7 @@ json report_json(const EvalResult& r) {
                         {"foot_lock_slack", v.config.foot_lock_slack},
                         {"foot_swing_speed", v.config.foot_swing_speed},
                         {"travel_weight", v.config.travel_weight},
+                        {"max_head_height_diff", v.config.max_head_height_diff},
                         {"ik_blend_min", v.config.ik_blend_min},
                         {"ik_blend_max", v.config.ik_blend_max},
                         {"search", v.config.search == accent::SearchMode::Fast    ? "fast"

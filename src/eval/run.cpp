@@ -315,6 +315,7 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
     x.config.foot_lock = false;
     x.config.ik_blend_min = x.config.ik_blend_max = 0;
     x.config.travel_weight = 0;
+    x.config.max_head_height_diff = 0;
   };
   add("nn", "NN only (document's settings, no alignment, no smoothing)", [&](Variant& x) {
     paper(x);
@@ -365,6 +366,8 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
   add("ik_floor_0.5", "IK body's share at least 0.5 (ik_blend_min = 0.5)", [](Variant& x) { x.config.ik_blend_min = 0.5; });
   add("no_travel", "no travel terms in the match (travel_weight = 0: hand features only)",
       [](Variant& x) { x.config.travel_weight = 0; });
+  add("no_height_gate", "no head-height gate (max_head_height_diff = 0: lying bodies may go under a standing user)",
+      [](Variant& x) { x.config.max_head_height_diff = 0; });
   add("no_swing_clearance", "swinging feet not lifted clear of the floor (foot_swing_speed = 0)",
       [](Variant& x) { x.config.foot_swing_speed = 0; });
   return v;

@@ -724,3 +724,75 @@ TEST(AccentTilt, MatchedHeadsAreAboutAsUprightAsTheHeadset) {
 
 }  // namespace
 }  // namespace legwork::accent
+
+namespace legwork::accent {
+namespace {
+
+// Head-height gate (Settings::max_head_height_diff) on the shared swimming
+// trials: a standing swimmer (79_02, the repo's sample) against a database of
+// the swimmers who lie on a bench (subjects 125 and 126) and the other standing
+// one (80_72). Their heads can be as upright as a standing user's (they look
+// forward), so the head-tilt gate keeps them; the head-height gate does not:
+// every matched window's head is at most the gate's share of body height below
+// the user's, and the output's pelvis stands at the truth's height instead of
+// floating under the headset with a horizontal body.
+TEST(AccentShared, AStandingUserGetsNoLyingBodyUnderTheHead) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  const std::string data = testdata::shared_cmu().string();
+  std::vector<std::string> exclude;
+  for (const char* t : {"79_02", "79_03"}) exclude.push_back(std::string("bvh/swimming/") + t + ".bvh");
+  const auto trials = load_trials(data, {"swimming"}, exclude);
+  Database db = build_database(trials, BuildConfig{});
+  db.build_index();
+  const Motion input = testing::tracker_rate_trial("swimming/79_02");
+  const double height = measure_body(input.skeleton).standing_height;
+  const int in_pelvis = input.skeleton.roles[Role::Pelvis];
+  ASSERT_GE(in_pelvis, 0);
+  struct Result {
+    double pelvis_height_error = 0;  // mean |output - truth| pelvis height, metres
+    double body_error = 0;           // mean role-joint distance to the truth, metres
+    int lying_matches = 0, matches = 0, upright_frames = 0;
+  };
+  auto run = [&](double gate) {
+    Settings cfg;
+    cfg.user_height = height;
+    cfg.max_head_height_diff = gate;
+    testing::Avatar acc(db, cfg);
+    const int out_pelvis = acc.model.skeleton().roles[Role::Pelvis];
+    const int in_head = input.skeleton.roles[Role::Head];
+    Result r;
+    const auto frames = tracker_frames_from_motion(input);
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      acc.update(frames[f]);
+      const auto truth = joint_positions(input.skeleton, input.frame(static_cast<int>(f)));
+      const auto out = joint_positions(acc.model.skeleton(), acc.pose);
+      r.pelvis_height_error += std::abs(out[static_cast<std::size_t>(out_pelvis)].y() - truth[static_cast<std::size_t>(in_pelvis)].y());
+      const double user = truth[static_cast<std::size_t>(in_head)].y() / height;  // what the engine sees as Travel[3]
+      if (user < 0.8 + 0.01) continue;  // the gate holds while the user stands upright (margin: interpolation)
+      ++r.upright_frames;
+      for (int h = 0; h < 2; ++h)
+        for (const Match& m : acc.matches(h)) {
+          ++r.matches;
+          r.lying_matches += db.travel(m.window)[3] < user - 0.15 - 0.01;
+        }
+    }
+    r.pelvis_height_error /= static_cast<double>(frames.size());
+    r.body_error = measure(input, accentuate_motion(db, cfg, input).output).body;
+    return r;
+  };
+  const Result on = run(Settings{}.max_head_height_diff), off = run(0.0);
+  std::printf("[ figures  ] standing swimmer 79_02 vs the bench swimmers + 80_72 (%d windows): pelvis height error %.1f cm with "
+              "the head-height gate, %.1f cm without; role joints %.1f / %.1f cm from the truth; matches more than 0.15 of height below the head %d of %d (without: %d of %d)\n",
+              db.window_count(), 100 * on.pelvis_height_error, 100 * off.pelvis_height_error, 100 * on.body_error, 100 * off.body_error, on.lying_matches, on.matches,
+              off.lying_matches, off.matches);
+  EXPECT_GT(on.upright_frames, static_cast<int>(input.frame_count()) / 2);  // the user does stand
+  EXPECT_GT(off.lying_matches, off.matches / 4);  // without the gate, the lying swimmers are matched...
+  EXPECT_EQ(on.lying_matches, 0);                 // ...with it, never while the user stands
+  // A standing body under a standing head: the pelvis nearer the truth's
+  // height, and the whole body nearer the truth.
+  EXPECT_LT(on.pelvis_height_error, off.pelvis_height_error);
+  EXPECT_LT(on.body_error, off.body_error);
+}
+
+}  // namespace
+}  // namespace legwork::accent

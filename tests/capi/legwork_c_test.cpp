@@ -491,6 +491,11 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
   EXPECT_NE(std::string(lw_last_error()).find("travel_weight must be between 0 and 100 (0 = off)"), std::string::npos) << lw_last_error();
   s.travel_weight = 0;
+  EXPECT_DOUBLE_EQ(s.max_head_height_diff, legwork::accent::Settings{}.max_head_height_diff);  // ABI 7: the engine's default
+  s.max_head_height_diff = 2.5;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("max_head_height_diff must be between 0 and 2"), std::string::npos) << lw_last_error();
+  s.max_head_height_diff = 0.2;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

@@ -83,6 +83,9 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   o.travel_weight = -2;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "travel_weight -2.000000 is outside [0, 100] (0 = off)");
   o.travel_weight = 4;
+  o.max_head_height_diff = 3;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "max_head_height_diff 3.000000 is outside [0, 2] (0 = off)");
+  o.max_head_height_diff = 0.2;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];

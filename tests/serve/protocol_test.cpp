@@ -111,6 +111,13 @@ TEST(Protocol, TravelWeightIsAHelloField) {
   EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"travel_weight":4.5})").hello.method.travel_weight, 4.5);
 }
 
+// The head-height gate (accent::Settings::max_head_height_diff) is a hello field; absent, the engine's default.
+TEST(Protocol, HeadHeightGateIsAHelloField) {
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.max_head_height_diff, accent::Settings{}.max_head_height_diff);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"max_head_height_diff":0})").hello.method.max_head_height_diff, 0.0);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"max_head_height_diff":0.3})").hello.method.max_head_height_diff, 0.3);
+}
+
 // The released feet's lift (accent::Settings::foot_lift_height) is a hello field; absent, the engine's default.
 TEST(Protocol, FootLiftHeightIsAHelloField) {
   EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.foot_lift_height, accent::Settings{}.foot_lift_height);

@@ -92,6 +92,13 @@ struct Settings {
   // vertical) differs from the headset's by more than this (degrees; 0 = off):
   // keeps e.g. a lying swimmer's body off an upright user.
   double max_head_tilt_deg = 30.0;
+  // While the user stands upright (head at least 0.8 of their height up),
+  // reject candidates whose head is lower than the user's by more than this
+  // share of body height (head height over standing height, the stored
+  // Travel[3]; 0 = off): keeps a swimmer lying on a bench, whose head may be
+  // as upright as a standing user's, off a standing user. With no candidate
+  // left the engine falls back to the IK body. docs/accent.md, "Head-height gate".
+  double max_head_height_diff = 0.15;
   // Foot locking: the database's per-pose foot contacts, blended over the
   // matched candidates with their weights, say whether a foot is planted (on
   // above contact_on, off below contact_off). A planted foot keeps its world

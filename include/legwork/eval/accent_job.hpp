@@ -25,6 +25,7 @@ struct AccentJob {
   double foot_lock_slack = accent::Settings{}.foot_lock_slack;
   double foot_swing_speed = accent::Settings{}.foot_swing_speed;
   double travel_weight = accent::Settings{}.travel_weight;
+  double max_head_height_diff = accent::Settings{}.max_head_height_diff;
 };
 
 // "fast", "exact", "brute" -> the search mode; throws naming --mode otherwise.
