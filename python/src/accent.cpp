@@ -138,14 +138,21 @@ void bind_settings(pb::module_& m) {
 pb::dict run_dict(AccentRun run) {
   const auto n = static_cast<pb::ssize_t>(run.info.size());
   pb::array_t<int> status(n), match(n);
-  Array weight = new_array({n});
+  Array weight = new_array({n}), contact = new_array({n, 2}), ik_share = new_array({n});
+  pb::array_t<bool> locked({n, static_cast<pb::ssize_t>(2)});
   for (pb::ssize_t i = 0; i < n; ++i) {
+    const Info& info = run.info[static_cast<std::size_t>(i)];
     status.mutable_data()[i] = static_cast<int>(run.status[static_cast<std::size_t>(i)]);
-    match.mutable_data()[i] = static_cast<int>(run.info[static_cast<std::size_t>(i)].match);
-    weight.mutable_data()[i] = run.info[static_cast<std::size_t>(i)].match_weight;
+    match.mutable_data()[i] = static_cast<int>(info.match);
+    weight.mutable_data()[i] = info.match_weight;
+    ik_share.mutable_data()[i] = info.ik_share;
+    for (std::size_t f = 0; f < 2; ++f) {
+      contact.mutable_data()[2 * i + static_cast<pb::ssize_t>(f)] = info.contact[f];
+      locked.mutable_data()[2 * i + static_cast<pb::ssize_t>(f)] = info.foot_locked[f];
+    }
   }
   return pb::dict("motion"_a = std::move(run.output), "status"_a = status, "match"_a = match, "match_weight"_a = weight,
-                  "seconds"_a = run.seconds);
+                  "contact"_a = contact, "foot_locked"_a = locked, "ik_share"_a = ik_share, "seconds"_a = run.seconds);
 }
 
 pb::dict accentuate_arrays(const Database& db, const pb::handle& head_position, const pb::handle& head_rotation,
@@ -178,7 +185,8 @@ void bind_runtime(pb::module_& m) {
         "(frames, 3) metres (wrists) at `fps` Hz (time = frame / fps; NaN rows = lost tracking). Returns a dict:\n"
         "motion (legwork.core.Motion on the model's skeleton, one frame per input frame), status (int32 (frames,)\n"
         "UpdateStatus values), match (int32 (frames,) MatchStatus values), match_weight (float64 (frames,)),\n"
-        "seconds (time in update()).");
+        "contact (float64 (frames, 2): the blended candidates' foot contact, left, right), foot_locked (bool\n"
+        "(frames, 2)), ik_share (float64 (frames,): the IK body's share), seconds (time in update()).");
   m.def(
       "accentuate_motion", [](const Database& db, const Settings& s, const Motion& input) { return run_dict(accentuate_motion(db, s, input)); },
       "db"_a, "settings"_a, "input"_a,

@@ -233,6 +233,29 @@ def test_head_height_gate_setting_equals_the_cli_option(cli, db, db_path, truth,
         accent.make_model(db, s)
 
 
+def test_run_reports_foot_contacts_locks_and_the_ik_share(db, truth):
+    """The run's dict carries, per frame, the blended candidates' foot contact, whether each foot is planted
+    (locked) and the IK body's share: on the held-out walk both feet plant, in turns, only where the contact
+    says so (a planted foot lets go below contact_off), and a planted ankle moves less than a free one."""
+    s = settings_for(truth)
+    run = accent.accentuate_motion(db, s, truth)
+    n = len(run["status"])
+    contact, locked, share = run["contact"], run["foot_locked"], run["ik_share"]
+    assert contact.shape == (n, 2) and locked.shape == (n, 2) and share.shape == (n,)
+    assert locked.dtype == bool
+    assert ((contact >= 0) & (contact <= 1)).all() and ((share >= 0) & (share <= 1)).all()
+    for f in range(2):
+        assert 0.1 * n < locked[:, f].sum() < 0.9 * n  # each foot plants and lifts
+        assert (contact[locked[:, f], f] > s.contact_off).all()
+    assert (locked[:, 0] != locked[:, 1]).sum() > 0.2 * n  # in turns, not together
+    pos = run["motion"].positions()
+    roles = run["motion"].skeleton.roles
+    for f, name in enumerate(["left_ankle", "right_ankle"]):
+        step = np.linalg.norm(np.diff(pos[:, roles[name], :], axis=0), axis=1)
+        held = locked[1:, f] & locked[:-1, f]
+        assert step[held].mean() < 0.5 * step[~held].mean()
+
+
 def test_bad_settings_and_arrays(db, truth):
     s = accent.Settings()
     s.classes = ["walking", "flying"]
