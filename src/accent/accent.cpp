@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace legwork::accent {
 namespace {
@@ -318,17 +319,19 @@ constexpr double kUprightHeadHeight = 0.8;
 int posture_gate(const Model& model, const State& st, std::span<Match> m) {
   const Database& db = model.database();
   const Settings& cfg = model.settings();
+  const bool tilt = cfg.max_head_tilt_deg > 0;
   const double user_tilt = std::acos(std::clamp((st.last_head_rot * Vec3::UnitY()).y(), -1.0, 1.0));
-  const double limit = cfg.max_head_tilt_deg > 0 ? deg2rad(cfg.max_head_tilt_deg) : 10.0;
+  const double limit = deg2rad(cfg.max_head_tilt_deg);
   const float lowest = cfg.max_head_height_diff > 0 && st.travel[3] >= kUprightHeadHeight
                            ? static_cast<float>(st.travel[3] - cfg.max_head_height_diff)
-                           : -1e9f;
+                           : std::numeric_limits<float>::lowest();
+  auto tilted = [&](int window) {
+    const Vec3 up = db.head_up(static_cast<int>(db.source(window).pose));
+    return std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) > limit;
+  };
   std::size_t kept = 0;
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    const Vec3 up = db.head_up(static_cast<int>(db.source(m[i].window).pose));
-    if (std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) <= limit && db.travel(m[i].window)[3] >= lowest)
-      m[kept++] = m[i];
-  }
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (db.travel(m[i].window)[3] >= lowest && !(tilt && tilted(m[i].window))) m[kept++] = m[i];
   return static_cast<int>(kept);
 }
 
