@@ -110,6 +110,11 @@ void register_run(CLI::App& parent) {
                   "seconds for the spring filter on the blended rotations to halve an error (0 = the paper's EWMA only)")
       ->capture_default_str()
       ->check(non_negative_number());
+  cmd->add_option("--smooth-feedforward", a->smooth_feedforward,
+                  "share of the matched candidates' own motion the smoothing plays forward, so a moving body does not "
+                  "trail its target (0 = none: the filters pull toward a still target and lag)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--no-limits", a->no_limits, "skip the joint angle limits");
   cmd->add_option("--height", a->height, "user height in metres (default: the BVH's standing height, or the database's)")->check(positive_number());
   cmd->add_option("--exaggerate", a->exaggerate, "scale the input hands about the head before matching")->check(positive_number());

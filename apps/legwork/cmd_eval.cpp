@@ -28,7 +28,7 @@ struct EngineOption {
   double lo, hi;
   const char* help;
 };
-constexpr std::array<EngineOption, 13> kEngineOptions{{
+constexpr std::array<EngineOption, 15> kEngineOptions{{
     {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
     {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
     {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
@@ -54,6 +54,10 @@ constexpr std::array<EngineOption, 13> kEngineOptions{{
      "engine: blended candidate contact below which a locked foot lets go (0..1)"},
     {"--max-head-height-diff", &accent::Settings::max_head_height_diff, 0.0, 2.0,
      "engine: reject candidates whose head height over body height differs from the user's by more than this (0 = off)"},
+    {"--smooth-halflife", &accent::Settings::smooth_halflife, 0.0, 1.0,
+     "engine: half-life (s) of the spring filter on the synthesized body (0 = the paper's EWMA only)"},
+    {"--smooth-feedforward", &accent::Settings::smooth_feedforward, 0.0, 1.0,
+     "engine: share of the matched candidates' own motion the smoothing plays forward (0 = none: it lags a moving body)"},
 }};
 
 struct EvalArgs {

@@ -40,6 +40,10 @@ static class Checks
         Expect.That("head height gate default", bad.MaxHeadHeightDiff == 0.15, "MaxHeadHeightDiff " + bad.MaxHeadHeightDiff);
         bad.MaxHeadHeightDiff = 3;
         Expect.Throws<LegworkException>("head height gate out of range", () => Model.CreateAccent(db, bad), "max_head_height_diff must be between 0 and 2");
+        bad = AccentSettings.Default();
+        Expect.That("smoothing feedforward default", bad.SmoothFeedforward == 1, "SmoothFeedforward " + bad.SmoothFeedforward);
+        bad.SmoothFeedforward = 1.5;
+        Expect.Throws<LegworkException>("smoothing feedforward out of range", () => Model.CreateAccent(db, bad), "smooth_feedforward must be between 0 and 1");
 
         Model model = Model.CreateAccent(db, AccentSettings.Default());
         Avatar avatar = Avatar.Create(model);

@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 7u
+#define LW_ABI_VERSION 8u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -154,6 +154,8 @@ typedef struct lw_accent_settings {
                               against the hand features when ranking candidates; 0 = hand features only (ABI 6) */
   double max_head_height_diff; /* (0..2) while the user stands upright, candidates whose head is lower than the
                                   user's by more than this share of body height are rejected; 0 = off (ABI 7) */
+  double smooth_feedforward; /* (0..1) share of the matched candidates' own motion the smoothing plays forward, so a
+                                moving body does not trail its target; 0 = the filters pull toward a still target (ABI 8) */
 } lw_accent_settings;
 LW_API void lw_accent_settings_default(lw_accent_settings* s);
 /* The database must outlive the model. */

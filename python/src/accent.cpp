@@ -109,6 +109,9 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("max_head_height_diff", &Settings::max_head_height_diff,
                      "while the user stands upright, reject candidates whose head is lower than the user's by more than "
                      "this share of body height (0..2; 0 = off)")
+      .def_readwrite("smooth_feedforward", &Settings::smooth_feedforward,
+                     "share (0..1) of the matched candidates' own motion the smoothing plays forward, so a moving body "
+                     "does not trail its target (0 = the filters pull toward a still target and lag)")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
                      "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
       .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")

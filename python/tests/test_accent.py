@@ -256,6 +256,26 @@ def test_run_reports_foot_contacts_locks_and_the_ik_share(db, truth):
         assert step[held].mean() < 0.5 * step[~held].mean()
 
 
+def test_smoothing_feedforward_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path):
+    """Settings.smooth_feedforward is the CLI's --smooth-feedforward: the same motion either way, and a different
+    one from the default's (its effect on a held-out runner is tests/accent's HeldOutRunner test); out of range it
+    is an error naming the setting."""
+    out_bvh = tmp_path / "feedforward.bvh"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh,
+        "--smooth-feedforward", "0")
+    s = settings_for(truth)
+    assert s.smooth_feedforward == pytest.approx(1.0)  # the default
+    default = accent.accentuate_motion(db, s, truth)["motion"]
+    s.smooth_feedforward = 0.0
+    still = accent.accentuate_motion(db, s, truth)["motion"]
+    back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
+    assert np.abs(back.positions() - still.positions()).max() < 2e-4
+    assert np.abs(default.positions() - still.positions()).max() > 0.01
+    s.smooth_feedforward = 1.5
+    with pytest.raises(legwork.Error, match=r"smooth_feedforward must be between 0 and 1"):
+        accent.make_model(db, s)
+
+
 def test_bad_settings_and_arrays(db, truth):
     s = accent.Settings()
     s.classes = ["walking", "flying"]

@@ -66,6 +66,8 @@ void check_settings(const Database& db, const Settings& cfg) {
   }
   if (!(cfg.smooth_halflife >= 0) || !std::isfinite(cfg.smooth_halflife))
     throw Error("accent: smoothing half-life must be >= 0 seconds");
+  if (!std::isfinite(cfg.smooth_feedforward) || cfg.smooth_feedforward < 0 || cfg.smooth_feedforward > 1)
+    throw Error("accent: smooth_feedforward must be between 0 and 1 (the share of the candidates' motion played forward; 0 = off)");
   if (!std::isfinite(cfg.fallback_seconds) || cfg.fallback_seconds < 0)
     throw Error("accent: fallback_seconds must be >= 0");
   if (!std::isfinite(cfg.hand_ik) || cfg.hand_ik < 0 || cfg.hand_ik > 1) throw Error("accent: hand_ik must be in [0, 1]");
@@ -172,6 +174,20 @@ Model make_model(const Database& db, const Settings& settings) {
   mark(Role::LeftClavicle, Role::LeftShoulder, Model::LeftArm);
   mark(Role::RightClavicle, Role::RightShoulder, Model::RightArm);
   m.limit_ = make_limits(skel);
+  {  // Each pose's successor in its trial: the next pose of the same trial and copy, one hop on.
+    struct At { std::uint32_t trial = 0, frame = 0; std::uint8_t mirrored = 0; bool seen = false; };
+    std::vector<At> at(static_cast<std::size_t>(db.pose_count()));
+    for (int w = 0; w < db.window_count(); ++w) {
+      const WindowSource& src = db.source(w);
+      at[src.pose] = {src.trial, src.frame, src.mirrored, true};
+    }
+    m.next_pose_.assign(at.size(), -1);
+    const auto hop = static_cast<std::uint32_t>(db.settings().hop);
+    for (std::size_t p = 0; p + 1 < at.size(); ++p)
+      if (at[p].seen && at[p + 1].seen && at[p + 1].trial == at[p].trial && at[p + 1].mirrored == at[p].mirrored &&
+          at[p + 1].frame == at[p].frame + hop)
+        m.next_pose_[p] = static_cast<int>(p + 1);
+  }
   m.neutral_ = make_neutral(skel);
   m.can_lock_feet_ = true;
   for (Role need : {Role::LeftHip, Role::LeftKnee, Role::LeftAnkle, Role::RightHip, Role::RightKnee, Role::RightAnkle})
@@ -204,7 +220,8 @@ Model make_model(const Database& db, const Settings& settings) {
 
 std::size_t Model::bytes() const {
   const auto nj = static_cast<std::size_t>(skeleton_.joint_count());
-  return sizeof(*this) + class_mask_.size() + allowed_.size() * sizeof(int) + nj * (sizeof(Group) + sizeof(Limit) + sizeof(Quat) + sizeof(Vec3)) +
+  return sizeof(*this) + class_mask_.size() + allowed_.size() * sizeof(int) + next_pose_.size() * sizeof(int) +
+         nj * (sizeof(Group) + sizeof(Limit) + sizeof(Quat) + sizeof(Vec3)) +
          nj * (3 * sizeof(Vec3) + sizeof(int) + 40);
 }
 
@@ -215,6 +232,7 @@ State::State(const Model& model) {
   smoothed = synth = direct = model.neutral();
   spring_rot.assign(n, Quat::Identity());
   spring_vel.assign(n, Vec3::Zero());
+  motion_vel.assign(n, Vec3::Zero());
   model_rot.resize(n);
   model_space.resize(n);
   const auto nc = static_cast<std::size_t>(model.database().class_count());
@@ -236,6 +254,7 @@ void reset(const Model& model, State& s) {
   s.ring_size = 0;
   s.hand_offset = {Vec3(0.2, -0.6, 0.1) * model.scale(), Vec3(-0.2, -0.6, 0.1) * model.scale()};
   s.have_head = s.have_smoothed = s.have_spring = false;
+  std::fill(s.motion_vel.begin(), s.motion_vel.end(), Vec3::Zero());
   s.fallback = 0;
   s.match_count = {0, 0};
   s.match_weight = 0;
@@ -257,7 +276,7 @@ void reset(const Model& model, State& s) {
 
 std::size_t State::bytes() const {
   const auto nj = spring_rot.size();
-  return sizeof(*this) + 3 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Quat) + sizeof(Vec3)) +
+  return sizeof(*this) + 3 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Quat) + 2 * sizeof(Vec3)) +
          nj * (sizeof(Transform) + sizeof(Quat)) +
          class_cost.size() * (2 * sizeof(double) + sizeof(std::array<int, 2>) + 2);
 }
@@ -434,11 +453,21 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
   for (int i = 0; i < got; ++i) {
     const auto iu = static_cast<std::size_t>(i);
     const int win = m[iu].window;
-    const auto root = db.pose_rotations(static_cast<int>(db.source(win).pose));
+    const WindowSource& src = db.source(win);
+    const auto root = db.pose_rotations(static_cast<int>(src.pose));
+    const int next = model.next_pose(static_cast<int>(src.pose));
+    const auto after = next >= 0 ? db.pose_rotations(next) : root;
     st.pose_rot[hu][iu] = root.data();
-    Quat q0(root[0], root[1], root[2], root[3]);
-    if (model.settings().align) q0 = yaw_rotation(align_yaw(query_xz, db.align(win))) * q0;
+    st.next_rot[hu][iu] = after.data();
+    st.ahead[hu][iu] = next >= 0 ? db.settings().speeds[src.speed] / db.settings().hop : 0.0;
+    Quat q0(root[0], root[1], root[2], root[3]), n0(after[0], after[1], after[2], after[3]);
+    if (model.settings().align) {
+      const Quat turn = yaw_rotation(align_yaw(query_xz, db.align(win)));
+      q0 = turn * q0;
+      n0 = turn * n0;
+    }
     st.root_aligned[hu][iu] = q0;
+    st.root_next_aligned[hu][iu] = n0;
     const double d = m[iu].distance;
     st.weight[hu][iu] = 1.0 / (d + 1e-3 * typical);
     wsum += st.weight[hu][iu];
@@ -448,35 +477,51 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
 }
 
 // Blend one joint's rotation over the candidates of the hands in `share`.
-Quat blend_joint(const State& st, int j, const double share[2]) {
+Quat blend_joint(const State& st, int j, const double share[2], Quat& ahead) {
   const auto ju = static_cast<std::size_t>(j);
-  Eigen::Vector4d acc = Eigen::Vector4d::Zero();
+  Eigen::Vector4d acc = Eigen::Vector4d::Zero(), acc_ahead = Eigen::Vector4d::Zero();
   Eigen::Vector4d ref = Eigen::Vector4d::Zero();
   for (int h = 0; h < 2; ++h) {
     if (share[h] == 0) continue;
     const auto hu = static_cast<std::size_t>(h);
     for (int i = 0; i < st.match_count[hu]; ++i) {
       const auto iu = static_cast<std::size_t>(i);
-      Eigen::Vector4d q;
+      Eigen::Vector4d q, n;
       if (j == 0) {
         const Quat& r0 = st.root_aligned[hu][iu];
+        const Quat& n0 = st.root_next_aligned[hu][iu];
         q = {r0.w(), r0.x(), r0.y(), r0.z()};
+        n = {n0.w(), n0.x(), n0.y(), n0.z()};
       } else {
         const float* rot = st.pose_rot[hu][iu];
+        const float* nxt = st.next_rot[hu][iu];
         q = {rot[4 * ju], rot[4 * ju + 1], rot[4 * ju + 2], rot[4 * ju + 3]};
+        n = {nxt[4 * ju], nxt[4 * ju + 1], nxt[4 * ju + 2], nxt[4 * ju + 3]};
       }
       if (ref.isZero()) ref = q;
-      const double wq = share[h] * st.weight[hu][iu];
-      acc += (q.dot(ref) < 0 ? -wq : wq) * q;  // same hemisphere as the first candidate
+      const double wq = q.dot(ref) < 0 ? -share[h] * st.weight[hu][iu] : share[h] * st.weight[hu][iu];  // same hemisphere as the first candidate
+      const double a = st.ahead[hu][iu];
+      acc += wq * q;
+      acc_ahead += wq * ((1.0 - a) * q + (n.dot(q) < 0 ? -a : a) * n);
     }
   }
-  const double len = acc.norm();
+  const double len = acc.norm(), len_ahead = acc_ahead.norm();
+  ahead = len_ahead > 1e-12 ? Quat(acc_ahead[0] / len_ahead, acc_ahead[1] / len_ahead, acc_ahead[2] / len_ahead, acc_ahead[3] / len_ahead)
+                            : Quat::Identity();
   return len > 1e-12 ? Quat(acc[0] / len, acc[1] / len, acc[2] / len, acc[3] / len) : Quat::Identity();
 }
 
 // Blend: left-arm joints from left-hand matches, right-arm joints from
 // right-hand matches, the rest from both; sets the global match weight.
-void blend_matches(const Model& model, State& st) {
+// Time constant (s) of the low-pass on the candidates' motion (smooth_feedforward):
+// the blend's velocity changes at every change of candidates, and played forward
+// unfiltered those steps show as jerk. 0.04-0.07 s measured flat (docs/accent.md).
+constexpr double kMotionSeconds = 0.05;
+// Longest step (s) the candidates' motion is played forward in one frame: after
+// a gap in the input the filters catch up by pulling, not by extrapolating.
+constexpr double kMotionLeadMax = 0.1;
+
+void blend_matches(const Model& model, State& st, double dt) {
   const int nl = st.match_count[0], nr = st.match_count[1];
   auto mean_conf = [&](int h) {
     const auto hu = static_cast<std::size_t>(h);
@@ -486,6 +531,8 @@ void blend_matches(const Model& model, State& st) {
   };
   const double cl = mean_conf(0), cr = mean_conf(1);
   const int n = model.skeleton().joint_count();
+  const double fps = model.database().feature_space().fps;
+  const double follow = 1.0 - std::exp(-dt / kMotionSeconds);
   double weight_total = 0;
   for (int j = 0; j < n; ++j) {
     double share[2] = {0, 0};
@@ -506,7 +553,11 @@ void blend_matches(const Model& model, State& st) {
         break;
     }
     weight_total += joint_weight;
-    st.synth.rotations[static_cast<std::size_t>(j)] = blend_joint(st, j, share);
+    Quat ahead;
+    const Quat now = blend_joint(st, j, share, ahead);
+    st.synth.rotations[static_cast<std::size_t>(j)] = now;
+    // The candidates' own motion: one database frame on, as a rotation rate.
+    st.motion_vel[static_cast<std::size_t>(j)] += follow * (rotation_log(ahead * now.conjugate()) * fps - st.motion_vel[static_cast<std::size_t>(j)]);
   }
   st.match_weight = std::clamp(weight_total / n, 0.0, 1.0);
 }
@@ -656,7 +707,7 @@ bool blend_candidates(const Model& model, State& st, double threshold, double dt
   }
   if (model.recognizes_class()) score_active_class(model, st);
   if (st.match_count[0] == 0 && st.match_count[1] == 0) return false;
-  blend_matches(model, st);
+  blend_matches(model, st, dt);
   blend_contacts(model, st);
   return true;
 }
@@ -781,7 +832,10 @@ void spring_filter(const Model& model, State& st, double dt, PoseRef out) {
   }
   const double y = 2.0 * std::log(2.0) / model.settings().smooth_halflife;  // half the damping
   const double decay = std::exp(-y * dt);
+  // The candidates' motion played forward (smooth_feedforward), as far as the pose is theirs.
+  const double lead = model.settings().smooth_feedforward * (1.0 - st.fallback) * (1.0 - st.ik_share) * std::min(dt, kMotionLeadMax);
   for (std::size_t j = 0; j < n; ++j) {
+    if (lead > 0) st.spring_rot[j] = (rotation_exp(st.motion_vel[j] * lead) * st.spring_rot[j]).normalized();
     const Quat& goal = out.rotations[j];
     const Vec3 j0 = rotation_log(st.spring_rot[j] * goal.conjugate());
     const Vec3 j1 = st.spring_vel[j] + j0 * y;
@@ -964,11 +1018,15 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
   if (!matched) {
     st.match_count = {0, 0};
     st.contact = {0, 0};
+    std::fill(st.motion_vel.begin(), st.motion_vel.end(), Vec3::Zero());
   }
   if (matched) {
     const double w = cfg.smooth && st.have_smoothed ? std::max(st.match_weight, cfg.min_smoothing_weight) : 1.0;
-    for (std::size_t j = 0; j < nj; ++j)
-      st.smoothed.rotations[j] = w >= 1.0 ? st.synth.rotations[j] : slerp(st.smoothed.rotations[j], st.synth.rotations[j], w);
+    const double lead = cfg.smooth_feedforward * std::min(dt, kMotionLeadMax);  // the candidates' motion played forward first
+    for (std::size_t j = 0; j < nj; ++j) {
+      const Quat from = lead > 0 ? Quat(rotation_exp(st.motion_vel[j] * lead) * st.smoothed.rotations[j]) : st.smoothed.rotations[j];
+      st.smoothed.rotations[j] = w >= 1.0 ? st.synth.rotations[j] : slerp(from, st.synth.rotations[j], w);
+    }
     st.have_smoothed = true;
   } else {
     st.match_weight = 0;

@@ -278,7 +278,7 @@ void lw_accent_settings_default(lw_accent_settings* s) {
   const accent::Settings d;
   *s = lw_accent_settings{nullptr, d.k_left, d.exaggeration, d.user_height, d.hand_ik, d.smooth_halflife, d.recognize_class ? 1 : 0,
                            d.foot_lift_height, d.foot_lock_slack, d.foot_swing_speed, d.travel_weight,
-                           d.max_head_height_diff};
+                           d.max_head_height_diff, d.smooth_feedforward};
 }
 
 }  // extern "C"
@@ -301,6 +301,7 @@ std::string accent_settings(const lw_accent_settings* s, accent::Settings& cfg) 
   cfg.foot_swing_speed = s->foot_swing_speed;  // checked by make_model
   cfg.travel_weight = s->travel_weight;        // checked by make_model
   cfg.max_head_height_diff = s->max_head_height_diff;  // checked by make_model
+  cfg.smooth_feedforward = s->smooth_feedforward;      // checked by make_model
   if (s->classes) {
     std::string cur;
     for (const char* c = s->classes;; ++c) {

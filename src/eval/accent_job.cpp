@@ -80,6 +80,7 @@ void run_accent_job(const AccentJob& a) {
   cfg.align = !a.no_align;
   cfg.smooth = !a.no_smooth;
   cfg.smooth_halflife = a.smooth_halflife;
+  cfg.smooth_feedforward = a.smooth_feedforward;
   cfg.joint_limits = !a.no_limits;
   cfg.exaggeration = a.exaggerate;
   cfg.classes = io::split_commas(a.classes);

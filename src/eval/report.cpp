@@ -400,6 +400,8 @@ json report_json(const EvalResult& r) {
                         {"threshold", v.config.threshold},
                         {"align", v.config.align},
                         {"smooth", v.config.smooth},
+                        {"smooth_halflife", v.config.smooth_halflife},
+                        {"smooth_feedforward", v.config.smooth_feedforward},
                         {"foot_lock", v.config.foot_lock},
                         {"foot_lock_follow_seconds", v.config.foot_lock_follow_seconds},
                         {"foot_lift_height", v.config.foot_lift_height},

@@ -128,6 +128,7 @@ void accent_options(const MethodOptions& opt, accent::Settings& c) {
   c.foot_swing_speed = opt.foot_swing_speed;
   c.travel_weight = opt.travel_weight;
   c.max_head_height_diff = opt.max_head_height_diff;
+  c.smooth_feedforward = opt.smooth_feedforward;
   c.exaggeration = opt.exaggeration;
   c.user_height = opt.user_height;
 }
@@ -247,6 +248,8 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("travel_weight " + std::to_string(opt.travel_weight) + " is outside [0, 100] (0 = off)");
   if (!(opt.max_head_height_diff >= 0 && opt.max_head_height_diff <= 2))
     throw Error("max_head_height_diff " + std::to_string(opt.max_head_height_diff) + " is outside [0, 2] (0 = off)");
+  if (!(opt.smooth_feedforward >= 0 && opt.smooth_feedforward <= 1))
+    throw Error("smooth_feedforward " + std::to_string(opt.smooth_feedforward) + " is outside [0, 1] (0 = off)");
   if (!(opt.foot_swing_speed >= 0 && opt.foot_swing_speed <= 10))
     throw Error("foot_swing_speed " + std::to_string(opt.foot_swing_speed) + " m/s is outside [0, 10]");
   if (!(opt.user_height == 0 || (opt.user_height >= kMinUserHeight && opt.user_height <= kMaxUserHeight))) {

@@ -95,6 +95,7 @@ Hello parse_hello(const json& j) {
   if (auto tw = j.find("travel_weight"); tw != j.end()) h.method.travel_weight = number(*tw, "hello.travel_weight");
   if (auto hd = j.find("max_head_height_diff"); hd != j.end())
     h.method.max_head_height_diff = number(*hd, "hello.max_head_height_diff");
+  if (auto sf = j.find("smooth_feedforward"); sf != j.end()) h.method.smooth_feedforward = number(*sf, "hello.smooth_feedforward");
   if (auto fw = j.find("foot_swing_speed"); fw != j.end()) h.method.foot_swing_speed = number(*fw, "hello.foot_swing_speed");
   if (auto u = j.find("user_height"); u != j.end() && !u->is_null()) h.method.user_height = number(*u, "hello.user_height");
   if (auto mp = j.find("mapping"); mp != j.end() && !mp->is_null()) {

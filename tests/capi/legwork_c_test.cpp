@@ -496,6 +496,11 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
   EXPECT_NE(std::string(lw_last_error()).find("max_head_height_diff must be between 0 and 2"), std::string::npos) << lw_last_error();
   s.max_head_height_diff = 0.2;
+  EXPECT_DOUBLE_EQ(s.smooth_feedforward, legwork::accent::Settings{}.smooth_feedforward);  // ABI 8: the engine's default
+  s.smooth_feedforward = -0.5;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("smooth_feedforward must be between 0 and 1"), std::string::npos) << lw_last_error();
+  s.smooth_feedforward = 0.5;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

@@ -86,6 +86,9 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   o.max_head_height_diff = 3;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "max_head_height_diff 3.000000 is outside [0, 2] (0 = off)");
   o.max_head_height_diff = 0.2;
+  o.smooth_feedforward = 2;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "smooth_feedforward 2.000000 is outside [0, 1] (0 = off)");
+  o.smooth_feedforward = 0.5;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];

@@ -118,6 +118,14 @@ TEST(Protocol, HeadHeightGateIsAHelloField) {
   EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"max_head_height_diff":0.3})").hello.method.max_head_height_diff, 0.3);
 }
 
+// Playing the candidates' motion forward in the smoothing (accent::Settings::smooth_feedforward) is a hello
+// field; absent, the engine's default.
+TEST(Protocol, SmoothFeedforwardIsAHelloField) {
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.smooth_feedforward, accent::Settings{}.smooth_feedforward);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"smooth_feedforward":0})").hello.method.smooth_feedforward, 0.0);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"smooth_feedforward":0.5})").hello.method.smooth_feedforward, 0.5);
+}
+
 // The released feet's lift (accent::Settings::foot_lift_height) is a hello field; absent, the engine's default.
 TEST(Protocol, FootLiftHeightIsAHelloField) {
   EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.foot_lift_height, accent::Settings{}.foot_lift_height);

@@ -63,6 +63,13 @@ struct Settings {
   bool smooth = true;
   double smooth_halflife = 0.08;  // seconds the spring takes to halve an error (0.06 before the swing clearance); 0 = EWMA only (the paper)
   double min_smoothing_weight = 0.1;  // lower bound on w so the pose never freezes
+  // Share (0..1) of the matched candidates' own motion played forward in the
+  // smoothing: the EWMA and the spring filter advance their pose by the
+  // blended candidates' joint velocities (each candidate's pose one database
+  // frame ahead in its trial) before they pull toward this frame's blend, so
+  // a steadily moving body no longer lags behind its target. 0 = the filters
+  // pull toward a still target (before).
+  double smooth_feedforward = 1.0;
   double user_height = 0;    // metres; 0 = the database skeleton's height
   double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
   std::vector<std::string> classes;  // activity classes to match (empty = all)
@@ -209,6 +216,8 @@ class Model {
   // The full-body IK model on skeleton() (null when that skeleton cannot take
   // one, or the IK blend is off).
   const ik::Model* ik_model() const { return ik_.get(); }
+  // The pose one hop later in the same trial (-1 at a trial's last window).
+  int next_pose(int pose) const { return next_pose_[static_cast<std::size_t>(pose)]; }
   // Model bytes (shared by every avatar of this model).
   std::size_t bytes() const;
 
@@ -223,6 +232,7 @@ class Model {
   bool recognizes_ = false;
   std::vector<Group> group_;
   std::vector<Limit> limit_;
+  std::vector<int> next_pose_;
   Pose neutral_;
   std::array<ik::TwoBoneChain, 2> leg_{};
   std::array<double, 2> leg_length_{0, 0};
@@ -301,10 +311,14 @@ struct State {
   Pose smoothed;                // EWMA output
   std::vector<Quat> spring_rot; // spring filter: filtered local rotations...
   std::vector<Vec3> spring_vel; // ...and their angular velocities
+  std::vector<Vec3> motion_vel; // the blended candidates' joint angular velocities (rad/s; smooth_feedforward)
   // Scratch (no meaning between frames).
   std::array<Match, 2 * kMaxK> candidates{};  // the travel re-rank's candidates
   std::array<float, 2 * kMaxK> candidate_cost{};
   std::array<std::array<Quat, kMaxK>, 2> root_aligned{};
+  std::array<std::array<Quat, kMaxK>, 2> root_next_aligned{};
+  std::array<std::array<const float*, kMaxK>, 2> next_rot{};  // each candidate's next pose (its own at a trial's end)
+  std::array<std::array<double, kMaxK>, 2> ahead{};  // share of the way to the next pose one database frame on
   std::array<std::array<double, kMaxK>, 2> weight{}, confidence{};
   std::array<std::array<const float*, kMaxK>, 2> pose_rot{};  // each candidate's pose rotations
   std::vector<Quat> model_rot;

@@ -21,6 +21,7 @@ struct AccentJob {
   int k = accent::Settings{}.k_left, k_left = -1, k_right = -1;
   double threshold = 6.0, height = 0, exaggerate = 1.0, hand_ik = accent::Settings{}.hand_ik, max_tilt = accent::Settings{}.max_head_tilt_deg;
   double smooth_halflife = accent::Settings{}.smooth_halflife;
+  double smooth_feedforward = accent::Settings{}.smooth_feedforward;
   double foot_lift_height = accent::Settings{}.foot_lift_height;
   double foot_lock_slack = accent::Settings{}.foot_lock_slack;
   double foot_swing_speed = accent::Settings{}.foot_swing_speed;

@@ -51,6 +51,8 @@ struct MethodOptions {
   double travel_weight = 2.0;
   // accent (and combined's upper body): accent::Settings::max_head_height_diff, the engine's default (0 = off).
   double max_head_height_diff = 0.15;
+  // accent (and combined's upper body): accent::Settings::smooth_feedforward, the engine's default (0 = off).
+  double smooth_feedforward = 1.0;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
   std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)
