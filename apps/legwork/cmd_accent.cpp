@@ -110,6 +110,11 @@ void register_run(CLI::App& parent) {
                   "seconds for the spring filter on the blended rotations to halve an error (0 = the paper's EWMA only)")
       ->capture_default_str()
       ->check(non_negative_number());
+  cmd->add_option("--lying-root-smoothing", a->lying_root_smoothing,
+                  "times the spring's half-life on the root for a lying user (head at most 0.5 of their height up), "
+                  "so a swimmer's body does not wobble its feet across the floor (1 = off)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 20.0));
   cmd->add_option("--smooth-feedforward", a->smooth_feedforward,
                   "share of the matched candidates' own motion the smoothing plays forward, so a moving body does not "
                   "trail its target (0 = none: the filters pull toward a still target and lag)")

@@ -28,7 +28,7 @@ struct EngineOption {
   double lo, hi;
   const char* help;
 };
-constexpr std::array<EngineOption, 15> kEngineOptions{{
+constexpr std::array<EngineOption, 16> kEngineOptions{{
     {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
     {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
     {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
@@ -58,6 +58,8 @@ constexpr std::array<EngineOption, 15> kEngineOptions{{
      "engine: half-life (s) of the spring filter on the synthesized body (0 = the paper's EWMA only)"},
     {"--smooth-feedforward", &accent::Settings::smooth_feedforward, 0.0, 1.0,
      "engine: share of the matched candidates' own motion the smoothing plays forward (0 = none: it lags a moving body)"},
+    {"--lying-root-smoothing", &accent::Settings::lying_root_smoothing, 1.0, 20.0,
+     "engine: times the spring's half-life on the root for a lying user (1 = off)"},
 }};
 
 struct EvalArgs {

@@ -85,6 +85,7 @@ namespace Legwork
         public double TravelWeight;   // (0..100) weight of the user's head travel against the hand features; 0 = off (ABI 6)
         public double MaxHeadHeightDiff; // (0..2) an upright user's candidates at most this share of height lower in the head; 0 = off (ABI 7)
         public double SmoothFeedforward; // (0..1) share of the candidates' own motion the smoothing plays forward; 0 = off, lags (ABI 8)
+        public double LyingRootSmoothing; // (1..20) times the root's smoothing half-life for a lying user; 1 = off (ABI 9)
 
         public static AccentSettings Default()
         {
@@ -184,7 +185,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 8;
+        public const uint AbiVersion = 9;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

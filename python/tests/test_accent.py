@@ -276,6 +276,16 @@ def test_smoothing_feedforward_setting_equals_the_cli_option(cli, db, db_path, t
         accent.make_model(db, s)
 
 
+def test_lying_root_smoothing_setting_is_checked(db, truth):
+    """Settings.lying_root_smoothing (the CLI's --lying-root-smoothing): the default, and out of range an error
+    naming the setting (its effect on a lying swimmer is tests/accent's ALyingUsersFeetWobbleLess)."""
+    s = settings_for(truth)
+    assert s.lying_root_smoothing == pytest.approx(4.0)
+    s.lying_root_smoothing = 0.5
+    with pytest.raises(legwork.Error, match=r"lying_root_smoothing must be between 1 and 20"):
+        accent.make_model(db, s)
+
+
 def test_bad_settings_and_arrays(db, truth):
     s = accent.Settings()
     s.classes = ["walking", "flying"]

@@ -66,6 +66,8 @@ void check_settings(const Database& db, const Settings& cfg) {
   }
   if (!(cfg.smooth_halflife >= 0) || !std::isfinite(cfg.smooth_halflife))
     throw Error("accent: smoothing half-life must be >= 0 seconds");
+  if (!std::isfinite(cfg.lying_root_smoothing) || cfg.lying_root_smoothing < 1 || cfg.lying_root_smoothing > 20)
+    throw Error("accent: lying_root_smoothing must be between 1 and 20 (times the root's smoothing half-life for a lying user; 1 = off)");
   if (!std::isfinite(cfg.smooth_feedforward) || cfg.smooth_feedforward < 0 || cfg.smooth_feedforward > 1)
     throw Error("accent: smooth_feedforward must be between 0 and 1 (the share of the candidates' motion played forward; 0 = off)");
   if (!std::isfinite(cfg.fallback_seconds) || cfg.fallback_seconds < 0)
@@ -327,6 +329,8 @@ void window_at(const Model& model, const State& st, int hand, HandWindow& out) {
 // A user whose head is at least this share of their standing height up is
 // upright (standing, walking, running: 0.90-0.97 in the shared trials).
 constexpr double kUprightHeadHeight = 0.8;
+// ... and one whose head is at most this share up is lying (Settings::lying_root_smoothing).
+constexpr double kLyingHeadHeight = 0.5;
 
 // Posture gate: keeps (in order, at the front) the candidates whose head is
 // about as upright as the user's (yaw-free test, max_head_tilt_deg) and, while
@@ -834,13 +838,19 @@ void spring_filter(const Model& model, State& st, double dt, PoseRef out) {
   const double decay = std::exp(-y * dt);
   // The candidates' motion played forward (smooth_feedforward), as far as the pose is theirs.
   const double lead = model.settings().smooth_feedforward * (1.0 - st.fallback) * (1.0 - st.ik_share) * std::min(dt, kMotionLeadMax);
+  // A lying user's root turns slowly (lying_root_smoothing): from a head at 0.8 of
+  // the user's height down to 0.5, the root's half-life grows to that many times.
+  const double head_share = st.last_head.y() / (model.scale() * model.database().height());
+  const double root_factor =
+      1.0 + (model.settings().lying_root_smoothing - 1.0) * smoothstep((kUprightHeadHeight - head_share) / (kUprightHeadHeight - kLyingHeadHeight));
   for (std::size_t j = 0; j < n; ++j) {
     if (lead > 0) st.spring_rot[j] = (rotation_exp(st.motion_vel[j] * lead) * st.spring_rot[j]).normalized();
     const Quat& goal = out.rotations[j];
+    const double yj = j == 0 ? y / root_factor : y, dj = j == 0 ? std::exp(-yj * dt) : decay;
     const Vec3 j0 = rotation_log(st.spring_rot[j] * goal.conjugate());
-    const Vec3 j1 = st.spring_vel[j] + j0 * y;
-    st.spring_rot[j] = (rotation_exp(decay * (j0 + j1 * dt)) * goal).normalized();
-    st.spring_vel[j] = decay * (st.spring_vel[j] - j1 * y * dt);
+    const Vec3 j1 = st.spring_vel[j] + j0 * yj;
+    st.spring_rot[j] = (rotation_exp(dj * (j0 + j1 * dt)) * goal).normalized();
+    st.spring_vel[j] = dj * (st.spring_vel[j] - j1 * yj * dt);
     out.rotations[j] = st.spring_rot[j];
   }
 }

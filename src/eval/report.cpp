@@ -402,6 +402,7 @@ json report_json(const EvalResult& r) {
                         {"smooth", v.config.smooth},
                         {"smooth_halflife", v.config.smooth_halflife},
                         {"smooth_feedforward", v.config.smooth_feedforward},
+                        {"lying_root_smoothing", v.config.lying_root_smoothing},
                         {"foot_lock", v.config.foot_lock},
                         {"foot_lock_follow_seconds", v.config.foot_lock_follow_seconds},
                         {"foot_lift_height", v.config.foot_lift_height},

@@ -129,6 +129,7 @@ void accent_options(const MethodOptions& opt, accent::Settings& c) {
   c.travel_weight = opt.travel_weight;
   c.max_head_height_diff = opt.max_head_height_diff;
   c.smooth_feedforward = opt.smooth_feedforward;
+  c.lying_root_smoothing = opt.lying_root_smoothing;
   c.exaggeration = opt.exaggeration;
   c.user_height = opt.user_height;
 }
@@ -250,6 +251,8 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("max_head_height_diff " + std::to_string(opt.max_head_height_diff) + " is outside [0, 2] (0 = off)");
   if (!(opt.smooth_feedforward >= 0 && opt.smooth_feedforward <= 1))
     throw Error("smooth_feedforward " + std::to_string(opt.smooth_feedforward) + " is outside [0, 1] (0 = off)");
+  if (!(opt.lying_root_smoothing >= 1 && opt.lying_root_smoothing <= 20))
+    throw Error("lying_root_smoothing " + std::to_string(opt.lying_root_smoothing) + " is outside [1, 20] (1 = off)");
   if (!(opt.foot_swing_speed >= 0 && opt.foot_swing_speed <= 10))
     throw Error("foot_swing_speed " + std::to_string(opt.foot_swing_speed) + " m/s is outside [0, 10]");
   if (!(opt.user_height == 0 || (opt.user_height >= kMinUserHeight && opt.user_height <= kMaxUserHeight))) {

@@ -30,9 +30,11 @@ legwork_cli_error(accent_run_foot_lift_range "--foot-lift-height: Value 0.9 not 
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --foot-lift-height 0.9 --out ${O}/x.bvh)
 legwork_cli_error(accent_run_head_height_range "--max-head-height-diff: Value 3 not in range 0\\.0+ to 2\\.0*"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --max-head-height-diff 3 --out ${O}/x.bvh)
+legwork_cli_error(accent_run_lying_root_range "--lying-root-smoothing: Value 0.5 not in range 1\\.0+ to 20\\.0*"
+                 accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --lying-root-smoothing 0.5 --out ${O}/x.bvh)
 legwork_cli_error(accent_run_feedforward_range "--smooth-feedforward: Value 2 not in range 0\\.0+ to 1\\.0*"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --smooth-feedforward 2 --out ${O}/x.bvh)
-set_tests_properties(cli.accent_run_foot_lift cli.accent_run_foot_lift_range cli.accent_run_foot_slack_range cli.accent_run_swing_speed_range cli.accent_run_travel_weight_range cli.accent_run_head_height_range cli.accent_run_feedforward_range
+set_tests_properties(cli.accent_run_foot_lift cli.accent_run_foot_lift_range cli.accent_run_foot_slack_range cli.accent_run_swing_speed_range cli.accent_run_travel_weight_range cli.accent_run_head_height_range cli.accent_run_feedforward_range cli.accent_run_lying_root_range
                      PROPERTIES FIXTURES_REQUIRED accent_db)
 # accent_speed: the figures program of bench/ (built with the tests too).
 add_test(NAME cli.accent_speed COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1

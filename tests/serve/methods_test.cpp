@@ -89,6 +89,9 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   o.smooth_feedforward = 2;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "smooth_feedforward 2.000000 is outside [0, 1] (0 = off)");
   o.smooth_feedforward = 0.5;
+  o.lying_root_smoothing = 0;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "lying_root_smoothing 0.000000 is outside [1, 20] (1 = off)");
+  o.lying_root_smoothing = 2;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];

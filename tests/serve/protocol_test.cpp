@@ -126,6 +126,13 @@ TEST(Protocol, SmoothFeedforwardIsAHelloField) {
   EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"smooth_feedforward":0.5})").hello.method.smooth_feedforward, 0.5);
 }
 
+// A lying user's root smoothing (accent::Settings::lying_root_smoothing) is a hello field; absent, the engine's default.
+TEST(Protocol, LyingRootSmoothingIsAHelloField) {
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.lying_root_smoothing, accent::Settings{}.lying_root_smoothing);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"lying_root_smoothing":1})").hello.method.lying_root_smoothing, 1.0);
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"lying_root_smoothing":8})").hello.method.lying_root_smoothing, 8.0);
+}
+
 // The released feet's lift (accent::Settings::foot_lift_height) is a hello field; absent, the engine's default.
 TEST(Protocol, FootLiftHeightIsAHelloField) {
   EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.foot_lift_height, accent::Settings{}.foot_lift_height);

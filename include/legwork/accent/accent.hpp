@@ -70,6 +70,13 @@ struct Settings {
   // a steadily moving body no longer lags behind its target. 0 = the filters
   // pull toward a still target (before).
   double smooth_feedforward = 1.0;
+  // Times (1..20) the spring's half-life on the root rotation for a lying user
+  // (head at most 0.5 of their height up; from 1 at 0.8 and above): a lying
+  // body turns slowly, and each wobble of its root swings the feet, a body's
+  // length away from the head, across the floor. 4: a lying body's feet are
+  // about four times as far from the head horizontally as a standing one's.
+  // 1 = off (the root smoothed like every joint).
+  double lying_root_smoothing = 4.0;
   double user_height = 0;    // metres; 0 = the database skeleton's height
   double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
   std::vector<std::string> classes;  // activity classes to match (empty = all)

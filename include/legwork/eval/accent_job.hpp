@@ -22,6 +22,7 @@ struct AccentJob {
   double threshold = 6.0, height = 0, exaggerate = 1.0, hand_ik = accent::Settings{}.hand_ik, max_tilt = accent::Settings{}.max_head_tilt_deg;
   double smooth_halflife = accent::Settings{}.smooth_halflife;
   double smooth_feedforward = accent::Settings{}.smooth_feedforward;
+  double lying_root_smoothing = accent::Settings{}.lying_root_smoothing;
   double foot_lift_height = accent::Settings{}.foot_lift_height;
   double foot_lock_slack = accent::Settings{}.foot_lock_slack;
   double foot_swing_speed = accent::Settings{}.foot_swing_speed;
