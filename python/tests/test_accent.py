@@ -197,39 +197,35 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
         accent.make_model(db, s)
 
 
-def test_travel_weight_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path):
-    """Settings.travel_weight is the CLI's --travel-weight: the same motion either way, and it changes the motion
-    (0 = hand features only); out of range it is an error naming the setting."""
-    out_bvh = tmp_path / "travel.bvh"
-    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--travel-weight", "0")
+@pytest.mark.parametrize("name, flag, value, default, changes, bad, message", [
+    # the travel terms' weight (0 = hand features only)
+    ("travel_weight", "--travel-weight", 0.0, 2.0, True, -1.0, r"travel_weight must be between 0 and 100 \(0 = off\)"),
+    # the head-height gate (its effect: tests/accent's AStandingUserGetsNoLyingBodyUnderTheHead)
+    ("max_head_height_diff", "--max-head-height-diff", 0.3, 0.15, False, 2.5,
+     r"max_head_height_diff must be between 0 and 2"),
+    # the candidates' motion played forward in the smoothing (effect: tests/accent's HeldOutRunner)
+    ("smooth_feedforward", "--smooth-feedforward", 0.0, 1.0, True, 1.5, r"smooth_feedforward must be between 0 and 1"),
+    # a lying user's root smoothed longer; the walk stands, so no change (effect: tests/accent's HeldOutLyingSwimmer)
+    ("lying_root_smoothing", "--lying-root-smoothing", 1.0, 4.0, False, 0.5,
+     r"lying_root_smoothing must be between 1 and 20"),
+])
+def test_engine_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path, name, flag, value, default, changes,
+                                              bad, message):
+    """Each of these Settings fields is its CLI option of `accent run`: the same motion either way (and, where the
+    setting acts on the walk, a different one from the default's); out of range it is an error naming the
+    setting."""
+    out_bvh = tmp_path / (name + ".bvh")
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, flag, str(value))
     s = settings_for(truth)
-    assert s.travel_weight == pytest.approx(2.0)  # the default
-    default = accent.accentuate_motion(db, s, truth)["motion"]
-    s.travel_weight = 0.0
-    hands_only = accent.accentuate_motion(db, s, truth)["motion"]
+    assert getattr(s, name) == pytest.approx(default)  # the engine's default
+    before = accent.accentuate_motion(db, s, truth)["motion"]
+    setattr(s, name, value)
+    after = accent.accentuate_motion(db, s, truth)["motion"]
     back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
-    assert np.abs(back.positions() - hands_only.positions()).max() < 2e-4
-    assert np.abs(default.positions() - hands_only.positions()).max() > 1e-3
-    s.travel_weight = -1.0
-    with pytest.raises(legwork.Error, match=r"travel_weight must be between 0 and 100 \(0 = off\)"):
-        accent.make_model(db, s)
-
-
-def test_head_height_gate_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path):
-    """Settings.max_head_height_diff is the CLI's --max-head-height-diff: the same motion either way (its effect on
-    a standing user against lying swimmers is tests/accent's AStandingUserGetsNoLyingBodyUnderTheHead); out of range
-    it is an error naming the setting."""
-    out_bvh = tmp_path / "gate.bvh"
-    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh,
-        "--max-head-height-diff", "0.3")
-    s = settings_for(truth)
-    assert s.max_head_height_diff == pytest.approx(0.15)  # the default
-    s.max_head_height_diff = 0.3
-    gated = accent.accentuate_motion(db, s, truth)["motion"]
-    back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
-    assert np.abs(back.positions() - gated.positions()).max() < 2e-4
-    s.max_head_height_diff = 2.5
-    with pytest.raises(legwork.Error, match=r"max_head_height_diff must be between 0 and 2"):
+    assert np.abs(back.positions() - after.positions()).max() < 2e-4
+    assert (np.abs(before.positions() - after.positions()).max() > 1e-3) == changes
+    setattr(s, name, bad)
+    with pytest.raises(legwork.Error, match=message):
         accent.make_model(db, s)
 
 
@@ -254,36 +250,6 @@ def test_run_reports_foot_contacts_locks_and_the_ik_share(db, truth):
         step = np.linalg.norm(np.diff(pos[:, roles[name], :], axis=0), axis=1)
         held = locked[1:, f] & locked[:-1, f]
         assert step[held].mean() < 0.5 * step[~held].mean()
-
-
-def test_smoothing_feedforward_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path):
-    """Settings.smooth_feedforward is the CLI's --smooth-feedforward: the same motion either way, and a different
-    one from the default's (its effect on a held-out runner is tests/accent's HeldOutRunner test); out of range it
-    is an error naming the setting."""
-    out_bvh = tmp_path / "feedforward.bvh"
-    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh,
-        "--smooth-feedforward", "0")
-    s = settings_for(truth)
-    assert s.smooth_feedforward == pytest.approx(1.0)  # the default
-    default = accent.accentuate_motion(db, s, truth)["motion"]
-    s.smooth_feedforward = 0.0
-    still = accent.accentuate_motion(db, s, truth)["motion"]
-    back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
-    assert np.abs(back.positions() - still.positions()).max() < 2e-4
-    assert np.abs(default.positions() - still.positions()).max() > 0.01
-    s.smooth_feedforward = 1.5
-    with pytest.raises(legwork.Error, match=r"smooth_feedforward must be between 0 and 1"):
-        accent.make_model(db, s)
-
-
-def test_lying_root_smoothing_setting_is_checked(db, truth):
-    """Settings.lying_root_smoothing (the CLI's --lying-root-smoothing): the default, and out of range an error
-    naming the setting (its effect on a lying swimmer is tests/accent's ALyingUsersFeetWobbleLess)."""
-    s = settings_for(truth)
-    assert s.lying_root_smoothing == pytest.approx(4.0)
-    s.lying_root_smoothing = 0.5
-    with pytest.raises(legwork.Error, match=r"lying_root_smoothing must be between 1 and 20"):
-        accent.make_model(db, s)
 
 
 def test_bad_settings_and_arrays(db, truth):

@@ -104,40 +104,27 @@ TEST(Protocol, FootSlackAndSwingSpeedAreHelloFields) {
   EXPECT_EQ(given.foot_swing_speed, 0.0);
 }
 
-// The travel terms' weight (accent::Settings::travel_weight) is a hello field; absent, the engine's default.
-TEST(Protocol, TravelWeightIsAHelloField) {
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.travel_weight, accent::Settings{}.travel_weight);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"travel_weight":0})").hello.method.travel_weight, 0.0);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"travel_weight":4.5})").hello.method.travel_weight, 4.5);
-}
-
-// The head-height gate (accent::Settings::max_head_height_diff) is a hello field; absent, the engine's default.
-TEST(Protocol, HeadHeightGateIsAHelloField) {
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.max_head_height_diff, accent::Settings{}.max_head_height_diff);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"max_head_height_diff":0})").hello.method.max_head_height_diff, 0.0);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"max_head_height_diff":0.3})").hello.method.max_head_height_diff, 0.3);
-}
-
-// Playing the candidates' motion forward in the smoothing (accent::Settings::smooth_feedforward) is a hello
-// field; absent, the engine's default.
-TEST(Protocol, SmoothFeedforwardIsAHelloField) {
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.smooth_feedforward, accent::Settings{}.smooth_feedforward);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"smooth_feedforward":0})").hello.method.smooth_feedforward, 0.0);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"smooth_feedforward":0.5})").hello.method.smooth_feedforward, 0.5);
-}
-
-// A lying user's root smoothing (accent::Settings::lying_root_smoothing) is a hello field; absent, the engine's default.
-TEST(Protocol, LyingRootSmoothingIsAHelloField) {
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.lying_root_smoothing, accent::Settings{}.lying_root_smoothing);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"lying_root_smoothing":1})").hello.method.lying_root_smoothing, 1.0);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"lying_root_smoothing":8})").hello.method.lying_root_smoothing, 8.0);
-}
-
-// The released feet's lift (accent::Settings::foot_lift_height) is a hello field; absent, the engine's default.
-TEST(Protocol, FootLiftHeightIsAHelloField) {
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.foot_lift_height, accent::Settings{}.foot_lift_height);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"foot_lift_height":0.1})").hello.method.foot_lift_height, 0.1);
-  EXPECT_EQ(parse_text(R"({"type":"hello","version":1,"foot_lift_height":0})").hello.method.foot_lift_height, 0.0);
+// The accentuation engine's numeric settings that are hello fields: absent, each
+// is the engine's default (accent::Settings); given, the value sent.
+TEST(Protocol, AccentSettingsAreHelloFields) {
+  struct Field {
+    const char* name;
+    double MethodOptions::*option;
+    double engine_default, sent;
+  };
+  const accent::Settings d;
+  for (const Field& f : {Field{"travel_weight", &MethodOptions::travel_weight, d.travel_weight, 4.5},  // the travel terms' weight
+                         Field{"max_head_height_diff", &MethodOptions::max_head_height_diff, d.max_head_height_diff, 0.3},  // head-height gate
+                         Field{"smooth_feedforward", &MethodOptions::smooth_feedforward, d.smooth_feedforward, 0.5},  // the candidates' motion played forward
+                         Field{"lying_root_smoothing", &MethodOptions::lying_root_smoothing, d.lying_root_smoothing, 8},  // a lying user's root
+                         Field{"foot_lift_height", &MethodOptions::foot_lift_height, d.foot_lift_height, 0.1}}) {  // released feet's lift
+    SCOPED_TRACE(f.name);
+    EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.*f.option, f.engine_default);
+    for (double v : {0.0, f.sent}) {
+      const std::string text = std::string(R"({"type":"hello","version":1,")") + f.name + "\":" + std::to_string(v) + "}";
+      EXPECT_EQ(parse_text(text).hello.method.*f.option, v);
+    }
+  }
 }
 
 TEST(Protocol, WalkAndRootAreHelloFields) {
