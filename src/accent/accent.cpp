@@ -515,8 +515,6 @@ Quat blend_joint(const State& st, int j, const double share[2], Quat& ahead) {
   return len > 1e-12 ? Quat(acc[0] / len, acc[1] / len, acc[2] / len, acc[3] / len) : Quat::Identity();
 }
 
-// Blend: left-arm joints from left-hand matches, right-arm joints from
-// right-hand matches, the rest from both; sets the global match weight.
 // Time constant (s) of the low-pass on the candidates' motion (smooth_feedforward):
 // the blend's velocity changes at every change of candidates, and played forward
 // unfiltered those steps show as jerk. 0.04-0.07 s measured flat (docs/accent.md).
@@ -525,6 +523,9 @@ constexpr double kMotionSeconds = 0.05;
 // a gap in the input the filters catch up by pulling, not by extrapolating.
 constexpr double kMotionLeadMax = 0.1;
 
+// Blend: left-arm joints from left-hand matches, right-arm joints from
+// right-hand matches, the rest from both; sets the global match weight and
+// the candidates' own motion (st.motion_vel, low-passed over kMotionSeconds).
 void blend_matches(const Model& model, State& st, double dt) {
   const int nl = st.match_count[0], nr = st.match_count[1];
   auto mean_conf = [&](int h) {
