@@ -156,7 +156,8 @@ void register_run(CLI::App& parent) {
       ->check(CLI::Range(0.0, 100.0));
   cmd->add_option("--max-head-height-diff", a->max_head_height_diff,
                   "while the user stands upright, reject candidates whose head is lower than the user's by more than "
-                  "this share of body height (a lying swimmer under a standing user; 0 = off)")
+                  "this share of body height (a lying swimmer under a standing user); while the user is lower, those "
+                  "whose head is higher by more, unless none would be left (0 = off)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 2.0));
   cmd->add_option("--foot-swing-speed", a->foot_swing_speed,

@@ -45,7 +45,7 @@ static class Checks
         bad.SmoothFeedforward = 1.5;
         Expect.Throws<LegworkException>("smoothing feedforward out of range", () => Model.CreateAccent(db, bad), "smooth_feedforward must be between 0 and 1");
         bad = AccentSettings.Default();
-        Expect.That("lying root smoothing default", bad.LyingRootSmoothing == 4, "LyingRootSmoothing " + bad.LyingRootSmoothing);
+        Expect.That("lying root smoothing default", bad.LyingRootSmoothing == 8, "LyingRootSmoothing " + bad.LyingRootSmoothing);
         bad.LyingRootSmoothing = 0.5;
         Expect.Throws<LegworkException>("lying root smoothing out of range", () => Model.CreateAccent(db, bad), "lying_root_smoothing must be between 1 and 20");
 

@@ -83,7 +83,7 @@ namespace Legwork
         public double FootLockSlack;  // metres (0..1) the synthesized foot may move from a plant before it creeps (ABI 4)
         public double FootSwingSpeed; // m/s (0..10) above which a free foot swings clear of the floor; 0 = off (ABI 4)
         public double TravelWeight;   // (0..100) weight of the user's head travel against the hand features; 0 = off (ABI 6)
-        public double MaxHeadHeightDiff; // (0..2) an upright user's candidates at most this share of height lower in the head; 0 = off (ABI 7)
+        public double MaxHeadHeightDiff; // (0..2) an upright user's candidates at most this share of height lower in the head (a lower user's, higher, unless none would be left); 0 = off (ABI 7)
         public double SmoothFeedforward; // (0..1) share of the candidates' own motion the smoothing plays forward; 0 = off, lags (ABI 8)
         public double LyingRootSmoothing; // (1..20) times the root's smoothing half-life for a lying user; 1 = off (ABI 9)
 

@@ -153,7 +153,9 @@ typedef struct lw_accent_settings {
   double travel_weight;    /* (0..100) weight of the user's head travel (horizontal speed, vertical velocity, height)
                               against the hand features when ranking candidates; 0 = hand features only (ABI 6) */
   double max_head_height_diff; /* (0..2) while the user stands upright, candidates whose head is lower than the
-                                  user's by more than this share of body height are rejected; 0 = off (ABI 7) */
+                                  user's by more than this share of body height are rejected (while the user is
+                                  lower, those whose head is higher by more, unless none would be left); 0 = off
+                                  (ABI 7) */
   double smooth_feedforward; /* (0..1) share of the matched candidates' own motion the smoothing plays forward, so a
                                 moving body does not trail its target; 0 = the filters pull toward a still target (ABI 8) */
   double lying_root_smoothing; /* (1..20) times the spring's half-life on the root for a lying user (head at most

@@ -108,7 +108,8 @@ void bind_settings(pb::module_& m) {
                      "height over body height) against the hand features when ranking candidates (0 = hand features only)")
       .def_readwrite("max_head_height_diff", &Settings::max_head_height_diff,
                      "while the user stands upright, reject candidates whose head is lower than the user's by more than "
-                     "this share of body height (0..2; 0 = off)")
+                     "this share of body height; while the user is lower, those whose head is higher by more, unless "
+                     "none would be left (0..2; 0 = off)")
       .def_readwrite("smooth_feedforward", &Settings::smooth_feedforward,
                      "share (0..1) of the matched candidates' own motion the smoothing plays forward, so a moving body "
                      "does not trail its target (0 = the filters pull toward a still target and lag)")

@@ -206,7 +206,7 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
     # the candidates' motion played forward in the smoothing (effect: tests/accent's HeldOutRunner)
     ("smooth_feedforward", "--smooth-feedforward", 0.0, 1.0, True, 1.5, r"smooth_feedforward must be between 0 and 1"),
     # a lying user's root smoothed longer; the walk stands, so no change (effect: tests/accent's HeldOutLyingSwimmer)
-    ("lying_root_smoothing", "--lying-root-smoothing", 1.0, 4.0, False, 0.5,
+    ("lying_root_smoothing", "--lying-root-smoothing", 1.0, 8.0, False, 0.5,
      r"lying_root_smoothing must be between 1 and 20"),
 ])
 def test_engine_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path, name, flag, value, default, changes,

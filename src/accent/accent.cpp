@@ -337,8 +337,10 @@ constexpr double kLyingHeadHeight = 0.5;
 // the user is upright, not lower than the user's by more than
 // max_head_height_diff of the body's height (the user's st.travel[3] against
 // the window's stored Travel[3]): a lying or crouching body never goes under a
-// standing user's head. A lower user is not gated by height (a swimmer's head
-// height is the bench's, not the stroke's). Returns the number kept.
+// standing user's head. While the user is lower, candidates whose head is
+// higher by more than that are dropped too, unless none would be left (a
+// lying swimmer's head height is partly the bench's: a nearest match a little
+// higher beats the IK body's standing one). Returns the number kept.
 int posture_gate(const Model& model, const State& st, std::span<Match> m) {
   const Database& db = model.database();
   const Settings& cfg = model.settings();
@@ -352,9 +354,17 @@ int posture_gate(const Model& model, const State& st, std::span<Match> m) {
     const Vec3 up = db.head_up(static_cast<int>(db.source(window).pose));
     return std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) > limit;
   };
+  // A lower (lying, kneeling) user: no candidate's head higher by more than the
+  // gate either, unless none would be left.
+  const bool lower = cfg.max_head_height_diff > 0 && st.travel[3] < kUprightHeadHeight;
+  const float highest = static_cast<float>(st.travel[3] + cfg.max_head_height_diff);
+  auto posed = [&](int window) { return !(tilt && tilted(window)) && db.travel(window)[3] >= lowest; };
+  bool cap = false;
+  if (lower)
+    for (std::size_t i = 0; i < m.size() && !cap; ++i) cap = posed(m[i].window) && db.travel(m[i].window)[3] <= highest;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < m.size(); ++i)
-    if (db.travel(m[i].window)[3] >= lowest && !(tilt && tilted(m[i].window))) m[kept++] = m[i];
+    if (posed(m[i].window) && !(cap && db.travel(m[i].window)[3] > highest)) m[kept++] = m[i];
   return static_cast<int>(kept);
 }
 

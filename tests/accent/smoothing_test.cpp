@@ -280,7 +280,7 @@ TEST(HeldOutLyingSwimmer, ALyingUsersRootSmoothedLongerSlidesItsFeetLess) {
   opt.drop_first_frame = true;
   Settings on, off;
   off.lying_root_smoothing = 1;
-  ASSERT_EQ(on.lying_root_smoothing, 4.0);  // the default
+  ASSERT_EQ(on.lying_root_smoothing, 8.0);  // the default
   double slide_on = 0, slide_off = 0, slide_truth = 0, error_on = 0, error_off = 0;
   long frames = 0;
   for (const auto& file : held_out) {
@@ -293,7 +293,7 @@ TEST(HeldOutLyingSwimmer, ALyingUsersRootSmoothedLongerSlidesItsFeetLess) {
   }
   const double w = 1.0 / static_cast<double>(frames);
   std::printf("[ figures  ] subject 126 (bench swimmer, %zu trials, %ld frames) held out: ankle slide near the floor %.2f cm/frame with "
-              "the lying root smoothed 4x, %.2f without (the capture's %.2f); role joints %.2f vs %.2f cm from the truth\n",
+              "the lying root smoothed 8x, %.2f without (the capture's %.2f); role joints %.2f vs %.2f cm from the truth\n",
               held_out.size(), frames, 100 * w * slide_on, 100 * w * slide_off, 100 * w * slide_truth, w * error_on, w * error_off);
   EXPECT_LT(slide_on, slide_off);
   EXPECT_LT(error_on, error_off);

@@ -73,10 +73,10 @@ struct Settings {
   // Times (1..20) the spring's half-life on the root rotation for a lying user
   // (head at most 0.5 of their height up; from 1 at 0.8 and above): a lying
   // body turns slowly, and each wobble of its root swings the feet, a body's
-  // length away from the head, across the floor. 4: a lying body's feet are
-  // about four times as far from the head horizontally as a standing one's.
+  // length away from the head, across the floor. 8: tried 4 and 8 on the
+  // evaluation (docs/accent.md, "A lying user's root smoothed longer").
   // 1 = off (the root smoothed like every joint).
-  double lying_root_smoothing = 4.0;
+  double lying_root_smoothing = 8.0;
   double user_height = 0;    // metres; 0 = the database skeleton's height
   double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
   std::vector<std::string> classes;  // activity classes to match (empty = all)
@@ -106,12 +106,15 @@ struct Settings {
   // vertical) differs from the headset's by more than this (degrees; 0 = off):
   // keeps e.g. a lying swimmer's body off an upright user.
   double max_head_tilt_deg = 30.0;
-  // While the user stands upright (head at least 0.8 of their height up),
-  // reject candidates whose head is lower than the user's by more than this
-  // share of body height (head height over standing height, the stored
-  // Travel[3]; 0 = off): keeps a swimmer lying on a bench, whose head may be
-  // as upright as a standing user's, off a standing user. With no candidate
-  // left the engine falls back to the IK body. docs/accent.md, "Head-height gate".
+  // Head-height gate, share of body height (head height over standing height,
+  // the stored Travel[3]; 0 = off). While the user stands upright (head at
+  // least 0.8 of their height up), reject candidates whose head is lower than
+  // the user's by more than this: keeps a swimmer lying on a bench, whose head
+  // may be as upright as a standing user's, off a standing user (with no
+  // candidate left the engine falls back to the IK body). While the user is
+  // lower, reject those whose head is higher by more than this, unless that
+  // would leave none: keeps a kneeling or standing body off a lying user.
+  // docs/accent.md, "Head-height gate".
   double max_head_height_diff = 0.15;
   // Foot locking: the database's per-pose foot contacts, blended over the
   // matched candidates with their weights, say whether a foot is planted (on

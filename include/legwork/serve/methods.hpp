@@ -54,7 +54,7 @@ struct MethodOptions {
   // accent (and combined's upper body): accent::Settings::smooth_feedforward, the engine's default (0 = off).
   double smooth_feedforward = 1.0;
   // accent (and combined's upper body): accent::Settings::lying_root_smoothing, the engine's default (1 = off).
-  double lying_root_smoothing = 4.0;
+  double lying_root_smoothing = 8.0;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
   std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)
