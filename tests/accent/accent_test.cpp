@@ -421,11 +421,6 @@ TEST_F(HeldOut, ExaggerationWidensTheHandsUnderHandIk) {
   EXPECT_GT(wide, 1.08 * plain);
 }
 
-}  // namespace
-}  // namespace legwork::accent
-
-namespace legwork::accent {
-namespace {
 
 // A database of one trial, every window, no augmentation: the live input of
 // the same trial must land exactly on the database's features.
@@ -643,11 +638,6 @@ TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
           "travel_weight must be between 0 and 100 (0 = off)");
 }
 
-}  // namespace
-}  // namespace legwork::accent
-
-namespace legwork::accent {
-namespace {
 
 // The document's Table-1 classes from the full shared set, one running trial
 // held out: exact search equals brute force on its real queries, and the
@@ -678,11 +668,6 @@ TEST(AccentShared, Table1DatabaseOnAHeldOutRunningTrial) {
   EXPECT_LT(e.right, 0.07);
 }
 
-}  // namespace
-}  // namespace legwork::accent
-
-namespace legwork::accent {
-namespace {
 
 // With legwork::ik in the build, hand_ik = 1 and the direct mapping put the
 // wrists on the controllers (the input is on the database's own rig, so every
@@ -702,11 +687,6 @@ TEST(AccentIk, HandIkAndDirectMappingReachTheRealHands) {
   }
 }
 
-}  // namespace
-}  // namespace legwork::accent
-
-namespace legwork::accent {
-namespace {
 
 TEST(AccentTilt, MatchedHeadsAreAboutAsUprightAsTheHeadset) {
   // Swimmers (head near horizontal) next to walkers: an upright walker must
@@ -732,11 +712,6 @@ TEST(AccentTilt, MatchedHeadsAreAboutAsUprightAsTheHeadset) {
   EXPECT_GT(checked, 500);
 }
 
-}  // namespace
-}  // namespace legwork::accent
-
-namespace legwork::accent {
-namespace {
 
 // Head-height gate (Settings::max_head_height_diff) on the shared swimming
 // trials: a standing swimmer (79_02, the repo's sample) against a database of
@@ -804,11 +779,6 @@ TEST(AccentShared, AStandingUserGetsNoLyingBodyUnderTheHead) {
   EXPECT_LT(on.body_error, off.body_error);
 }
 
-}  // namespace
-}  // namespace legwork::accent
-
-namespace legwork::accent {
-namespace {
 
 // The head-height gate's other side: the swimmers lying on a bench in
 // subject 125's trials (every one; subject 125 in no database trial) against
@@ -819,15 +789,8 @@ namespace {
 TEST(AccentShared, ALyingUserGetsFewStandingBodiesAboveTheHead) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const std::string data = testdata::shared_cmu().string();
-  std::vector<std::string> exclude, held_out;
-  for (const auto& e : std::filesystem::directory_iterator(data + "/bvh/swimming"))
-    if (e.path().filename().string().rfind("125_", 0) == 0) {
-      exclude.push_back("bvh/swimming/" + e.path().filename().string());
-      held_out.push_back(e.path().string());
-    }
+  const auto [db, held_out] = testing::subject_fold(data, "swimming", "125");
   ASSERT_GE(held_out.size(), 6u);
-  Database db = build_database(load_trials(data, {"swimming"}, exclude), BuildConfig{});
-  db.build_index();
   io::BvhReadOptions opt;
   opt.drop_first_frame = true;
   struct Result {

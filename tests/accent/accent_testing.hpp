@@ -8,6 +8,8 @@
 
 #include "testdata.hpp"
 
+#include <algorithm>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,27 @@ inline Database indexed_database(const std::vector<std::string>& names, const Bu
 // A sample trial at the 90 Hz tracker rate the accentuator runs at.
 inline Motion tracker_rate_trial(const std::string& cls_slash_name) {
   return resample(sample_trial(cls_slash_name).motion, 90.0);
+}
+
+// A cross-subject fold of the shared data (data = its folder): the database
+// of class `cls` without any trial of `subject` ("126": files 126_*.bvh),
+// its search index built, and that subject's trial files (full paths, sorted).
+struct SubjectFold {
+  Database db;
+  std::vector<std::string> held_out;
+};
+inline SubjectFold subject_fold(const std::string& data, const std::string& cls, const std::string& subject) {
+  SubjectFold f;
+  std::vector<std::string> exclude;
+  for (const auto& e : std::filesystem::directory_iterator(data + "/bvh/" + cls))
+    if (e.path().filename().string().rfind(subject + "_", 0) == 0) {
+      exclude.push_back("bvh/" + cls + "/" + e.path().filename().string());
+      f.held_out.push_back(e.path().string());
+    }
+  std::sort(f.held_out.begin(), f.held_out.end());
+  f.db = build_database(load_trials(data, {cls}, exclude), BuildConfig{});
+  f.db.build_index();
+  return f;
 }
 
 // One avatar through the runtime contract (model + state + pose buffer), so

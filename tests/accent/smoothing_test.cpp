@@ -7,6 +7,7 @@
 #include <legwork/core/interpolate.hpp>
 #include <legwork/io/bvh.hpp>
 
+#include "accent_testing.hpp"
 #include "testdata.hpp"
 
 #include <gtest/gtest.h>
@@ -93,14 +94,9 @@ class HeldOutSubject : public ::testing::Test {
     io::BvhReadOptions opt;
     opt.drop_first_frame = true;
     for (const Fold& f : {Fold{"boxing", "14_02"}, Fold{"basketball", "124_03"}}) {
-      const std::string subject = f.held_out.substr(0, f.held_out.find('_'));
-      std::vector<std::string> exclude;
-      for (const auto& e : std::filesystem::directory_iterator(data + "/bvh/" + f.cls))
-        if (e.path().filename().string().rfind(subject + "_", 0) == 0) exclude.push_back("bvh/" + f.cls + "/" + e.path().filename().string());
-      Database db = build_database(load_trials(data, {f.cls}, exclude), BuildConfig{});
-      db.build_index();
-      Motion truth = resample(io::load_bvh(data + "/bvh/" + f.cls + "/" + f.held_out + ".bvh", opt), db.feature_space().fps);
-      cases_->push_back({std::move(db), std::move(truth)});
+      auto fold = testing::subject_fold(data, f.cls, f.held_out.substr(0, f.held_out.find('_')));
+      Motion truth = resample(io::load_bvh(data + "/bvh/" + f.cls + "/" + f.held_out + ".bvh", opt), fold.db.feature_space().fps);
+      cases_->push_back({std::move(fold.db), std::move(truth)});
     }
   }
   static void TearDownTestSuite() { delete cases_; cases_ = nullptr; }
@@ -168,11 +164,6 @@ TEST_F(HeldOutSubject, SmoothingCutsJitterWithoutCostingAccuracy) {
   EXPECT_LT(f_def.mpjve_cms, f_off.mpjve_cms);
 }
 
-}  // namespace
-}  // namespace legwork::accent
-
-namespace legwork::accent {
-namespace {
 
 // Frames (at the motion's rate) by which the output's ankles trail the truth's:
 // the shift s in [0, 30] minimising the mean ankle distance between out(f + s)
@@ -203,11 +194,7 @@ int ankle_lag(const Motion& truth, const Motion& out) {
 TEST(HeldOutRunner, PlayingTheCandidatesForwardTakesOutTheSmoothingsLag) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const std::string data = testdata::shared_cmu().string();
-  std::vector<std::string> exclude;
-  for (const auto& e : std::filesystem::directory_iterator(data + "/bvh/running"))
-    if (e.path().filename().string().rfind("35_", 0) == 0) exclude.push_back("bvh/running/" + e.path().filename().string());
-  Database db = build_database(load_trials(data, {"running"}, exclude), BuildConfig{});
-  db.build_index();
+  const Database db = testing::subject_fold(data, "running", "35").db;
   io::BvhReadOptions opt;
   opt.drop_first_frame = true;
   const Motion truth = resample(io::load_bvh(data + "/bvh/running/35_26.bvh", opt), db.feature_space().fps);
@@ -226,11 +213,6 @@ TEST(HeldOutRunner, PlayingTheCandidatesForwardTakesOutTheSmoothingsLag) {
   EXPECT_LE(f_on.jitter, f_off.jitter);
 }
 
-}  // namespace
-}  // namespace legwork::accent
-
-namespace legwork::accent {
-namespace {
 
 // Horizontal slide per frame of an ankle staying within 3 cm of its own floor
 // level (its 5th-percentile height over the clip): the evaluation's foot
@@ -267,15 +249,8 @@ double floor_slide(const Motion& m) {
 TEST(HeldOutLyingSwimmer, ALyingUsersRootSmoothedLongerSlidesItsFeetLess) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const std::string data = testdata::shared_cmu().string();
-  std::vector<std::string> exclude, held_out;
-  for (const auto& e : std::filesystem::directory_iterator(data + "/bvh/swimming"))
-    if (e.path().filename().string().rfind("126_", 0) == 0) {
-      exclude.push_back("bvh/swimming/" + e.path().filename().string());
-      held_out.push_back(e.path().string());
-    }
+  const auto [db, held_out] = testing::subject_fold(data, "swimming", "126");
   ASSERT_GE(held_out.size(), 10u);
-  Database db = build_database(load_trials(data, {"swimming"}, exclude), BuildConfig{});
-  db.build_index();
   io::BvhReadOptions opt;
   opt.drop_first_frame = true;
   Settings on, off;
