@@ -332,6 +332,10 @@ constexpr double kUprightHeadHeight = 0.8;
 // ... and one whose head is at most this share up is lying (Settings::lying_root_smoothing).
 constexpr double kLyingHeadHeight = 0.5;
 
+// The user's head height over their standing height (the posture gates'
+// Travel[3], the lying root's ramp): in database space, as stored per window.
+double head_share(const Model& model, const Vec3& head) { return head.y() * (1.0 / model.scale()) / model.database().height(); }
+
 // Posture gate: keeps (in order, at the front) the candidates whose head is
 // about as upright as the user's (yaw-free test, max_head_tilt_deg) and, while
 // the user is upright, not lower than the user's by more than
@@ -399,7 +403,7 @@ void live_travel(const Model& model, State& st) {
   };
   const Vec3 a = velocity(kTravelShort), b = velocity(kTravelLong), v = velocity(kTravelVertical);
   st.travel = {static_cast<float>(std::hypot(a.x(), a.z())), static_cast<float>(std::hypot(b.x(), b.z())),
-               static_cast<float>(v.y()), static_cast<float>(now.head.y() * inv_scale / model.database().height())};
+               static_cast<float>(v.y()), static_cast<float>(head_share(model, now.head))};
 }
 
 // Gather: each hand's k nearest windows within the threshold, seeded by the
@@ -851,9 +855,8 @@ void spring_filter(const Model& model, State& st, double dt, PoseRef out) {
   const double lead = model.settings().smooth_feedforward * (1.0 - st.fallback) * (1.0 - st.ik_share) * std::min(dt, kMotionLeadMax);
   // A lying user's root turns slowly (lying_root_smoothing): from a head at 0.8 of
   // the user's height down to 0.5, the root's half-life grows to that many times.
-  const double head_share = st.last_head.y() / (model.scale() * model.database().height());
-  const double root_factor =
-      1.0 + (model.settings().lying_root_smoothing - 1.0) * smoothstep((kUprightHeadHeight - head_share) / (kUprightHeadHeight - kLyingHeadHeight));
+  const double root_factor = 1.0 + (model.settings().lying_root_smoothing - 1.0) *
+                                       smoothstep((kUprightHeadHeight - head_share(model, st.last_head)) / (kUprightHeadHeight - kLyingHeadHeight));
   for (std::size_t j = 0; j < n; ++j) {
     if (lead > 0) st.spring_rot[j] = (rotation_exp(st.motion_vel[j] * lead) * st.spring_rot[j]).normalized();
     const Quat& goal = out.rotations[j];
