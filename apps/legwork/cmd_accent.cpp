@@ -115,6 +115,11 @@ void register_run(CLI::App& parent) {
                   "so a swimmer's body does not wobble its feet across the floor (1 = off)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 20.0));
+  cmd->add_option("--lying-crown", a->lying_crown,
+                  "share of a lying user's candidate yaw taken from the headset's crown (the top of the head points "
+                  "away from the feet), and of the standing IK body taken out (0 = off)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--smooth-feedforward", a->smooth_feedforward,
                   "share of the matched candidates' own motion the smoothing plays forward, so a moving body does not "
                   "trail its target (0 = none: the filters pull toward a still target and lag)")

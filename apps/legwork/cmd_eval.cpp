@@ -28,7 +28,7 @@ struct EngineOption {
   double lo, hi;
   const char* help;
 };
-constexpr std::array<EngineOption, 16> kEngineOptions{{
+constexpr std::array<EngineOption, 17> kEngineOptions{{
     {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
     {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
     {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
@@ -60,6 +60,8 @@ constexpr std::array<EngineOption, 16> kEngineOptions{{
      "engine: share of the matched candidates' own motion the smoothing plays forward (0 = none: it lags a moving body)"},
     {"--lying-root-smoothing", &accent::Settings::lying_root_smoothing, 1.0, 20.0,
      "engine: times the spring's half-life on the root for a lying user (1 = off)"},
+    {"--lying-crown", &accent::Settings::lying_crown, 0.0, 1.0,
+     "engine: share of a lying user's candidate yaw taken from the headset's crown, and of the standing IK body taken out (0 = off)"},
 }};
 
 struct EvalArgs {

@@ -48,6 +48,10 @@ static class Checks
         Expect.That("lying root smoothing default", bad.LyingRootSmoothing == 8, "LyingRootSmoothing " + bad.LyingRootSmoothing);
         bad.LyingRootSmoothing = 0.5;
         Expect.Throws<LegworkException>("lying root smoothing out of range", () => Model.CreateAccent(db, bad), "lying_root_smoothing must be between 1 and 20");
+        bad = AccentSettings.Default();
+        Expect.That("lying crown default", bad.LyingCrown == 1, "LyingCrown " + bad.LyingCrown);
+        bad.LyingCrown = -0.5;
+        Expect.Throws<LegworkException>("lying crown out of range", () => Model.CreateAccent(db, bad), "lying_crown must be between 0 and 1");
 
         Model model = Model.CreateAccent(db, AccentSettings.Default());
         Avatar avatar = Avatar.Create(model);

@@ -86,6 +86,7 @@ namespace Legwork
         public double MaxHeadHeightDiff; // (0..2) an upright user's candidates at most this share of height lower in the head (a lower user's, higher, unless none would be left); 0 = off (ABI 7)
         public double SmoothFeedforward; // (0..1) share of the candidates' own motion the smoothing plays forward; 0 = off, lags (ABI 8)
         public double LyingRootSmoothing; // (1..20) times the root's smoothing half-life for a lying user; 1 = off (ABI 9)
+        public double LyingCrown;      // (0..1) share of a lying user's candidate yaw taken from the headset's crown (and of the standing IK body taken out); 0 = off (ABI 10)
 
         public static AccentSettings Default()
         {
@@ -185,7 +186,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 9;
+        public const uint AbiVersion = 10;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

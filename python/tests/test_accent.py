@@ -208,6 +208,8 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
     # a lying user's root smoothed longer; the walk stands, so no change (effect: tests/accent's HeldOutLyingSwimmer)
     ("lying_root_smoothing", "--lying-root-smoothing", 1.0, 8.0, False, 0.5,
      r"lying_root_smoothing must be between 1 and 20"),
+    # a lying user turned by the headset's crown; the walk stands, so no change (effect: tests/accent's HeldOutBackStroke)
+    ("lying_crown", "--lying-crown", 0.0, 1.0, False, 1.5, r"lying_crown must be between 0 and 1"),
 ])
 def test_engine_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path, name, flag, value, default, changes,
                                               bad, message):

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 namespace legwork::accent {
 namespace {
@@ -68,6 +69,8 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: smoothing half-life must be >= 0 seconds");
   if (!std::isfinite(cfg.lying_root_smoothing) || cfg.lying_root_smoothing < 1 || cfg.lying_root_smoothing > 20)
     throw Error("accent: lying_root_smoothing must be between 1 and 20 (times the root's smoothing half-life for a lying user; 1 = off)");
+  if (!std::isfinite(cfg.lying_crown) || cfg.lying_crown < 0 || cfg.lying_crown > 1)
+    throw Error("accent: lying_crown must be between 0 and 1 (the share of a lying user's candidate yaw taken from the headset's crown; 0 = off)");
   if (!std::isfinite(cfg.smooth_feedforward) || cfg.smooth_feedforward < 0 || cfg.smooth_feedforward > 1)
     throw Error("accent: smooth_feedforward must be between 0 and 1 (the share of the candidates' motion played forward; 0 = off)");
   if (!std::isfinite(cfg.fallback_seconds) || cfg.fallback_seconds < 0)
@@ -336,6 +339,16 @@ constexpr double kLyingHeadHeight = 0.5;
 // Travel[3], the lying root's ramp): in database space, as stored per window.
 double head_share(const Model& model, const Vec3& head) { return head.y() * (1.0 / model.scale()) / model.database().height(); }
 
+// How far the user lies (0..1): 0 with the head at kUprightHeadHeight of their
+// height or higher, rising smoothly to 1 at kLyingHeadHeight and below.
+double lying(const Model& model, const State& st) {
+  return smoothstep((kUprightHeadHeight - head_share(model, st.last_head)) / (kUprightHeadHeight - kLyingHeadHeight));
+}
+
+// A crown (head up axis) this far from vertical (horizontal length of the unit
+// axis, sin 30 degrees) points along a lying body in full (Settings::lying_crown).
+constexpr double kCrownLevel = 0.5;
+
 // Posture gate: keeps (in order, at the front) the candidates whose head is
 // about as upright as the user's (yaw-free test, max_head_tilt_deg) and, while
 // the user is upright, not lower than the user's by more than
@@ -460,7 +473,12 @@ int gather_matches(const Model& model, State& st, int h, double threshold) {
 }
 
 // Align: each candidate's root rotated about y by the weighted closed-form
-// alignment; weights inversely proportional to the match distance.
+// alignment; weights inversely proportional to the match distance. For a
+// lying user (Settings::lying_crown) the yaw moves toward the one that turns
+// the candidate's crown (its head's up axis, horizontally) onto the headset's:
+// lying on the front or the back, the top of the head points away from the
+// feet, where the hands' alignment can turn a body end over end (a back
+// stroke matched against front strokes).
 void align_matches(const Model& model, State& st, int h, double threshold, const AlignXZ& query_xz) {
   const Database& db = model.database();
   const double typical = db.typical_distance();
@@ -468,6 +486,9 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
   const auto& m = st.matches[hu];
   const int got = st.match_count[hu];
   double wsum = 0;
+  const Vec3 user_up = st.last_head_rot * Vec3::UnitY();
+  const double crown_share = model.settings().lying_crown * lying(model, st);
+  const double user_level = std::hypot(user_up.x(), user_up.z());
   for (int i = 0; i < got; ++i) {
     const auto iu = static_cast<std::size_t>(i);
     const int win = m[iu].window;
@@ -480,7 +501,14 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
     st.ahead[hu][iu] = next >= 0 ? db.settings().speeds[src.speed] / db.settings().hop : 0.0;
     Quat q0(root[0], root[1], root[2], root[3]), n0(after[0], after[1], after[2], after[3]);
     if (model.settings().align) {
-      const Quat turn = yaw_rotation(align_yaw(query_xz, db.align(win)));
+      double yaw = align_yaw(query_xz, db.align(win));
+      if (crown_share > 0) {
+        const Vec3 c = db.head_up(static_cast<int>(src.pose));
+        const double w = crown_share * smoothstep(std::min(user_level, std::hypot(c.x(), c.z())) / kCrownLevel);
+        const double crown = std::atan2(user_up.x(), user_up.z()) - std::atan2(c.x(), c.z());
+        yaw += w * std::remainder(crown - yaw, 2 * std::numbers::pi);
+      }
+      const Quat turn = yaw_rotation(yaw);
       q0 = turn * q0;
       n0 = turn * n0;
     }
@@ -855,8 +883,7 @@ void spring_filter(const Model& model, State& st, double dt, PoseRef out) {
   const double lead = model.settings().smooth_feedforward * (1.0 - st.fallback) * (1.0 - st.ik_share) * std::min(dt, kMotionLeadMax);
   // A lying user's root turns slowly (lying_root_smoothing): from a head at 0.8 of
   // the user's height down to 0.5, the root's half-life grows to that many times.
-  const double root_factor = 1.0 + (model.settings().lying_root_smoothing - 1.0) *
-                                       smoothstep((kUprightHeadHeight - head_share(model, st.last_head)) / (kUprightHeadHeight - kLyingHeadHeight));
+  const double root_factor = 1.0 + (model.settings().lying_root_smoothing - 1.0) * lying(model, st);
   for (std::size_t j = 0; j < n; ++j) {
     if (lead > 0) st.spring_rot[j] = (rotation_exp(st.motion_vel[j] * lead) * st.spring_rot[j]).normalized();
     const Quat& goal = out.rotations[j];
@@ -968,10 +995,12 @@ void blend_ik(const Model& model, const TrackerFrame& in, State& st, double dt, 
   else st.ik_distance = d;
   st.have_ik_distance = true;
   const double x = std::clamp((st.ik_distance - cfg.ik_blend_near) / (cfg.ik_blend_far - cfg.ik_blend_near), 0.0, 1.0);
-  // The IK body stands upright: none of it for a user lying down (fading out as the head tilts 60..80 degrees).
+  // The IK body stands upright: none of it for a user lying down (fading out as the head tilts 60..80 degrees,
+  // and with lying_crown, which turns a lying body the right way round, as the head goes down).
   const double up = (st.last_head_rot * Vec3::UnitY()).y();
   const double u = std::clamp((up - 0.174) / (0.5 - 0.174), 0.0, 1.0);
-  st.ik_share = (cfg.ik_blend_min + (cfg.ik_blend_max - cfg.ik_blend_min) * smooth01(x)) * smooth01(u);
+  st.ik_share = (cfg.ik_blend_min + (cfg.ik_blend_max - cfg.ik_blend_min) * smooth01(x)) * smooth01(u) *
+                (1.0 - cfg.lying_crown * lying(model, st));
   if (st.ik_share <= 0) return;
   for (std::size_t j = 0; j < out.rotations.size(); ++j)
     out.rotations[j] = slerp(out.rotations[j], st.ik_pose.rotations[j], st.ik_share);

@@ -278,7 +278,7 @@ void lw_accent_settings_default(lw_accent_settings* s) {
   const accent::Settings d;
   *s = lw_accent_settings{nullptr, d.k_left, d.exaggeration, d.user_height, d.hand_ik, d.smooth_halflife, d.recognize_class ? 1 : 0,
                            d.foot_lift_height, d.foot_lock_slack, d.foot_swing_speed, d.travel_weight,
-                           d.max_head_height_diff, d.smooth_feedforward, d.lying_root_smoothing};
+                           d.max_head_height_diff, d.smooth_feedforward, d.lying_root_smoothing, d.lying_crown};
 }
 
 }  // extern "C"
@@ -303,6 +303,7 @@ std::string accent_settings(const lw_accent_settings* s, accent::Settings& cfg) 
   cfg.max_head_height_diff = s->max_head_height_diff;  // checked by make_model
   cfg.smooth_feedforward = s->smooth_feedforward;      // checked by make_model
   cfg.lying_root_smoothing = s->lying_root_smoothing;  // checked by make_model
+  cfg.lying_crown = s->lying_crown;                    // checked by make_model
   if (s->classes) {
     std::string cur;
     for (const char* c = s->classes;; ++c) {

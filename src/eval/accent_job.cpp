@@ -82,6 +82,7 @@ void run_accent_job(const AccentJob& a) {
   cfg.smooth_halflife = a.smooth_halflife;
   cfg.smooth_feedforward = a.smooth_feedforward;
   cfg.lying_root_smoothing = a.lying_root_smoothing;
+  cfg.lying_crown = a.lying_crown;
   cfg.joint_limits = !a.no_limits;
   cfg.exaggeration = a.exaggerate;
   cfg.classes = io::split_commas(a.classes);

@@ -403,6 +403,7 @@ json report_json(const EvalResult& r) {
                         {"smooth_halflife", v.config.smooth_halflife},
                         {"smooth_feedforward", v.config.smooth_feedforward},
                         {"lying_root_smoothing", v.config.lying_root_smoothing},
+                        {"lying_crown", v.config.lying_crown},
                         {"foot_lock", v.config.foot_lock},
                         {"foot_lock_follow_seconds", v.config.foot_lock_follow_seconds},
                         {"foot_lift_height", v.config.foot_lift_height},

@@ -313,6 +313,7 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
     x.config.smooth_halflife = 0;
     x.config.smooth_feedforward = 0;
     x.config.lying_root_smoothing = 1;
+    x.config.lying_crown = 0;
     x.config.hand_ik = 0;
     x.config.foot_lock = false;
     x.config.ik_blend_min = x.config.ik_blend_max = 0;
@@ -358,6 +359,8 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
       [](Variant& x) { x.config.smooth_feedforward = 0; });
   add("no_lying_root_smoothing", "a lying user's root smoothed like every joint (lying_root_smoothing = 1)",
       [](Variant& x) { x.config.lying_root_smoothing = 1; });
+  add("no_lying_crown", "a lying user's candidates turned by the hands alone, the standing IK body kept (lying_crown = 0)",
+      [](Variant& x) { x.config.lying_crown = 0; });
   add("no_foot_lock", "no foot locking", [](Variant& x) { x.config.foot_lock = false; });
   add("no_ik_blend", "no confidence blend toward the IK body", [](Variant& x) { x.config.ik_blend_min = x.config.ik_blend_max = 0; });
   add("foot_lock_held", "feet held still while planted (no creep)", [](Variant& x) { x.config.foot_lock_follow_seconds = 0; });

@@ -130,6 +130,7 @@ void accent_options(const MethodOptions& opt, accent::Settings& c) {
   c.max_head_height_diff = opt.max_head_height_diff;
   c.smooth_feedforward = opt.smooth_feedforward;
   c.lying_root_smoothing = opt.lying_root_smoothing;
+  c.lying_crown = opt.lying_crown;
   c.exaggeration = opt.exaggeration;
   c.user_height = opt.user_height;
 }
@@ -253,6 +254,8 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("smooth_feedforward " + std::to_string(opt.smooth_feedforward) + " is outside [0, 1] (0 = off)");
   if (!(opt.lying_root_smoothing >= 1 && opt.lying_root_smoothing <= 20))
     throw Error("lying_root_smoothing " + std::to_string(opt.lying_root_smoothing) + " is outside [1, 20] (1 = off)");
+  if (!(opt.lying_crown >= 0 && opt.lying_crown <= 1))
+    throw Error("lying_crown " + std::to_string(opt.lying_crown) + " is outside [0, 1] (0 = off)");
   if (!(opt.foot_swing_speed >= 0 && opt.foot_swing_speed <= 10))
     throw Error("foot_swing_speed " + std::to_string(opt.foot_swing_speed) + " m/s is outside [0, 10]");
   if (!(opt.user_height == 0 || (opt.user_height >= kMinUserHeight && opt.user_height <= kMaxUserHeight))) {

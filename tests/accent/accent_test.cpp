@@ -844,5 +844,64 @@ TEST(AccentShared, ALyingUserGetsFewStandingBodiesAboveTheHead) {
   EXPECT_LT(on.body, off.body);
 }
 
+// Body-axis heading per frame (degrees): the horizontal direction from the
+// ankles' midpoint to the head.
+std::vector<double> body_heading(const Motion& m) {
+  const auto p = joint_positions(m);
+  const auto nj = static_cast<std::size_t>(m.joint_count());
+  const auto at = [&](int f, Role r) { return p[static_cast<std::size_t>(f) * nj + static_cast<std::size_t>(m.skeleton.roles[r])]; };
+  std::vector<double> out;
+  for (int f = 0; f < m.frame_count(); ++f) {
+    const Vec3 axis = at(f, Role::Head) - 0.5 * (at(f, Role::LeftAnkle) + at(f, Role::RightAnkle));
+    out.push_back(rad2deg(std::atan2(axis.x(), axis.z())));
+  }
+  return out;
+}
+
+// A lying body turned by its crown (Settings::lying_crown) on the back
+// strokes of subject 126 (126_01, 126_02), held out against the other
+// swimmers, who swim on their fronts. Matched by the hands alone, the front
+// strokes' bodies were turned end over end (the feet where the head should
+// be), or stood up by the IK blend; turned so that their crown (the top of
+// the head, which points away from the feet lying either way) follows the
+// headset's, the bodies lie the right way round and nearer the truth.
+TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  const std::string data = testdata::shared_cmu().string();
+  const auto [db, held_out] = testing::subject_fold(data, "swimming", "126");
+  ASSERT_GE(held_out.size(), 2u);
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  struct Result {
+    int reversed = 0, frames = 0;  // frames whose body axis points more than 90 degrees from the truth's
+    double body = 0;               // role joints from the truth, frame-weighted
+  };
+  auto run = [&](double crown) {
+    Result r;
+    Settings cfg;
+    cfg.lying_crown = crown;
+    for (const auto& file : {held_out[0], held_out[1]}) {
+      EXPECT_TRUE(file.ends_with("126_01.bvh") || file.ends_with("126_02.bvh")) << file;  // the back strokes
+      const Motion input = resample(io::load_bvh(file, opt), 90.0);
+      cfg.user_height = measure_body(input.skeleton).standing_height;
+      const Motion out = accentuate_motion(db, cfg, input).output;
+      const auto truth = body_heading(input), got = body_heading(out);
+      for (std::size_t f = 0; f < truth.size(); ++f) r.reversed += std::abs(std::remainder(got[f] - truth[f], 360.0)) > 90;
+      r.frames += input.frame_count();
+      r.body += input.frame_count() * measure(input, out).body;
+    }
+    r.body /= r.frames;
+    return r;
+  };
+  const Result on = run(Settings{}.lying_crown), off = run(0.0);
+  ASSERT_EQ(Settings{}.lying_crown, 1.0);  // the default
+  std::printf("[ figures  ] back strokes 126_01 and 126_02 (%d frames) vs the other swimmers (%d windows): body turned more than "
+              "90 degrees from the truth's in %d frames with the crown, %d without; role joints %.1f / %.1f cm from the truth\n",
+              on.frames, db.window_count(), on.reversed, off.reversed, 100 * on.body, 100 * off.body);
+  EXPECT_GT(off.reversed, off.frames / 4);  // the hands alone turn a back stroke round...
+  EXPECT_LT(on.reversed, off.reversed);     // ...the crown much less
+  EXPECT_LT(on.body, off.body);
+}
+
 }  // namespace
 }  // namespace legwork::accent

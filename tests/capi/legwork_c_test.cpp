@@ -506,6 +506,11 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
   EXPECT_NE(std::string(lw_last_error()).find("lying_root_smoothing must be between 1 and 20"), std::string::npos) << lw_last_error();
   s.lying_root_smoothing = 2;
+  EXPECT_DOUBLE_EQ(s.lying_crown, legwork::accent::Settings{}.lying_crown);  // ABI 10: the engine's default
+  s.lying_crown = 1.5;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("lying_crown must be between 0 and 1"), std::string::npos) << lw_last_error();
+  s.lying_crown = 0.5;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

@@ -92,6 +92,9 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   o.lying_root_smoothing = 0;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "lying_root_smoothing 0.000000 is outside [1, 20] (1 = off)");
   o.lying_root_smoothing = 2;
+  o.lying_crown = -1;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "lying_crown -1.000000 is outside [0, 1] (0 = off)");
+  o.lying_crown = 0.5;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];
