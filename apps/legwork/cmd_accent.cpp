@@ -116,8 +116,8 @@ void register_run(CLI::App& parent) {
       ->capture_default_str()
       ->check(CLI::Range(1.0, 20.0));
   cmd->add_option("--lying-crown", a->lying_crown,
-                  "share of a lying user's candidate yaw taken from the headset's crown (the top of the head points "
-                  "away from the feet), and of the standing IK body taken out (0 = off)")
+                  "share of a lying user's candidate turn taken from the headset (yaw from its crown, which points "
+                  "away from the feet; roll from its face), and of the standing IK body taken out (0 = off)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--smooth-feedforward", a->smooth_feedforward,

@@ -61,7 +61,7 @@ constexpr std::array<EngineOption, 17> kEngineOptions{{
     {"--lying-root-smoothing", &accent::Settings::lying_root_smoothing, 1.0, 20.0,
      "engine: times the spring's half-life on the root for a lying user (1 = off)"},
     {"--lying-crown", &accent::Settings::lying_crown, 0.0, 1.0,
-     "engine: share of a lying user's candidate yaw taken from the headset's crown, and of the standing IK body taken out (0 = off)"},
+     "engine: share of a lying user's candidate turn taken from the headset (yaw from its crown, roll from its face), and of the standing IK body taken out (0 = off)"},
 }};
 
 struct EvalArgs {

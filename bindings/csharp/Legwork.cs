@@ -86,7 +86,7 @@ namespace Legwork
         public double MaxHeadHeightDiff; // (0..2) an upright user's candidates at most this share of height lower in the head (a lower user's, higher, unless none would be left); 0 = off (ABI 7)
         public double SmoothFeedforward; // (0..1) share of the candidates' own motion the smoothing plays forward; 0 = off, lags (ABI 8)
         public double LyingRootSmoothing; // (1..20) times the root's smoothing half-life for a lying user; 1 = off (ABI 9)
-        public double LyingCrown;      // (0..1) share of a lying user's candidate yaw taken from the headset's crown (and of the standing IK body taken out); 0 = off (ABI 10)
+        public double LyingCrown;      // (0..1) share of a lying user's candidate turn from the headset (yaw from its crown, roll from its face; the standing IK body taken out); 0 = off (ABI 10)
 
         public static AccentSettings Default()
         {

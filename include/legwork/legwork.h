@@ -160,8 +160,9 @@ typedef struct lw_accent_settings {
                                 moving body does not trail its target; 0 = the filters pull toward a still target (ABI 8) */
   double lying_root_smoothing; /* (1..20) times the spring's half-life on the root for a lying user (head at most
                                   0.5 of their height up); 1 = off (ABI 9) */
-  double lying_crown; /* (0..1) share of a lying user's candidate yaw taken from the headset's crown (the top of the head
-                         points away from the feet), and of the standing IK body taken out; 0 = off (ABI 10) */
+  double lying_crown; /* (0..1) share of a lying user's candidate turn taken from the headset (yaw from its crown, which
+                         points away from the feet; roll from its face), and of the standing IK body taken out; 0 = off
+                         (ABI 10) */
 } lw_accent_settings;
 LW_API void lw_accent_settings_default(lw_accent_settings* s);
 /* The database must outlive the model. */

@@ -117,8 +117,8 @@ void bind_settings(pb::module_& m) {
                      "times (1..20) the spring's half-life on the root for a lying user (head at most 0.5 of their "
                      "height up), so a swimmer's feet do not wobble across the floor (1 = off)")
       .def_readwrite("lying_crown", &Settings::lying_crown,
-                     "share (0..1) of a lying user's candidate yaw taken from the headset's crown (the top of the head "
-                     "points away from the feet), and of the standing IK body taken out (0 = off)")
+                     "share (0..1) of a lying user's candidate turn taken from the headset (yaw from its crown, which "
+                     "points away from the feet; roll from its face), and of the standing IK body taken out (0 = off)")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
                      "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
       .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")

@@ -70,7 +70,7 @@ void check_settings(const Database& db, const Settings& cfg) {
   if (!std::isfinite(cfg.lying_root_smoothing) || cfg.lying_root_smoothing < 1 || cfg.lying_root_smoothing > 20)
     throw Error("accent: lying_root_smoothing must be between 1 and 20 (times the root's smoothing half-life for a lying user; 1 = off)");
   if (!std::isfinite(cfg.lying_crown) || cfg.lying_crown < 0 || cfg.lying_crown > 1)
-    throw Error("accent: lying_crown must be between 0 and 1 (the share of a lying user's candidate yaw taken from the headset's crown; 0 = off)");
+    throw Error("accent: lying_crown must be between 0 and 1 (the share of a lying user's candidate turn taken from the headset: yaw from its crown, roll from its face; 0 = off)");
   if (!std::isfinite(cfg.smooth_feedforward) || cfg.smooth_feedforward < 0 || cfg.smooth_feedforward > 1)
     throw Error("accent: smooth_feedforward must be between 0 and 1 (the share of the candidates' motion played forward; 0 = off)");
   if (!std::isfinite(cfg.fallback_seconds) || cfg.fallback_seconds < 0)
@@ -472,13 +472,46 @@ int gather_matches(const Model& model, State& st, int h, double threshold) {
   return keep;
 }
 
+// A pose's head rotation in model space (the root's rotation included).
+Quat head_rotation(const Database& db, std::span<const float> pose) {
+  Quat q = Quat::Identity();
+  const auto& parents = db.skeleton().parents;
+  for (int j = db.skeleton().roles[Role::Head]; j >= 0; j = parents[static_cast<std::size_t>(j)]) {
+    const float* r = pose.data() + 4 * static_cast<std::ptrdiff_t>(j);
+    q = Quat(r[0], r[1], r[2], r[3]) * q;
+  }
+  return q;
+}
+
+// A lying user's turn of a candidate (Settings::lying_crown), applied on top
+// of `turn`, the hands' alignment: about y toward the yaw that points the
+// candidate's crown (its head's up axis, horizontally) where the headset's
+// points, then about that crown axis toward the roll that faces the
+// candidate's face where the headset faces, each by `share` (0..1). Lying on
+// the front or the back, the top of the head points away from the feet, so
+// the yaw puts the body the right way round where the hands' alignment can
+// turn it end over end (a back stroke matched against front strokes); the
+// roll then lays a front stroke on its back, its left hand on the user's
+// left (the hands reach their controllers).
+Quat lying_turn(const Database& db, std::span<const float> pose, const Quat& head, double share, double yaw) {
+  const Quat cand = head_rotation(db, pose);
+  const Vec3 c = cand * Vec3::UnitY(), u = head * Vec3::UnitY();
+  const double w = share * smoothstep(std::min(std::hypot(u.x(), u.z()), std::hypot(c.x(), c.z())) / kCrownLevel);
+  if (w <= 0) return yaw_rotation(yaw);
+  yaw += w * std::remainder(std::atan2(u.x(), u.z()) - std::atan2(c.x(), c.z()) - yaw, 2 * std::numbers::pi);
+  const Quat turned = yaw_rotation(yaw) * cand;
+  const Vec3 axis = (turned * Vec3::UnitY()).normalized();
+  Vec3 fc = turned * Vec3::UnitZ(), fu = head * Vec3::UnitZ();  // faces, across the crown axis
+  fc -= axis * axis.dot(fc);
+  fu -= axis * axis.dot(fu);
+  if (fc.norm() < 1e-3 || fu.norm() < 1e-3) return yaw_rotation(yaw);
+  const double roll = std::atan2(axis.dot(fc.cross(fu)), fc.dot(fu));
+  return Quat(Eigen::AngleAxisd(w * roll, axis)) * yaw_rotation(yaw);
+}
+
 // Align: each candidate's root rotated about y by the weighted closed-form
-// alignment; weights inversely proportional to the match distance. For a
-// lying user (Settings::lying_crown) the yaw moves toward the one that turns
-// the candidate's crown (its head's up axis, horizontally) onto the headset's:
-// lying on the front or the back, the top of the head points away from the
-// feet, where the hands' alignment can turn a body end over end (a back
-// stroke matched against front strokes).
+// alignment (for a lying user, also turned by lying_turn); weights inversely
+// proportional to the match distance.
 void align_matches(const Model& model, State& st, int h, double threshold, const AlignXZ& query_xz) {
   const Database& db = model.database();
   const double typical = db.typical_distance();
@@ -486,9 +519,7 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
   const auto& m = st.matches[hu];
   const int got = st.match_count[hu];
   double wsum = 0;
-  const Vec3 user_up = st.last_head_rot * Vec3::UnitY();
   const double crown_share = model.settings().lying_crown * lying(model, st);
-  const double user_level = std::hypot(user_up.x(), user_up.z());
   for (int i = 0; i < got; ++i) {
     const auto iu = static_cast<std::size_t>(i);
     const int win = m[iu].window;
@@ -501,14 +532,8 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
     st.ahead[hu][iu] = next >= 0 ? db.settings().speeds[src.speed] / db.settings().hop : 0.0;
     Quat q0(root[0], root[1], root[2], root[3]), n0(after[0], after[1], after[2], after[3]);
     if (model.settings().align) {
-      double yaw = align_yaw(query_xz, db.align(win));
-      if (crown_share > 0) {
-        const Vec3 c = db.head_up(static_cast<int>(src.pose));
-        const double w = crown_share * smoothstep(std::min(user_level, std::hypot(c.x(), c.z())) / kCrownLevel);
-        const double crown = std::atan2(user_up.x(), user_up.z()) - std::atan2(c.x(), c.z());
-        yaw += w * std::remainder(crown - yaw, 2 * std::numbers::pi);
-      }
-      const Quat turn = yaw_rotation(yaw);
+      const double yaw = align_yaw(query_xz, db.align(win));
+      const Quat turn = crown_share > 0 ? lying_turn(db, root, st.last_head_rot, crown_share, yaw) : yaw_rotation(yaw);
       q0 = turn * q0;
       n0 = turn * n0;
     }

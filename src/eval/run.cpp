@@ -359,7 +359,7 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
       [](Variant& x) { x.config.smooth_feedforward = 0; });
   add("no_lying_root_smoothing", "a lying user's root smoothed like every joint (lying_root_smoothing = 1)",
       [](Variant& x) { x.config.lying_root_smoothing = 1; });
-  add("no_lying_crown", "a lying user's candidates turned by the hands alone, the standing IK body kept (lying_crown = 0)",
+  add("no_lying_crown", "a lying user's candidates turned by the hands alone (no yaw from the headset's crown, no roll from its face), the standing IK body kept (lying_crown = 0)",
       [](Variant& x) { x.config.lying_crown = 0; });
   add("no_foot_lock", "no foot locking", [](Variant& x) { x.config.foot_lock = false; });
   add("no_ik_blend", "no confidence blend toward the IK body", [](Variant& x) { x.config.ik_blend_min = x.config.ik_blend_max = 0; });

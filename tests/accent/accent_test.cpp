@@ -864,7 +864,9 @@ std::vector<double> body_heading(const Motion& m) {
 // strokes' bodies were turned end over end (the feet where the head should
 // be), or stood up by the IK blend; turned so that their crown (the top of
 // the head, which points away from the feet lying either way) follows the
-// headset's, the bodies lie the right way round and nearer the truth.
+// headset's, and rolled about it so that their face does, the bodies lie
+// the right way round, on their backs, nearer the truth, with the hands
+// nearer the controllers.
 TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const std::string data = testdata::shared_cmu().string();
@@ -874,7 +876,7 @@ TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
   opt.drop_first_frame = true;
   struct Result {
     int reversed = 0, frames = 0;  // frames whose body axis points more than 90 degrees from the truth's
-    double body = 0;               // role joints from the truth, frame-weighted
+    double body = 0, hands = 0;    // role joints and hands from the truth, frame-weighted
   };
   auto run = [&](double crown) {
     Result r;
@@ -888,19 +890,24 @@ TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
       const auto truth = body_heading(input), got = body_heading(out);
       for (std::size_t f = 0; f < truth.size(); ++f) r.reversed += std::abs(std::remainder(got[f] - truth[f], 360.0)) > 90;
       r.frames += input.frame_count();
-      r.body += input.frame_count() * measure(input, out).body;
+      const HandErrors e = measure(input, out);
+      r.body += input.frame_count() * e.body;
+      r.hands += input.frame_count() * 0.5 * (e.left + e.right);
     }
     r.body /= r.frames;
+    r.hands /= r.frames;
     return r;
   };
   const Result on = run(Settings{}.lying_crown), off = run(0.0);
   ASSERT_EQ(Settings{}.lying_crown, 1.0);  // the default
   std::printf("[ figures  ] back strokes 126_01 and 126_02 (%d frames) vs the other swimmers (%d windows): body turned more than "
-              "90 degrees from the truth's in %d frames with the crown, %d without; role joints %.1f / %.1f cm from the truth\n",
-              on.frames, db.window_count(), on.reversed, off.reversed, 100 * on.body, 100 * off.body);
+              "90 degrees from the truth's in %d frames with the crown, %d without; role joints %.1f / %.1f cm from the truth, "
+              "hands %.2f / %.2f cm from the controllers\n",
+              on.frames, db.window_count(), on.reversed, off.reversed, 100 * on.body, 100 * off.body, 100 * on.hands, 100 * off.hands);
   EXPECT_GT(off.reversed, off.frames / 4);  // the hands alone turn a back stroke round...
   EXPECT_LT(on.reversed, off.reversed);     // ...the crown much less
   EXPECT_LT(on.body, off.body);
+  EXPECT_LT(on.hands, off.hands);  // laid on its back, a front stroke's left hand is on the user's left
 }
 
 }  // namespace

@@ -244,8 +244,10 @@ double floor_slide(const Motion& m) {
 // swimmers who lie on a bench: subject 126 held out (in no database trial)
 // against the other swimmers, every one of its trials. Each wobble of a lying
 // body's root swings its feet, a body's length from the head, across the
-// floor; smoothing the root longer while the head is low keeps them still
-// without moving the body further from the truth.
+// floor; smoothing the root longer while the head is low keeps them still.
+// It costs some error since lying bodies are also rolled to the headset's
+// face (lying_crown, which the root then follows late): 25.7 -> 27.0 cm on
+// these trials when measured (docs/accent.md, "A lying body turned by its crown").
 TEST(HeldOutLyingSwimmer, ALyingUsersRootSmoothedLongerSlidesItsFeetLess) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const std::string data = testdata::shared_cmu().string();
@@ -271,7 +273,6 @@ TEST(HeldOutLyingSwimmer, ALyingUsersRootSmoothedLongerSlidesItsFeetLess) {
               "the lying root smoothed 8x, %.2f without (the capture's %.2f); role joints %.2f vs %.2f cm from the truth\n",
               held_out.size(), frames, 100 * w * slide_on, 100 * w * slide_off, 100 * w * slide_truth, w * error_on, w * error_off);
   EXPECT_LT(slide_on, slide_off);
-  EXPECT_LT(error_on, error_off);
 }
 
 }  // namespace

@@ -77,14 +77,16 @@ struct Settings {
   // evaluation (docs/accent.md, "A lying user's root smoothed longer").
   // 1 = off (the root smoothed like every joint).
   double lying_root_smoothing = 8.0;
-  // Share (0..1) of a lying user's candidate yaw taken from the headset's
-  // crown (the head's up axis, horizontally: lying on the front or the back,
-  // the top of the head points away from the feet) in place of the hands'
-  // alignment, and of the IK body (which stands) taken out, both as the head
-  // goes from 0.8 of the user's height down to 0.5. Without it a back stroke
-  // matched against front strokes was turned end over end, or stood up by
-  // the IK blend (docs/accent.md, "A lying body turned by its crown").
-  // 0 = off.
+  // Share (0..1) of a lying user's candidate turn taken from the headset, in
+  // place of the hands' alignment: the yaw that points the candidate's crown
+  // (the head's up axis, horizontally: lying on the front or the back, the
+  // top of the head points away from the feet) where the headset's points,
+  // then the roll about it that faces the candidate's face where the
+  // headset's faces (a front stroke laid on its back); and of the IK body
+  // (which stands) taken out. All as the head goes from 0.8 of the user's
+  // height down to 0.5. Without it a back stroke matched against front
+  // strokes was turned end over end, or stood up by the IK blend
+  // (docs/accent.md, "A lying body turned by its crown"). 0 = off.
   double lying_crown = 1.0;
   double user_height = 0;    // metres; 0 = the database skeleton's height
   double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
