@@ -483,8 +483,8 @@ Quat head_rotation(const Database& db, std::span<const float> pose) {
   return q;
 }
 
-// A lying user's turn of a candidate (Settings::lying_crown), applied on top
-// of `turn`, the hands' alignment: about y toward the yaw that points the
+// A lying user's turn of a candidate (Settings::lying_crown), from `yaw`, the
+// hands' alignment: about y toward the yaw that points the
 // candidate's crown (its head's up axis, horizontally) where the headset's
 // points, then about that crown axis toward the roll that faces the
 // candidate's face where the headset faces, each by `share` (0..1). Lying on
