@@ -206,6 +206,10 @@ Model make_model(const Database& db, const Settings& settings) {
   if (m.can_lock_feet_) {
     m.leg_ = {ik::left_leg(skel), ik::right_leg(skel)};
     for (std::size_t f = 0; f < 2; ++f) m.leg_length_[f] = chain_length(m.leg_[f]);
+    for (std::size_t f = 0; f < 2; ++f) {
+      const Role toe = f == 0 ? Role::LeftToe : Role::RightToe;
+      m.toe_[f] = r.has(toe) && skel.is_ancestor(m.leg_[f].end, r[toe]) ? r[toe] : -1;
+    }
   }
   m.arm_ = {ik::left_arm(skel), ik::right_arm(skel)};
   for (std::size_t h = 0; h < 2; ++h) {
@@ -826,26 +830,32 @@ void update_lock(const Model& model, State& st, int f, const Transform& ankle, d
 }
 
 // Swing clearance (Settings::foot_swing_speed): metres to lift a free foot
-// whose synthesized ankle moves fast (a swing) and would pass lower than
-// foot_lift_height above its floor; smoothed by a critically damped spring.
-// `target_y` is where the foot would be shown, `upright` 0..1 the headset's
-// uprightness (a swimmer's feet have no floor).
-double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& ankle, double target_y, double upright,
-                       double dt) {
+// whose synthesized ankle moves fast (a swing) and whose ankle or toe would
+// pass lower than foot_lift_height above its floor (the lowest height each
+// recently had); smoothed by a critically damped spring. `target_y` and
+// `toe_y` are where the ankle and the toe (if `has_toe`) would be shown,
+// `upright` 0..1 the headset's uprightness (a swimmer's feet have no floor).
+double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& ankle, double target_y, bool has_toe,
+                       double toe_y, double upright, double dt) {
   const Settings& cfg = model.settings();
   if (!lock.have_floor) {
     lock.floor = ankle.y();
+    lock.toe_floor = toe_y;
     lock.previous = ankle;
     lock.have_floor = true;
   }
   lock.floor = std::min(lock.floor + kFloorRelax * dt, ankle.y());
+  lock.toe_floor = std::min(lock.toe_floor + kFloorRelax * dt, toe_y);
   Vec3 step = ankle - lock.previous;
   step.y() = 0;
   lock.previous = ankle;
   if (cfg.foot_swing_speed <= 0) return 0.0;
   const bool swinging = !lock.locked && dt > 0 && step.norm() > cfg.foot_swing_speed * model.scale() * dt;
   lock.swing = lock.locked ? 0.0 : lock.swing + (1.0 - std::exp(-dt / kSwingSeconds)) * ((swinging ? 1.0 : 0.0) - lock.swing);
-  const double below = lock.floor + cfg.foot_lift_height * model.scale() - target_y;
+  // Lift until the ankle and the toe are each foot_lift_height above their floors.
+  const double clearance = cfg.foot_lift_height * model.scale();
+  double below = lock.floor + clearance - target_y;
+  if (has_toe) below = std::max(below, lock.toe_floor + clearance - toe_y);
   const double goal = upright * smooth01(std::clamp(lock.swing, 0.0, 1.0)) * std::max(0.0, below);
   const double y = 2.0 * std::log(2.0) / kClearanceHalflife, decay = std::exp(-y * dt);
   const double j0 = lock.lift - goal, j1 = lock.lift_velocity + j0 * y;
@@ -872,12 +882,21 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     const double arc = std::sin(kPi * (1.0 - lock.weight));
     ik::TwoBoneTarget target;
     target.position = ankle.translation + w * (lock.position - ankle.translation) + Vec3::UnitY() * (cfg.foot_lift_height * arc * arc);
-    const double lift = swing_clearance(model, lock, ankle.translation, target.position.y(), upright, dt);
+    // The toe as it will be shown: its offset from the ankle turned with the foot toward the lock's rotation.
+    double toe_y = 0;
+    if (const int toe = model.toe(f); toe >= 0) {
+      const Vec3 offset = st.model_space[static_cast<std::size_t>(toe)].translation - ankle.translation;
+      toe_y = target.position.y() + (ankle.rotation.slerp(w, lock.rotation) * (ankle.rotation.conjugate() * offset)).y();
+    }
+    const double lift =
+        swing_clearance(model, lock, ankle.translation, target.position.y(), model.toe(f) >= 0, toe_y, upright, dt);
     if (lock.weight <= 0 && lift < 1e-5) continue;
     target.position.y() += lift;
-    target.rotation = lock.rotation;
+    // The foot keeps its world orientation (the synthesized one, turned toward the
+    // lock's by w): bending the knee to lift or reach does not tip the toe down.
+    target.rotation = ankle.rotation.slerp(w, lock.rotation);
     target.position_weight = 1.0;
-    target.rotation_weight = w;
+    target.rotation_weight = 1.0;
     target.hint_weight = 0;  // keep the synthesized knee's bend plane
     ik::solve_two_bone(model.skeleton(), chain, target, out, st.model_space);
   }

@@ -151,9 +151,10 @@ struct Settings {
   double foot_lock_slack = 0.0;
   // Swing clearance: a free foot whose synthesized ankle moves horizontally
   // faster than foot_swing_speed (m/s, scaled with the user) is swinging and is
-  // lifted (smoothly) to pass at least foot_lift_height above its floor (the
-  // lowest height it recently had) instead of grazing it: the blend of
-  // candidates in different phases of a step flattens the swing. Not while the
+  // lifted (smoothly) until its ankle and its toe each pass at least
+  // foot_lift_height above their floors (the lowest height each recently had)
+  // instead of grazing it: the blend of candidates in different phases of a
+  // step flattens the swing. Not while the
   // headset is tilted 60-80 degrees or more (a swimmer). 0 = off.
   double foot_swing_speed = 0.5;
   // Confidence blend toward the full-body IK body (legwork::ik on the same
@@ -228,6 +229,7 @@ class Model {
   // can_lock_feet() is false when the skeleton lacks hip, knee or ankle roles.
   const ik::TwoBoneChain& leg(int foot) const { return leg_[static_cast<std::size_t>(foot)]; }
   double leg_length(int foot) const { return leg_length_[static_cast<std::size_t>(foot)]; }
+  int toe(int foot) const { return toe_[static_cast<std::size_t>(foot)]; }  // -1: no toe below the ankle
   bool can_lock_feet() const { return can_lock_feet_; }
   // Arm chains (0 left, 1 right), their lengths (upper arm + forearm, metres)
   // and clavicles (-1 when the skeleton has none): hand IK's reach.
@@ -257,6 +259,7 @@ class Model {
   Pose neutral_;
   std::array<ik::TwoBoneChain, 2> leg_{};
   std::array<double, 2> leg_length_{0, 0};
+  std::array<int, 2> toe_{-1, -1};
   bool can_lock_feet_ = false;
   std::array<ik::TwoBoneChain, 2> arm_{};
   std::array<double, 2> arm_length_{0, 0};
@@ -306,6 +309,7 @@ struct State {
     // Swing clearance (Settings::foot_swing_speed).
     bool have_floor = false;
     double floor = 0;                  // lowest recent synthesized ankle height (relaxing upward)
+    double toe_floor = 0;              // the same for the toe (ball of the foot)
     Vec3 previous = Vec3::Zero();      // last frame's synthesized ankle
     double swing = 0;                  // 0..1: the foot is swinging
     double lift = 0, lift_velocity = 0;  // the clearance's lift (spring-smoothed), metres and m/s
