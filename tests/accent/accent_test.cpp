@@ -648,9 +648,7 @@ TEST(AccentShared, Table1DatabaseOnAHeldOutRunningTrial) {
   const auto trials = load_trials(data, {"boxing", "basketball", "climbing_ladder", "running", "swimming"}, {"bvh/running/35_26.bvh"});
   Database db = build_database(trials, BuildConfig{});
   db.build_index();
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
-  const Motion input = resample(io::load_bvh(data + "/bvh/running/35_26.bvh", opt), 90.0);
+  const Motion input = testing::shared_trial(data + "/bvh/running/35_26.bvh");
   Settings cfg;
   cfg.search = SearchMode::Exact;
   const AccentRun exact = accentuate_motion(db, cfg, input);
@@ -791,8 +789,6 @@ TEST(AccentShared, ALyingUserGetsFewStandingBodiesAboveTheHead) {
   const std::string data = testdata::shared_cmu().string();
   const auto [db, held_out] = testing::subject_fold(data, "swimming", "125");
   ASSERT_GE(held_out.size(), 6u);
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
   struct Result {
     int high = 0, matches = 0, lying_frames = 0, frames = 0;
     int mixed = 0;    // frames and hands whose matches are both within the gate and above it
@@ -803,7 +799,7 @@ TEST(AccentShared, ALyingUserGetsFewStandingBodiesAboveTheHead) {
     Settings cfg;
     cfg.max_head_height_diff = gate;
     for (const auto& file : held_out) {
-      const Motion input = resample(io::load_bvh(file, opt), 90.0);
+      const Motion input = testing::shared_trial(file);
       const double height = measure_body(input.skeleton).standing_height;
       const int in_head = input.skeleton.roles[Role::Head];
       cfg.user_height = height;
@@ -898,13 +894,11 @@ TEST(AccentShared, SwingingToesClearTheFloorLikeTheCapturesToes) {
   const std::string data = testdata::shared_cmu().string();
   const auto [db, held_out] = testing::subject_fold(data, "walking", "16");
   ASSERT_GE(held_out.size(), 2u);
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
   Settings unlifted;
   unlifted.foot_swing_speed = 0;
   int truth_low = 0, truth_n = 0, low = 0, n = 0, off_low = 0, off_n = 0;
   for (const auto& file : held_out) {
-    const Motion input = resample(io::load_bvh(file, opt), 90.0);
+    const Motion input = testing::shared_trial(file);
     Settings cfg;
     cfg.user_height = unlifted.user_height = measure_body(input.skeleton).standing_height;
     count_low_swinging_toes(input, truth_low, truth_n);
@@ -937,8 +931,6 @@ TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
   const std::string data = testdata::shared_cmu().string();
   const auto [db, held_out] = testing::subject_fold(data, "swimming", "126");
   ASSERT_GE(held_out.size(), 2u);
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
   struct Result {
     int reversed = 0, frames = 0;  // frames whose body axis points more than 90 degrees from the truth's
     double body = 0, hands = 0;    // role joints and hands from the truth, frame-weighted
@@ -949,7 +941,7 @@ TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
     cfg.lying_crown = crown;
     for (const auto& file : {held_out[0], held_out[1]}) {
       EXPECT_TRUE(file.ends_with("126_01.bvh") || file.ends_with("126_02.bvh")) << file;  // the back strokes
-      const Motion input = resample(io::load_bvh(file, opt), 90.0);
+      const Motion input = testing::shared_trial(file);
       cfg.user_height = measure_body(input.skeleton).standing_height;
       const Motion out = accentuate_motion(db, cfg, input).output;
       const auto truth = body_heading(input), got = body_heading(out);

@@ -48,6 +48,14 @@ inline Motion tracker_rate_trial(const std::string& cls_slash_name) {
   return resample(sample_trial(cls_slash_name).motion, 90.0);
 }
 
+// A shared-data trial file (full path) as the evaluation reads it: its first
+// frame (the T-pose) dropped, resampled to `fps` (the 90 Hz tracker rate).
+inline Motion shared_trial(const std::string& file, double fps = 90.0) {
+  io::BvhReadOptions opt;
+  opt.drop_first_frame = true;
+  return resample(io::load_bvh(file, opt), fps);
+}
+
 // A cross-subject fold of the shared data (data = its folder): the database
 // of class `cls` without any trial of `subject` ("126": files 126_*.bvh),
 // its search index built, and that subject's trial files (full paths, sorted).

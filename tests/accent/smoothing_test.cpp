@@ -91,11 +91,9 @@ class HeldOutSubject : public ::testing::Test {
   static void SetUpTestSuite() {
     if (!testdata::have_shared_cmu()) return;
     const std::string data = testdata::shared_cmu().string();
-    io::BvhReadOptions opt;
-    opt.drop_first_frame = true;
     for (const Fold& f : {Fold{"boxing", "14_02"}, Fold{"basketball", "124_03"}}) {
       auto fold = testing::subject_fold(data, f.cls, f.held_out.substr(0, f.held_out.find('_')));
-      Motion truth = resample(io::load_bvh(data + "/bvh/" + f.cls + "/" + f.held_out + ".bvh", opt), fold.db.feature_space().fps);
+      Motion truth = testing::shared_trial(data + "/bvh/" + f.cls + "/" + f.held_out + ".bvh", fold.db.feature_space().fps);
       cases_->push_back({std::move(fold.db), std::move(truth)});
     }
   }
@@ -195,9 +193,7 @@ TEST(HeldOutRunner, PlayingTheCandidatesForwardTakesOutTheSmoothingsLag) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const std::string data = testdata::shared_cmu().string();
   const Database db = testing::subject_fold(data, "running", "35").db;
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
-  const Motion truth = resample(io::load_bvh(data + "/bvh/running/35_26.bvh", opt), db.feature_space().fps);
+  const Motion truth = testing::shared_trial(data + "/bvh/running/35_26.bvh", db.feature_space().fps);
   Settings on, off;
   off.smooth_feedforward = 0;
   const Motion out_on = accentuate_motion(db, on, truth).output, out_off = accentuate_motion(db, off, truth).output;
@@ -253,15 +249,13 @@ TEST(HeldOutLyingSwimmer, ALyingUsersRootSmoothedLongerSlidesItsFeetLess) {
   const std::string data = testdata::shared_cmu().string();
   const auto [db, held_out] = testing::subject_fold(data, "swimming", "126");
   ASSERT_GE(held_out.size(), 10u);
-  io::BvhReadOptions opt;
-  opt.drop_first_frame = true;
   Settings on, off;
   off.lying_root_smoothing = 1;
   ASSERT_EQ(on.lying_root_smoothing, 8.0);  // the default
   double slide_on = 0, slide_off = 0, slide_truth = 0, error_on = 0, error_off = 0;
   long frames = 0;
   for (const auto& file : held_out) {
-    const Motion truth = resample(io::load_bvh(file, opt), db.feature_space().fps);
+    const Motion truth = testing::shared_trial(file, db.feature_space().fps);
     const Motion a = accentuate_motion(db, on, truth).output, b = accentuate_motion(db, off, truth).output;
     const double n = truth.frame_count();
     slide_on += n * floor_slide(a), slide_off += n * floor_slide(b), slide_truth += n * floor_slide(truth);
