@@ -834,15 +834,22 @@ void update_lock(const Model& model, State& st, int f, const Transform& ankle, d
 // pass lower than foot_lift_height above its floor (the lowest height each
 // recently had); smoothed by a critically damped spring. `target_y` and
 // `toe_y` are where the ankle and the toe (if `has_toe`) would be shown,
-// `upright` 0..1 the headset's uprightness (a swimmer's feet have no floor).
+// `upright` 0..1 the headset's uprightness (a swimmer's feet have no floor),
+// `contact` the foot's blended candidate contact.
 double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& ankle, double target_y, bool has_toe,
-                       double toe_y, double upright, double dt) {
+                       double toe_y, double upright, double contact, double dt) {
   const Settings& cfg = model.settings();
-  if (!lock.have_floor) {
+  // The stream's first frame (or the first after a reset): nothing has been
+  // shown yet, so a foot its candidates do not put down is swinging now and is
+  // lifted at once, not after the indicator and the spring ramp in (clips that
+  // start mid-stride slid their swinging feet along the floor for ~0.1 s).
+  const bool fresh = !lock.have_floor;
+  if (fresh) {
     lock.floor = ankle.y();
     lock.toe_floor = toe_y;
     lock.previous = ankle;
     lock.have_floor = true;
+    lock.swing = !lock.locked && contact < cfg.contact_off ? 1.0 : 0.0;
   }
   lock.floor = std::min(lock.floor + kFloorRelax * dt, ankle.y());
   lock.toe_floor = std::min(lock.toe_floor + kFloorRelax * dt, toe_y);
@@ -851,12 +858,17 @@ double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& an
   lock.previous = ankle;
   if (cfg.foot_swing_speed <= 0) return 0.0;
   const bool swinging = !lock.locked && dt > 0 && step.norm() > cfg.foot_swing_speed * model.scale() * dt;
-  lock.swing = lock.locked ? 0.0 : lock.swing + (1.0 - std::exp(-dt / kSwingSeconds)) * ((swinging ? 1.0 : 0.0) - lock.swing);
+  if (!fresh) lock.swing = lock.locked ? 0.0 : lock.swing + (1.0 - std::exp(-dt / kSwingSeconds)) * ((swinging ? 1.0 : 0.0) - lock.swing);
   // Lift until the ankle and the toe are each foot_lift_height above their floors.
   const double clearance = cfg.foot_lift_height * model.scale();
   double below = lock.floor + clearance - target_y;
   if (has_toe) below = std::max(below, lock.toe_floor + clearance - toe_y);
   const double goal = upright * smooth01(std::clamp(lock.swing, 0.0, 1.0)) * std::max(0.0, below);
+  if (fresh) {
+    lock.lift = goal;
+    lock.lift_velocity = 0;
+    return std::max(0.0, goal);
+  }
   const double y = 2.0 * std::log(2.0) / kClearanceHalflife, decay = std::exp(-y * dt);
   const double j0 = lock.lift - goal, j1 = lock.lift_velocity + j0 * y;
   lock.lift = decay * (j0 + j1 * dt) + goal;
@@ -889,7 +901,8 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
       toe_y = target.position.y() + (ankle.rotation.slerp(w, lock.rotation) * (ankle.rotation.conjugate() * offset)).y();
     }
     const double lift =
-        swing_clearance(model, lock, ankle.translation, target.position.y(), model.toe(f) >= 0, toe_y, upright, dt);
+        swing_clearance(model, lock, ankle.translation, target.position.y(), model.toe(f) >= 0, toe_y, upright,
+                        st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback), dt);
     if (lock.weight <= 0 && lift < 1e-5) continue;
     target.position.y() += lift;
     // The foot keeps its world orientation (the synthesized one, turned toward the
