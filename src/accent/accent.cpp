@@ -894,20 +894,21 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     const double arc = std::sin(kPi * (1.0 - lock.weight));
     ik::TwoBoneTarget target;
     target.position = ankle.translation + w * (lock.position - ankle.translation) + Vec3::UnitY() * (cfg.foot_lift_height * arc * arc);
-    // The toe as it will be shown: its offset from the ankle turned with the foot toward the lock's rotation.
+    // The foot keeps its world orientation (the synthesized one, turned toward the
+    // lock's by w): bending the knee to lift or reach does not tip the toe down.
+    const Quat foot = ankle.rotation.slerp(w, lock.rotation);
+    // The toe as it will be shown: its offset from the ankle turned with the foot.
     double toe_y = 0;
     if (const int toe = model.toe(f); toe >= 0) {
       const Vec3 offset = st.model_space[static_cast<std::size_t>(toe)].translation - ankle.translation;
-      toe_y = target.position.y() + (ankle.rotation.slerp(w, lock.rotation) * (ankle.rotation.conjugate() * offset)).y();
+      toe_y = target.position.y() + (foot * (ankle.rotation.conjugate() * offset)).y();
     }
     const double lift =
         swing_clearance(model, lock, ankle.translation, target.position.y(), model.toe(f) >= 0, toe_y, upright,
                         st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback), dt);
     if (lock.weight <= 0 && lift < 1e-5) continue;
     target.position.y() += lift;
-    // The foot keeps its world orientation (the synthesized one, turned toward the
-    // lock's by w): bending the knee to lift or reach does not tip the toe down.
-    target.rotation = ankle.rotation.slerp(w, lock.rotation);
+    target.rotation = foot;
     target.position_weight = 1.0;
     target.rotation_weight = 1.0;
     target.hint_weight = 0;  // keep the synthesized knee's bend plane

@@ -154,8 +154,8 @@ struct Settings {
   // lifted (smoothly) until its ankle and its toe each pass at least
   // foot_lift_height above their floors (the lowest height each recently had)
   // instead of grazing it: the blend of candidates in different phases of a
-  // step flattens the swing. Not while the
-  // headset is tilted 60-80 degrees or more (a swimmer). 0 = off.
+  // step flattens the swing. Not while the headset is tilted 60-80 degrees or
+  // more (a swimmer). 0 = off.
   double foot_swing_speed = 0.5;
   // Confidence blend toward the full-body IK body (legwork::ik on the same
   // skeleton, run beside the synthesis): share of the IK pose in the output =
@@ -309,7 +309,7 @@ struct State {
     // Swing clearance (Settings::foot_swing_speed).
     bool have_floor = false;
     double floor = 0;                  // lowest recent synthesized ankle height (relaxing upward)
-    double toe_floor = 0;              // the same for the toe (ball of the foot)
+    double toe_floor = 0;              // lowest recent height of the toe (ball of the foot) as shown
     Vec3 previous = Vec3::Zero();      // last frame's synthesized ankle
     double swing = 0;                  // 0..1: the foot is swinging
     double lift = 0, lift_velocity = 0;  // the clearance's lift (spring-smoothed), metres and m/s
