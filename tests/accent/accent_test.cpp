@@ -291,29 +291,6 @@ TEST_F(HeldOut, PlantedFeetStayPutAndSlideLess) {
   EXPECT_LT(c, a);
 }
 
-// Mean horizontal ankle slide per frame (metres) between frames within 3 cm of
-// the ankle's own floor level (5th percentile of its height): the evaluation's
-// foot-skating measure on the ankles.
-double floor_slide(const Motion& m) {
-  const auto& r = m.skeleton.roles;
-  double slide = 0;
-  int pairs = 0;
-  for (Role a : {Role::LeftAnkle, Role::RightAnkle}) {
-    std::vector<Vec3> p;
-    for (int f = 0; f < m.frame_count(); ++f) p.push_back(joint_positions(m.skeleton, m.frame(f))[static_cast<std::size_t>(r[a])]);
-    std::vector<double> h;
-    for (const auto& x : p) h.push_back(x.y());
-    std::sort(h.begin(), h.end());
-    const double floor = h[h.size() / 20] + 0.03;
-    for (std::size_t f = 0; f + 1 < p.size(); ++f)
-      if (p[f].y() < floor && p[f + 1].y() < floor) {
-        slide += std::hypot(p[f + 1].x() - p[f].x(), p[f + 1].z() - p[f].z());
-        ++pairs;
-      }
-  }
-  return slide / std::max(pairs, 1);
-}
-
 // A foot let go at the end of a contact travels back to the synthesized foot
 // on a lifted arc: where the avatar's feet are near the floor they slide less
 // (the evaluation's foot-skating measure: horizontal ankle travel between
@@ -336,7 +313,7 @@ TEST_F(HeldOut, ReleasedFeetLiftInsteadOfSliding) {
       rise = std::max(rise, a[j].y() - b[j].y());
     }
   }
-  const double s_flat = floor_slide(flat.output), s_lifted = floor_slide(lifted.output);
+  const double s_flat = testing::ankle_floor_slide(flat.output).per_pair(), s_lifted = testing::ankle_floor_slide(lifted.output).per_pair();
   std::printf("[ figures  ] ankle slide near the floor: %.2f cm/frame released along the floor, %.2f lifted 5 cm; "
               "highest rise %.1f cm\n", 100 * s_flat, 100 * s_lifted, 100 * rise);
   EXPECT_LT(s_lifted, s_flat);
@@ -367,7 +344,7 @@ TEST_F(HeldOut, SwingingFeetClearTheFloorAndPlantsHoldWithinTheSlack) {
         }
     return n ? sum / n : 0.0;
   };
-  const double s_def = floor_slide(def.output), s_unlifted = floor_slide(unlifted.output);
+  const double s_def = testing::ankle_floor_slide(def.output).per_pair(), s_unlifted = testing::ankle_floor_slide(unlifted.output).per_pair();
   const double l_def = locked_slide(def), l_slack = locked_slide(slackened);
   std::printf("[ figures  ] ankle slide near the floor %.2f cm/frame (%.2f without swing clearance); locked ankles %.2f "
               "cm/frame creeping by the whole gap, %.2f with 0.1 m slack\n", 100 * s_def, 100 * s_unlifted, 100 * l_def, 100 * l_slack);
@@ -917,26 +894,6 @@ TEST(AccentShared, SwingingToesClearTheFloorLikeTheCapturesToes) {
   EXPECT_LT(share, off);
 }
 
-// Horizontal slide (metres) of the ankles between frame pairs within 3 cm of
-// each ankle's floor (the evaluation's skating measure), over the first
-// `frames` frames of a motion only.
-double early_floor_slide(const Motion& m, int frames) {
-  const auto& r = m.skeleton.roles;
-  std::vector<std::vector<Vec3>> p;
-  for (int f = 0; f < m.frame_count(); ++f) p.push_back(joint_positions(m.skeleton, m.frame(f)));
-  double slide = 0;
-  for (Role ankle : {Role::LeftAnkle, Role::RightAnkle}) {
-    const auto a = static_cast<std::size_t>(r[ankle]);
-    std::vector<double> h;
-    for (const auto& x : p) h.push_back(x[a].y());
-    std::sort(h.begin(), h.end());
-    const double band = h[h.size() / 20] + 0.03;
-    for (std::size_t f = 0; f + 1 < p.size() && f < static_cast<std::size_t>(frames); ++f)
-      if (p[f][a].y() < band && p[f + 1][a].y() < band) slide += std::hypot(p[f + 1][a].x() - p[f][a].x(), p[f + 1][a].z() - p[f][a].z());
-  }
-  return slide;
-}
-
 // A stream that starts mid-stride: on its first frame a foot whose candidates
 // do not put it down is swinging and is lifted at once (the swing indicator and
 // the lift's spring used to ramp in over ~0.1 s while the foot slid along the
@@ -955,8 +912,8 @@ TEST(AccentShared, AFootSwingingWhenTheStreamStartsClearsTheFloorAtOnce) {
     Settings cfg, off;
     cfg.user_height = off.user_height = measure_body(input.skeleton).standing_height;
     off.foot_swing_speed = 0;
-    with += early_floor_slide(accentuate_motion(db, cfg, input).output, 15);
-    without += early_floor_slide(accentuate_motion(db, off, input).output, 15);
+    with += testing::ankle_floor_slide(accentuate_motion(db, cfg, input).output, 15).metres;
+    without += testing::ankle_floor_slide(accentuate_motion(db, off, input).output, 15).metres;
   }
   std::printf("[ figures  ] subject 09's runs, first 15 frames: ankles slide %.2f m near the floor (%.2f m without swing "
               "clearance)\n", with, without);

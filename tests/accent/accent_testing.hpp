@@ -3,12 +3,16 @@
 #include <legwork/accent/accent.hpp>
 #include <legwork/accent/offline/builder.hpp>
 #include <legwork/accent/offline/run.hpp>
+#include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
 #include <legwork/io/bvh.hpp>
 
 #include "testdata.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -54,6 +58,41 @@ inline Motion shared_trial(const std::string& file, double fps = 90.0) {
   io::BvhReadOptions opt;
   opt.drop_first_frame = true;
   return resample(io::load_bvh(file, opt), fps);
+}
+
+// Ankles near the floor: horizontal slide (metres) summed over the frame
+// pairs, among the first `frames` frames, in which an ankle stays within 3 cm
+// of its own floor level (its 5th-percentile height over the whole clip), and
+// the number of such pairs. metres / pairs is the evaluation's foot skating on
+// the ankles.
+struct FloorSlide {
+  double metres = 0;
+  long pairs = 0;
+  double per_pair() const { return pairs ? metres / static_cast<double>(pairs) : 0.0; }
+};
+inline FloorSlide ankle_floor_slide(const Motion& m, int frames = std::numeric_limits<int>::max()) {
+  FloorSlide out;
+  const int n = m.frame_count();
+  std::vector<std::array<Vec3, 2>> p(static_cast<std::size_t>(n));
+  for (int f = 0; f < n; ++f) {
+    const auto all = joint_positions(m.skeleton, m.frame(f));
+    p[static_cast<std::size_t>(f)] = {all[static_cast<std::size_t>(m.skeleton.roles[Role::LeftAnkle])],
+                                      all[static_cast<std::size_t>(m.skeleton.roles[Role::RightAnkle])]};
+  }
+  for (std::size_t a = 0; a < 2; ++a) {
+    std::vector<double> h;
+    for (const auto& x : p) h.push_back(x[a].y());
+    if (h.empty()) continue;
+    std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(h.size() / 20), h.end());
+    const double band = h[h.size() / 20] + 0.03;
+    for (int f = 0; f + 1 < n && f < frames; ++f) {
+      const auto fu = static_cast<std::size_t>(f);
+      if (p[fu][a].y() >= band || p[fu + 1][a].y() >= band) continue;
+      out.metres += std::hypot(p[fu + 1][a].x() - p[fu][a].x(), p[fu + 1][a].z() - p[fu][a].z());
+      ++out.pairs;
+    }
+  }
+  return out;
 }
 
 // A cross-subject fold of the shared data (data = its folder): the database

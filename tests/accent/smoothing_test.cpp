@@ -210,32 +210,6 @@ TEST(HeldOutRunner, PlayingTheCandidatesForwardTakesOutTheSmoothingsLag) {
 }
 
 
-// Horizontal slide per frame of an ankle staying within 3 cm of its own floor
-// level (its 5th-percentile height over the clip): the evaluation's foot
-// skating, on the ankles only.
-double floor_slide(const Motion& m) {
-  const auto p = joint_positions(m);
-  double slide = 0;
-  long pairs = 0;
-  for (Role r : {Role::LeftAnkle, Role::RightAnkle}) {
-    const auto j = static_cast<std::size_t>(m.skeleton.roles[r]);
-    std::vector<double> h(static_cast<std::size_t>(m.frame_count()));
-    for (int f = 0; f < m.frame_count(); ++f) h[static_cast<std::size_t>(f)] = p[static_cast<std::size_t>(f) * m.joint_count() + j].y();
-    std::vector<double> sorted = h;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 20), sorted.end());
-    const double floor = sorted[sorted.size() / 20];
-    for (int f = 0; f + 1 < m.frame_count(); ++f) {
-      const auto fu = static_cast<std::size_t>(f);
-      if (h[fu] >= floor + 0.03 || h[fu + 1] >= floor + 0.03) continue;
-      Vec3 d = p[(fu + 1) * m.joint_count() + j] - p[fu * m.joint_count() + j];
-      d.y() = 0;
-      slide += d.norm();
-      ++pairs;
-    }
-  }
-  return pairs ? slide / static_cast<double>(pairs) : 0.0;
-}
-
 // A lying user's root smoothed longer (Settings::lying_root_smoothing) on the
 // swimmers who lie on a bench: subject 126 held out (in no database trial)
 // against the other swimmers, every one of its trials. Each wobble of a lying
@@ -258,7 +232,8 @@ TEST(HeldOutLyingSwimmer, ALyingUsersRootSmoothedLongerSlidesItsFeetLess) {
     const Motion truth = testing::shared_trial(file, db.feature_space().fps);
     const Motion a = accentuate_motion(db, on, truth).output, b = accentuate_motion(db, off, truth).output;
     const double n = truth.frame_count();
-    slide_on += n * floor_slide(a), slide_off += n * floor_slide(b), slide_truth += n * floor_slide(truth);
+    slide_on += n * testing::ankle_floor_slide(a).per_pair(), slide_off += n * testing::ankle_floor_slide(b).per_pair(),
+    slide_truth += n * testing::ankle_floor_slide(truth).per_pair();
     error_on += n * measure(truth, a).error_cm, error_off += n * measure(truth, b).error_cm;
     frames += truth.frame_count();
   }
