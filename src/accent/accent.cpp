@@ -273,6 +273,7 @@ void reset(const Model& model, State& s) {
   s.have_ik_distance = false;
   s.ik_distance = 0;
   s.ik_share = 0;
+  s.laid_share = 0;
   s.active_class = s.challenger = -1;
   s.challenger_seconds = 0;
   s.probe_next = 0;
@@ -916,10 +917,41 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
   }
 }
 
+// The direct mapping: the neutral standing pose turned to the headset's yaw.
+// For a user lying down (Settings::lying_crown, as far as the user lies and
+// the headset's crown is off vertical) it is laid flat instead: its crown
+// points where the headset's points horizontally and its face where the
+// headset faces across that axis (up for a back stroke, down for a front
+// one). A lying swimmer whose hands find no match then lies on the bench
+// instead of standing through it with the head at bench height. Flat rather
+// than turned with the whole headset: a swimmer's neck holds the head 20-40
+// degrees up from the body, and a body turned with it sat up by as much.
 void make_direct_pose(const Model& model, State& st) {
   const Pose& neutral = model.neutral();
   for (std::size_t j = 0; j < st.direct.rotations.size(); ++j) st.direct.rotations[j] = neutral.rotations[j];
-  st.direct.rotations[0] = yaw_rotation(yaw_of(st.last_head_rot)) * neutral.rotations[0];
+  const Quat upright = yaw_rotation(yaw_of(st.last_head_rot)) * neutral.rotations[0];
+  st.direct.rotations[0] = upright;
+  const double share = model.settings().lying_crown * lying(model, st);
+  if (share <= 0) return;
+  const Vec3 u = st.last_head_rot * Vec3::UnitY();
+  const double w = share * smoothstep(std::hypot(u.x(), u.z()) / kCrownLevel);
+  if (w <= 0) return;
+  const Vec3 crown = Vec3(u.x(), 0, u.z()).normalized();
+  Vec3 face = st.last_head_rot * Vec3::UnitZ();
+  face -= crown * crown.dot(face);
+  if (face.norm() < 1e-3) return;
+  face.normalize();
+  Eigen::Matrix3d flat;  // the head's model rotation lying flat: y along the crown, z the face
+  flat.col(0) = crown.cross(face);
+  flat.col(1) = crown;
+  flat.col(2) = face;
+  // The neutral head's model rotation (its root's included), then the root that carries it onto `flat`.
+  const Skeleton& skel = model.skeleton();
+  Quat head = Quat::Identity();
+  for (int j = skel.roles[Role::Head]; j >= 0; j = skel.parents[static_cast<std::size_t>(j)])
+    head = neutral.rotations[static_cast<std::size_t>(j)] * head;
+  const Quat laid = (Quat(flat) * head.conjugate() * neutral.rotations[0]).normalized();
+  st.direct.rotations[0] = upright.slerp(w, laid).normalized();
 }
 
 // Exact critically damped spring per joint toward this frame's rotation
@@ -938,7 +970,7 @@ void spring_filter(const Model& model, State& st, double dt, PoseRef out) {
   const double y = 2.0 * std::log(2.0) / model.settings().smooth_halflife;  // half the damping
   const double decay = std::exp(-y * dt);
   // The candidates' motion played forward (smooth_feedforward), as far as the pose is theirs.
-  const double lead = model.settings().smooth_feedforward * (1.0 - st.fallback) * (1.0 - st.ik_share) * std::min(dt, kMotionLeadMax);
+  const double lead = model.settings().smooth_feedforward * (1.0 - st.fallback) * (1.0 - st.ik_share - st.laid_share) * std::min(dt, kMotionLeadMax);
   // A lying user's root turns slowly (lying_root_smoothing): from a head at 0.8 of
   // the user's height down to 0.5, the root's half-life grows to that many times.
   const double root_factor = 1.0 + (model.settings().lying_root_smoothing - 1.0) * lying(model, st);
@@ -1053,12 +1085,17 @@ void blend_ik(const Model& model, const TrackerFrame& in, State& st, double dt, 
   else st.ik_distance = d;
   st.have_ik_distance = true;
   const double x = std::clamp((st.ik_distance - cfg.ik_blend_near) / (cfg.ik_blend_far - cfg.ik_blend_near), 0.0, 1.0);
+  const double low_confidence = cfg.ik_blend_min + (cfg.ik_blend_max - cfg.ik_blend_min) * smooth01(x);
   // The IK body stands upright: none of it for a user lying down (fading out as the head tilts 60..80 degrees,
-  // and with lying_crown, which turns a lying body the right way round, as the head goes down).
+  // and with lying_crown, which turns a lying body the right way round, as the head goes down). A lying
+  // user's share goes to the direct mapping laid flat instead (make_direct_pose).
   const double up = (st.last_head_rot * Vec3::UnitY()).y();
   const double u = std::clamp((up - 0.174) / (0.5 - 0.174), 0.0, 1.0);
-  st.ik_share = (cfg.ik_blend_min + (cfg.ik_blend_max - cfg.ik_blend_min) * smooth01(x)) * smooth01(u) *
-                (1.0 - cfg.lying_crown * lying(model, st));
+  const double lies = cfg.lying_crown * lying(model, st);
+  st.ik_share = low_confidence * smooth01(u) * (1.0 - lies);
+  st.laid_share = low_confidence * lies;
+  if (st.laid_share > 0)
+    for (std::size_t j = 0; j < out.rotations.size(); ++j) out.rotations[j] = slerp(out.rotations[j], st.direct.rotations[j], st.laid_share);
   if (st.ik_share <= 0) return;
   for (std::size_t j = 0; j < out.rotations.size(); ++j)
     out.rotations[j] = slerp(out.rotations[j], st.ik_pose.rotations[j], st.ik_share);

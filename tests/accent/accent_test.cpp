@@ -971,5 +971,63 @@ TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
   EXPECT_LT(on.hands, off.hands);  // laid on its back, a front stroke's left hand is on the user's left
 }
 
+// The body a lying user gets where the hands find no match (the direct
+// mapping, shown in full with direct_only) and, with the confidence share
+// the IK body gets when standing, where they match poorly. Before, it was the
+// neutral standing pose hung from the headset: a back swimmer on a bench got
+// a body standing through the bench, its pelvis 32-36 cm under the truth's.
+// Now it lies flat along the headset's crown, facing where the headset faces.
+TEST(AccentShared, AUserLyingWithoutAMatchLiesFlat) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  const std::string data = testdata::shared_cmu().string();
+  const auto [db, held_out] = testing::subject_fold(data, "swimming", "126");
+  ASSERT_GE(held_out.size(), 2u);
+  struct Result {
+    int flat = 0, frames = 0;  // frames whose body axis (mid-ankles to head) is within 45 degrees of horizontal
+    double pelvis = 0;         // mean |pelvis height - the truth's| (m)
+  };
+  auto lies_within_45 = [](const Motion& m, int f, const std::vector<Vec3>& p) {
+    const auto nj = static_cast<std::size_t>(m.joint_count());
+    const auto at = [&](Role r) { return p[static_cast<std::size_t>(f) * nj + static_cast<std::size_t>(m.skeleton.roles[r])]; };
+    const Vec3 axis = at(Role::Head) - 0.5 * (at(Role::LeftAnkle) + at(Role::RightAnkle));
+    return std::abs(axis.y()) < std::hypot(axis.x(), axis.z());
+  };
+  auto run = [&](double crown, Result& truth) {
+    Result r;
+    truth = {};
+    Settings cfg;
+    cfg.lying_crown = crown;
+    cfg.direct_only = true;
+    for (const auto& file : {held_out[0], held_out[1]}) {
+      EXPECT_TRUE(file.ends_with("126_01.bvh") || file.ends_with("126_02.bvh")) << file;  // the back strokes
+      const Motion input = testing::shared_trial(file);
+      cfg.user_height = measure_body(input.skeleton).standing_height;
+      const Motion out = accentuate_motion(db, cfg, input).output;
+      const auto pt = joint_positions(input), po = joint_positions(out);
+      const auto nt = static_cast<std::size_t>(input.joint_count()), no = static_cast<std::size_t>(out.joint_count());
+      for (int f = 0; f < input.frame_count(); ++f) {
+        const auto fu = static_cast<std::size_t>(f);
+        r.flat += lies_within_45(out, f, po);
+        truth.flat += lies_within_45(input, f, pt);
+        r.pelvis += std::abs(po[fu * no + static_cast<std::size_t>(out.skeleton.roles[Role::Pelvis])].y() -
+                             pt[fu * nt + static_cast<std::size_t>(input.skeleton.roles[Role::Pelvis])].y());
+      }
+      r.frames += input.frame_count();
+      truth.frames += input.frame_count();
+    }
+    r.pelvis /= r.frames;
+    return r;
+  };
+  Result truth;
+  const Result on = run(Settings{}.lying_crown, truth), off = run(0.0, truth);
+  std::printf("[ figures  ] direct mapping on the back strokes 126_01 and 126_02 (%d frames): body within 45 degrees of "
+              "horizontal in %d frames (the truth's: %d), %d with lying_crown 0; pelvis height %.1f / %.1f cm from the truth's\n",
+              on.frames, on.flat, truth.flat, off.flat, 100 * on.pelvis, 100 * off.pelvis);
+  EXPECT_EQ(truth.flat, truth.frames);  // the swimmers lie throughout
+  EXPECT_EQ(off.flat, 0);               // the standing pose hung from the headset
+  EXPECT_GT(on.flat, on.frames * 9 / 10);
+  EXPECT_LT(on.pelvis, 0.5 * off.pelvis);
+}
+
 }  // namespace
 }  // namespace legwork::accent

@@ -83,10 +83,13 @@ struct Settings {
   // top of the head points away from the feet) where the headset's points,
   // then the roll about it that faces the candidate's face where the
   // headset's faces (a front stroke laid on its back); and of the IK body
-  // (which stands) taken out. All as the head goes from 0.8 of the user's
-  // height down to 0.5. Without it a back stroke matched against front
-  // strokes was turned end over end, or stood up by the IK blend
-  // (docs/accent.md, "A lying body turned by its crown"). 0 = off.
+  // (which stands) taken out, its share going to the direct mapping laid
+  // flat along the headset's crown (also the body shown where the hands find
+  // no match, in place of the standing pose). All as the head goes from 0.8
+  // of the user's height down to 0.5. Without it a back stroke matched
+  // against front strokes was turned end over end, or stood up by the IK
+  // blend or the direct mapping (docs/accent.md, "A lying body turned by its
+  // crown" and "A lying user's fallback lies flat"). 0 = off.
   double lying_crown = 1.0;
   double user_height = 0;    // metres; 0 = the database skeleton's height
   double exaggeration = 1.0; // scales the input hands about the head before matching (and as hand IK targets)
@@ -163,7 +166,8 @@ struct Settings {
   // (best distance of the two hands, in typical distances, smoothed over
   // ik_blend_seconds) goes from ik_blend_near to ik_blend_far, i.e. where the
   // database does not cover the user; none of it while the headset is tilted
-  // more than 80 degrees from upright (fading from 60) (the IK body stands). 0 / 0 = off.
+  // more than 80 degrees from upright (fading from 60) (the IK body stands);
+  // a lying user's share goes to the direct mapping laid flat (lying_crown). 0 / 0 = off.
   double ik_blend_min = 0.1, ik_blend_max = 1.0;
   double ik_blend_near = 1.5, ik_blend_far = 3.0;
   double ik_blend_seconds = 0.5;
@@ -322,6 +326,7 @@ struct State {
   double ik_distance = 0;  // smoothed match distance, typical distances
   bool have_ik_distance = false;
   double ik_share = 0;
+  double laid_share = 0;  // share of the flat-laid direct mapping (a lying user's low-confidence body)
   // Class recognition (Settings::recognize_class), per database class.
   int active_class = -1;            // -1: not chosen yet
   int challenger = -1;              // the class currently beating it by the margin...
