@@ -921,6 +921,20 @@ TEST(AccentShared, AFootSwingingWhenTheStreamStartsClearsTheFloorAtOnce) {
   EXPECT_LT(with, 0.5 * without);
 }
 
+// Runs the engine with `cfg` (user_height set per trial) on subject 126's two
+// back strokes, 126_01 and 126_02, held out in `fold`, and calls
+// visit(input, output) for each.
+template <class Visit>
+void run_back_strokes(const testing::SubjectFold& fold, Settings cfg, Visit visit) {
+  ASSERT_GE(fold.held_out.size(), 2u);
+  for (const auto& file : {fold.held_out[0], fold.held_out[1]}) {
+    EXPECT_TRUE(file.ends_with("126_01.bvh") || file.ends_with("126_02.bvh")) << file;  // the back strokes
+    const Motion input = testing::shared_trial(file);
+    cfg.user_height = measure_body(input.skeleton).standing_height;
+    visit(input, accentuate_motion(fold.db, cfg, input).output);
+  }
+}
+
 // A lying body turned by its crown (Settings::lying_crown) on the back
 // strokes of subject 126 (126_01, 126_02), held out against the other
 // swimmers, who swim on their fronts. Matched by the hands alone, the front
@@ -933,8 +947,8 @@ TEST(AccentShared, AFootSwingingWhenTheStreamStartsClearsTheFloorAtOnce) {
 TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const std::string data = testdata::shared_cmu().string();
-  const auto [db, held_out] = testing::subject_fold(data, "swimming", "126");
-  ASSERT_GE(held_out.size(), 2u);
+  const testing::SubjectFold fold = testing::subject_fold(data, "swimming", "126");
+  const Database& db = fold.db;
   struct Result {
     int reversed = 0, frames = 0;  // frames whose body axis points more than 90 degrees from the truth's
     double body = 0, hands = 0;    // role joints and hands from the truth, frame-weighted
@@ -943,18 +957,14 @@ TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
     Result r;
     Settings cfg;
     cfg.lying_crown = crown;
-    for (const auto& file : {held_out[0], held_out[1]}) {
-      EXPECT_TRUE(file.ends_with("126_01.bvh") || file.ends_with("126_02.bvh")) << file;  // the back strokes
-      const Motion input = testing::shared_trial(file);
-      cfg.user_height = measure_body(input.skeleton).standing_height;
-      const Motion out = accentuate_motion(db, cfg, input).output;
+    run_back_strokes(fold, cfg, [&](const Motion& input, const Motion& out) {
       const auto truth = body_heading(input), got = body_heading(out);
       for (std::size_t f = 0; f < truth.size(); ++f) r.reversed += std::abs(std::remainder(got[f] - truth[f], 360.0)) > 90;
       r.frames += input.frame_count();
       const HandErrors e = measure(input, out);
       r.body += input.frame_count() * e.body;
       r.hands += input.frame_count() * 0.5 * (e.left + e.right);
-    }
+    });
     r.body /= r.frames;
     r.hands /= r.frames;
     return r;
@@ -980,8 +990,7 @@ TEST(AccentShared, ABackStrokeLiesTheRightWayRound) {
 TEST(AccentShared, AUserLyingWithoutAMatchLiesFlat) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const std::string data = testdata::shared_cmu().string();
-  const auto [db, held_out] = testing::subject_fold(data, "swimming", "126");
-  ASSERT_GE(held_out.size(), 2u);
+  const testing::SubjectFold fold = testing::subject_fold(data, "swimming", "126");
   struct Result {
     int flat = 0, frames = 0;  // frames whose body axis (mid-ankles to head) is within 45 degrees of horizontal
     double pelvis = 0;         // mean |pelvis height - the truth's| (m)
@@ -998,11 +1007,7 @@ TEST(AccentShared, AUserLyingWithoutAMatchLiesFlat) {
     Settings cfg;
     cfg.lying_crown = crown;
     cfg.direct_only = true;
-    for (const auto& file : {held_out[0], held_out[1]}) {
-      EXPECT_TRUE(file.ends_with("126_01.bvh") || file.ends_with("126_02.bvh")) << file;  // the back strokes
-      const Motion input = testing::shared_trial(file);
-      cfg.user_height = measure_body(input.skeleton).standing_height;
-      const Motion out = accentuate_motion(db, cfg, input).output;
+    run_back_strokes(fold, cfg, [&](const Motion& input, const Motion& out) {
       const auto pt = joint_positions(input), po = joint_positions(out);
       const auto nt = static_cast<std::size_t>(input.joint_count()), no = static_cast<std::size_t>(out.joint_count());
       for (int f = 0; f < input.frame_count(); ++f) {
@@ -1014,7 +1019,7 @@ TEST(AccentShared, AUserLyingWithoutAMatchLiesFlat) {
       }
       r.frames += input.frame_count();
       truth.frames += input.frame_count();
-    }
+    });
     r.pelvis /= r.frames;
     return r;
   };
