@@ -926,16 +926,24 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
 // instead of standing through it with the head at bench height. Flat rather
 // than turned with the whole headset: a swimmer's neck holds the head 20-40
 // degrees up from the body, and a body turned with it sat up by as much.
+// How far the direct mapping is laid flat (0..1): lying_crown times how far
+// the user lies times how far the headset's crown is off vertical (in full
+// from kCrownLevel).
+double laid_flat(const Model& model, const State& st) {
+  const double share = model.settings().lying_crown * lying(model, st);
+  if (share <= 0) return 0;
+  const Vec3 u = st.last_head_rot * Vec3::UnitY();
+  return share * smoothstep(std::hypot(u.x(), u.z()) / kCrownLevel);
+}
+
 void make_direct_pose(const Model& model, State& st) {
   const Pose& neutral = model.neutral();
   for (std::size_t j = 0; j < st.direct.rotations.size(); ++j) st.direct.rotations[j] = neutral.rotations[j];
   const Quat upright = yaw_rotation(yaw_of(st.last_head_rot)) * neutral.rotations[0];
   st.direct.rotations[0] = upright;
-  const double share = model.settings().lying_crown * lying(model, st);
-  if (share <= 0) return;
-  const Vec3 u = st.last_head_rot * Vec3::UnitY();
-  const double w = share * smoothstep(std::hypot(u.x(), u.z()) / kCrownLevel);
+  const double w = laid_flat(model, st);
   if (w <= 0) return;
+  const Vec3 u = st.last_head_rot * Vec3::UnitY();
   const Vec3 crown = Vec3(u.x(), 0, u.z()).normalized();
   Vec3 face = st.last_head_rot * Vec3::UnitZ();
   face -= crown * crown.dot(face);
