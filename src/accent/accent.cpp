@@ -917,15 +917,6 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
   }
 }
 
-// The direct mapping: the neutral standing pose turned to the headset's yaw.
-// For a user lying down (Settings::lying_crown, as far as the user lies and
-// the headset's crown is off vertical) it is laid flat instead: its crown
-// points where the headset's points horizontally and its face where the
-// headset faces across that axis (up for a back stroke, down for a front
-// one). A lying swimmer whose hands find no match then lies on the bench
-// instead of standing through it with the head at bench height. Flat rather
-// than turned with the whole headset: a swimmer's neck holds the head 20-40
-// degrees up from the body, and a body turned with it sat up by as much.
 // How far the direct mapping is laid flat (0..1): lying_crown times how far
 // the user lies times how far the headset's crown is off vertical (in full
 // from kCrownLevel).
@@ -936,6 +927,15 @@ double laid_flat(const Model& model, const State& st) {
   return share * smoothstep(std::hypot(u.x(), u.z()) / kCrownLevel);
 }
 
+// The direct mapping: the neutral standing pose turned to the headset's yaw.
+// For a user lying down (Settings::lying_crown, as far as the user lies and
+// the headset's crown is off vertical) it is laid flat instead: its crown
+// points where the headset's points horizontally and its face where the
+// headset faces across that axis (up for a back stroke, down for a front
+// one). A lying swimmer whose hands find no match then lies on the bench
+// instead of standing through it with the head at bench height. Flat rather
+// than turned with the whole headset: a swimmer's neck holds the head 20-40
+// degrees up from the body, and a body turned with it sat up by as much.
 void make_direct_pose(const Model& model, State& st) {
   const Pose& neutral = model.neutral();
   for (std::size_t j = 0; j < st.direct.rotations.size(); ++j) st.direct.rotations[j] = neutral.rotations[j];
