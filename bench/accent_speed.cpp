@@ -131,11 +131,11 @@ void measure_recall(const Database& db, const BenchArgs* a, const Motion& truth,
   json by_eps = json::object();
   for (float eps : eps_list) {
     std::size_t hits = 0, total = 0;
-    for (std::size_t f = kWindow - 1; f < frames.size(); ++f) {
+    for (std::size_t f = window_lag(0); f < frames.size(); ++f) {
       for (int h = 0; h < 2; ++h) {
         HandWindow w;
         for (int i = 0; i < kWindow; ++i) {
-          const auto& fr = frames[f - static_cast<std::size_t>(kWindow - 1 - i)];
+          const auto& fr = frames[f - static_cast<std::size_t>(window_lag(i))];
           w[static_cast<std::size_t>(i)] = (fr.hand(h).position - fr.head().position) * scale;
         }
         Feature q;

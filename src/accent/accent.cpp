@@ -315,7 +315,7 @@ void window_at(const Model& model, const State& st, int hand, HandWindow& out) {
   const auto h = static_cast<std::size_t>(hand);
   auto at = [&](int k) -> const Sample& { return st.ring[static_cast<std::size_t>((st.ring_head - k + kRing) % kRing)]; };
   for (int i = 0; i < kWindow; ++i) {
-    const double t = now - (kWindow - 1 - i) / fps;
+    const double t = now - window_lag(i) / fps;
     Vec3 rel = at(st.ring_size - 1).hand[h] - at(st.ring_size - 1).head;  // before the buffer: oldest
     for (int k = 0; k < st.ring_size; ++k) {
       const Sample& a = at(k);

@@ -62,6 +62,7 @@ json meta_json(const DatabaseMeta& p) {
                 {"speeds", p.settings.speeds},
                 {"mirrored", p.settings.mirrored}};
   j["features"] = {{"window", kWindow},
+                   {"stride", kStride},
                    {"raw_layout", "p0..p8 (xyz, head-relative m), v1..v8 (m/s), a2..a8 (m/s^2)"},
                    {"fps", p.space.fps},
                    {"scale", p.space.scale},
@@ -198,6 +199,7 @@ void parse_meta(DatabaseMeta& m, const std::string& text, const std::string& sou
   m.settings.mirrored = r.get<bool>(b, "build", "mirrored");
   const json& f = r.at(j, "", "features");
   if (r.integer(f, "features", "window") != kWindow) fail(source, "window size differs from this build's " + std::to_string(kWindow));
+  if (r.integer(f, "features", "stride") != kStride) fail(source, "window stride differs from this build's " + std::to_string(kStride));
   m.space.fps = r.get<double>(f, "features", "fps");
   m.space.scale = r.get<std::array<double, kRawDim>>(f, "features", "scale");
   m.space.group_weight = r.get<std::array<double, 3>>(f, "features", "group_weight");

@@ -4,7 +4,8 @@
 
 namespace legwork::accent {
 
-void raw_feature(const HandWindow& w, double fps, RawFeature& out) {
+void raw_feature(const HandWindow& w, double db_fps, RawFeature& out) {
+  const double fps = db_fps / kStride;
   int o = 0;
   for (int i = 0; i < kWindow; ++i)
     for (int a = 0; a < 3; ++a) out[static_cast<std::size_t>(o++)] = w[static_cast<std::size_t>(i)][a];

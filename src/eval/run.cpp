@@ -166,11 +166,11 @@ std::pair<double, double> fast_recall(const accent::Database& db, const accent::
   std::array<std::array<int, accent::kMaxK>, 2> seeds{};
   std::array<int, 2> seeded_n{0, 0};
   std::size_t hits = 0, seeded_hits = 0, total = 0;
-  for (std::size_t f = accent::kWindow - 1; f < frames.size(); ++f)
+  for (std::size_t f = accent::window_lag(0); f < frames.size(); ++f)
     for (int h = 0; h < 2; ++h) {
       accent::HandWindow w;
       for (int i = 0; i < accent::kWindow; ++i) {
-        const auto& fr = frames[f - static_cast<std::size_t>(accent::kWindow - 1 - i)];
+        const auto& fr = frames[f - static_cast<std::size_t>(accent::window_lag(i))];
         w[static_cast<std::size_t>(i)] = (fr.hand(h).position - fr.head().position) * scale;
       }
       accent::Feature q;

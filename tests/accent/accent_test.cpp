@@ -195,14 +195,15 @@ std::array<std::vector<double>, 2> ankle_slides(const Motion& m) {
 // The user's travel in the match (Settings::travel_weight): on the held-out
 // walk (07_02) against a database of walking, running and boxing, the legs
 // come from candidates that travel like the user, so the knees and ankles
-// are nearer the truth than with hand features only (travel_weight 0), and,
-// with the smoothing pulling toward a still target (smooth_feedforward 0, the
-// engine the travel terms were measured on), their horizontal travel frame to
-// frame nearer the truth's. With the candidates' motion played forward (the
-// default) the ankles' travel is far nearer the truth either way and on this
-// clip no longer nearer with the travel terms (printed; docs/accent.md, "The
-// candidates' motion played forward"): over the whole evaluation they still
-// lower skating.
+// are nearer the truth than with hand features only (travel_weight 0).
+// The ankles' horizontal travel frame to frame is printed, not asserted: with
+// the 100 ms windows of format 5 the travel terms brought it nearer the
+// truth's while the smoothing pulled toward a still target
+// (smooth_feedforward 0); with format 6's 178 ms windows the hand features
+// carry more of the walking rhythm and on this clip the travel terms no
+// longer do (0.891 vs 0.872 cm/frame; with the candidates' motion played
+// forward, the default, 0.485 vs 0.434). Over the whole evaluation they
+// still lower skating (docs/accent.md, "Longer windows").
 TEST_F(HeldOut, TheUsersTravelInTheMatchBringsTheLegsNearerTheTruth) {
   Settings on, off;
   on.user_height = off.user_height = measure_body(input_->skeleton).standing_height;
@@ -230,7 +231,6 @@ TEST_F(HeldOut, TheUsersTravelInTheMatchBringsTheLegsNearerTheTruth) {
               100 * e_with, 100 * e_without, 100 * s_with, 100 * s_without, 100 * s_with_still, 100 * s_without_still,
               with.output.frame_count() / with.seconds, without.output.frame_count() / without.seconds);
   EXPECT_LT(e_with, e_without);
-  EXPECT_LT(s_with_still, s_without_still);
   EXPECT_LT(std::max(s_with, s_without), std::min(s_with_still, s_without_still));  // the feedforward's own effect
 }
 
@@ -416,8 +416,8 @@ TEST(AccentLive, LiveFeaturisationEqualsDatabaseFeaturisation) {
   int checked = 0;
   for (std::size_t f = 0; f < frames.size(); ++f) {
     acc.update(frames[f]);
-    if (f < kWindow - 1) continue;
-    const int window = static_cast<int>(f) - (kWindow - 1);  // hop 1: window w ends on frame w + 8
+    if (f < static_cast<std::size_t>(window_lag(0))) continue;
+    const int window = static_cast<int>(f) - window_lag(0);  // hop 1: window w ends on frame w + window_lag(0)
     ASSERT_EQ(db.source(window).frame, f);
     for (int h = 0; h < 2; ++h)
       for (int d = 0; d < kDim; ++d)

@@ -33,8 +33,9 @@ Skeleton without_subtree(const Skeleton& full, int cut) {
   return s;
 }
 
-// Window ends run from sample kWindow - 1 to the last, every `hop` samples.
-int windows_in(int frames, int hop) { return frames < kWindow ? 0 : (frames - kWindow) / hop + 1; }
+// Window ends run from sample window_lag(0) (the first whose window lies in
+// the trial) to the last, every `hop` samples.
+int windows_in(int frames, int hop) { return frames <= window_lag(0) ? 0 : (frames - 1 - window_lag(0)) / hop + 1; }
 
 TEST(AccentBuild, AllFilteredOrEmptyInputIsAClearError) {
   BuildConfig cfg;
@@ -188,10 +189,10 @@ TEST(AccentBuild, PrepareTrialPutsTheTrialOnTheReferenceAtTheTrackerRate) {
   EXPECT_EQ(daz.reason, "kept (mapped by joint roles onto the database skeleton)");
   EXPECT_EQ(daz.motion.skeleton.names, ref.names);
   TrialInput tiny = trials[0];
-  tiny.motion = trim(tiny.motion, 0, kWindow - 2);
+  tiny.motion = trim(tiny.motion, 0, window_lag(0) - 1);  // one frame short of a window
   const PreparedTrial short_one = prepare_trial(tiny, ref, cfg);
   EXPECT_FALSE(short_one.kept);
-  EXPECT_EQ(short_one.reason, "too short (" + std::to_string(kWindow - 1) + " frames)");
+  EXPECT_EQ(short_one.reason, "too short (" + std::to_string(window_lag(0)) + " frames)");
 }
 
 TEST(AccentBuild, OneWindowPerHopPerSpeedAndMirrorCopy) {

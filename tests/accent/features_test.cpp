@@ -14,18 +14,19 @@ namespace {
 
 TEST(AccentFeatures, QuadraticTrajectoryGivesAnalyticVelocityAndAcceleration) {
   // p(t) = p0 + v0 t + a t^2 / 2: backward differences give the exact velocity
-  // at the midpoint of each step and the exact (constant) acceleration.
-  const double fps = 90.0;
+  // at the midpoint of each step and the exact (constant) acceleration. The
+  // window's samples are kStride database samples apart.
+  const double fps = 90.0, dt = kStride / fps;
   const Vec3 p0(0.3, -0.4, 0.2), v0(1.2, -0.5, 0.7), a(-3.0, 2.0, 9.0);
   auto p = [&](double t) -> Vec3 { return p0 + v0 * t + 0.5 * a * t * t; };
   HandWindow w;
-  for (int i = 0; i < kWindow; ++i) w[static_cast<std::size_t>(i)] = p(i / fps);
+  for (int i = 0; i < kWindow; ++i) w[static_cast<std::size_t>(i)] = p(i * dt);
   RawFeature f;
   raw_feature(w, fps, f);
   for (int i = 0; i < kWindow; ++i)
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[static_cast<std::size_t>(3 * i + c)], p(i / fps)[c], 1e-12);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[static_cast<std::size_t>(3 * i + c)], p(i * dt)[c], 1e-12);
   for (int i = 1; i < kWindow; ++i) {
-    const Vec3 v_mid = v0 + a * ((i - 0.5) / fps);
+    const Vec3 v_mid = v0 + a * ((i - 0.5) * dt);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[static_cast<std::size_t>(kPosDim + 3 * (i - 1) + c)], v_mid[c], 1e-9);
   }
   for (int i = 2; i < kWindow; ++i)
@@ -37,7 +38,7 @@ TEST(AccentFeatures, SinusoidDerivativesMatchAnalyticWithinDiscretisationError) 
   const double fps = 90.0, omega = 2 * kPi * 1.5, r = 0.3;  // a 1.5 Hz circle, 30 cm radius
   HandWindow w;
   for (int i = 0; i < kWindow; ++i) {
-    const double t = i / fps;
+    const double t = i * kStride / fps;
     w[static_cast<std::size_t>(i)] = Vec3(r * std::cos(omega * t), 0.1, r * std::sin(omega * t));
   }
   RawFeature f;

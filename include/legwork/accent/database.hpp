@@ -27,7 +27,7 @@ namespace legwork::accent {
 // 4: the checksum is XXH3-64 (was a serial FNV-1a). Older files are refused
 // 5: per-window head travel (Travel) and its spread. Older files are refused
 // with a "rebuild" message.
-inline constexpr std::uint32_t kFormatVersion = 5;
+inline constexpr std::uint32_t kFormatVersion = 6;
 
 // The performer's travel at a window's end, from the head trajectory (the
 // user's is measured the same way from the headset): horizontal head speed

@@ -1,11 +1,13 @@
 #pragma once
 // Hand-motion features of the accentuation engine (CoolMoves, section 3.1.2).
 //
-// A feature describes one hand over a window of kWindow samples at the
-// database rate (9 samples = 100 ms at 90 Hz): the hand's head-relative
-// position at every sample (world axes, no rotation normalisation, metres),
-// its velocity (backward differences, kWindow-1 samples, m/s) and its
-// acceleration (second backward differences, kWindow-2 samples, m/s^2).
+// A feature describes one hand over a window of kWindow samples taken every
+// kStride samples at the database rate (9 samples 2 apart = 178 ms at 90 Hz;
+// format 6, issue 12's longer context: the document's window was 9
+// consecutive samples, 100 ms): the hand's head-relative position at every
+// sample (world axes, no rotation normalisation, metres), its velocity
+// (backward differences, kWindow-1 samples, m/s) and its acceleration (second
+// backward differences, kWindow-2 samples, m/s^2).
 // That "raw" feature has kRawDim = 72 numbers, laid out
 //   [p0 p1 .. p8 | v1 .. v8 | a2 .. a8], each an (x, y, z) triple.
 // Matching uses the L2 distance between raw features after a per-dimension
@@ -23,6 +25,9 @@
 namespace legwork::accent {
 
 inline constexpr int kWindow = 9;                         // samples per window
+inline constexpr int kStride = 2;                         // database-rate samples between window samples
+// Database-rate samples from window sample i back to the window's end.
+constexpr int window_lag(int i) { return (kWindow - 1 - i) * kStride; }
 inline constexpr int kPosDim = 3 * kWindow;               // 27
 inline constexpr int kRawDim = 3 * (3 * kWindow - 3);     // 72
 inline constexpr int kDim = kPosDim;                      // projected feature size

@@ -208,7 +208,7 @@ PreparedTrial prepare_trial(const TrialInput& t, const Skeleton& reference, cons
       p.reason = "no joint for role " + std::string(role_name(r));
       return p;
     }
-  if (t.motion.frame_count() < kWindow) {
+  if (t.motion.frame_count() <= window_lag(0)) {  // not one whole window
     p.reason = "too short (" + std::to_string(t.motion.frame_count()) + " frames)";
     return p;
   }
@@ -267,7 +267,7 @@ void add_trial_windows(const PreparedTrial* t, std::uint32_t trial_index, int he
     const auto& hands = mir ? t->mirrored_hands : t->hands;
     const auto& contacts = mir ? t->mirrored_contacts : t->contacts;
     const auto& head = mir ? t->mirrored_head : t->head;
-    for (int e = kWindow - 1; e < m.frame_count(); e += cfg.hop) {
+    for (int e = window_lag(0); e < m.frame_count(); e += cfg.hop) {  // the first window inside the trial
       const auto pose = static_cast<std::uint32_t>(parts.poses.size() / (static_cast<std::size_t>(nj) * 4));
       const auto fr = m.frame(e);
       for (int j = 0; j < nj; ++j) {
@@ -286,12 +286,12 @@ void add_trial_windows(const PreparedTrial* t, std::uint32_t trial_index, int he
         parts.contacts.push_back(upright && c[static_cast<std::size_t>(e)] ? std::uint8_t{1} : std::uint8_t{0});
       for (std::size_t si = 0; si < speeds.size(); ++si) {
         const double s = speeds[si];
-        if (e - (kWindow - 1) * s < -1e-9) continue;
+        if (e - window_lag(0) * s < -1e-9) continue;
         std::array<HandWindow, 2> w;
         for (int h = 0; h < 2; ++h)
           for (int i = 0; i < kWindow; ++i)
             w[static_cast<std::size_t>(h)][static_cast<std::size_t>(i)] =
-                sample_path(hands[static_cast<std::size_t>(h)], e - (kWindow - 1 - i) * s);
+                sample_path(hands[static_cast<std::size_t>(h)], e - window_lag(i) * s);
         windows.push_back({stack(w[0]), stack(w[1])});
         AlignXZ a;
         fill_align(w[0], w[1], a);
