@@ -7,8 +7,8 @@
 // avatar, and accent::update().
 //
 // Per update: the live input is featurised exactly like the database (hands
-// relative to the head over the last kWindow samples at the database rate,
-// interpolated from whatever rate the trackers run at), each hand's k nearest
+// relative to the head at kWindow samples kStride apart at the database rate,
+// 178 ms, interpolated from whatever rate the trackers run at), each hand's k nearest
 // windows are found (distance threshold), every candidate pose is rotated
 // about the vertical axis by the weighted closed-form alignment, the
 // candidates are blended with weights inversely proportional to their match
