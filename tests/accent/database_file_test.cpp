@@ -157,4 +157,18 @@ TEST(DatabaseFile, ChecksumValidButAbsurdContentsAreRejectedByName) {
   }
 }
 
+// Format 6 stores the feature windows' stride: a file whose windows were taken
+// at another stride would match the live windows silently wrong, so it is
+// refused by name (checksum valid).
+TEST(DatabaseFile, AFileOfAnotherWindowStrideIsRefusedByName) {
+  const fs::path good = temp_dir() / "stride.lwdb", bad = temp_dir() / "stride-bad.lwdb";
+  save_database(good.string(), testing::indexed_database({"walking/07_01"}));
+  auto block = read_all(good);
+  ASSERT_EQ(load_error(good), "(no error)");
+  set_meta_number(block, "stride", std::to_string(kStride + 1));
+  write_with_checksum(bad, block);
+  EXPECT_NE(load_error(bad).find("window stride differs from this build's " + std::to_string(kStride)), std::string::npos)
+      << load_error(bad);
+}
+
 }  // namespace legwork::accent
