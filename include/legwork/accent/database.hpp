@@ -24,9 +24,10 @@
 namespace legwork::accent {
 
 // 2: per-pose foot contacts; 3: the KD-tree search index is stored in the file;
-// 4: the checksum is XXH3-64 (was a serial FNV-1a). Older files are refused
-// 5: per-window head travel (Travel) and its spread. Older files are refused
-// with a "rebuild" message.
+// 4: the checksum is XXH3-64 (was a serial FNV-1a);
+// 5: per-window head travel (Travel) and its spread. 6: feature windows of
+// kWindow samples kStride apart (features.hpp; the stride is stored in the
+// metadata and checked). Older files are refused with a "rebuild" message.
 inline constexpr std::uint32_t kFormatVersion = 6;
 
 // The performer's travel at a window's end, from the head trajectory (the
