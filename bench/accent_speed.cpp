@@ -55,7 +55,7 @@ struct BenchArgs {
   std::string input;
   bool drop_first = false, no_foot_lock = false, no_ik_blend = false, no_class_recognition = false;
   std::string classes_run;  // --run-classes: classes the timed avatar matches (default: all)
-  double scale = 0;
+  double scale = 0, other_class_cost = Settings{}.other_class_cost;
   int repeat = 3, k = Settings{}.k_left, max_checks = Settings{}.fast_max_checks;
   float eps = Settings{}.fast_eps;
 };
@@ -134,10 +134,7 @@ void measure_recall(const Database& db, const BenchArgs* a, const Motion& truth,
     for (std::size_t f = window_lag(0); f < frames.size(); ++f) {
       for (int h = 0; h < 2; ++h) {
         HandWindow w;
-        for (int i = 0; i < kWindow; ++i) {
-          const auto& fr = frames[f - static_cast<std::size_t>(window_lag(i))];
-          w[static_cast<std::size_t>(i)] = (fr.hand(h).position - fr.head().position) * scale;
-        }
+        window_from_frames(frames, f, h, scale, w);
         Feature q;
         db.feature_space().project(w, q);
         const int nb = search_knn(db, h, q, a->k, SearchMode::BruteForce, 0, {}, brute);
@@ -184,6 +181,7 @@ void measure_modes(const Database& db, const BenchArgs* a, const Motion& truth, 
     cfg.user_height = measure_body(truth.skeleton).standing_height;
     cfg.foot_lock = !a->no_foot_lock;
     cfg.recognize_class = !a->no_class_recognition;
+    cfg.other_class_cost = a->other_class_cost;
     cfg.classes = split_commas(a->classes_run);
     if (a->no_ik_blend) cfg.ik_blend_min = cfg.ik_blend_max = 0;
     std::vector<double> lat;
@@ -255,6 +253,9 @@ int run(int argc, char** argv) {
   cmd->add_flag("--no-ik-blend", a->no_ik_blend, "time the engine without the IK blend");
   cmd->add_flag("--no-class-recognition", a->no_class_recognition,
                 "with several classes allowed, search all of them every frame (default: recognise the class, search its index)");
+  cmd->add_option("--other-class-cost", a->other_class_cost,
+                 "while recognising the class, also search the others at this factor on their distances (0 = off)")
+      ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--run-classes", a->classes_run, "comma-separated classes the timed avatar matches (default: all)");
   CLI11_PARSE(app, argc, argv);
   {

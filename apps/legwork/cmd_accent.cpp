@@ -115,6 +115,11 @@ void register_run(CLI::App& parent) {
                   "so a swimmer's body does not wobble its feet across the floor (1 = off)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 20.0));
+  cmd->add_option("--other-class-cost", a->other_class_cost,
+                  "no class given: also search the classes other than the recognised one, their distances times "
+                  "this factor (1 = no preference; 0 = the recognised class only)")
+      ->capture_default_str()
+      ->check(zero_or_factor());
   cmd->add_option("--lying-crown", a->lying_crown,
                   "share of a lying user's candidate turn taken from the headset (yaw from its crown, which points "
                   "away from the feet; roll from its face), and of the standing IK body taken out (0 = off)")

@@ -28,7 +28,7 @@ struct EngineOption {
   double lo, hi;
   const char* help;
 };
-constexpr std::array<EngineOption, 17> kEngineOptions{{
+constexpr std::array<EngineOption, 18> kEngineOptions{{
     {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
     {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
     {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
@@ -60,6 +60,8 @@ constexpr std::array<EngineOption, 17> kEngineOptions{{
      "engine: share of the matched candidates' own motion the smoothing plays forward (0 = none: it lags a moving body)"},
     {"--lying-root-smoothing", &accent::Settings::lying_root_smoothing, 1.0, 20.0,
      "engine: times the spring's half-life on the root for a lying user (1 = off)"},
+    {"--other-class-cost", &accent::Settings::other_class_cost, 0.0, 1e6,
+     "engine, no class given: factor on the distances of the classes other than the recognised one, also searched (0 = the recognised class only)"},
     {"--lying-crown", &accent::Settings::lying_crown, 0.0, 1.0,
      "engine: share of a lying user's candidate turn taken from the headset (yaw from its crown, roll from its face), and of the standing IK body taken out (0 = off)"},
 }};
@@ -118,8 +120,11 @@ void register_eval(CLI::App& app) {
       ->check(non_negative_number());
   for (std::size_t i = 0; i < kEngineOptions.size(); ++i) {
     const EngineOption& o = kEngineOptions[i];
-    cmd->add_option(o.flag, a->engine[i], o.help)
-        ->check(std::isinf(o.hi) ? non_negative_number() : CLI::Validator(CLI::Range(o.lo, o.hi)));
+    CLI::Option* opt = cmd->add_option(o.flag, a->engine[i], o.help);
+    if (o.field == &accent::Settings::other_class_cost)
+      opt->check(zero_or_factor());
+    else
+      opt->check(std::isinf(o.hi) ? non_negative_number() : CLI::Validator(CLI::Range(o.lo, o.hi)));
   }
   cmd->add_flag("--mirror", a->mirror, "engine: add mirrored trials to every database");
   cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");

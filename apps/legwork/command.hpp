@@ -27,6 +27,8 @@ CLI::Validator positive_up_to(double max);
 // A number > 0 / >= 0 with no maximum ("Value -1 must be > 0"), for the same reason.
 CLI::Validator positive_number();
 CLI::Validator non_negative_number();
+// 0, or a factor from 1 to 1e6 (accent::Settings::other_class_cost).
+CLI::Validator zero_or_factor();
 
 // Progress of long work on stderr: a live bar on a terminal, whole lines in logs.
 inline io::ProgressPrinter progress_bar(const std::string& what) { return io::progress_printer(what); }

@@ -53,6 +53,16 @@ CLI::Validator number_from(double low, bool low_allowed, double max) {
 CLI::Validator positive_up_to(double max) { return number_from(0, false, max); }
 CLI::Validator positive_number() { return number_from(0, false, std::numeric_limits<double>::infinity()); }
 CLI::Validator non_negative_number() { return number_from(0, true, std::numeric_limits<double>::infinity()); }
+CLI::Validator zero_or_factor() {
+  return CLI::Validator(
+      [](std::string& in) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(in, v) || std::isnan(v)) return "Value " + in + " is not a number";
+        if (v == 0 || (v >= 1 && v <= 1e6)) return {};
+        return "Value " + in + " must be 0 (off) or a factor from 1 to 1000000";
+      },
+      "0 or [1 - 1000000]");
+}
 
 void MotionInput::add_options(CLI::App* cmd, bool positional, const std::string& name) {
   if (positional) cmd->add_option(name, path, "motion file to read: .bvh, or a .glb (legwork's or another tool's skinned glTF whose rig resolves to roles)")->required()->check(CLI::ExistingFile);

@@ -69,6 +69,8 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: smoothing half-life must be >= 0 seconds");
   if (!std::isfinite(cfg.lying_root_smoothing) || cfg.lying_root_smoothing < 1 || cfg.lying_root_smoothing > 20)
     throw Error("accent: lying_root_smoothing must be between 1 and 20 (times the root's smoothing half-life for a lying user; 1 = off)");
+  if (!std::isfinite(cfg.other_class_cost) || (cfg.other_class_cost != 0 && cfg.other_class_cost < 1) || cfg.other_class_cost > 1e6)
+    throw Error("accent: other_class_cost must be 0 (search only the classes to match) or a factor from 1 to 1e6 (other classes' distances multiplied by it)");
   if (!std::isfinite(cfg.lying_crown) || cfg.lying_crown < 0 || cfg.lying_crown > 1)
     throw Error("accent: lying_crown must be between 0 and 1 (the share of a lying user's candidate turn taken from the headset: yaw from its crown, roll from its face; 0 = off)");
   if (!std::isfinite(cfg.smooth_feedforward) || cfg.smooth_feedforward < 0 || cfg.smooth_feedforward > 1)
@@ -229,7 +231,8 @@ Model make_model(const Database& db, const Settings& settings) {
 
 std::size_t Model::bytes() const {
   const auto nj = static_cast<std::size_t>(skeleton_.joint_count());
-  return sizeof(*this) + class_mask_.size() + allowed_.size() * sizeof(int) + next_pose_.size() * sizeof(int) +
+  return sizeof(*this) + class_mask_.size() + allowed_.size() * sizeof(int) +
+         next_pose_.size() * sizeof(int) +
          nj * (sizeof(Group) + sizeof(Limit) + sizeof(Quat) + sizeof(Vec3)) +
          nj * (3 * sizeof(Vec3) + sizeof(int) + 40);
 }
@@ -250,6 +253,7 @@ State::State(const Model& model) {
   class_seed.assign(nc, {-1, -1});
   active_mask.assign(nc, 0);
   probe_mask.assign(nc, 0);
+  if (model.recognizes_class() && model.settings().other_class_cost > 0) active_scale.assign(nc, 1.0f);
   if (model.ik_model()) {
     ik.emplace(*model.ik_model());
     ik_pose = model.neutral();
@@ -288,7 +292,7 @@ std::size_t State::bytes() const {
   const auto nj = spring_rot.size();
   return sizeof(*this) + 3 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Quat) + 2 * sizeof(Vec3)) +
          nj * (sizeof(Transform) + sizeof(Quat)) +
-         class_cost.size() * (2 * sizeof(double) + sizeof(std::array<int, 2>) + 2);
+         class_cost.size() * (2 * sizeof(double) + sizeof(std::array<int, 2>) + 2) + active_scale.size() * sizeof(float);
 }
 
 std::span<const Match> last_matches(const State& s, int hand) {
@@ -444,9 +448,14 @@ int gather_matches(const Model& model, State& st, int h, double threshold) {
   const bool travel = cfg.travel_weight > 0;
   const std::span<Match> found = travel ? std::span<Match>(st.candidates) : std::span<Match>(m);
   const int k_fetch = travel ? std::min(2 * kMaxK, k_search + k_search / 2) : k_search;
-  const std::span<const unsigned char> mask = st.active_class >= 0 ? std::span<const unsigned char>(st.active_mask) : model.class_mask();
+  std::span<const unsigned char> mask = st.active_class >= 0 ? std::span<const unsigned char>(st.active_mask) : model.class_mask();
+  std::span<const float> class_scale;  // Settings::other_class_cost: every allowed class, the others' distances scaled
+  if (!st.active_scale.empty() && st.active_class >= 0) {
+    mask = model.class_mask();
+    class_scale = st.active_scale;
+  }
   int got = search_knn(db, h, st.live[hu], k_fetch, cfg.search, cfg.fast_eps, mask, found,
-                       std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)), cfg.fast_max_checks);
+                       std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)), cfg.fast_max_checks, class_scale);
   if (threshold > 0)
     while (got > 0 && found[static_cast<std::size_t>(got - 1)].distance > threshold) --got;
   if (gates_posture(cfg)) got = posture_gate(model, st, found.first(static_cast<std::size_t>(got)));
@@ -755,15 +764,26 @@ void recognize_class(const Model& model, State& st, double dt) {
   }
   std::fill(st.active_mask.begin(), st.active_mask.end(), 0);
   st.active_mask[static_cast<std::size_t>(st.active_class)] = 1;
+  if (!st.active_scale.empty()) {
+    std::fill(st.active_scale.begin(), st.active_scale.end(), static_cast<float>(model.settings().other_class_cost));
+    st.active_scale[static_cast<std::size_t>(st.active_class)] = 1.0f;
+  }
 }
 
 // After the frame's search: its best gated distances are the active class's cost.
 void score_active_class(const Model& model, State& st) {
   const double far = far_cost(model.settings()), typical = model.database().typical_distance();
   double cost = 0;
+  const Database& db = model.database();
   for (std::size_t h = 0; h < 2; ++h) {
-    cost += st.match_count[h] > 0 ? std::min(far, st.matches[h][0].distance / typical) : far;
-    if (st.match_count[h] > 0) st.class_seed[static_cast<std::size_t>(st.active_class)][h] = st.matches[h][0].window;
+    // The nearest match of the active class itself (with other_class_cost the
+    // matches may include other classes); when all are of other classes, the
+    // active class's nearest is no nearer than the last of them.
+    const int n = st.match_count[h];
+    int i = 0;
+    while (i < n && db.source(st.matches[h][static_cast<std::size_t>(i)].window).cls != st.active_class) ++i;
+    cost += n > 0 ? std::min(far, st.matches[h][static_cast<std::size_t>(std::min(i, n - 1))].distance / typical) : far;
+    if (i < n) st.class_seed[static_cast<std::size_t>(st.active_class)][h] = st.matches[h][static_cast<std::size_t>(i)].window;
   }
   update_class_cost(model, st, st.active_class, cost / 2, st.ring[static_cast<std::size_t>(st.ring_head)].t);
 }

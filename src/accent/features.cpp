@@ -4,6 +4,13 @@
 
 namespace legwork::accent {
 
+void window_from_frames(std::span<const TrackerFrame> frames, std::size_t end, int hand, double scale, HandWindow& out) {
+  for (int i = 0; i < kWindow; ++i) {
+    const TrackerFrame& fr = frames[end - static_cast<std::size_t>(window_lag(i))];
+    out[static_cast<std::size_t>(i)] = (fr.hand(hand).position - fr.head().position) * scale;
+  }
+}
+
 void raw_feature(const HandWindow& w, double db_fps, RawFeature& out) {
   const double fps = db_fps / kStride;
   int o = 0;

@@ -404,6 +404,7 @@ json report_json(const EvalResult& r) {
                         {"smooth_feedforward", v.config.smooth_feedforward},
                         {"lying_root_smoothing", v.config.lying_root_smoothing},
                         {"lying_crown", v.config.lying_crown},
+                        {"other_class_cost", v.config.other_class_cost},
                         {"foot_lock", v.config.foot_lock},
                         {"foot_lock_follow_seconds", v.config.foot_lock_follow_seconds},
                         {"foot_lift_height", v.config.foot_lift_height},

@@ -169,10 +169,7 @@ std::pair<double, double> fast_recall(const accent::Database& db, const accent::
   for (std::size_t f = accent::window_lag(0); f < frames.size(); ++f)
     for (int h = 0; h < 2; ++h) {
       accent::HandWindow w;
-      for (int i = 0; i < accent::kWindow; ++i) {
-        const auto& fr = frames[f - static_cast<std::size_t>(accent::window_lag(i))];
-        w[static_cast<std::size_t>(i)] = (fr.hand(h).position - fr.head().position) * scale;
-      }
+      accent::window_from_frames(frames, f, h, scale, w);
       accent::Feature q;
       db.feature_space().project(w, q);
       const int k = h == 0 ? cfg.k_left : cfg.k_right;

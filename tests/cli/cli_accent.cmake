@@ -34,6 +34,12 @@ legwork_cli_error(accent_run_lying_root_range "--lying-root-smoothing: Value 0.5
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --lying-root-smoothing 0.5 --out ${O}/x.bvh)
 legwork_cli_error(accent_run_feedforward_range "--smooth-feedforward: Value 2 not in range 0\\.0+ to 1\\.0*"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --smooth-feedforward 2 --out ${O}/x.bvh)
+# Other classes at a cost (no class given): 0, or a factor of at least 1.
+legwork_cli_error(accent_run_other_class_cost_range "--other-class-cost: Value 0.5 must be 0 \\(off\\) or a factor from 1 to 1000000"
+                 accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --other-class-cost 0.5 --out ${O}/x.bvh)
+legwork_cli_test(accent_run_other_class_cost accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first
+                 --other-class-cost 1 --out ${O}/accent_07_02_other_classes.bvh)
+set_tests_properties(cli.accent_run_other_class_cost cli.accent_run_other_class_cost_range PROPERTIES FIXTURES_REQUIRED accent_db)
 set_tests_properties(cli.accent_run_foot_lift cli.accent_run_foot_lift_range cli.accent_run_foot_slack_range cli.accent_run_swing_speed_range cli.accent_run_travel_weight_range cli.accent_run_head_height_range cli.accent_run_feedforward_range cli.accent_run_lying_root_range
                      PROPERTIES FIXTURES_REQUIRED accent_db)
 # accent_speed: the figures program of bench/ (built with the tests too).

@@ -6,6 +6,7 @@ add_test(NAME cli.eval_quick_report
          COMMAND ${CMAKE_COMMAND} -DREPORT_DIR=${O}/eval-quick -P ${CMAKE_CURRENT_LIST_DIR}/check_eval_report.cmake)
 set_tests_properties(cli.eval_quick_report PROPERTIES FIXTURES_REQUIRED eval_quick)
 legwork_cli_test(eval_help eval accent --help)
+legwork_cli_error(eval_other_class_cost_range "--other-class-cost: Value 0.5 must be 0 \\(off\\) or a factor from 1 to 1000000" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --other-class-cost 0.5)
 legwork_cli_error(eval_foot_lift_range "--foot-lift-height: Value -1 not in range 0\\.0+ to 0\\.50*" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --foot-lift-height -1)
 legwork_cli_error(eval_foot_slack_range "--foot-lock-slack: Value 3 not in range 0\\.0+ to 1\\.0*" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --foot-lock-slack 3)
 legwork_cli_test(eval_foot_lift eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --quick-trials 2 --max-seconds 3 --no-ablation --skip-no-class --foot-lift-height 0.08)

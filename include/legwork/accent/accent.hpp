@@ -106,6 +106,13 @@ struct Settings {
   // class_margin for class_hold_seconds (hysteresis). false: every allowed
   // class is searched every frame (their class trees, one shared check budget).
   bool recognize_class = true;
+  // Other classes at a cost, while recognising the class: the frame's search
+  // also covers the allowed classes other than the recognised one, their
+  // distances multiplied by this factor (>= 1; 1 = no preference), so a
+  // user whose motion the recognised class's trials do not cover can still
+  // take a nearer window of another class (docs/accent.md, "Other classes at
+  // a cost"). 0 = only the recognised class is searched.
+  double other_class_cost = 1.25;
   double class_seconds = 0.5;
   double class_margin = 0.1;
   double class_hold_seconds = 0.5;
@@ -338,6 +345,7 @@ struct State {
   std::vector<double> class_time;   // input time of each class's last cost update
   std::vector<std::array<int, 2>> class_seed;  // best window per class and hand (seeds the probes)
   std::vector<unsigned char> active_mask, probe_mask;
+  std::vector<float> active_scale;  // Settings::other_class_cost around the recognised class
   Pose smoothed;                // EWMA output
   std::vector<Quat> spring_rot; // spring filter: filtered local rotations...
   std::vector<Vec3> spring_vel; // ...and their angular velocities

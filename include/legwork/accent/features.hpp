@@ -17,9 +17,11 @@
 // distance between kDim = 27 numbers: FeatureSpace::project maps the 27
 // head-relative window coordinates to them (a 27x27 matrix that also rotates
 // onto principal axes so KD-trees split well). Runtime code: no allocation.
+#include <legwork/core/tracker.hpp>
 #include <legwork/core/types.hpp>
 
 #include <array>
+#include <cstddef>
 #include <span>
 
 namespace legwork::accent {
@@ -35,6 +37,14 @@ inline constexpr int kDim = kPosDim;                      // projected feature s
 using HandWindow = std::array<Vec3, kWindow>;  // head-relative positions, oldest first
 using RawFeature = std::array<double, kRawDim>;
 using Feature = std::array<float, kDim>;
+
+// The live query window of hand `hand` (0 left, 1 right) ending on
+// frames[end], from a whole recording at the database rate (end >=
+// window_lag(0)): head-relative positions times `scale` (database height /
+// user height), as the engine forms it. For offline measurements (the
+// evaluation's and the benchmark's fast-search recall); the engine keeps a
+// ring of recent samples instead.
+void window_from_frames(std::span<const TrackerFrame> frames, std::size_t end, int hand, double scale, HandWindow& out);
 
 // Raw feature of one hand window sampled at `fps` (layout above).
 void raw_feature(const HandWindow& w, double fps, RawFeature& out);

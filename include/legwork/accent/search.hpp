@@ -28,8 +28,13 @@ struct Match {
 // `max_checks` (Fast mode only, 0 = unlimited): stop a class's tree after this
 // many full-distance evaluations, bounding the worst-case latency when the
 // query is far from everything in the database.
+// `class_scale` (optional, one factor >= 1 per database class, or empty = all
+// 1): each class's distances are multiplied by its factor before ranking (and
+// reported so), so a class can be preferred without excluding the others
+// (Settings::other_class_cost). A larger factor prunes that class's tree
+// harder, so it costs less than an unscaled search over the same classes.
 int search_knn(const Database& db, int hand, const Feature& query, int k, SearchMode mode, float eps,
                std::span<const unsigned char> class_mask, std::span<Match> out, std::span<const int> seeds = {},
-               int max_checks = 0);
+               int max_checks = 0, std::span<const float> class_scale = {});
 
 }  // namespace legwork::accent
