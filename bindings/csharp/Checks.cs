@@ -52,6 +52,10 @@ static class Checks
         Expect.That("lying crown default", bad.LyingCrown == 1, "LyingCrown " + bad.LyingCrown);
         bad.LyingCrown = -0.5;
         Expect.Throws<LegworkException>("lying crown out of range", () => Model.CreateAccent(db, bad), "lying_crown must be between 0 and 1");
+        bad = AccentSettings.Default();
+        Expect.That("other class cost default", bad.OtherClassCost == 1.25, "OtherClassCost " + bad.OtherClassCost);
+        bad.OtherClassCost = 0.5;
+        Expect.Throws<LegworkException>("other class cost out of range", () => Model.CreateAccent(db, bad), "other_class_cost must be 0 (search only the classes to match) or a factor from 1 to 1e6");
 
         Model model = Model.CreateAccent(db, AccentSettings.Default());
         Avatar avatar = Avatar.Create(model);

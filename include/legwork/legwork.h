@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 10u
+#define LW_ABI_VERSION 11u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -163,6 +163,9 @@ typedef struct lw_accent_settings {
   double lying_crown; /* (0..1) share of a lying user's candidate turn taken from the headset (yaw from its crown, which
                          points away from the feet; roll from its face), and of the standing IK body taken out; 0 = off
                          (ABI 10) */
+  double other_class_cost; /* 0, or a factor in [1, 1e6]: while the class is recognised (recognize_class, several
+                              classes allowed), the other allowed classes are searched too, their distances times this
+                              factor; 0 = the recognised class only (ABI 11) */
 } lw_accent_settings;
 LW_API void lw_accent_settings_default(lw_accent_settings* s);
 /* The database must outlive the model. */

@@ -119,6 +119,10 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("lying_crown", &Settings::lying_crown,
                      "share (0..1) of a lying user's candidate turn taken from the headset (yaw from its crown, which "
                      "points away from the feet; roll from its face), and of the standing IK body taken out (0 = off)")
+      .def_readwrite("other_class_cost", &Settings::other_class_cost,
+                     "while the class is recognised (recognize_class, several classes allowed): the other allowed "
+                     "classes are searched too, their distances times this factor (1..1e6; 1 = no preference); 0 = "
+                     "the recognised class only")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
                      "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
       .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")

@@ -210,6 +210,11 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
      r"lying_root_smoothing must be between 1 and 20"),
     # a lying user turned by the headset's crown; the walk stands, so no change (effect: tests/accent's HeldOutBackStroke)
     ("lying_crown", "--lying-crown", 0.0, 1.0, False, 1.5, r"lying_crown must be between 0 and 1"),
+    # other classes at a cost while recognising the class (effect: tests/accent's
+    # NoClassGivenOtherClassesAtACostBringTheRunnerNearerTheTruth); the sample database holds several classes and
+    # the walk's class is recognised, so the walk changes
+    ("other_class_cost", "--other-class-cost", 0.0, 1.25, True, 0.5,
+     r"other_class_cost must be 0 \(search only the classes to match\) or a factor from 1 to 1e6"),
 ])
 def test_engine_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path, name, flag, value, default, changes,
                                               bad, message):

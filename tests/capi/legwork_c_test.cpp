@@ -511,6 +511,13 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
   EXPECT_NE(std::string(lw_last_error()).find("lying_crown must be between 0 and 1"), std::string::npos) << lw_last_error();
   s.lying_crown = 0.5;
+  EXPECT_DOUBLE_EQ(s.other_class_cost, legwork::accent::Settings{}.other_class_cost);  // ABI 11: the engine's default
+  s.other_class_cost = 0.5;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("other_class_cost must be 0 (search only the classes to match) or a factor from 1 to 1e6"),
+            std::string::npos)
+      << lw_last_error();
+  s.other_class_cost = 0;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

@@ -95,6 +95,9 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   o.lying_crown = -1;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "lying_crown -1.000000 is outside [0, 1] (0 = off)");
   o.lying_crown = 0.5;
+  o.other_class_cost = 0.5;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "other_class_cost 0.500000 is neither 0 (off) nor in [1, 1e6]");
+  o.other_class_cost = 0;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];

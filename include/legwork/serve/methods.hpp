@@ -57,6 +57,8 @@ struct MethodOptions {
   double lying_root_smoothing = 8.0;
   // accent (and combined's upper body): accent::Settings::lying_crown, the engine's default (0 = off).
   double lying_crown = 1.0;
+  // accent (and combined's upper body): accent::Settings::other_class_cost, the engine's default (0 = the recognised class only).
+  double other_class_cost = 1.25;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
   std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)
