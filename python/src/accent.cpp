@@ -146,7 +146,9 @@ void bind_settings(pb::module_& m) {
       .def_readonly("contact", &Info::contact, "blended foot contact of the candidates [left, right] (0..1)")
       .def_readonly("foot_locked", &Info::foot_locked, "whether each foot is locked [left, right]")
       .def_readonly("ik_share", &Info::ik_share, "share of the IK body in the output (0..1)")
-      .def_readonly("active_class", &Info::active_class, "recognised class (index into Database.classes), -1 = not recognising");
+      .def_readonly("active_class", &Info::active_class, "recognised class (index into Database.classes), -1 = not recognising")
+      .def_readonly("classes_searched", &Info::classes_searched,
+                    "classes this frame's search covered (the recognised one plus the others searched at other_class_cost)");
 }
 
 pb::dict run_dict(AccentRun run) {

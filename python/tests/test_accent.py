@@ -84,21 +84,26 @@ def test_no_class_setting_recognises_walking(db, truth):
     """No class given: the engine recognises the held-out walking trial's class; off, it does not recognise."""
     head, head_rot, left, right = tracks(truth)
     frames = core.tracker_frames(db.fps, head, head_rot, left, right)
-    counts = {}
+    counts, searched_counts = {}, {}
     for recognise in (True, False):
         settings = settings_for(truth)
         assert settings.recognize_class  # the default
         settings.recognize_class = recognise
         model = accent.make_model(db, settings)
         state, pose, info = accent.State(model), core.Pose(model.skeleton()), accent.Info()
-        active = []
+        active, searched = [], []
         for frame in frames:
             accent.update(model, frame, state, pose, info)
             active.append(info.active_class)
+            searched.append(info.classes_searched)
         counts[recognise] = active
+        searched_counts[recognise] = searched
     walking = db.classes.index("walking")
     assert counts[True].count(walking) > len(frames) // 2
     assert set(counts[False]) == {-1}
+    # Off, every class is searched; on, the recognised one and the others whose cost could enter the matches.
+    assert set(searched_counts[False]) == {len(db.classes)}
+    assert 1 <= min(searched_counts[True]) and max(searched_counts[True]) <= len(db.classes)
 
 
 def test_cli_reports_recognised_classes_and_can_turn_them_off(cli, db, db_path, truth, tmp_path):

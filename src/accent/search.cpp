@@ -2,6 +2,8 @@
 
 #include "database_impl.hpp"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -20,13 +22,11 @@ inline void push_top(std::span<Match> out, int k, int& n, int window, float d2) 
   out[static_cast<std::size_t>(i)] = {window, d2};
 }
 
+// Squared distance between two feature rows, in SIMD packets (Eigen sums
+// them in independent lanes: a scalar loop is one serial chain of kDim adds).
 inline float squared_distance(const float* a, const float* b) {
-  float s = 0;
-  for (int d = 0; d < kDim; ++d) {
-    const float x = a[d] - b[d];
-    s += x * x;
-  }
-  return s;
+  using Row = Eigen::Map<const Eigen::Array<float, kDim, 1>>;
+  return (Row(a) - Row(b)).square().sum();
 }
 
 // nanoflann result set over the prefix trees: the tree reports points whose

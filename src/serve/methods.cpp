@@ -145,6 +145,7 @@ struct AccentRuntime : Contract<accent::Model, accent::State, accent::Info, &acc
     out.add("matches_left", i.matches[0]);
     out.add("matches_right", i.matches[1]);
     out.add("active_class", i.active_class);
+    out.add("classes_searched", i.classes_searched);
   }
   static Model model(const Resources& res, const MethodOptions& opt) {
     accent::Settings c;

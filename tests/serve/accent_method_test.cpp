@@ -63,6 +63,7 @@ TEST(ServeAccent, StreamsATrialAndTheHandsFollow) {
     ASSERT_EQ(p["seq"], i + 1);
     EXPECT_NE(p["status"], "rejected");
     matched += p["info"]["match"] == "matched";
+    EXPECT_EQ(p["info"]["classes_searched"], 1) << "the hello allowed walking only";
     const auto& q = p["positions"][lh];
     err.push_back((Vec3(q[0], q[1], q[2]) - frames[i].hand(kLeft).position).norm());
   }

@@ -211,6 +211,11 @@ struct Info {
   // Settings::recognize_class: the recognised class (index into
   // Database::classes(); -1 = not recognising, all allowed classes searched).
   int active_class = -1;
+  // How many classes this frame's search covered: every allowed one when not
+  // recognising; while recognising, the recognised class plus the others
+  // searched at other_class_cost (those whose probed cost could still enter
+  // the matches).
+  int classes_searched = 0;
 };
 
 // Everything derived from the database and the settings; immutable.
