@@ -1,22 +1,103 @@
 // legwork info / convert: inspect and convert motion files (io/motion_file.hpp).
 #include "command.hpp"
 
+#include <legwork/accent/database.hpp>
+#include <legwork/accent/features.hpp>
+
+#include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 namespace legwork::cli {
 namespace {
 
+// Whether the file starts with the accent database's magic (whatever its name).
+bool is_accent_database(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[sizeof accent::kMagic] = {};
+  return in.read(magic, sizeof magic) && std::memcmp(magic, accent::kMagic, sizeof magic) == 0;
+}
+
+// What a database holds: sizes, classes, trials, build settings, load time.
+nlohmann::json database_info(const std::string& path) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const accent::Database db = accent::load_database(path);  // checksum verified, index read
+  const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  nlohmann::json classes = nlohmann::json::array();
+  for (int c = 0; c < db.class_count(); ++c) {
+    const auto [a, b] = db.class_range(c);
+    int trials = 0;
+    for (const auto& t : db.trials()) trials += t.cls == db.classes()[static_cast<std::size_t>(c)];
+    classes.push_back({{"name", db.classes()[static_cast<std::size_t>(c)]}, {"windows", b - a}, {"trials", trials}});
+  }
+  nlohmann::json trials = nlohmann::json::array();
+  for (const auto& t : db.trials())
+    trials.push_back({{"file", t.file}, {"class", t.cls}, {"subject", t.subject}, {"trial", t.trial}, {"hand_foot_correlation", t.correlation}});
+  const auto& s = db.settings();
+  return {{"file", path},
+          {"format", "legwork accent database"},
+          {"format_version", accent::kFormatVersion},
+          {"bytes", db.bytes().size()},
+          {"windows", db.window_count()},
+          {"poses", db.pose_count()},
+          {"joints", db.joint_count()},
+          {"height_m", db.height()},
+          {"fps", s.fps},
+          {"hop", s.hop},
+          {"window_samples", accent::kWindow},
+          {"window_stride", accent::kStride},
+          {"window_seconds", (accent::kWindow - 1) * accent::kStride / s.fps},
+          {"speeds", s.speeds},
+          {"mirrored", s.mirrored},
+          {"correlation_threshold", s.correlation_threshold},
+          {"typical_distance", db.typical_distance()},
+          {"search_index", db.has_index()},
+          {"load_ms", load_ms},
+          {"classes", classes},
+          {"trials", trials}};
+}
+
+void print_database_info(const nlohmann::json& j) {
+  std::printf("file:       %s\n", j["file"].get<std::string>().c_str());
+  std::printf("format:     legwork accent database, version %d, %.1f MB (loaded and verified in %.1f ms)\n",
+              j["format_version"].get<int>(), j["bytes"].get<double>() / 1e6, j["load_ms"].get<double>());
+  std::printf("windows:    %d over %zu trials (%d poses); %d joints, %.2f m tall\n", j["windows"].get<int>(),
+              j["trials"].size(), j["poses"].get<int>(), j["joints"].get<int>(), j["height_m"].get<double>());
+  std::printf("windows of: %d samples %d apart at %.4g Hz (%.0f ms), one every %d samples; speeds",
+              j["window_samples"].get<int>(), j["window_stride"].get<int>(), j["fps"].get<double>(),
+              1000 * j["window_seconds"].get<double>(), j["hop"].get<int>());
+  for (double v : j["speeds"]) std::printf(" %.3g", v);
+  std::printf("%s\n", j["mirrored"].get<bool>() ? ", mirrored copies" : "");
+  std::printf("classes:   ");
+  for (const auto& c : j["classes"])
+    std::printf(" %s (%d trial%s, %d windows)", c["name"].get<std::string>().c_str(), c["trials"].get<int>(),
+                c["trials"].get<int>() == 1 ? "" : "s",
+                c["windows"].get<int>());
+  std::printf("\nindex:      %s\n", j["search_index"].get<bool>() ? "KD-trees stored in the file" : "none");
+}
+
 void register_info(CLI::App& app) {
-  auto* cmd = app.add_subcommand("info", "Show a BVH file's joints, roles, frames, rate, duration and height.\n"
+  auto* cmd = app.add_subcommand("info", "Show a BVH or GLB file's joints, roles, frames, rate, duration and height, or what an "
+                                         "accent database (.lwdb) holds.\n"
                                          "Example: legwork info data/cmu/bvh/walking/07_01.bvh");
   auto in = std::make_shared<MotionInput>();
   auto json = std::make_shared<bool>(false);
   in->add_options(cmd);
   cmd->add_flag("--json", *json, "print machine-readable JSON instead of text");
   cmd->callback([in, json] {
+    if (is_accent_database(in->path)) {
+      const auto j = database_info(in->path);
+      if (*json)
+        std::cout << j.dump(2) << "\n";
+      else
+        print_database_info(j);
+      return;
+    }
     const auto f = in->load();
     if (*json) {
       auto j = io::motion_info_json(f);

@@ -16,7 +16,6 @@
 
 namespace legwork::accent {
 
-inline constexpr char kMagic[8] = {'L', 'W', 'A', 'C', 'C', 'E', 'N', 'T'};
 inline constexpr std::uint32_t kEndianTag = 0x01020304u;
 
 // Fixed header at offset 0 (little-endian; 152 bytes).

@@ -102,6 +102,12 @@ std::string_view text_body(std::string_view text, std::string_view source) {
   auto starts = [&](std::string_view bom) { return text.substr(0, bom.size()) == bom; };
   using namespace std::string_view_literals;
   if (starts("\xEF\xBB\xBF"sv)) return text.substr(3);
+  // Binary files of the formats legwork writes, given where text is read.
+  if (starts("LWACCENT"sv))
+    throw Error(std::string(source) + ": a legwork accent database (binary .lwdb), not a text file; 'legwork info " +
+                std::string(source) + "' describes it, 'legwork accent run --db' uses it");
+  if (starts("glTF"sv))
+    throw Error(std::string(source) + ": a binary glTF (.glb), not a text file; name it .glb where a motion is read");
   const bool utf32 = starts("\xFF\xFE\0\0"sv) || starts("\0\0\xFE\xFF"sv);
   // ASCII interleaved with NULs ("H\0I\0..." or "\0H\0I...") is BOM-less UTF-16.
   const bool interleaved = text.size() >= 4 && ((text[0] != 0 && text[1] == 0 && text[2] != 0 && text[3] == 0) ||

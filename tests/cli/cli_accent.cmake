@@ -71,3 +71,18 @@ legwork_cli_error(accent_run_height_positive "--height: Value -1 must be > 0\n"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --height -1 --out ${O}/x.bvh)
 legwork_cli_error(accent_run_threshold_nan "--threshold: Value nan is not a number"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --threshold nan --out ${O}/x.bvh)
+# `legwork info` on a database describes it (by its magic, whatever its name);
+# a database given where a motion or a CSV is read is named as one.
+add_test(NAME cli.info_accent_db COMMAND legwork info ${ACC_DB})
+set_tests_properties(cli.info_accent_db PROPERTIES FIXTURES_REQUIRED accent_db PASS_REGULAR_EXPRESSION
+  "format: +legwork accent database, version [0-9]+.*windows of: 9 samples 2 apart at 90 Hz \\(178 ms\\).*classes: .*walking \\([0-9]+ trials, [0-9]+ windows\\).*index: +KD-trees stored in the file")
+add_test(NAME cli.info_accent_db_json COMMAND legwork info ${ACC_DB} --json)
+set_tests_properties(cli.info_accent_db_json PROPERTIES FIXTURES_REQUIRED accent_db PASS_REGULAR_EXPRESSION
+  "\"window_stride\": 2,.*\"windows\": [1-9][0-9]*")
+legwork_cli_error(convert_accent_db_as_motion
+  "error: .*accent_sample.lwdb: a legwork accent database \\(binary .lwdb\\), not a text file; 'legwork info .*accent_sample.lwdb' describes it"
+  convert ${ACC_DB} ${O}/from_db.bvh)
+legwork_cli_error(accent_run_db_as_input
+  "error: --input '.*accent_sample.lwdb' must be a .bvh trial or a .csv headset session"
+  accent run --db ${ACC_DB} --input ${ACC_DB} --out ${O}/from_db.bvh)
+set_tests_properties(cli.convert_accent_db_as_motion cli.accent_run_db_as_input PROPERTIES FIXTURES_REQUIRED accent_db)

@@ -58,7 +58,7 @@ TEST(Gltf, CmuWalkRoundTripsWithin0p1mm) {
   const Motion m = first_frames(testdata::load_sample("cmu/bvh/walking/07_01.bvh"), 240);
   const auto path = gltf_temp("legwork_walk.glb");
   expect_round_trip(m, path);
-  const std::string bytes = io::read_text_file(path);
+  const std::string bytes = io::read_binary_file(path);
   ASSERT_GE(bytes.size(), 12u);
   EXPECT_EQ(bytes.substr(0, 4), "glTF");  // binary container magic
   std::filesystem::remove(path);
@@ -99,7 +99,7 @@ TEST(Gltf, ErrorsAreClear) {
   // A truncated GLB is an error naming the file, not a crash.
   const auto path = gltf_temp("legwork_truncated.glb");
   io::write_glb(path, m);
-  const std::string bytes = io::read_text_file(path);
+  const std::string bytes = io::read_binary_file(path);
   io::write_text_file(path, bytes.substr(0, bytes.size() / 2));
   try {
     io::read_glb(path);

@@ -2,6 +2,8 @@
 // words a user can act on (never "std::bad_alloc" for a directory).
 #include <legwork/io/text.hpp>
 
+#include "testdata.hpp"
+
 #include <legwork/core/types.hpp>
 
 #include <gtest/gtest.h>
@@ -54,6 +56,15 @@ TEST(Text, Utf16AndUtf32AreNamed) {
   EXPECT_EQ(error_of(be), be + ": UTF-16 text; save it as UTF-8");
   const std::string u32 = write_bytes("u32.csv", std::string("\xFF\xFE\0\0t\0\0\0", 8));
   EXPECT_EQ(error_of(u32), u32 + ": UTF-32 text; save it as UTF-8");
+}
+
+TEST(Text, LegworksBinaryFilesAreNamedWhereTextIsRead) {
+  // Real files: a database the engine loads and a GLB legwork wrote (the fuzz seeds).
+  const std::string db = (testdata::source_dir() / "tests/accent/data/format4_boxing.lwdb").string();
+  EXPECT_EQ(error_of(db), db + ": a legwork accent database (binary .lwdb), not a text file; 'legwork info " + db +
+                              "' describes it, 'legwork accent run --db' uses it");
+  const std::string glb = (testdata::source_dir() / "fuzz/corpus/glb/07_01.glb").string();
+  EXPECT_EQ(error_of(glb), glb + ": a binary glTF (.glb), not a text file; name it .glb where a motion is read");
 }
 
 TEST(Text, Utf8ByteOrderMarkIsDropped) {

@@ -29,6 +29,8 @@ namespace legwork::accent {
 // kWindow samples kStride apart (features.hpp; the stride is stored in the
 // metadata and checked). Older files are refused with a "rebuild" message.
 inline constexpr std::uint32_t kFormatVersion = 6;
+// The first 8 bytes of every database file.
+inline constexpr char kMagic[8] = {'L', 'W', 'A', 'C', 'C', 'E', 'N', 'T'};
 
 // The performer's travel at a window's end, from the head trajectory (the
 // user's is measured the same way from the headset): horizontal head speed
