@@ -729,6 +729,7 @@ double kth_cost(const Model& model, const State& st) {
     }
   return hands ? sum / hands : -1.0;
 }
+
 // How much nearer than its probed cost another class's windows may be this
 // frame: a class is searched while other_class_cost x its cost < this x the
 // last frame's farthest match. On the evaluation's folds (no class given),
