@@ -229,7 +229,13 @@ test('walk-cycle GLB: loads and animates', { timeout: TIMEOUT }, async () => {
   const a = (await legwork()).glb;
   assert.ok(a.loaded, `GLB not loaded: ${(await legwork()).error}`);
   assert.ok(a.joints >= 15 && a.duration > 0, `GLB: ${a.joints} joints, ${a.duration} s`);
-  await page.waitForFunction((n) => window.__legwork.glb.updates > n + 5, a.updates, { timeout: TIMEOUT, polling: 200 });
+  // Wait until the clip's time is at least 0.2 s away from a's around the loop: a fixed number of
+  // updates can add up to exactly one loop on a slow page (each frame's step is capped at 0.1 s).
+  await page.waitForFunction(([t0, d]) => {
+    const g = window.__legwork.glb;
+    const x = Math.abs(g.time - t0) % d;
+    return Math.min(x, d - x) > Math.min(0.2, d / 4);
+  }, [a.time, a.duration], { timeout: TIMEOUT, polling: 200 });
   const b = (await legwork()).glb;
   const moved = Math.max(...a.positions.map((p, j) => Math.hypot(...p.map((x, k) => x - b.positions[j][k]))));
   console.log(`# GLB ${a.joints} joints, ${a.duration.toFixed(2)} s loop; largest joint move between samples ${(moved * 100).toFixed(1)} cm`);
