@@ -70,6 +70,22 @@ static class Checks
         nan.Time = double.NaN;
         Expect.That("NaN time rejected", avatar.Update(ref nan) == Status.Rejected, "");
         Expect.Throws<ArgumentException>("short pose array", () => avatar.GetPose(new double[3], null, null), "localRotations needs");
+        // The frame's figures, by the server's pose "info" names: the recognised class is one of the database's.
+        for (int i = 3; i < 60; ++i) avatar.Update(ref frames[i]);
+        var info = avatar.Info;
+        int active = (int)avatar.InfoNumber("active_class");
+        Expect.That("recognised class", active >= 0 && active < db.ClassCount && db.ClassName(active) != null, "active_class " + active);
+        double searched = avatar.InfoNumber("classes_searched");
+        Expect.That("classes searched", searched >= 1 && searched <= db.ClassCount, "classes_searched " + searched);
+        string match = avatar.InfoText("match");
+        Expect.That("match status", match == "matched" || match == "partial" || match == "unmatched", "match '" + match + "'");
+        Expect.That("info fields", info.Count == 7 && info.ContainsKey("match_weight") && (string)info["match"] == match,
+                    info.Count + " fields");
+        Expect.Throws<LegworkException>("unknown info field", () => avatar.InfoNumber("speed"),
+                                        "no field 'speed' (this avatar's: match, match_weight");
+        Expect.Throws<LegworkException>("text info field as a number", () => avatar.InfoNumber("match"), "is a text");
+        avatar.Reset();
+        Expect.Throws<LegworkException>("info after a reset", () => avatar.InfoNumber("match_weight"), "no frame consumed yet");
         string hips = model.HumanoidName(0, false);
         Expect.That("humanoid name of the root", hips == "Hips", "'" + hips + "'");
 

@@ -169,6 +169,10 @@ namespace Legwork
         [DllImport(Lib)] public static extern Status lw_avatar_pose(Avatar avatar, [Out] double[] localRotations, [Out] double[] rootPosition,
                                                                     [Out] double[] worldPositions, int capacity);
 
+        [DllImport(Lib)] public static extern int lw_avatar_info_count(Avatar avatar);
+        [DllImport(Lib)] public static extern Status lw_avatar_info_field(Avatar avatar, int i, out IntPtr name, out double number, out IntPtr text);
+        [DllImport(Lib)] public static extern Status lw_avatar_info_find(Avatar avatar, [MarshalAs(UnmanagedType.LPStr)] string name,
+                                                                        out double number, out IntPtr text);
         [DllImport(Lib)] public static extern Status lw_convert_positions(Engine engine, int toEngine, [In, Out] double[] xyz, int count);
         [DllImport(Lib)] public static extern Status lw_convert_rotations(Engine engine, int toEngine, [In, Out] double[] wxyz, int count);
 
@@ -187,7 +191,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 11;
+        public const uint AbiVersion = 12;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }
@@ -372,6 +376,47 @@ namespace Legwork
             if (worldPositions != null && worldPositions.Length < 3 * joints)
                 throw new ArgumentException("worldPositions needs " + 3 * joints + " doubles (3 per joint)", "worldPositions");
             Native.Check(Native.lw_avatar_pose(this, localRotations, rootPosition, worldPositions, joints));
+        }
+
+        /// <summary>A number of the last consumed frame's figures, by the server's pose "info" names
+        /// (e.g. "match_weight", "active_class", "speed"); LegworkException listing the avatar's fields
+        /// when there is no such field, or when it is a text (use InfoText). Allocates nothing when found.</summary>
+        public double InfoNumber(string name)
+        {
+            double number;
+            IntPtr text;
+            Native.Check(Native.lw_avatar_info_find(this, name, out number, out text));
+            if (text != IntPtr.Zero)
+                throw new LegworkException(Status.InvalidArgument, "info field '" + name + "' is a text ('" + Native.Str(text) + "'): use InfoText");
+            return number;
+        }
+
+        /// <summary>A text of the last consumed frame's figures (e.g. accentuation's "match": "matched");
+        /// null when the field is a number; LegworkException listing the fields when there is none.</summary>
+        public string InfoText(string name)
+        {
+            double number;
+            IntPtr text;
+            Native.Check(Native.lw_avatar_info_find(this, name, out number, out text));
+            return Native.Str(text);
+        }
+
+        /// <summary>Every figure of the last consumed frame: name to double or string (allocates).</summary>
+        public System.Collections.Generic.Dictionary<string, object> Info
+        {
+            get
+            {
+                var all = new System.Collections.Generic.Dictionary<string, object>();
+                int n = Native.lw_avatar_info_count(this);
+                for (int i = 0; i < n; ++i)
+                {
+                    IntPtr name, text;
+                    double number;
+                    Native.Check(Native.lw_avatar_info_field(this, i, out name, out number, out text));
+                    all[Native.Str(name)] = text != IntPtr.Zero ? (object)Native.Str(text) : number;
+                }
+                return all;
+            }
         }
     }
 

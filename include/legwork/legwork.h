@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 11u
+#define LW_ABI_VERSION 12u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -264,6 +264,28 @@ LW_API lw_status lw_avatar_update(lw_avatar* a, const lw_frame* frame);
  * (3 per joint). */
 LW_API lw_status lw_avatar_pose(const lw_avatar* a, double* local_rotations, double* root_position, double* world_positions,
                                 int32_t capacity);
+
+/* The figures of the last consumed frame (ABI 12), by the names of the
+ * server's pose "info" object (docs/protocol.md, "Per-frame info"), each a
+ * number or a text:
+ *   accentuation  match (text: matched, partial, unmatched, tracking-lost),
+ *                 match_weight, fallback, matches_left, matches_right,
+ *                 active_class (index for lw_database_class_name, -1 when not
+ *                 recognising), classes_searched
+ *   full-body IK  steps, lean, head_tracked
+ *   walking-in-place  walking, speed, distance, heading, phase_left, phase_right
+ *   combined      walking, speed, distance, heading, legs (text), legs_weight
+ *   walker        step, heading, desired_heading, planted, pivot, pelvis_drop,
+ *                 reach_limited
+ * None before the first consumed frame or after lw_avatar_reset; a rejected
+ * frame keeps the last ones. Texts are static strings. Allocates nothing. */
+LW_API int32_t lw_avatar_info_count(const lw_avatar* a);
+/* Field i (0 <= i < lw_avatar_info_count): its name, and its text (NULL for a
+ * number) or number (0 for a text). Any out pointer may be NULL. */
+LW_API lw_status lw_avatar_info_field(const lw_avatar* a, int32_t i, const char** name, double* number, const char** text);
+/* The field called `name`; LW_ERROR_INVALID_ARGUMENT (lw_last_error() lists
+ * this avatar's fields) when there is none. */
+LW_API lw_status lw_avatar_info_find(const lw_avatar* a, const char* name, double* number, const char** text);
 
 /* ---- engine frames ------------------------------------------------------- */
 

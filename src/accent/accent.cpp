@@ -1285,4 +1285,14 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
   return lost ? UpdateStatus::Degraded : UpdateStatus::Ok;
 }
 
+void describe(const Info& i, InfoFields& out) {
+  out.add("match", status_name(i.match));
+  out.add("match_weight", i.match_weight);
+  out.add("fallback", i.fallback);
+  out.add("matches_left", i.matches[0]);
+  out.add("matches_right", i.matches[1]);
+  out.add("active_class", i.active_class);
+  out.add("classes_searched", i.classes_searched);
+}
+
 }  // namespace legwork::accent

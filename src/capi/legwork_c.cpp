@@ -158,7 +158,29 @@ struct lw_avatar {
   std::variant<accent::State, ik::State, wip::State, walkcycle::State, combined::State> state;
   Pose pose;
   std::vector<Transform> world;  // scratch for lw_avatar_pose
+  InfoFields info;               // the last consumed frame's (lw_avatar_info_*)
 };
+
+namespace {
+// One frame of runtime M (its Info I): the pose into a.pose, the consumed
+// frame's figures into a.info (a rejected frame keeps the last ones).
+template <class M, class I, class S>
+UpdateStatus step(lw_avatar& a, S& state, const TrackerFrame& in) {
+  I info;
+  const UpdateStatus s = update(std::get<M>(a.model->model), in, state, a.pose.ref(), &info);
+  if (s != UpdateStatus::Rejected) {
+    a.info = {};
+    describe(info, a.info);
+  }
+  return s;
+}
+
+void put_field(const InfoFields::Item& f, const char** name, double* number, const char** text) {
+  if (name) *name = f.key;
+  if (number) *number = f.text ? 0.0 : f.number;
+  if (text) *text = f.text;
+}
+}  // namespace
 
 namespace {
 // A model handle that owns `model`; its output skeleton is exposed as lw_skeleton.
@@ -482,7 +504,7 @@ lw_status lw_avatar_create(const lw_model* m, lw_avatar** out) {
   *out = nullptr;
   return guarded("lw_avatar_create", [&] {
     auto* a = std::visit(
-        [&](const auto& model) { return make_handle<lw_avatar>(lw_avatar{m, state_of(model), Pose(model.skeleton()), {}}); },
+        [&](const auto& model) { return make_handle<lw_avatar>(lw_avatar{m, state_of(model), Pose(model.skeleton()), {}, {}}); },
         m->model);
     a->world.resize(static_cast<std::size_t>(m->skeleton.skeleton.joint_count()));
     *out = a;
@@ -503,6 +525,7 @@ lw_status lw_avatar_reset(lw_avatar* a) {
         else walkcycle::reset(std::get<walkcycle::Model>(a->model->model), state);
       },
       a->state);
+  a->info = {};
   return LW_OK;
 }
 
@@ -523,18 +546,42 @@ lw_status lw_avatar_update(lw_avatar* a, const lw_frame* frame) {
       [&](auto& state) {
         using S = std::decay_t<decltype(state)>;
         if constexpr (std::is_same_v<S, accent::State>)
-          return accent::update(std::get<accent::Model>(a->model->model), in, state, a->pose.ref());
+          return step<accent::Model, accent::Info>(*a, state, in);
         else if constexpr (std::is_same_v<S, ik::State>)
-          return ik::update(std::get<ik::Model>(a->model->model), in, state, a->pose.ref());
+          return step<ik::Model, ik::Info>(*a, state, in);
         else if constexpr (std::is_same_v<S, wip::State>)
-          return wip::update(std::get<wip::Model>(a->model->model), in, state, a->pose.ref());
+          return step<wip::Model, wip::Info>(*a, state, in);
         else if constexpr (std::is_same_v<S, combined::State>)
-          return combined::update(std::get<combined::Model>(a->model->model), in, state, a->pose.ref());
+          return step<combined::Model, combined::Info>(*a, state, in);
         else
-          return walkcycle::update(std::get<walkcycle::Model>(a->model->model), in, state, a->pose.ref());
+          return step<walkcycle::Model, walkcycle::Info>(*a, state, in);
       },
       a->state);
   return to_status(s);
+}
+
+int32_t lw_avatar_info_count(const lw_avatar* a) { return a ? a->info.count : 0; }
+
+lw_status lw_avatar_info_field(const lw_avatar* a, int32_t i, const char** name, double* number, const char** text) {
+  if (!a) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_avatar_info_field: avatar must not be NULL");
+  if (i < 0 || i >= a->info.count)
+    return fail(LW_ERROR_INVALID_ARGUMENT, "lw_avatar_info_field: field " + std::to_string(i) + " of " +
+                                               std::to_string(a->info.count) + " (lw_avatar_info_count)");
+  put_field(a->info.items[static_cast<std::size_t>(i)], name, number, text);
+  return LW_OK;
+}
+
+lw_status lw_avatar_info_find(const lw_avatar* a, const char* key, double* number, const char** text) {
+  if (!a || !key) return fail(LW_ERROR_INVALID_ARGUMENT, "lw_avatar_info_find: avatar and name must not be NULL");
+  if (const InfoFields::Item* f = a->info.find(key)) {
+    put_field(*f, nullptr, number, text);
+    return LW_OK;
+  }
+  std::string names;
+  for (int i = 0; i < a->info.count; ++i) names += (i ? ", " : "") + std::string(a->info.items[static_cast<std::size_t>(i)].key);
+  return fail(LW_ERROR_INVALID_ARGUMENT, "lw_avatar_info_find: no field '" + std::string(key) + "' " +
+                                             (a->info.count ? "(this avatar's: " + names + ")"
+                                                            : "(no frame consumed yet since the avatar's creation or reset)"));
 }
 
 lw_status lw_avatar_pose(const lw_avatar* a, double* rotations, double* root, double* world, int32_t capacity) {

@@ -149,4 +149,10 @@ UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state,
   return both == UpdateStatus::Ok && !feet ? UpdateStatus::Degraded : both;
 }
 
+void describe(const Info& i, InfoFields& out) {
+  add_walking(out, i.walking, i.speed, i.distance, i.heading);
+  out.add("legs", i.feet_tracked ? "wip" : "upper");
+  out.add("legs_weight", i.legs_weight);
+}
+
 }  // namespace legwork::combined

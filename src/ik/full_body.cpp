@@ -467,4 +467,10 @@ UpdateStatus update(const Model& M, const TrackerFrame& frame, State& st, PoseRe
   return head_ok && in.hand_valid[0] && in.hand_valid[1] ? UpdateStatus::Ok : UpdateStatus::Degraded;
 }
 
+void describe(const Info& i, InfoFields& out) {
+  out.add("steps", i.steps_taken);
+  out.add("lean", i.lean);
+  out.add("head_tracked", i.head_tracked ? 1.0 : 0.0);
+}
+
 }  // namespace legwork::ik

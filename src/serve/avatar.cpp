@@ -136,7 +136,7 @@ void Avatar::apply_options(const OptionsUpdate& o) {
 }
 
 void Avatar::run_frame(const Item& it) {
-  MethodInfo info;
+  InfoFields info;
   const UpdateStatus status = method_->update(it.frame, pose_.ref(), info);
   if (status == UpdateStatus::Rejected) {
     {

@@ -64,10 +64,10 @@ class RuntimeMethod final : public Method {
  public:
   explicit RuntimeMethod(typename Runtime::Model model) : model_(std::move(model)), state_(model_) {}
 
-  UpdateStatus update(const TrackerFrame& f, PoseRef out, MethodInfo& info) override {
+  UpdateStatus update(const TrackerFrame& f, PoseRef out, InfoFields& info) override {
     typename Runtime::Info i;
     const UpdateStatus st = Runtime::update(model_, f, state_, out, &i);
-    if (st != UpdateStatus::Rejected) Runtime::describe(i, info);
+    if (st != UpdateStatus::Rejected) describe(i, info);  // the runtime's own (InfoFields)
     return st;
   }
   const Skeleton& skeleton() const override { return model_.skeleton(); }
@@ -88,30 +88,11 @@ struct Contract {
 
 // The VRIK-style full-body IK avatar (head + hands).
 struct IkRuntime : Contract<ik::Model, ik::State, ik::Info, &ik::update> {
-  static void describe(const Info& i, MethodInfo& out) {
-    out.add("steps", i.steps_taken);
-    out.add("lean", i.lean);
-    out.add("head_tracked", i.head_tracked ? 1.0 : 0.0);
-  }
   static Model model(const Resources& res, const MethodOptions& opt) { return ik::make_model(avatar_skeleton(res, opt.user_height)); }
 };
 
-// The walking figures both leg-driving runtimes report (wip::Info, combined::Info).
-template <typename WalkingInfo>
-void add_walking(const WalkingInfo& i, MethodInfo& out) {
-  out.add("walking", i.walking ? 1.0 : 0.0);
-  out.add("speed", i.speed);
-  out.add("distance", i.distance);
-  out.add("heading", i.heading);
-}
-
 // Walking-in-place legs from the ankles (the head's yaw is the walking heading).
 struct WipRuntime : Contract<wip::Model, wip::State, wip::Info, &wip::update> {
-  static void describe(const Info& i, MethodInfo& out) {
-    add_walking(i, out);
-    out.add("phase_left", wip::phase_name(i.phase[0]).data());  // static, NUL-terminated literals
-    out.add("phase_right", wip::phase_name(i.phase[1]).data());
-  }
   static Model model(const Resources& res, const MethodOptions& opt) {
     wip::Settings s;
     const wip::LearnedMapping* learned = leg_mapping(res, opt, s);
@@ -138,15 +119,6 @@ void accent_options(const MethodOptions& opt, accent::Settings& c) {
 
 // CoolMoves accentuation over the shared database (one Model per session's settings).
 struct AccentRuntime : Contract<accent::Model, accent::State, accent::Info, &accent::update> {
-  static void describe(const Info& i, MethodInfo& out) {
-    out.add("match", accent::status_name(i.match));
-    out.add("match_weight", i.match_weight);
-    out.add("fallback", i.fallback);
-    out.add("matches_left", i.matches[0]);
-    out.add("matches_right", i.matches[1]);
-    out.add("active_class", i.active_class);
-    out.add("classes_searched", i.classes_searched);
-  }
   static Model model(const Resources& res, const MethodOptions& opt) {
     accent::Settings c;
     accent_options(opt, c);
@@ -162,11 +134,6 @@ std::unique_ptr<Method> runtime_method(const Resources& res, const MethodOptions
 // The combined avatar (legwork::combined): upper body from accent (ik without
 // a database), legs from walking-in-place, faded over blend_time.
 struct CombinedRuntime : Contract<combined::Model, combined::State, combined::Info, &combined::update> {
-  static void describe(const Info& i, MethodInfo& out) {
-    add_walking(i, out);
-    out.add("legs", i.feet_tracked ? "wip" : "upper");
-    out.add("legs_weight", i.legs_weight);
-  }
   static Model model(const Resources& res, const MethodOptions& opt) {
     combined::Settings c;
     const wip::LearnedMapping* learned = leg_mapping(res, opt, c.wip);
@@ -180,15 +147,6 @@ struct CombinedRuntime : Contract<combined::Model, combined::State, combined::In
 // --walks folder, steered by the head's yaw; its own skeleton (user_height
 // does not apply).
 struct WalkerRuntime : Contract<walkcycle::Model, walkcycle::State, walkcycle::Info, &walkcycle::update> {
-  static void describe(const Info& i, MethodInfo& out) {
-    out.add("step", i.step);
-    out.add("heading", i.heading);
-    out.add("desired_heading", i.desired_heading);
-    out.add("planted", i.left_planted ? "left" : "right");
-    out.add("pivot", i.pivot == walkcycle::Pivot::Heel ? "heel" : "ball");
-    out.add("pelvis_drop", i.pelvis_drop);
-    out.add("reach_limited", i.reach_limited ? 1.0 : 0.0);
-  }
   static std::vector<std::string> walks(const Resources& res) {
     std::vector<std::string> names;
     std::error_code ec;

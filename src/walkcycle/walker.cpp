@@ -500,4 +500,14 @@ UpdateStatus update(const Model& model, const TrackerFrame& frame, State& s, Pos
   return steered ? UpdateStatus::Ok : UpdateStatus::Degraded;
 }
 
+void describe(const Info& i, InfoFields& out) {
+  out.add("step", i.step);
+  out.add("heading", i.heading);
+  out.add("desired_heading", i.desired_heading);
+  out.add("planted", i.left_planted ? "left" : "right");
+  out.add("pivot", i.pivot == Pivot::Heel ? "heel" : "ball");
+  out.add("pelvis_drop", i.pelvis_drop);
+  out.add("reach_limited", i.reach_limited ? 1.0 : 0.0);
+}
+
 }  // namespace legwork::walkcycle

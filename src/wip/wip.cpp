@@ -457,4 +457,10 @@ UpdateStatus update(const Model& m, const TrackerFrame& frame, State& st, PoseRe
   return feet_ok ? UpdateStatus::Ok : UpdateStatus::Degraded;
 }
 
+void describe(const Info& i, InfoFields& out) {
+  add_walking(out, i.walking, i.speed, i.distance, i.heading);
+  out.add("phase_left", phase_name(i.phase[0]).data());  // static, NUL-terminated literals
+  out.add("phase_right", phase_name(i.phase[1]).data());
+}
+
 }  // namespace legwork::wip

@@ -88,10 +88,33 @@ TEST(CApi, AccentAvatarEqualsTheCppApiBitForBit) {
   const io::BvhReadOptions o{.drop_first_frame = true};
   const auto frames = tracker_frames_from_motion(io::load_bvh(sample("cmu/bvh/walking/07_02.bvh"), o), 90.0);
   ASSERT_EQ(static_cast<std::size_t>(f.count), frames.size());
+  EXPECT_EQ(lw_avatar_info_count(avatar), 0) << "no frame yet";
+  int recognised = 0;
   for (int32_t i = 0; i < f.count; ++i) {
     const lw_status a = lw_avatar_update(avatar, &f.data[i]);
-    const UpdateStatus b = accent::update(cm, frames[static_cast<std::size_t>(i)], st, pose.ref());
+    accent::Info info;
+    const UpdateStatus b = accent::update(cm, frames[static_cast<std::size_t>(i)], st, pose.ref(), &info);
     ASSERT_EQ(std::string(lw_status_name(a)), status_name(b));
+    // The frame's figures: the C++ Info under the server's pose "info" names.
+    ASSERT_EQ(lw_avatar_info_count(avatar), 7);
+    double number = -1;
+    const char* text = nullptr;
+    ASSERT_EQ(lw_avatar_info_find(avatar, "match", &number, &text), LW_OK);
+    ASSERT_STREQ(text, accent::status_name(info.match));
+    ASSERT_EQ(lw_avatar_info_find(avatar, "match_weight", &number, &text), LW_OK);
+    ASSERT_EQ(text, nullptr);
+    ASSERT_EQ(number, info.match_weight);
+    ASSERT_EQ(lw_avatar_info_find(avatar, "active_class", &number, nullptr), LW_OK);
+    ASSERT_EQ(number, info.active_class);
+    ASSERT_EQ(lw_avatar_info_find(avatar, "classes_searched", &number, nullptr), LW_OK);
+    ASSERT_EQ(number, info.classes_searched);
+    const char* name = nullptr;
+    ASSERT_EQ(lw_avatar_info_field(avatar, 6, &name, &number, &text), LW_OK);
+    ASSERT_STREQ(name, "classes_searched");
+    if (info.active_class >= 0) {
+      ASSERT_STREQ(lw_database_class_name(db, info.active_class), cdb.classes()[static_cast<std::size_t>(info.active_class)].c_str());
+      ++recognised;
+    }
     ASSERT_EQ(lw_avatar_pose(avatar, rot.data(), root.data(), nullptr, n), LW_OK);
     for (int j = 0; j < n; ++j) {
       const Quat& q = pose.rotations[static_cast<std::size_t>(j)];
@@ -100,6 +123,7 @@ TEST(CApi, AccentAvatarEqualsTheCppApiBitForBit) {
     }
     ASSERT_EQ(root[1], pose.translations[0].y());
   }
+  EXPECT_EQ(recognised, f.count) << "two classes allowed: one is recognised on every frame";
   lw_avatar_destroy(avatar);
   lw_model_destroy(model);
   lw_database_destroy(db);
@@ -216,6 +240,16 @@ TEST(CApi, WipWithTheLearnedMappingWalksOnARealWalk) {
     }
   }
   EXPECT_GT(std::hypot(root[0], root[2]), 1.0);  // it walked
+  // Its figures: walking, the distance walked (metres) and each foot's gait phase by name.
+  double walked = 0, walking = 0;
+  const char* phase = nullptr;
+  ASSERT_EQ(lw_avatar_info_find(avatar, "distance", &walked, nullptr), LW_OK) << lw_last_error();
+  EXPECT_GT(walked, 1.0);
+  ASSERT_EQ(lw_avatar_info_find(avatar, "walking", &walking, nullptr), LW_OK);
+  EXPECT_EQ(walking, 1.0);
+  ASSERT_EQ(lw_avatar_info_find(avatar, "phase_left", nullptr, &phase), LW_OK);
+  ASSERT_NE(phase, nullptr);
+  EXPECT_GT(std::string(phase).size(), 3u) << phase;
   EXPECT_LT(lo, -0.1);                           // a foot behind the hips
   EXPECT_GT(hi, 0.1);                            // and in front
   lw_avatar_destroy(avatar);
@@ -534,6 +568,16 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   lw_frame nan_frame{};
   nan_frame.time = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(lw_avatar_update(avatar, &nan_frame), LW_REJECTED);
+  // Its figures: none until a frame is consumed; a field out of range or unknown is named.
+  EXPECT_EQ(lw_avatar_info_count(avatar), 0);
+  EXPECT_EQ(lw_avatar_info_count(nullptr), 0);
+  double number = 0;
+  EXPECT_EQ(lw_avatar_info_find(avatar, "match", &number, nullptr), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_STREQ(lw_last_error(), "lw_avatar_info_find: no field 'match' (no frame consumed yet since the avatar's creation or reset)");
+  EXPECT_EQ(lw_avatar_info_field(avatar, 0, nullptr, &number, nullptr), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_STREQ(lw_last_error(), "lw_avatar_info_field: field 0 of 0 (lw_avatar_info_count)");
+  EXPECT_EQ(lw_avatar_info_find(avatar, nullptr, &number, nullptr), LW_ERROR_INVALID_ARGUMENT);
+  EXPECT_STREQ(lw_last_error(), "lw_avatar_info_find: avatar and name must not be NULL");
   double rot[8];
   EXPECT_EQ(lw_avatar_pose(avatar, rot, nullptr, nullptr, 2), LW_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(lw_last_error()).find("capacity 2 <"), std::string::npos);

@@ -115,7 +115,7 @@ constexpr double kStreamSeconds = 84;
 
 class Streams : public ::testing::TestWithParam<std::string> {};
 
-double info_number(const MethodInfo& info, const char* key) {
+double info_number(const InfoFields& info, const char* key) {
   for (int i = 0; i < info.count; ++i)
     if (std::string_view(info.items[static_cast<std::size_t>(i)].key) == key) return info.items[static_cast<std::size_t>(i)].number;
   return kNan;
@@ -147,7 +147,7 @@ TEST_P(Streams, FaultsNeverPoisonOrFreezeTheStream) {
   Vec3 last_head = frames[0].head().position;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const double t = frames[i].time;
-    MethodInfo ri;
+    InfoFields ri;
     ASSERT_NE(clean->update(frames[i], ref.ref(), ri), UpdateStatus::Rejected) << "clean stream at " << t;
     TrackerFrame f = frames[i];
     bool send = true;
@@ -160,7 +160,7 @@ TEST_P(Streams, FaultsNeverPoisonOrFreezeTheStream) {
       }
     if (!send) continue;
     const Pose before = pose;
-    MethodInfo info;
+    InfoFields info;
     UpdateStatus s = UpdateStatus::Ok;
     allocations += alloc_count::count_allocations([&] { s = tested->update(f, pose.ref(), info); });
     ASSERT_TRUE(finite_pose(pose)) << name << ": non-finite pose at t = " << t;
@@ -226,7 +226,7 @@ TEST_P(Streams, AnHourOfGoodDataStaysOkFiniteAndAllocatesNothing) {
   const auto frames = long_walk(30.0, 3600.0);
   long allocations = 0, not_ok = 0;
   for (const TrackerFrame& f : frames) {
-    MethodInfo info;
+    InfoFields info;
     UpdateStatus s = UpdateStatus::Ok;
     allocations += alloc_count::count_allocations([&] { s = method->update(f, pose.ref(), info); });
     not_ok += s != UpdateStatus::Ok;

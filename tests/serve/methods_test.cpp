@@ -42,7 +42,7 @@ MethodOptions options(const std::string& method) {
   return o;
 }
 
-const MethodInfo::Item* find_info(const MethodInfo& info, const char* key) {
+const InfoFields::Item* find_info(const InfoFields& info, const char* key) {
   for (int i = 0; i < info.count; ++i)
     if (std::strcmp(info.items[static_cast<std::size_t>(i)].key, key) == 0) return &info.items[static_cast<std::size_t>(i)];
   return nullptr;
@@ -126,7 +126,7 @@ TEST(ServeMethods, IkWristsReachTheTrackedHands) {
   std::vector<Vec3> world(static_cast<std::size_t>(skel.joint_count()));
   double worst = 0;
   for (const TrackerFrame& f : trial(false)) {
-    MethodInfo info;
+    InfoFields info;
     ASSERT_EQ(method->update(f, pose.ref(), info), UpdateStatus::Ok);
     ASSERT_NE(find_info(info, "head_tracked"), nullptr);
     EXPECT_EQ(find_info(info, "head_tracked")->number, 1.0);
@@ -140,10 +140,10 @@ TEST(ServeMethods, ARejectedFrameLeavesThePoseAlone) {
   const auto method = make_method(skeleton_only(), options("ik"));
   const auto frames = trial(false);
   Pose pose(method->skeleton());
-  MethodInfo info;
+  InfoFields info;
   ASSERT_NE(method->update(frames[5], pose.ref(), info), UpdateStatus::Rejected);
   const Pose before = pose;
-  MethodInfo again;
+  InfoFields again;
   EXPECT_EQ(method->update(frames[2], pose.ref(), again), UpdateStatus::Rejected);  // earlier time
   EXPECT_EQ(again.count, 0);  // no diagnostics for a frame not consumed
   for (int j = 0; j < method->skeleton().joint_count(); ++j) {
@@ -161,7 +161,7 @@ TEST(ServeMethods, WipAndCombinedDescribeTheirLegs) {
     int walking = 0;
     double distance = 0;
     for (const TrackerFrame& f : frames) {
-      MethodInfo info;
+      InfoFields info;
       ASSERT_NE(method->update(f, pose.ref(), info), UpdateStatus::Rejected);
       const auto* w = find_info(info, "walking");
       const auto* d = find_info(info, "distance");
@@ -177,7 +177,7 @@ TEST(ServeMethods, WipAndCombinedDescribeTheirLegs) {
   // The combined method says where its legs come from: wip while the feet are tracked.
   const auto combined = make_method(skeleton_only(), options("combined"));
   Pose pose(combined->skeleton());
-  MethodInfo info;
+  InfoFields info;
   combined->update(frames[0], pose.ref(), info);
   ASSERT_NE(find_info(info, "legs"), nullptr);
   EXPECT_STREQ(find_info(info, "legs")->text, "wip");
@@ -187,7 +187,7 @@ TEST(ServeMethods, WipAndCombinedDescribeTheirLegs) {
 // end, and the root's height at the first frame in `first`.
 Vec3 walk_five_seconds(Method& method, double& first) {
   Pose pose(method.skeleton());
-  MethodInfo info;
+  InfoFields info;
   for (int f = 0; f < 150; ++f) {
     TrackerFrame frame;
     frame.time = f / 30.0;
@@ -216,7 +216,7 @@ TEST(ServeMethods, WalkerWalksAShippedWalkWithTheRootAsked) {
     o.root = k == 0 ? "smooth" : "pivot";
     const auto method = make_method(res, o);
     Pose pose(method->skeleton());
-    MethodInfo info;
+    InfoFields info;
     Vec3 prev = Vec3::Zero();
     double lo = 1e9, hi = 0, sum = 0;
     int n = 0;
@@ -224,7 +224,7 @@ TEST(ServeMethods, WalkerWalksAShippedWalkWithTheRootAsked) {
       TrackerFrame frame;
       frame.time = f / 30.0;
       frame.head() = {Vec3(0, 1.7, 0), Quat::Identity(), true};
-      info = MethodInfo{};
+      info = InfoFields{};
       ASSERT_EQ(method->update(frame, pose.ref(), info), UpdateStatus::Ok);
       const Vec3 root(pose.translations[0].x(), 0, pose.translations[0].z());
       const double speed = (root - prev).norm() * 30.0;

@@ -29,6 +29,7 @@
 // one avatar's (a few KB). update() allocates nothing and throws nothing.
 #include <legwork/accent/database.hpp>
 #include <legwork/accent/search.hpp>
+#include <legwork/core/info_fields.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/ik/full_body.hpp>
 #include <legwork/ik/two_bone.hpp>
@@ -376,6 +377,10 @@ void reset(const Model& model, State& state);
 // have the skeleton's joint count (else Rejected). Rejected frames leave
 // state and `out` untouched.
 UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
+
+// This frame's Info as named fields (InfoFields: the server's pose "info",
+// the C API's lw_avatar_info_field); allocates nothing.
+void describe(const Info& info, InfoFields& out);
 
 // The last matches of one hand (0 left, 1 right).
 std::span<const Match> last_matches(const State& state, int hand);

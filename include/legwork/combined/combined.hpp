@@ -13,6 +13,7 @@
 //   Pose pose(model.skeleton());
 //   combined::update(model, frame, state, pose.ref(), &info);           // every frame
 #include <legwork/accent/accent.hpp>
+#include <legwork/core/info_fields.hpp>
 #include <legwork/core/motion.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/ik/full_body.hpp>
@@ -103,5 +104,9 @@ struct Info {
 // (non-finite or backward time) leave state and `out` untouched; no
 // allocation, exceptions or I/O.
 UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
+
+// This frame's Info as named fields (InfoFields: the server's pose "info",
+// the C API's lw_avatar_info_field); allocates nothing.
+void describe(const Info& info, InfoFields& out);
 
 }  // namespace legwork::combined

@@ -19,6 +19,7 @@
 // number of avatars; State is one avatar; update() reads the head and both
 // hands of a TrackerFrame, allocates nothing and never throws.
 // Model space = world, metres, y up, faces +z.
+#include <legwork/core/info_fields.hpp>
 #include <legwork/core/motion.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/ik/two_bone.hpp>
@@ -135,5 +136,9 @@ struct Info {
 // A lost or unusable head holds the last usable one (a standing rest body at
 // the origin before any), a lost hand relaxes its arm: both are Degraded.
 UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
+
+// This frame's Info as named fields (InfoFields: the server's pose "info",
+// the C API's lw_avatar_info_field); allocates nothing.
+void describe(const Info& info, InfoFields& out);
 
 }  // namespace legwork::ik

@@ -3,6 +3,7 @@
 // combined, walker). Each live avatar owns one Method: built from the session's
 // options, fed one TrackerFrame per update, writing a pose on skeleton().
 // Adapting the server to a runtime API change touches only methods.cpp.
+#include <legwork/core/info_fields.hpp>
 #include <legwork/core/motion.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/walkcycle/walker.hpp>
@@ -69,30 +70,12 @@ struct MethodOptions {
   double stairs_cadence = walkcycle::Settings{}.stairs_cadence;
 };
 
-// Per-frame diagnostics as a flat list of name -> number or name -> text
-// (serialised as the pose message's "info" object). Fixed capacity: no allocation.
-struct MethodInfo {
-  struct Item {
-    const char* key = "";
-    double number = 0;
-    const char* text = nullptr;  // non-null: a text value (static storage)
-  };
-  std::array<Item, 12> items{};
-  int count = 0;
-  void add(const char* key, double v) {
-    if (count < static_cast<int>(items.size())) items[static_cast<std::size_t>(count++)] = {key, v, nullptr};
-  }
-  void add(const char* key, const char* text) {
-    if (count < static_cast<int>(items.size())) items[static_cast<std::size_t>(count++)] = {key, 0, text};
-  }
-};
-
 class Method {
  public:
   virtual ~Method() = default;
   // One frame in, one pose out (local rotations, root translation = world
   // position). Rejected leaves `out` untouched. Never throws.
-  virtual UpdateStatus update(const TrackerFrame& frame, PoseRef out, MethodInfo& info) = 0;
+  virtual UpdateStatus update(const TrackerFrame& frame, PoseRef out, InfoFields& info) = 0;
   // The output pose's skeleton (fixed for the method's lifetime).
   virtual const Skeleton& skeleton() const = 0;
 };

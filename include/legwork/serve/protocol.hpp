@@ -90,7 +90,7 @@ struct PoseMessage {
   ConstPoseRef pose;
   std::span<const Vec3> world;
   std::span<const int> joints;
-  const MethodInfo* info = nullptr;
+  const InfoFields* info = nullptr;
   double server_us = 0;
 };
 const char* status_text(UpdateStatus s);  // ok | degraded | rejected | restarted

@@ -39,6 +39,7 @@
 // StanceTurn in legs.hpp, the same code as walk_path's), instead of twisting
 // with the body about its pivot.
 // RootMotion::Pivot is document 001's root, unchanged.
+#include <legwork/core/info_fields.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/walkcycle/cycle.hpp>
 #include <legwork/walkcycle/ground.hpp>
@@ -180,5 +181,9 @@ struct Info {
 // dt. `out` must have the model skeleton's joint count; the world pose is
 // written.
 UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
+
+// This frame's Info as named fields (InfoFields: the server's pose "info",
+// the C API's lw_avatar_info_field); allocates nothing.
+void describe(const Info& info, InfoFields& out);
 
 }  // namespace legwork::walkcycle

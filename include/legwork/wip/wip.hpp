@@ -11,6 +11,7 @@
 // usable, the head's yaw as the walking heading; it never allocates, throws
 // or does I/O. Offline helpers (tracker sources, floor calibration, whole-clip
 // runs) are in legwork/wip/offline/.
+#include <legwork/core/info_fields.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/ik/two_bone.hpp>
 #include <legwork/wip/gait.hpp>
@@ -193,5 +194,9 @@ void set_floor(State& state, double left, double right);
 // not usable() is held (its confidence decays; a swinging foot is put down)
 // and the frame is Degraded. Never allocates, throws or does I/O.
 UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
+
+// This frame's Info as named fields (InfoFields: the server's pose "info",
+// the C API's lw_avatar_info_field); allocates nothing.
+void describe(const Info& info, InfoFields& out);
 
 }  // namespace legwork::wip
