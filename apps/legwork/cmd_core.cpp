@@ -2,7 +2,7 @@
 #include "command.hpp"
 
 #include <legwork/accent/database.hpp>
-#include <legwork/accent/features.hpp>
+#include <legwork/accent/offline/report.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -22,43 +22,15 @@ bool is_accent_database(const std::string& path) {
   return in.read(magic, sizeof magic) && std::memcmp(magic, accent::kMagic, sizeof magic) == 0;
 }
 
-// What a database holds: sizes, classes, trials, build settings, load time.
+// database_info (accent/offline/report.hpp) with the file and its load time.
 nlohmann::json database_info(const std::string& path) {
   const auto t0 = std::chrono::steady_clock::now();
   const accent::Database db = accent::load_database(path);  // checksum verified, index read
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  nlohmann::json classes = nlohmann::json::array();
-  for (int c = 0; c < db.class_count(); ++c) {
-    const auto [a, b] = db.class_range(c);
-    int trials = 0;
-    for (const auto& t : db.trials()) trials += t.cls == db.classes()[static_cast<std::size_t>(c)];
-    classes.push_back({{"name", db.classes()[static_cast<std::size_t>(c)]}, {"windows", b - a}, {"trials", trials}});
-  }
-  nlohmann::json trials = nlohmann::json::array();
-  for (const auto& t : db.trials())
-    trials.push_back({{"file", t.file}, {"class", t.cls}, {"subject", t.subject}, {"trial", t.trial}, {"hand_foot_correlation", t.correlation}});
-  const auto& s = db.settings();
-  return {{"file", path},
-          {"format", "legwork accent database"},
-          {"format_version", accent::kFormatVersion},
-          {"bytes", db.bytes().size()},
-          {"windows", db.window_count()},
-          {"poses", db.pose_count()},
-          {"joints", db.joint_count()},
-          {"height_m", db.height()},
-          {"fps", s.fps},
-          {"hop", s.hop},
-          {"window_samples", accent::kWindow},
-          {"window_stride", accent::kStride},
-          {"window_seconds", (accent::kWindow - 1) * accent::kStride / s.fps},
-          {"speeds", s.speeds},
-          {"mirrored", s.mirrored},
-          {"correlation_threshold", s.correlation_threshold},
-          {"typical_distance", db.typical_distance()},
-          {"search_index", db.has_index()},
-          {"load_ms", load_ms},
-          {"classes", classes},
-          {"trials", trials}};
+  nlohmann::json j = {{"file", path}};
+  j.update(accent::database_info(db));
+  j["load_ms"] = load_ms;
+  return j;
 }
 
 void print_database_info(const nlohmann::json& j) {

@@ -4,6 +4,7 @@
 #include <legwork/accent/accent.hpp>
 #include <legwork/accent/database.hpp>
 #include <legwork/accent/offline/builder.hpp>
+#include <legwork/accent/offline/report.hpp>
 #include <legwork/accent/offline/run.hpp>
 
 namespace legwork::py {
@@ -44,6 +45,11 @@ void bind_database(pb::module_& m) {
         return files;
       }, "source trial files, list[str]")
       .def_property_readonly("is_mapped", &Database::is_mapped)
+      .def("info", [](const Database& d) { return pb::module_::import("json").attr("loads")(database_info(d).dump()); },
+           "What the database holds, as `legwork info FILE.lwdb --json` prints it (without the file and load time): dict\n"
+           "with format_version, bytes, windows, poses, joints, height_m, fps, hop, window_samples, window_stride,\n"
+           "window_seconds, speeds, mirrored, correlation_threshold, typical_distance, search_index, classes (name,\n"
+           "windows, trials) and trials (file, class, subject, trial, hand_foot_correlation).")
       .def("save", [](const Database& d, const std::string& path) { save_database(path, d); }, "path"_a,
            "Writes the database file (.lwdb).");
   m.def(

@@ -39,6 +39,18 @@ def test_python_build_equals_cli_build(db):
     assert HELD_OUT not in db.trials and db.is_mapped
 
 
+def test_info_equals_cli_info(cli, db, db_path):
+    """Database.info() is `legwork info FILE.lwdb --json` without the file and its load time."""
+    cli_info = json.loads(cli("info", db_path, "--json"))
+    info = db.info()
+    assert cli_info.pop("file") == str(db_path) and cli_info.pop("load_ms") > 0
+    assert info == cli_info
+    assert [c["name"] for c in info["classes"]] == db.classes
+    assert sum(c["windows"] for c in info["classes"]) == db.window_count == info["windows"]
+    assert sum(c["trials"] for c in info["classes"]) == len(db.trials) == len(info["trials"])
+    assert info["search_index"] is True and info["height_m"] == pytest.approx(db.height)
+
+
 def test_accentuate_equals_cli_run(cli, db, db_path, truth, tmp_path):
     out_bvh, report = tmp_path / "run.bvh", tmp_path / "run.json"
     cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--json", report)

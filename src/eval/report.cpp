@@ -130,19 +130,21 @@ json unmeasured(const std::string& name, double g, const std::string& op, const 
 // means over folds): { "<class>": { "full_body": {"accent": x, "ik": y,
 // "winner": "accent"|"ik"}, "lower_body": {...} } }, and the counts.
 // `ik` names the baseline: "ik" (the database skeleton at the user's height,
-// what the engine gets) or "ik_own" (the subject's own skeleton).
-json class_winners(const json& pj, const char* ik = "ik") {
+// what the engine gets) or "ik_own" (the subject's own skeleton); `engine` the
+// engine's setting: "accent" (the class given) or "no_class" (recognised), also
+// the key of its error in each pair.
+json class_winners(const json& pj, const char* ik = "ik", const char* engine = "accent") {
   json out = json::object();
-  if (!pj.contains("accent") || !pj.contains(ik)) return out;
+  if (!pj.contains(engine) || !pj.contains(ik)) return out;
   int wins = 0, contests = 0;
-  for (const auto& [cls, a] : pj["accent"]["classes"].items()) {
+  for (const auto& [cls, a] : pj[engine]["classes"].items()) {
     if (!pj[ik]["classes"].contains(cls)) continue;
     const json& i = pj[ik]["classes"][cls];
     for (const char* part : {"full_body", "lower_body"}) {
       const std::string key = std::string(part) + "_cm";
       const double va = get(a, key), vi = get(i, key);
-      json w = {{"accent", num(va)}, {"ik", num(vi)}, {"margin_cm", num(vi - va)}};
-      w["winner"] = std::isfinite(va) && std::isfinite(vi) ? json(va < vi ? "accent" : "ik") : json(nullptr);
+      json w = {{engine, num(va)}, {"ik", num(vi)}, {"margin_cm", num(vi - va)}};
+      w["winner"] = std::isfinite(va) && std::isfinite(vi) ? json(va < vi ? engine : "ik") : json(nullptr);
       if (std::isfinite(va) && std::isfinite(vi)) {
         ++contests;
         if (va < vi) ++wins;
@@ -214,6 +216,13 @@ json targets_of(const json& r) {
     t.push_back(goal(std::string(p) + ": no-class setting within 1 cm of the per-class one",
                      get(nc, "full_body_cm") - get(pc, "full_body_cm"), "<=", 1.0,
                      "value = no-class full body - per-class full body (cm, fold means)"));
+    if (r[p].contains("winners_no_class") && r[p]["winners_no_class"].contains("contests")) {
+      const json& w = r[p]["winners_no_class"];
+      t.push_back(goal(std::string(p) + ": no-class setting below IK in every class, full and lower body",
+                       w["engine_wins"].get<double>(), ">=", w["contests"].get<double>(),
+                       "value = (class, part) pairs the no-class setting wins, goal = all pairs; per class below "
+                       "(\"No class given\")"));
+    }
   }
   if (!no_class)
     t.push_back(unmeasured("no-class setting within 1 cm of the per-class one", 1.0, "<=", "not run (--skip-no-class)"));
@@ -372,6 +381,7 @@ static json protocol_json(const EvalResult& r, const ProtocolResult& p) {
   }
   pj["winners"] = class_winners(pj);
   pj["winners_own_skeleton"] = class_winners(pj, "ik_own");
+  if (pj.contains("no_class")) pj["winners_no_class"] = class_winners(pj, "ik", "no_class");
   pj["fold_results"] = folds;
   return pj;
 }
@@ -580,20 +590,39 @@ void md_no_class(std::ostringstream& md, const json& r) {
   for (const char* p : {"cross_subject", "cross_trial"}) any = any || (r.contains(p) && r[p].contains("no_class"));
   if (!any) return;
   md << "\n## No class given (one database of every class, the class recognised from the input)\n\n"
-        "| protocol | per class: full / lower (cm) | no class: full / lower (cm) | difference (cm) | class accuracy | "
-        "class switches per minute |\n|---|---|---|---|---|---|\n";
+        "The held-out subject (cross-subject) or trial (cross-trial) is left out of every class of the fold's database.\n\n"
+        "| protocol | per class: full / lower (cm) | no class: full / lower (cm) | difference (cm) | IK: full / lower (cm) | "
+        "winner full / lower | class accuracy | class switches per minute |\n|---|---|---|---|---|---|---|---|\n";
   for (const char* p : {"cross_subject", "cross_trial"}) {
     if (!r.contains(p) || !r[p].contains("no_class") || !r[p].contains("accent")) continue;
     const json &a = r[p]["accent"], &n = r[p]["no_class"];
+    const json ik = r[p].contains("ik") ? r[p]["ik"] : json::object();
+    const json w = r[p].contains("winners_no_class") ? r[p]["winners_no_class"] : json::object();
+    auto winner = [&](const std::string& cls, const char* part) -> std::string {
+      if (!w.contains("classes") || !w["classes"].contains(cls) || w["classes"][cls][part]["winner"].is_null()) return "n/a";
+      return w["classes"][cls][part]["winner"].get<std::string>() == "no_class" ? "**no class**" : "IK";
+    };
     md << "| " << p << " | " << fmt(get(a, "full_body_cm"), 2) << " / " << fmt(get(a, "lower_body_cm"), 2) << " | "
        << fmt(get(n, "full_body_cm"), 2) << " / " << fmt(get(n, "lower_body_cm"), 2) << " | "
-       << fmt(get(n, "full_body_cm") - get(a, "full_body_cm"), 2) << " | " << fmt(get(n, "class_accuracy"), 3) << " | "
+       << fmt(get(n, "full_body_cm") - get(a, "full_body_cm"), 2) << " | " << fmt(get(ik, "full_body_cm"), 2) << " / "
+       << fmt(get(ik, "lower_body_cm"), 2) << " | – | " << fmt(get(n, "class_accuracy"), 3) << " | "
        << fmt(get(n, "class_switches_per_minute"), 2) << " |\n";
-    for (const auto& [cls, x] : n["classes"].items())
-      md << "| " << p << " " << cls << " | " << fmt(get(a["classes"][cls], "full_body_cm"), 2) << " | "
-         << fmt(get(x, "full_body_cm"), 2) << " | " << fmt(get(x, "full_body_cm") - get(a["classes"][cls], "full_body_cm"), 2)
-         << " | " << fmt(get(x, "class_accuracy"), 3) << " | " << fmt(get(x, "class_switches_per_minute"), 2) << " |\n";
+    for (const auto& [cls, x] : n["classes"].items()) {
+      const json ic = ik.contains("classes") && ik["classes"].contains(cls) ? ik["classes"][cls] : json::object();
+      md << "| " << p << " " << cls << " | " << fmt(get(a["classes"][cls], "full_body_cm"), 2) << " / "
+         << fmt(get(a["classes"][cls], "lower_body_cm"), 2) << " | " << fmt(get(x, "full_body_cm"), 2) << " / "
+         << fmt(get(x, "lower_body_cm"), 2) << " | " << fmt(get(x, "full_body_cm") - get(a["classes"][cls], "full_body_cm"), 2)
+         << " | " << fmt(get(ic, "full_body_cm"), 2) << " / " << fmt(get(ic, "lower_body_cm"), 2) << " | "
+         << winner(cls, "full_body") << " / " << winner(cls, "lower_body") << " | " << fmt(get(x, "class_accuracy"), 3)
+         << " | " << fmt(get(x, "class_switches_per_minute"), 2) << " |\n";
+    }
   }
+  for (const char* p : {"cross_subject", "cross_trial"})
+    if (r.contains(p) && r[p].contains("winners_no_class") && r[p]["winners_no_class"].contains("contests"))
+      md << "\n" << p << ": with no class given the engine is below the IK baseline in "
+         << r[p]["winners_no_class"]["engine_wins"] << " of " << r[p]["winners_no_class"]["contests"]
+         << " (class, part) pairs (the class given: " << r[p]["winners"].value("engine_wins", json(0)) << " of "
+         << r[p]["winners"].value("contests", json(0)) << ").\n";
 }
 
 // The cross-subject ablation beside the document's figures.

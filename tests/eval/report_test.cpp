@@ -64,6 +64,41 @@ TEST(EvalReport, PerClassWinnerIsTheLowerErrorOfTheClassFigures) {
   }
 }
 
+// The no-class setting (one database of every class, the class recognised)
+// against the same IK baseline, class by class: its own winners table, the
+// goal's value is its count, and the markdown's no-class table shows them.
+TEST(EvalReport, NoClassWinnersAreTheLowerErrorOfItsClassFigures) {
+  const json& r = sample_report();
+  auto find = [&](const std::string& name) -> const json* {
+    for (const auto& t : r["targets"])
+      if (t["target"] == name) return &t;
+    return nullptr;
+  };
+  for (const char* p : {"cross_subject", "cross_trial"}) {
+    const json& w = r.at(p).at("winners_no_class");
+    int wins = 0, contests = 0;
+    ASSERT_FALSE(w.at("classes").empty()) << p;
+    for (const auto& [cls, parts] : w.at("classes").items())
+      for (const char* part : {"full_body", "lower_body"}) {
+        const std::string key = std::string(part) + "_cm";
+        const double n = num(r[p]["no_class"]["classes"][cls], key), i = num(r[p]["ik"]["classes"][cls], key);
+        EXPECT_DOUBLE_EQ(num(parts[part], "no_class"), n) << p << " " << cls << " " << part;
+        EXPECT_EQ(parts[part]["winner"].get<std::string>(), n < i ? "no_class" : "ik") << p << " " << cls << " " << part;
+        ++contests;
+        wins += n < i;
+      }
+    EXPECT_EQ(w.at("engine_wins").get<int>(), wins) << p;
+    EXPECT_EQ(w.at("contests").get<int>(), contests) << p;
+    const json* goal = find(std::string(p) + ": no-class setting below IK in every class, full and lower body");
+    ASSERT_NE(goal, nullptr) << p;
+    EXPECT_EQ((*goal)["value"].get<int>(), wins) << p;
+    EXPECT_EQ((*goal)["met"].get<bool>(), wins == contests) << p;
+  }
+  const std::string md = report_markdown(r);
+  EXPECT_NE(md.find("with no class given the engine is below the IK baseline in"), std::string::npos);
+  EXPECT_NE(md.find("| IK: full / lower (cm) | winner full / lower |"), std::string::npos);
+}
+
 // The IK baseline both ways: "ik" on the database's reference skeleton at the
 // user's height (what the engine gets), "ik_own" on the subject's own; the
 // second winners table is against "ik_own", and the two baselines differ.

@@ -1,5 +1,6 @@
 // Build reports of the accentuation database (see report.hpp).
 #include <legwork/accent/offline/report.hpp>
+#include <legwork/accent/features.hpp>
 
 #include <cstdio>
 #include <map>
@@ -58,6 +59,39 @@ std::string class_table(const BuildReport& r) {
   for (const auto& t : r.trials)
     if (t.kept && t.reason.find("roles") != std::string::npos) out += "note: " + t.file + " " + t.reason + "\n";
   return out;
+}
+
+nlohmann::json database_info(const Database& db) {
+  nlohmann::json classes = nlohmann::json::array();
+  for (int c = 0; c < db.class_count(); ++c) {
+    const auto [a, b] = db.class_range(c);
+    int trials = 0;
+    for (const auto& t : db.trials()) trials += t.cls == db.classes()[static_cast<std::size_t>(c)];
+    classes.push_back({{"name", db.classes()[static_cast<std::size_t>(c)]}, {"windows", b - a}, {"trials", trials}});
+  }
+  nlohmann::json trials = nlohmann::json::array();
+  for (const auto& t : db.trials())
+    trials.push_back({{"file", t.file}, {"class", t.cls}, {"subject", t.subject}, {"trial", t.trial}, {"hand_foot_correlation", t.correlation}});
+  const auto& s = db.settings();
+  return {{"format", "legwork accent database"},
+          {"format_version", kFormatVersion},
+          {"bytes", db.bytes().size()},
+          {"windows", db.window_count()},
+          {"poses", db.pose_count()},
+          {"joints", db.joint_count()},
+          {"height_m", db.height()},
+          {"fps", s.fps},
+          {"hop", s.hop},
+          {"window_samples", kWindow},
+          {"window_stride", kStride},
+          {"window_seconds", (kWindow - 1) * kStride / s.fps},
+          {"speeds", s.speeds},
+          {"mirrored", s.mirrored},
+          {"correlation_threshold", s.correlation_threshold},
+          {"typical_distance", db.typical_distance()},
+          {"search_index", db.has_index()},
+          {"classes", classes},
+          {"trials", trials}};
 }
 
 }  // namespace legwork::accent

@@ -19,4 +19,12 @@ nlohmann::json build_report_json(const BuildReport& r, const Database& db, const
 // (plus a note per kept trial whose roles were guessed). Lines end in '\n'.
 std::string class_table(const BuildReport& r);
 
+// What a database holds (`legwork info FILE.lwdb --json`, Python
+// `Database.info()`): format version, bytes, windows, poses, joints, height,
+// build settings (fps, hop, window samples and stride, speeds, mirrored,
+// correlation threshold), typical distance, whether the search index is
+// stored, and per class (name, windows, trials) and per trial (file, class,
+// subject, trial, hand-foot correlation).
+nlohmann::json database_info(const Database& db);
+
 }  // namespace legwork::accent
