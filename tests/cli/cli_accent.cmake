@@ -79,6 +79,16 @@ set_tests_properties(cli.info_accent_db PROPERTIES FIXTURES_REQUIRED accent_db P
 add_test(NAME cli.info_accent_db_json COMMAND legwork info ${ACC_DB} --json)
 set_tests_properties(cli.info_accent_db_json PROPERTIES FIXTURES_REQUIRED accent_db PASS_REGULAR_EXPRESSION
   "\"window_stride\": 2,.*\"windows\": [1-9][0-9]*")
+# A damaged database is named, not described: truncated (the header's size
+# against the file's) and one byte changed (the checksum), text and --json alike.
+add_test(NAME cli.info_truncated_db COMMAND sh -c
+  "head -c 4096 '${ACC_DB}' > '${O}/truncated.lwdb' && exec '$<TARGET_FILE:legwork>' info '${O}/truncated.lwdb'")
+add_test(NAME cli.info_corrupted_db_json COMMAND sh -c
+  "cp '${ACC_DB}' '${O}/corrupted.lwdb' && printf '\\377' | dd of='${O}/corrupted.lwdb' bs=1 seek=200000 conv=notrunc 2>/dev/null && exec '$<TARGET_FILE:legwork>' info '${O}/corrupted.lwdb' --json")
+set_tests_properties(cli.info_truncated_db PROPERTIES FIXTURES_REQUIRED accent_db PASS_REGULAR_EXPRESSION
+  "legwork: error: accent database '.*truncated.lwdb': header says [0-9]+ bytes but the file has 4096 \\(truncated\\)")
+set_tests_properties(cli.info_corrupted_db_json PROPERTIES FIXTURES_REQUIRED accent_db PASS_REGULAR_EXPRESSION
+  "legwork: error: accent database '.*corrupted.lwdb': checksum mismatch: the file is corrupted")
 legwork_cli_error(convert_accent_db_as_motion
   "error: .*accent_sample.lwdb: a legwork accent database \\(binary .lwdb\\), not a text file; 'legwork info .*accent_sample.lwdb' describes it"
   convert ${ACC_DB} ${O}/from_db.bvh)
