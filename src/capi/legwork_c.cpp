@@ -180,9 +180,7 @@ void put_field(const InfoFields::Item& f, const char** name, double* number, con
   if (number) *number = f.text ? 0.0 : f.number;
   if (text) *text = f.text;
 }
-}  // namespace
 
-namespace {
 // A model handle that owns `model`; its output skeleton is exposed as lw_skeleton.
 template <class M>
 lw_status store_model(lw_method method, M model, lw_model** out) {
