@@ -142,7 +142,7 @@ void bind_settings(pb::module_& m) {
       .value("Unmatched", MatchStatus::Unmatched)
       .value("TrackingLost", MatchStatus::TrackingLost)
       .value("Rejected", MatchStatus::Rejected);
-  pb::class_<Info>(m, "Info", "Per-frame diagnostics of update().")
+  def_fields(pb::class_<Info>(m, "Info", "Per-frame diagnostics of update().")
       .def(pb::init<>())
       .def_readonly("match", &Info::match)
       .def_readonly("match_weight", &Info::match_weight, "global match weight (0..1)")
@@ -154,7 +154,7 @@ void bind_settings(pb::module_& m) {
       .def_readonly("ik_share", &Info::ik_share, "share of the IK body in the output (0..1)")
       .def_readonly("active_class", &Info::active_class, "recognised class (index into Database.classes), -1 = not recognising")
       .def_readonly("classes_searched", &Info::classes_searched,
-                    "classes this frame's search covered (the recognised one plus the others searched at other_class_cost)");
+                    "classes this frame's search covered (the recognised one plus the others searched at other_class_cost)"));
 }
 
 pb::dict run_dict(AccentRun run) {

@@ -5,6 +5,7 @@
 //
 // Conventions at this boundary: float64 arrays, C-contiguous, quaternions as
 // (w, x, y, z) in the last axis, positions in metres, times in seconds.
+#include <legwork/core/info_fields.hpp>
 #include <legwork/core/motion.hpp>
 #include <legwork/core/tracker.hpp>
 
@@ -61,6 +62,30 @@ void def_update(pb::module_& m, UpdateStatus (*fn)(const M&, const TrackerFrame&
         return fn(model, frame, state, out.ref(), info);
       },
       "model"_a, "frame"_a, "state"_a, "out"_a, "info"_a = nullptr, doc);
+}
+
+// Info.fields() -> dict: the frame's figures under the names of the server's
+// pose "info" object and the C API's lw_avatar_info_field (docs/protocol.md),
+// from the runtime's own describe(): numbers as float, texts as str.
+template <class I>
+void def_fields(pb::class_<I> info) {
+  info.def(
+      "fields",
+      [](const I& i) {
+        InfoFields f;
+        describe(i, f);
+        pb::dict d;
+        for (int k = 0; k < f.count; ++k) {
+          const InfoFields::Item& it = f.items[static_cast<std::size_t>(k)];
+          if (it.text)
+            d[it.key] = pb::str(it.text);
+          else
+            d[it.key] = pb::float_(it.number);
+        }
+        return d;
+      },
+      "the frame's figures as a dict, under the names of the server's pose 'info' and the C API's "
+      "lw_avatar_info_field (docs/protocol.md)");
 }
 
 // Binds a runtime's Model (skeleton(), settings()), State(model) and

@@ -29,7 +29,7 @@ void bind_combined(pb::module_& m) {
   m.def("make_model", pb::overload_cast<const Skeleton&, const Settings&, const wip::LearnedMapping*>(&make_model), "skeleton"_a,
         "settings"_a = Settings{}, "learned"_a = nullptr,
         "Upper body by the full-body IK avatar on `skeleton`, legs by walking-in-place (learned: as above).");
-  pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
+  def_fields(pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
       .def(pb::init<>())
       .def_readonly("upper", &Info::upper, "the upper-body method's UpdateStatus")
       .def_readonly("legs", &Info::legs, "walking-in-place's UpdateStatus")
@@ -38,7 +38,7 @@ void bind_combined(pb::module_& m) {
       .def_readonly("walking", &Info::walking)
       .def_readonly("speed", &Info::speed, "m/s")
       .def_readonly("distance", &Info::distance, "metres walked")
-      .def_readonly("heading", &Info::heading, "radians about y, 0 = +z");
+      .def_readonly("heading", &Info::heading, "radians about y, 0 = +z"));
   def_update(m, &update,
              "One frame: head and hands drive the upper body, the feet the legs; `out` (a legwork.core.Pose of\n"
              "model.skeleton()) written; returns legwork.core.UpdateStatus.");

@@ -36,7 +36,7 @@ void bind_ik(pb::module_& m) {
       .def_property_readonly("standing_pelvis_height", &Model::standing_pelvis_height, "metres");
   m.def("make_model", &make_model, "skeleton"_a, "settings"_a = Settings{},
         "Model from a skeleton with head, hands and legs; legwork.Error naming missing roles.");
-  pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
+  def_fields(pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
       .def(pb::init<>())
       .def_readonly("steps_taken", &Info::steps_taken)
       .def_readonly("stepping", &Info::stepping, "[left, right]: foot in the air")
@@ -44,7 +44,7 @@ void bind_ik(pb::module_& m) {
       .def_readonly("pelvis_yaw", &Info::pelvis_yaw, "radians about y")
       .def_readonly("lean", &Info::lean, "radians")
       .def_readonly("head_tracked", &Info::head_tracked)
-      .def_readonly("hand_tracked", &Info::hand_tracked);
+      .def_readonly("hand_tracked", &Info::hand_tracked));
   def_update(m, &update,
              "One frame: head and hands of `frame` in (the head placed exactly, wrists when in reach, legs step);\n"
              "`out` (a legwork.core.Pose of model.skeleton()) written; returns legwork.core.UpdateStatus.");

@@ -53,7 +53,7 @@ void bind_walkcycle(pb::module_& m) {
                                 "One walker's memory between frames.")
       .first.def("cycle", &Model::cycle, pb::return_value_policy::reference_internal);
   m.def("make_model", &make_model, "cycle"_a, "settings"_a = Settings{}, "Walker from a cycle.");
-  pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
+  def_fields(pb::class_<Info>(m, "Info", "Per-frame diagnostics.")
       .def(pb::init<>())
       .def_readonly("step", &Info::step)
       .def_readonly("cycle_time", &Info::cycle_time, "cycle frames since the start")
@@ -65,7 +65,7 @@ void bind_walkcycle(pb::module_& m) {
       .def_readonly("foot_roll", &Info::foot_roll, "smooth root: largest roll of a foot out of reach, radians")
       .def_readonly("reach_limited", &Info::reach_limited, "smooth root: a leg needed more than soft_reach")
       .def_readonly("ground_rise", &Info::ground_rise, "smooth root: metres the pelvis is raised by the ground under the feet")
-      .def_readonly("cadence", &Info::cadence, "the cycle's rate (1; Settings.stairs_cadence on stairs)");
+      .def_readonly("cadence", &Info::cadence, "the cycle's rate (1; Settings.stairs_cadence on stairs)"));
   def_update(m, &update,
              "One frame: the head device's yaw steers (held when not usable); the walk advances by the frame's dt;\n"
              "`out` (a legwork.core.Pose of model.skeleton()) gets the world pose; returns legwork.core.UpdateStatus.");

@@ -112,7 +112,7 @@ void bind_runtime(pb::module_& m) {
   m.def("step_speed_gain", &step_speed_gain, "settings"_a,
         "The step-speed model's gain: settings.mapping.speed_gain when > 0, else the detector's calibrated gain.");
   m.def("set_floor", &set_floor, "state"_a, "left"_a, "right"_a, "Tracker-space floor height under each ankle, metres.");
-  pb::class_<Info>(m, "Info", "Per-frame diagnostics ([left, right] pairs).")
+  def_fields(pb::class_<Info>(m, "Info", "Per-frame diagnostics ([left, right] pairs).")
       .def(pb::init<>())
       .def_readonly("time", &Info::time, "seconds")
       .def_property_readonly("phase", [](const Info& i) { return pair(i.phase); })
@@ -123,7 +123,7 @@ void bind_runtime(pb::module_& m) {
       .def_readonly("speed", &Info::speed, "forward speed, m/s")
       .def_readonly("distance", &Info::distance, "distance walked, metres")
       .def_readonly("heading", &Info::heading, "radians, 0 = +z")
-      .def_readonly("walking", &Info::walking);
+      .def_readonly("walking", &Info::walking));
   def_update(m, &update,
              "One frame: the feet devices' heights in (the head's yaw steers when usable); `out` (a legwork.core.Pose\n"
              "of model.skeleton()) written; returns legwork.core.UpdateStatus.");

@@ -108,6 +108,14 @@ def test_no_class_setting_recognises_walking(db, truth):
             accent.update(model, frame, state, pose, info)
             active.append(info.active_class)
             searched.append(info.classes_searched)
+            fields = info.fields()  # the server's and the C API's names for the same figures
+            assert fields["active_class"] == info.active_class
+            assert fields["classes_searched"] == info.classes_searched
+            assert fields["match_weight"] == pytest.approx(info.match_weight)
+            assert (fields["matches_left"], fields["matches_right"]) == tuple(info.matches)
+            assert fields["match"] == {accent.MatchStatus.Matched: "matched", accent.MatchStatus.Partial: "partial",
+                                       accent.MatchStatus.Unmatched: "unmatched",
+                                       accent.MatchStatus.TrackingLost: "tracking-lost"}[info.match]
         counts[recognise] = active
         searched_counts[recognise] = searched
     walking = db.classes.index("walking")

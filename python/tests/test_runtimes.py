@@ -1,6 +1,7 @@
 """legwork.ik, legwork.wip, legwork.walkcycle: the same contract (Settings, make_model, State, reset,
 update, Info), against the CLI where it reports figures, and by behaviour otherwise."""
 import json
+import re
 
 import numpy as np
 import pytest
@@ -26,6 +27,34 @@ def drive(module, model, frames, info=None):
 def test_every_runtime_has_the_contract_names(module):
     for name in ("Settings", "Model", "make_model", "State", "reset", "update", "Info"):
         assert hasattr(module, name), f"{module.__name__}.{name}"
+
+
+def protocol_info_names():
+    """Each method's pose-info names as docs/protocol.md lists them (the `info` row of the pose message)."""
+    row = next(line for line in (SOURCE / "docs/protocol.md").read_text().splitlines() if line.startswith("| `info` |"))
+    listed = row.split("writes them). ", 1)[1]
+    names, method = {}, None
+    for part in re.split(r"(?:^|; )(accent|ik|combined|wip|walker): ", listed)[1:]:
+        if method is None:
+            method = part
+            continue
+        flat = part
+        while re.search(r"\([^()]*\)", flat):  # drop the explanations in parentheses (they quote values)
+            flat = re.sub(r"\([^()]*\)", "", flat)
+        names[method] = set(re.findall(r"`([a-z_]+)`", flat))
+        method = None
+    return names
+
+
+@pytest.mark.parametrize("method,module", [("accent", legwork.accent), ("ik", ik), ("combined", legwork.combined),
+                                           ("wip", wip), ("walker", walkcycle)])
+def test_info_fields_are_the_protocols_names(method, module):
+    """Info.fields() gives the names docs/protocol.md lists for the server's pose info (the C API's too)."""
+    listed = protocol_info_names()
+    assert method in listed, f"docs/protocol.md lists no info names for {method}"
+    fields = module.Info().fields()
+    assert set(fields) == listed[method]
+    assert all(isinstance(v, (float, str)) for v in fields.values())
 
 
 def test_ik_equals_the_cli_baseline(cli, db_path, tmp_path):
@@ -78,9 +107,15 @@ def test_wip_walks_while_the_feet_step_and_stands_when_they_stop():
     floor = min(f.get(core.Device.LeftFoot)[0][1] for f in frames)
     wip.set_floor(state, floor, floor)
     walking = 0
+    phases = set()
     for f in frames:
         assert wip.update(model, f, state, pose, info) in (core.UpdateStatus.Ok, core.UpdateStatus.Degraded)
         walking += info.walking
+        fields = info.fields()
+        assert fields["walking"] == float(info.walking) and fields["distance"] == pytest.approx(info.distance)
+        phases.add(fields["phase_left"])
+    # the gait machine's four states, under the names the server and the C API use
+    assert phases == {"double_support", "initial_swing", "mid_swing", "terminal_swing"}
     assert state.calibrated and walking > len(frames) // 3
     assert info.distance > 1.0  # metres walked by the avatar
     still = frames[-1]
