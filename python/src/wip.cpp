@@ -97,6 +97,10 @@ void bind_runtime(pb::module_& m) {
       .def_readonly("amplitude_slope", &LearnedMapping::amplitude_slope, "depth amplitude / leg per metre of apex")
       .def("amplitude", &LearnedMapping::amplitude, "apex"_a, "cadence"_a,
            "depth amplitude / leg length for a step apex (m) and cadence (strides/s)")
+      .def_readonly("turn_intercept", &LearnedMapping::turn_intercept, "the depth's gain while not turning")
+      .def_readonly("turn_slope", &LearnedMapping::turn_slope, "its change per rad/s of the head's smoothed turn rate")
+      .def("turn_gain", &LearnedMapping::turn_gain, "turn_rate"_a,
+           "the depth's gain at a smoothed head turn rate (rad/s), clamped to [0, 2]: steps shorten in turns")
       .def_readonly("samples", &LearnedMapping::samples)
       .def("lookup", &LearnedMapping::lookup, "own"_a, "other"_a, "lead"_a, "since"_a,
            "depth / amplitude for cycle coordinates own, other (0..2); lead 1 = this foot landed last, 0 not, -1 unknown;\n"
@@ -123,6 +127,7 @@ void bind_runtime(pb::module_& m) {
       .def_readonly("speed", &Info::speed, "forward speed, m/s")
       .def_readonly("distance", &Info::distance, "distance walked, metres")
       .def_readonly("heading", &Info::heading, "radians, 0 = +z")
+      .def_readonly("turn_rate", &Info::turn_rate, "the head yaw's speed, rad/s, smoothed (the learned mapping shortens steps in turns)")
       .def_readonly("walking", &Info::walking));
   def_update(m, &update,
              "One frame: the feet devices' heights in (the head's yaw steers when usable); `out` (a legwork.core.Pose\n"

@@ -145,12 +145,15 @@ def test_wip_learned_mapping_swings_the_feet_and_needs_its_table():
     assert table.samples > 5000 and table.lookup(0, 0, 1, 0.05) > 0 > table.lookup(0, 0, 0, 0.05)
     model = wip.make_model(walk.skeleton, settings, table)
     state, pose, info = wip.State(model), core.Pose(model.skeleton()), wip.Info()
-    depths = []
+    depths, turn = [], []
     for f in core.tracker_frames_from_motion(walk, 30.0):
         wip.update(model, f, state, pose, info)
         depths.append(info.z)
+        turn.append(info.turn_rate)
     z = np.array(depths)
     assert np.all(np.isfinite(z))
+    # 05_01 turns round: the head's smoothed turn rate rises, and the table's gain shortens steps there.
+    assert max(turn) > 0.5 and table.turn_gain(max(turn)) < table.turn_gain(0.0)
     for foot in (0, 1):  # each foot goes in front of and behind the pelvis
         assert z[:, foot].min() < -0.1 * model.leg_length < 0.1 * model.leg_length < z[:, foot].max()
 

@@ -13,7 +13,7 @@
 #include <vector>
 #include <algorithm>
 using namespace legwork;
-struct Row { std::string trial, subject; int turning; double leg, t; int walking, lead; double since, stride, apex[2], c[2], h[2], v[2]; int ph[2]; double z[2]; };
+struct Row { std::string trial, subject; int turning; double leg, t; int walking, lead; double since, stride, apex[2], c[2], h[2], v[2]; int ph[2]; double z[2]; double turn = 0; };
 std::vector<Row> rows;
 void load(const char* path) {
   std::ifstream in(path); std::string line; std::getline(in, line);
@@ -26,6 +26,8 @@ void load(const char* path) {
     r.apex[0] = std::stod(v[k++]); r.apex[1] = std::stod(v[k++]); r.c[0] = std::stod(v[k++]); r.c[1] = std::stod(v[k++]);
     r.h[0] = std::stod(v[k++]); r.h[1] = std::stod(v[k++]); r.v[0] = std::stod(v[k++]); r.v[1] = std::stod(v[k++]);
     r.ph[0] = std::stoi(v[k++]); r.ph[1] = std::stoi(v[k++]); r.z[0] = std::stod(v[k++]); r.z[1] = std::stod(v[k++]);
+    k += 3;  // px, pz, hd
+    if (k < static_cast<int>(v.size())) r.turn = std::stod(v[k++]);
     rows.push_back(r);
   }
 }
@@ -49,7 +51,7 @@ std::vector<std::string> subjects() { std::set<std::string> s; for (auto& r: row
 std::vector<wip::LearnSample> samples_of(const std::string& excl) {
   std::vector<wip::LearnSample> out;
   for (auto& r : rows) { if (r.subject == excl || !r.walking || r.lead < 0 || r.t < 0.5) continue; double a = trial_amp[r.trial]; if (!(a > 1e-3)) continue;
-    for (int f=0;f<2;++f) out.push_back({r.c[f], r.c[1-f], r.lead==f?1:0, r.since, 0.5*(r.apex[0]+r.apex[1]), 1/r.stride, r.z[f]/r.leg, a}); }
+    for (int f=0;f<2;++f) out.push_back({r.c[f], r.c[1-f], r.lead==f?1:0, r.since, 0.5*(r.apex[0]+r.apex[1]), 1/r.stride, r.z[f]/r.leg, a, r.turn}); }
   return out;
 }
 Pred baseline_table() {
@@ -57,7 +59,7 @@ Pred baseline_table() {
   for (auto& s : subjects()) {
     auto tab = wip::build_learned_mapping(samples_of(s));
     for (size_t i=0;i<rows.size();++i) { auto& r=rows[i]; if (r.subject!=s || !r.walking) continue;
-      for (int f=0;f<2;++f) { int lead = r.lead<0?-1:r.lead==f?1:0; p[i][f] = r.leg*tab.depth(r.c[f], r.c[1-f], lead, r.since, 0.5*(r.apex[0]+r.apex[1]), 1/r.stride); } }
+      for (int f=0;f<2;++f) { int lead = r.lead<0?-1:r.lead==f?1:0; p[i][f] = r.leg*tab.depth(r.c[f], r.c[1-f], lead, r.since, 0.5*(r.apex[0]+r.apex[1]), 1/r.stride, r.turn); } }
   }
   return p;
 }
@@ -170,7 +172,7 @@ int main(int argc, char** argv) {
       auto tab = wip::build_learned_mapping(samples_of(s));
       double sum=0; int n=0; for(auto& r:rows) if(r.subject!=s && !r.walking && r.t>=0.5) for(int f=0;f<2;++f){ sum+=r.z[f]/r.leg; n++; }
       for (size_t i=0;i<rows.size();++i) { auto& r=rows[i]; if (r.subject!=s || r.walking) continue;
-        for (int f=0;f<2;++f) { int lead = r.lead<0?-1:r.lead==f?1:0; ps[i][f] = r.leg*tab.depth(r.c[f], r.c[1-f], lead, r.since, 0.5*(r.apex[0]+r.apex[1]), 1/r.stride); pc[i][f] = r.leg*sum/n; } }
+        for (int f=0;f<2;++f) { int lead = r.lead<0?-1:r.lead==f?1:0; ps[i][f] = r.leg*tab.depth(r.c[f], r.c[1-f], lead, r.since, 0.5*(r.apex[0]+r.apex[1]), 1/r.stride, r.turn); pc[i][f] = r.leg*sum/n; } }
     }
     report("standing: table", ps); report("standing: constant", pc);
   }

@@ -265,9 +265,9 @@ void run_wip_learn_job(const WipJob& a) {
                         std::to_string(trials) + " trials of subjects " + who + " from " + fs::path(data).filename().string() +
                             " at " + std::to_string(static_cast<int>(a.rate)) + " Hz");
   std::printf("learned depth mapping from %d trials (subjects %s): %d frames; depth amplitude / leg = %.3f + %.2f x apex "
-              "(m) + %.3f x cadence (strides/s), clamped to %.3f..%.3f\n",
+              "(m) + %.3f x cadence (strides/s), clamped to %.3f..%.3f; in turns x (%.2f %+.2f x head turn rate, rad/s)\n",
               trials, who.c_str(), table.samples, table.amplitude_intercept, table.amplitude_slope, table.cadence_slope,
-              table.amplitude_min, table.amplitude_max);
+              table.amplitude_min, table.amplitude_max, table.turn_intercept, table.turn_slope);
   io::announce("learned mapping", a.out);
 }
 

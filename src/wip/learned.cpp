@@ -43,6 +43,11 @@ double LearnedMapping::amplitude(double apex, double cadence) const {
   return std::clamp(a, amplitude_min, amplitude_max);
 }
 
+double LearnedMapping::turn_gain(double turn_rate) const {
+  const double r = std::clamp(std::isfinite(turn_rate) ? std::abs(turn_rate) : 0.0, 0.0, kMaxTurnRate);
+  return std::clamp(turn_intercept + turn_slope * r, 0.0, kMaxTurnGain);
+}
+
 double cycle_coordinate(const GaitMachine& g, const GaitSettings& p, double h) {
   const double hh = std::max(std::isfinite(h) ? h : 0.0, 0.0);
   const bool rising = g.phase == GaitPhase::DoubleSupport || g.phase == GaitPhase::InitialSwing;

@@ -184,6 +184,9 @@ void reset(const Model& model, State& st) {
   st.calibrated = false;
   st.calibrated_floor[0] = st.calibrated_floor[1] = 0;
   st.heading = 0;
+  st.heading_seen = false;
+  st.heading_time = 0;
+  st.turn_rate = 0;
   st.distance = 0;
   st.root_xz = Vec3::Zero();
   reset_motion(model, st);
@@ -292,7 +295,8 @@ void learned_depth_targets(const Model& m, State& st, const unsigned ev[2], doub
   for (int f = 0; f < 2; ++f) {
     const int lead = st.lead < 0 ? -1 : st.lead == f ? 1 : 0;
     st.z_target[f] =
-        m.leg_length() * table->depth(st.cycle[f], st.cycle[1 - f], lead, time - st.last_strike, apex, 1 / st.stride_period);
+        m.leg_length() *
+        table->depth(st.cycle[f], st.cycle[1 - f], lead, time - st.last_strike, apex, 1 / st.stride_period, st.turn_rate);
   }
 }
 
@@ -401,6 +405,7 @@ void fill_info(const Model& m, const State& st, double time, const unsigned ev[2
   fr.speed = st.speed;
   fr.distance = st.distance;
   fr.heading = st.heading;
+  fr.turn_rate = st.turn_rate;
   fr.root_position = out.translations[0];
   fr.walking = st.walking;
   fr.driver = st.driver;
@@ -424,7 +429,20 @@ UpdateStatus update(const Model& m, const TrackerFrame& frame, State& st, PoseRe
   const auto& p = m.settings();
   // The first frame (and the first after a restart) integrates one nominal sample period.
   const double dt = step.dt > 0 ? std::min(step.dt, p.mapping.max_dt) : 1.0 / p.signal.rate;
-  if (usable(frame.head())) st.heading = yaw_of(frame.head().rotation, st.heading);
+  if (usable(frame.head())) {
+    const double yaw = yaw_of(frame.head().rotation, st.heading);
+    // The head's turning speed (the learned mapping shortens steps in turns).
+    // Over the time since the last usable head sample (a dropout does not
+    // read as a fast turn); a restart's time jump back is skipped.
+    const double elapsed = frame.time - st.heading_time;
+    if (st.heading_seen && elapsed > 0) {
+      const double rate = std::abs(wrap_angle(yaw - st.heading)) / std::max(elapsed, dt);
+      if (std::isfinite(rate)) st.turn_rate += (1 - std::exp(-dt / LearnedMapping::kTurnTau)) * (rate - st.turn_rate);
+    }
+    st.heading = yaw;
+    st.heading_time = frame.time;
+    st.heading_seen = true;
+  }
 
   unsigned ev[2];
   const bool feet_ok = track_feet(m, frame, st, dt, ev);

@@ -67,7 +67,55 @@ TEST(LearnedLookup, TheAmplitudeFollowsApexAndCadenceWithinItsRange) {
   EXPECT_DOUBLE_EQ(m.amplitude(10, 1), 0.6);
   EXPECT_DOUBLE_EQ(m.amplitude(-10, 1), 0.2);
   EXPECT_NEAR(m.amplitude(NAN, NAN), 0.3 + m.apex_mean + 0.1 * m.cadence_mean, 1e-12);
-  EXPECT_NEAR(m.depth(0.4, 1.1, 1, 0.3, 0.1, 1.0), 0.5 * m.lookup(0.4, 1.1, 1, 0.3), 1e-12);
+  EXPECT_NEAR(m.depth(0.4, 1.1, 1, 0.3, 0.1, 1.0, 0.0), 0.5 * m.lookup(0.4, 1.1, 1, 0.3) * m.turn_gain(0), 1e-12);
+}
+
+TEST(LearnedLookup, StepsLearnedFromRealWalksShortenInTurnsAndTheGainIsClamped) {
+  const auto& m = shipped();
+  // The shared walks' turn-arounds: the faster the head turns, the shorter the steps.
+  EXPECT_LT(m.turn_slope, 0);
+  EXPECT_GT(m.turn_gain(0), m.turn_gain(1.0));
+  EXPECT_GE(m.turn_gain(1e9), 0);
+  LearnedMapping t = m;
+  t.turn_intercept = 1.2;
+  t.turn_slope = -0.5;
+  EXPECT_NEAR(t.turn_gain(1.0), 0.7, 1e-12);
+  EXPECT_NEAR(t.turn_gain(-1.0), 0.7, 1e-12);  // a rate's sign is the turn's side, not its speed
+  EXPECT_DOUBLE_EQ(t.turn_gain(NAN), 1.2);      // unknown: no turn
+  t.turn_slope = -0.2;
+  EXPECT_DOUBLE_EQ(t.turn_gain(100), 1.2 - 0.2 * LearnedMapping::kMaxTurnRate);  // the rate is clamped
+  t.turn_slope = -5;
+  EXPECT_DOUBLE_EQ(t.turn_gain(3), 0);  // the gain never flips the depth
+  t.turn_slope = 5;
+  EXPECT_DOUBLE_EQ(t.turn_gain(3), LearnedMapping::kMaxTurnGain);
+}
+
+TEST(LearnedFormat, FormatOneTablesStillReadWithoutATurnTerm) {
+  std::string text = format_learned_mapping(shipped(), "test");
+  ASSERT_EQ(text.rfind("legwork-wip-learned-mapping 2\n", 0), 0u);
+  const LearnedMapping back = parse_learned_mapping(text, "v2.txt");
+  EXPECT_DOUBLE_EQ(back.turn_intercept, shipped().turn_intercept);
+  EXPECT_DOUBLE_EQ(back.turn_slope, shipped().turn_slope);
+  // The same table as format 1: the header and no turn lines.
+  text.replace(0, std::string("legwork-wip-learned-mapping 2").size(), "legwork-wip-learned-mapping 1");
+  const auto a = text.find("turn_intercept "), b = text.find("samples ");
+  ASSERT_LT(a, b);
+  text.erase(a, b - a);
+  const LearnedMapping v1 = parse_learned_mapping(text, "v1.txt");
+  EXPECT_EQ(v1.turn_intercept, 1.0);
+  EXPECT_EQ(v1.turn_slope, 0.0);
+  EXPECT_EQ(v1.shape, back.shape);
+  // A format 2 table without its turn lines names the missing key and the line.
+  std::string cut = format_learned_mapping(shipped(), "test");
+  const auto c = cut.find("turn_intercept "), d = cut.find("samples ");
+  cut.erase(c, d - c);
+  try {
+    parse_learned_mapping(cut, "cut.txt");
+    FAIL() << "a format 2 table without turn lines was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.txt:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("expected 'turn_intercept <number>'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(CycleCoordinate, RisesThroughTheSwingAndRestsAtZeroOnARealWalk) {

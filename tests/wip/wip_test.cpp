@@ -43,7 +43,7 @@ bool finite_info(const Info& i) {
   for (int f = 0; f < 2; ++f)
     ok = ok && std::isfinite(i.h[f]) && std::isfinite(i.v[f]) && std::isfinite(i.z[f]) && std::isfinite(i.y[f]) &&
          std::isfinite(i.z_target[f]) && i.target_world[f].allFinite();
-  return ok;
+  return ok && std::isfinite(i.turn_rate);
 }
 
 Stream run_stream(const Model& m, const std::vector<TrackerFrame>& frames) {
@@ -279,6 +279,41 @@ TEST(Update, WalksAlongTheHeadsYawAndHoldsItWhenTheHeadIsLost) {
   EXPECT_GT(at10.x(), 3.0);  // walked along +x
   EXPECT_NEAR(at10.z(), 0.0, 1e-9);
   EXPECT_GT(info.root_position.x(), at10.x() + 3.0);  // and kept going that way with the head lost
+}
+
+// The learned mapping's turning input: the head yaw's speed, smoothed over
+// kTurnTau; a dropout is not a turn, whatever the yaw when the head returns.
+TEST(Update, TurnRateIsTheHeadsYawSpeedSmoothedAndADropoutIsNoTurn) {
+  const Model& m = walk_model();
+  State st(m);
+  Pose pose(m.skeleton());
+  Info info;
+  const double rate = 1.0;  // rad/s, the head turning steadily
+  std::vector<double> seen;
+  for (int i = 0; i <= 30 * 12; ++i) {
+    const double t = i / 30.0;
+    TrackerFrame f;
+    f.time = t;
+    const bool lost = t > 8 && t < 10;  // two seconds without the head, which turns on meanwhile
+    f.head() = {Vec3(0, 1.7, 0), Quat(Eigen::AngleAxisd(rate * t, Vec3::UnitY())), !lost};
+    update(m, f, st, pose.ref(), &info);
+    seen.push_back(info.turn_rate);
+  }
+  // After 6 s (5 time constants) the smoothed rate is the true one within 1 %.
+  EXPECT_NEAR(seen[30 * 6], rate, 0.01 * rate);
+  // The head's return: its yaw moved by 2 rad in 2 s, still 1 rad/s.
+  for (int i = 30 * 10; i < 30 * 12; ++i) EXPECT_NEAR(seen[static_cast<std::size_t>(i)], rate, 0.02) << "frame " << i;
+  // Real walks: 05_01 turns (49 deg/s at its turn), 07_02 walks straight.
+  auto peak = [](const char* trial) {
+    const Motion w = testdata::load_sample(trial);
+    const Model mm = make_model(w.skeleton);
+    const Stream s = run_stream(mm, tracker_frames_from_motion(w, 30.0));
+    double p = 0;
+    for (const auto& i : s.info) p = std::max(p, i.turn_rate);
+    return p;
+  };
+  const double turning = peak("cmu/bvh/walking/05_01.bvh"), straight = peak("cmu/bvh/walking/07_02.bvh");
+  EXPECT_GT(turning, 3 * straight) << turning << " vs " << straight;
 }
 
 // The step-speed gain: 0 (default) = the detector's calibrated gain; a

@@ -9,6 +9,7 @@
 // amplitude; the amplitude is learned as a linear function of the user's step
 // apex (longer steps for higher lifts). Built offline (legwork/wip/offline/learn.hpp); the lookup here is a
 // multilinear interpolation: no allocation, no exceptions.
+#include <legwork/core/types.hpp>
 #include <legwork/wip/gait.hpp>
 
 #include <array>
@@ -33,6 +34,17 @@ struct LearnedMapping {
   // rate (least squares over the walks).
   double amplitude_intercept = 0.4, amplitude_slope = 0, cadence_slope = 0;
   double amplitude_min = 0.2, amplitude_max = 0.6;
+  // Turning: real steps shorten while the walker turns (turn-arounds, turns
+  // on the spot), which the ankle heights do not show but the head's yaw
+  // does. The depth is multiplied by turn_gain(turn rate) = turn_intercept +
+  // turn_slope * min(rate, kMaxTurnRate), clamped to [0, kMaxTurnGain]; rate =
+  // the head yaw's speed (rad/s) smoothed over kTurnTau (State::turn_rate).
+  // Least squares over the training frames; 1 and 0 (no turn term) in tables
+  // of format 1.
+  static constexpr double kTurnTau = 1.2;          // s
+  static constexpr double kMaxTurnRate = kPi;  // rad/s (180 deg/s)
+  static constexpr double kMaxTurnGain = 2.0;
+  double turn_intercept = 1.0, turn_slope = 0.0;
   double apex_mean = 0.12;   // m: mean step apex (gait machine estimate) of the training frames
   double cadence_mean = 0.9; // strides/s: mean cadence of the training frames
   int samples = 0;           // training frames (both feet)
@@ -49,9 +61,11 @@ struct LearnedMapping {
   // Depth amplitude / leg length for the user's step apex (m) and cadence
   // (strides/s), clamped; non-finite inputs take the training means.
   double amplitude(double apex, double cadence) const;
-  // Depth / leg length: amplitude(apex, cadence) * lookup(own, other, lead, since).
-  double depth(double own, double other, int lead, double since, double apex, double cadence) const {
-    return amplitude(apex, cadence) * lookup(own, other, lead, since);
+  // The turning gain for a smoothed head-yaw rate (rad/s; non-finite = 0).
+  double turn_gain(double turn_rate) const;
+  // Depth / leg length: amplitude(apex, cadence) * lookup(own, other, lead, since) * turn_gain(turn_rate).
+  double depth(double own, double other, int lead, double since, double apex, double cadence, double turn_rate) const {
+    return amplitude(apex, cadence) * lookup(own, other, lead, since) * turn_gain(turn_rate);
   }
 };
 

@@ -144,6 +144,7 @@ struct Info {
   double root_offset = 0;                // vertical root offset, -dh while walking (eq. 6, 7)
   double speed = 0, distance = 0;        // forward speed m/s, distance walked m
   double heading = 0;                    // walking heading used, radians (0 = +z)
+  double turn_rate = 0;                  // head yaw speed, rad/s, smoothed (the learned mapping's turning input)
   Vec3 root_position = Vec3::Zero();     // world
   Vec3 target_world[2] = {Vec3::Zero(), Vec3::Zero()};  // IK targets, world
   bool walking = false;
@@ -163,6 +164,9 @@ struct State {
   StepSpeedEstimator step_speed;
   StepFrequencyEstimator frequency_speed;
   double heading = 0;   // yaw about +y, radians (0 = +z): the head's last usable yaw
+  bool heading_seen = false;  // a usable head was seen (turn_rate has a previous yaw)
+  double heading_time = 0;    // time of that head sample, s
+  double turn_rate = 0;       // |head yaw speed|, rad/s, smoothed over LearnedMapping::kTurnTau
   bool calibrated = false;            // set_floor was called: kept across restarts
   double calibrated_floor[2] = {0, 0};
   // Mapping.

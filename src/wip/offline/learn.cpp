@@ -23,7 +23,8 @@ std::vector<LearnSample> learning_samples(std::span<const Info> frames, std::spa
       const double z = truth[f][i];
       if (!std::isfinite(z) || !std::isfinite(fr.cycle[f])) continue;
       out.push_back({fr.cycle[f], fr.cycle[1 - f], fr.lead == f ? 1 : 0, fr.since_strike,
-                     0.5 * (fr.apex_estimate[0] + fr.apex_estimate[1]), 1 / fr.stride_period, z / leg_length, 0});
+                     0.5 * (fr.apex_estimate[0] + fr.apex_estimate[1]), 1 / fr.stride_period, z / leg_length, 0,
+                     fr.turn_rate});
       depths.push_back(z / leg_length);
     }
   }
@@ -94,6 +95,24 @@ void fit_amplitude(std::span<const LearnSample> samples, LearnedMapping& m) {
   m.amplitude_intercept = z_mean - m.amplitude_slope * m.apex_mean - m.cadence_slope * m.cadence_mean;
 }
 
+// Turning gain: the true depth against the table's prediction p and p * the
+// clamped turn rate, least squares without a constant (2 x 2 normal
+// equations); no turn term when the frames do not determine it.
+void fit_turn_gain(std::span<const LearnSample> samples, LearnedMapping& m) {
+  m.turn_intercept = 1.0;
+  m.turn_slope = 0.0;
+  double pp = 0, pr = 0, rr = 0, pz = 0, rz = 0;
+  for (const auto& s : samples) {
+    const double p = m.amplitude(s.apex, s.cadence) * m.lookup(s.own, s.other, s.lead ? 1 : 0, s.since);
+    const double r = p * std::clamp(std::isfinite(s.turn) ? s.turn : 0.0, 0.0, LearnedMapping::kMaxTurnRate);
+    pp += p * p, pr += p * r, rr += r * r, pz += p * s.z, rz += r * s.z;
+  }
+  const double det = pp * rr - pr * pr;
+  if (!(det > 1e-9 * std::max(1e-300, pp * rr))) return;
+  const double a = (pz * rr - rz * pr) / det, b = (rz * pp - pz * pr) / det;
+  if (std::isfinite(a) && std::isfinite(b)) m.turn_intercept = a, m.turn_slope = b;
+}
+
 }  // namespace
 
 LearnedMapping build_learned_mapping(std::span<const LearnSample> samples, int min_samples) {
@@ -120,13 +139,14 @@ LearnedMapping build_learned_mapping(std::span<const LearnSample> samples, int m
   for (std::size_t k = 0; k < weight.size(); ++k) m.shape[k] = weight[k] > 0 ? m.shape[k] / weight[k] : 0;
   fill_empty(m, weight);
   fit_amplitude(samples, m);
+  fit_turn_gain(samples, m);
   m.samples = static_cast<int>(samples.size());
   return m;
 }
 
 std::string format_learned_mapping(const LearnedMapping& m, const std::string& source) {
   std::ostringstream o;
-  o << "legwork-wip-learned-mapping 1\n";
+  o << "legwork-wip-learned-mapping 2\n";
   o << "# depth / walk amplitude of a foot by (own cycle coordinate: rows, other foot's: columns) over 0..2;\n"
        "# built by `legwork wip learn` (legwork/wip/offline/learn.hpp), not edited by hand\n";
   char b[64];
@@ -137,7 +157,8 @@ std::string format_learned_mapping(const LearnedMapping& m, const std::string& s
   o << "nodes " << LearnedMapping::kNodes << "\namplitude_intercept " << num(m.amplitude_intercept)
     << "\namplitude_slope " << num(m.amplitude_slope) << "\ncadence_slope " << num(m.cadence_slope)
     << "\namplitude_min " << num(m.amplitude_min) << "\namplitude_max " << num(m.amplitude_max) << "\napex_mean "
-    << num(m.apex_mean) << "\ncadence_mean " << num(m.cadence_mean) << "\nsamples " << m.samples << "\nsource "
+    << num(m.apex_mean) << "\ncadence_mean " << num(m.cadence_mean) << "\nturn_intercept " << num(m.turn_intercept)
+    << "\nturn_slope " << num(m.turn_slope) << "\nsamples " << m.samples << "\nsource "
     << source << "\n";
   for (int l = 0; l < 2; ++l) {
     o << "lead " << l << "\n";
@@ -203,8 +224,11 @@ void read_row(LineReader& r, LearnedMapping& m, int l, int k, int i) {
 
 LearnedMapping parse_learned_mapping(const std::string& text, const std::string& path) {
   LineReader r{std::istringstream(text), path, "", 0};
-  if (!r.next() || r.line != "legwork-wip-learned-mapping 1")
-    r.fail("not a learned walking-in-place mapping (expected the header 'legwork-wip-learned-mapping 1')");
+  // Format 2 adds the turning gain (turn_intercept, turn_slope); format 1
+  // tables read as before (no turn term).
+  const bool v1 = r.next() && r.line == "legwork-wip-learned-mapping 1";
+  if (!v1 && r.line != "legwork-wip-learned-mapping 2")
+    r.fail("not a learned walking-in-place mapping (expected the header 'legwork-wip-learned-mapping 2', or 1)");
   LearnedMapping m;
   if (r.value("nodes") != kN) r.fail("'nodes' must be " + std::to_string(kN));
   m.amplitude_intercept = r.value("amplitude_intercept");
@@ -216,6 +240,12 @@ LearnedMapping parse_learned_mapping(const std::string& text, const std::string&
     r.fail("'amplitude_min' must be positive and at most 'amplitude_max'");
   m.apex_mean = r.value("apex_mean");
   m.cadence_mean = r.value("cadence_mean");
+  if (!v1) {
+    m.turn_intercept = r.value("turn_intercept");
+    m.turn_slope = r.value("turn_slope");
+    if (m.turn_intercept < 0 || m.turn_intercept > LearnedMapping::kMaxTurnGain)
+      r.fail("'turn_intercept' must be within [0, " + std::to_string(LearnedMapping::kMaxTurnGain).substr(0, 3) + "]");
+  }
   m.samples = static_cast<int>(r.value("samples"));
   if (!r.next() || r.line.rfind("source", 0) != 0) r.fail("expected 'source <text>'");
   for (int l = 0; l < 2; ++l) {

@@ -24,6 +24,7 @@ struct LearnSample {
   double cadence = 0;         // strides per second (1 / Info::stride_period)
   double z = 0;               // true depth / leg length
   double amplitude = 0;       // the walk's depth amplitude / leg length (half its 5-95 % range while walking)
+  double turn = 0;            // smoothed head-yaw speed, rad/s (Info::turn_rate)
 };
 
 // Training samples of one run: both feet of every frame while walking, from
