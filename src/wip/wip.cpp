@@ -479,6 +479,7 @@ void describe(const Info& i, InfoFields& out) {
   add_walking(out, i.walking, i.speed, i.distance, i.heading);
   out.add("phase_left", phase_name(i.phase[0]).data());  // static, NUL-terminated literals
   out.add("phase_right", phase_name(i.phase[1]).data());
+  out.add("turn_rate", i.turn_rate);
 }
 
 }  // namespace legwork::wip

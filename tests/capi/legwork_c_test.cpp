@@ -225,10 +225,13 @@ TEST(CApi, WipWithTheLearnedMappingWalksOnARealWalk) {
   ASSERT_GE(foot[1], 0);
   ASSERT_GE(hips, 0);
   std::vector<double> world(3 * static_cast<std::size_t>(n));
-  double lo = 0, hi = 0, root[3] = {0, 0, 0};
+  double lo = 0, hi = 0, root[3] = {0, 0, 0}, turn_peak = 0;
   for (int32_t i = 0; i < f.count; ++i) {
     ASSERT_GE(lw_avatar_update(avatar, &f.data[i]), 0);
     ASSERT_EQ(lw_avatar_pose(avatar, nullptr, root, world.data(), n), LW_OK);
+    double turn = -1;
+    ASSERT_EQ(lw_avatar_info_find(avatar, "turn_rate", &turn, nullptr), LW_OK) << lw_last_error();
+    turn_peak = std::max(turn_peak, turn);
     for (int s = 0; s < 2; ++s) {
       // The foot's offset from the hips along the direction the root has travelled so far.
       const double dz = world[3 * static_cast<std::size_t>(foot[s]) + 2] - world[3 * static_cast<std::size_t>(hips) + 2];
@@ -250,6 +253,7 @@ TEST(CApi, WipWithTheLearnedMappingWalksOnARealWalk) {
   ASSERT_EQ(lw_avatar_info_find(avatar, "phase_left", nullptr, &phase), LW_OK);
   ASSERT_NE(phase, nullptr);
   EXPECT_GT(std::string(phase).size(), 3u) << phase;
+  EXPECT_GT(turn_peak, 0.5);                     // 05_01 turns round: the head's turn rate (rad/s)
   EXPECT_LT(lo, -0.1);                           // a foot behind the hips
   EXPECT_GT(hi, 0.1);                            // and in front
   lw_avatar_destroy(avatar);
