@@ -15,7 +15,7 @@ namespace legwork::cli {
 namespace {
 
 struct CombinedArgs {
-  std::string data, db, out, video;
+  std::string data, db, out, video, wip_table;
   int limit = 0;
 };
 
@@ -30,6 +30,10 @@ void register_eval_combined(CLI::App& app) {
   auto a = std::make_shared<CombinedArgs>();
   cmd->add_option("--data", a->data, "folder of walking BVH trials (default ../shared/data/cmu/bvh/walking, else data/cmu/bvh/walking)");
   cmd->add_option("--db", a->db, "database (.lwdb) for the accentuated upper body (the trials may be in it: say so when you report)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--wip-table", a->wip_table,
+                  "learned walking-in-place table for the learned-legs rows of every trial (`legwork wip learn`, e.g. with "
+                  "--exclude-subjects naming the evaluated ones; default: each trial's table learned from the other subjects in --data)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--limit", a->limit, "evaluate only the first N trials")->check(positive_number());
   output_file(cmd->add_option("--video", a->video, "MP4 of the first trial: the capture beside each method"));
@@ -49,6 +53,7 @@ void register_eval_combined(CLI::App& app) {
     if (run.files.empty()) throw Error("--data '" + data.string() + "' holds no .bvh files");
     run.database = a->db;
     run.video = a->video;
+    run.wip_table = a->wip_table;
     run.progress = progress_bar("legwork eval combined: trial");
     const auto report = eval::evaluate_combined(run);
     const std::string table = eval::combined_table(report);

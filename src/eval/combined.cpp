@@ -112,7 +112,9 @@ json evaluate_combined(const CombinedEvalRun& run) {
   double truth_skating = 0;
   long truth_frames = 0;
   int done = 0;
-  const auto tables = held_out_tables(run, rate);
+  std::optional<wip::LearnedMapping> given;
+  if (!run.wip_table.empty()) given = wip::read_learned_mapping(run.wip_table);
+  const auto tables = given ? decltype(held_out_tables(run, rate)){} : held_out_tables(run, rate);
   for (const auto& file : run.files) {
     const std::string name = std::filesystem::path(file).stem().string();
     if (run.progress) run.progress(done++, static_cast<int>(run.files.size()), name);
@@ -124,7 +126,7 @@ json evaluate_combined(const CombinedEvalRun& run) {
       std::map<std::string, Motion> outputs;
       // The learned legs: a table built without this trial's subject (none when the others are too few).
       const auto held = tables.find(subject_of(name));
-      const wip::LearnedMapping* table = held != tables.end() && held->second ? &*held->second : nullptr;
+      const wip::LearnedMapping* table = given ? &*given : held != tables.end() && held->second ? &*held->second : nullptr;
       combined::Settings learned = settings;
       learned.wip.mapping.depth = wip::DepthMapping::Learned;
       combined::Settings s = settings;
@@ -162,6 +164,7 @@ json evaluate_combined(const CombinedEvalRun& run) {
   json report;
   report["rate_hz"] = rate;
   report["database"] = run.database.empty() ? json(nullptr) : json(run.database);
+  report["wip_table"] = run.wip_table.empty() ? json("learned per trial from the other subjects' trials") : json(run.wip_table);
   report["ik_skeleton"] = db ? "database skeleton at the user's height" : "each trial's own skeleton";
   report["blend_time_s"] = settings.blend_time;
   report["methods"] = json::object();
@@ -181,12 +184,17 @@ std::string combined_table(const json& report) {
       {"combined_accent", "combined: accentuated upper body + walking-in-place legs (document's mapping)"},
       {"combined_accent_learned",
        "combined: accentuated upper body + walking-in-place legs (learned mapping, without the trial's subject)"}};
+  const bool given = report.contains("wip_table") && report["wip_table"].is_string() &&
+                     report["wip_table"].get<std::string>().rfind("learned per trial", 0) != 0;
   std::string s = "| method | full body cm | lower body cm | hands cm (L / R) | foot skating cm/frame |\n|---|---|---|---|---|\n";
   char buf[256];
   for (const char* m : {"ik", "combined_ik", "combined_ik_learned", "accent", "combined_accent", "combined_accent_learned"}) {
     if (!report["methods"].contains(m)) continue;
     const json& e = report["methods"][m];
-    std::snprintf(buf, sizeof buf, "| %s | %.1f | %.1f | %.1f / %.1f | %.2f |\n", label.at(m).c_str(), e["full_body_cm"].get<double>(),
+    std::string name = label.at(m);
+    if (given && name.find("without the trial's subject") != std::string::npos)
+      name.replace(name.find("without the trial's subject"), std::string("without the trial's subject").size(), "the given table");
+    std::snprintf(buf, sizeof buf, "| %s | %.1f | %.1f | %.1f / %.1f | %.2f |\n", name.c_str(), e["full_body_cm"].get<double>(),
                   e["lower_body_cm"].get<double>(), e["left_hand_cm"].get<double>(), e["right_hand_cm"].get<double>(),
                   e["foot_skating_cm"].get<double>());
     s += buf;

@@ -39,6 +39,14 @@ legwork_cli_test(eval_cross_dataset eval accent --data ${PROJECT_SOURCE_DIR}/dat
 add_test(NAME cli.eval_combined COMMAND legwork eval combined --data ${D}/walking --limit 2)
 set_tests_properties(cli.eval_combined PROPERTIES PASS_REGULAR_EXPRESSION
   "2 trials at 30 Hz \\(0 skipped\\)\n.*\\| IK avatar alone \\| [0-9.]+ \\|.*\\| combined: IK upper body \\+ walking-in-place legs \\(document's mapping\\) \\| [0-9.]+ \\|.*\\| combined: IK upper body \\+ walking-in-place legs \\(learned mapping, without the trial's subject\\) \\| [0-9.]+ \\|")
+# A given learned table scores the learned legs even where --data holds one subject only (no held-out table).
+add_test(NAME cli.eval_combined_wip_table COMMAND legwork eval combined --data ${D}/walking --limit 1
+         --wip-table ${PROJECT_SOURCE_DIR}/data/wip/learned_mapping.txt)
+set_tests_properties(cli.eval_combined_wip_table PROPERTIES PASS_REGULAR_EXPRESSION
+  "1 trials at 30 Hz \\(0 skipped\\)\n.*\\| combined: IK upper body \\+ walking-in-place legs \\(learned mapping, the given table\\) \\| [0-9.]+ \\|")
+legwork_cli_error(eval_combined_bad_wip_table
+                  "error: .*CMakeLists.txt:1: not a learned walking-in-place mapping \\(expected the header 'legwork-wip-learned-mapping 2', or 1\\)"
+                  eval combined --data ${D}/walking --limit 1 --wip-table ${PROJECT_SOURCE_DIR}/CMakeLists.txt)
 legwork_cli_error(eval_combined_not_a_folder "error: --data '${D}/walking/07_01.bvh' is not a directory"
                   eval combined --data ${D}/walking/07_01.bvh)
 legwork_cli_test(eval_prints_help eval)

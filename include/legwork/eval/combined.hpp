@@ -17,6 +17,11 @@ struct CombinedEvalRun {
   std::string database;            // optional .lwdb: also accentuation and combined(accent)
   double rate = 30;                // tracker rate, Hz (the database's rate when given)
   std::string video;               // optional .mp4: the first trial, truth beside each method
+  // Optional learned walking-in-place table (`legwork wip learn`) for the
+  // learned-mapping rows of every trial, e.g. one learned without the
+  // evaluated subjects; empty: each trial's table is learned from the other
+  // subjects in `files` (none when they are too few).
+  std::string wip_table;
   std::function<void(int done, int total, const std::string& item)> progress;
 };
 
