@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets built with clang + ASan/UBSan: BVH, tracker CSV,
 # GLB, walk files (key-pose JSON), floor paths (JSON + SVG), the accent
-# database file, the serve protocol's messages and the VMC (OSC) input.
+# database file, the serve protocol's messages, the VMC (OSC) input and
+# learned walking-in-place tables.
 #   scripts/fuzz.sh [SECONDS]     bounded run, SECONDS in total (default 45),
 #                                 shared out by the weights in `targets` below
 #   scripts/fuzz.sh --long [RUNS] each target until RUNS executions (default
@@ -17,7 +18,8 @@
 # io::frames_from_table, the frame clock and usable(); walk files into the
 # cycle builder and a walk; paths into arc-length queries and a walk along
 # them; the database into its KD-trees and accent::update(); protocol and VMC
-# frames into a full-body IK avatar (fuzz/*_fuzz.cpp say what each checks).
+# frames into a full-body IK avatar; learned tables into a walking-in-place
+# model driven over a real walk (fuzz/*_fuzz.cpp say what each checks).
 # Seed corpora come from the repo's real files (data/, fuzz/corpus/), with a
 # dictionary per target (fuzz/*.dict).
 # Exits non-zero if a fuzzer finds a crash, leak, sanitizer error, timeout or
@@ -43,8 +45,8 @@ if ! [[ "$timeout" =~ ^[1-9][0-9]{0,4}$ ]]; then
   exit 2
 fi
 # name:weight(% of the bounded run):max_len; the seeds of each are set up below.
-targets=(bvh:20:16384 tracker_csv:10:8192 glb:15:131072 walk_keys:10:16384 path:10:4096 accent_db:15:262144
-  protocol:10:4096 vmc:10:4096)
+targets=(bvh:15:16384 tracker_csv:10:8192 glb:15:131072 walk_keys:10:16384 path:10:4096 accent_db:15:262144
+  protocol:10:4096 vmc:10:4096 wip_table:5:32768)
 if [ ${#only[@]} -gt 0 ]; then
   chosen=()
   for name in "${only[@]}"; do
