@@ -1,6 +1,7 @@
 // legwork.eval: role tracks and the metrics of legwork/eval/metrics.hpp.
 #include "bindings.hpp"
 
+#include <legwork/eval/combined.hpp>
 #include <legwork/eval/metrics.hpp>
 #include <legwork/eval/wip.hpp>
 
@@ -109,6 +110,25 @@ void bind_steps(pb::module_& m) {
       "detected"_a, "truth"_a, "t_begin"_a, "t_end"_a,
         "Step precision/recall/F1 and latencies: swings of the same foot whose intervals overlap are matched one to\n"
         "one; swings outside [t_begin, t_end] seconds are ignored. truth: legwork.wip.foot_swings(motion).");
+  m.def(
+      "evaluate_combined",
+      [](const std::vector<std::string>& files, const std::string& database, const std::string& wip_table, double rate) {
+        require_rate(rate, "rate");
+        CombinedEvalRun run;
+        run.files = files;
+        run.database = database;
+        run.wip_table = wip_table;
+        run.rate = rate;
+        const auto report = evaluate_combined(run);
+        return pb::module_::import("json").attr("loads")(report.dump());
+      },
+      "files"_a, "database"_a = "", "wip_table"_a = "", "rate"_a = 30.0,
+      "One avatar, two sources, scored on walking BVH trials as `legwork eval combined` does: the IK avatar,\n"
+      "the combined avatar (document's and learned legs), and with `database` (.lwdb) accentuation and the\n"
+      "combined avatar with an accentuated upper body. wip_table: a learned table for the learned-legs rows\n"
+      "(default: each trial's learned from the other subjects among `files`). Returns report.json's dict:\n"
+      "'methods' (frame-weighted means of full_body_cm, lower_body_cm, left/right_hand_cm, foot_skating_cm),\n"
+      "'trials', 'skipped', 'truth_foot_skating_cm'. legwork.Error for no trials or a bad database/table.");
 }
 
 }  // namespace

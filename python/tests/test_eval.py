@@ -1,9 +1,12 @@
 """legwork.eval: metrics on known displacements, and bad input."""
+import json
+import pathlib
+
 import numpy as np
 import pytest
 
 import legwork
-from conftest import TRIAL
+from conftest import SOURCE, TRIAL
 
 ev = legwork.eval
 
@@ -59,3 +62,26 @@ def test_bad_tracks(track):
     short = ev.RoleTrack(track.fps, np.ascontiguousarray(track.positions[:10]), track.present)
     with pytest.raises(legwork.Error, match="frames|length"):
         ev.evaluate_trial(short, track)
+
+
+def test_evaluate_combined_equals_the_cli(cli, tmp_path):
+    """legwork.eval.evaluate_combined gives `legwork eval combined`'s report (same trials, same table)."""
+    files = sorted(str(p) for p in (SOURCE / "data/cmu/bvh/walking").glob("*.bvh"))[:2]
+    table = str(SOURCE / "data/wip/learned_mapping.txt")
+    report = legwork.eval.evaluate_combined(files, wip_table=table)
+    folder = tmp_path / "walks"
+    folder.mkdir()
+    for f in files:
+        (folder / pathlib.Path(f).name).symlink_to(f)
+    cli("eval", "combined", "--data", folder, "--wip-table", table, "--out", tmp_path / "out")
+    expected = json.loads((tmp_path / "out/report.json").read_text())
+    assert set(report["methods"]) == {"ik", "combined_ik", "combined_ik_learned"}
+    for method, figures in expected["methods"].items():
+        for key, value in figures.items():
+            assert report["methods"][method][key] == pytest.approx(value, rel=1e-12), (method, key)
+    # The learned legs are nearer the capture's than the IK avatar's on these walks.
+    assert report["methods"]["combined_ik_learned"]["lower_body_cm"] < report["methods"]["ik"]["lower_body_cm"]
+    with pytest.raises(legwork.Error, match=r"CMakeLists.txt:1: not a learned walking-in-place mapping"):
+        legwork.eval.evaluate_combined(files, wip_table=str(SOURCE / "CMakeLists.txt"))
+    with pytest.raises(legwork.Error, match="no walking trials given"):
+        legwork.eval.evaluate_combined([])
