@@ -102,6 +102,15 @@ TEST(LearnedMappingFile, BadFilesNameTheLineAndTheField) {
   EXPECT_NE(e.find("lead 1 since node 0 row 0: column 0 is not a finite number"), std::string::npos) << e;
   EXPECT_NE(e.find("table.txt:"), std::string::npos) << e;
   EXPECT_NE(error_of(good.substr(0, good.rfind('\n', good.size() / 2) + 1)).find("file ends inside the table"), std::string::npos);
+  // A count beyond an int (wip_table_fuzz: a float-to-int overflow before the check) or not whole.
+  for (const char* count : {"2.3e87", "-1", "12.5"}) {
+    bad = good;
+    const auto at = bad.find("samples ") + 8;
+    bad.replace(at, bad.find('\n', at) - at, count);
+    const std::string m = error_of(bad);
+    EXPECT_NE(m.find("'samples' must be a whole number from 0 to 1000000000"), std::string::npos) << count << ": " << m;
+    EXPECT_NE(m.find("table.txt:"), std::string::npos) << m;
+  }
 }
 
 }  // namespace

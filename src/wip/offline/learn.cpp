@@ -246,7 +246,11 @@ LearnedMapping parse_learned_mapping(const std::string& text, const std::string&
     if (m.turn_intercept < 0 || m.turn_intercept > LearnedMapping::kMaxTurnGain)
       r.fail("'turn_intercept' must be within [0, " + std::to_string(LearnedMapping::kMaxTurnGain).substr(0, 3) + "]");
   }
-  m.samples = static_cast<int>(r.value("samples"));
+  // A count, checked before the cast (wip_table_fuzz: 2e87 overflowed the int).
+  const double samples = r.value("samples");
+  if (!(samples >= 0 && samples <= 1e9) || samples != std::floor(samples))
+    r.fail("'samples' must be a whole number from 0 to 1000000000");
+  m.samples = static_cast<int>(samples);
   if (!r.next() || r.line.rfind("source", 0) != 0) r.fail("expected 'source <text>'");
   for (int l = 0; l < 2; ++l) {
     if (r.value("lead") != l) r.fail("expected 'lead " + std::to_string(l) + "'");
