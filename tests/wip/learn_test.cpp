@@ -67,6 +67,33 @@ TEST(BuildLearnedMapping, SamplesOnANodeGiveItTheirMeanShapeAndEmptyNodesTakeThe
   EXPECT_EQ(m.samples, 600);
 }
 
+// The turning gain: least squares of the true depth on the table's prediction p
+// and p * turn rate. One node per lead foot, one amplitude: p is the node's mean depth,
+// so the fit is exact.
+TEST(BuildLearnedMapping, TheTurningGainIsFittedAndAnUnreadableOneIsDropped) {
+  auto fit = [](double z_still, double z_turning) {
+    std::vector<LearnSample> samples;
+    for (int k = 0; k < 300; ++k) {
+      const bool turning = k % 2;
+      samples.push_back({0.0, 0.0, 1, 0.0, 0.1, 1.0, turning ? z_turning : z_still, 0.5, turning ? 1.0 : 0.0});
+      // The trailing foot, behind the pelvis by as much (both lead slices need frames).
+      samples.push_back({0.0, 0.0, 0, 0.0, 0.1, 1.0, turning ? -z_turning : -z_still, 0.5, turning ? 1.0 : 0.0});
+    }
+    return build_learned_mapping(samples);
+  };
+  // Steps 1.2 long standing still, 0.9 turning at 1 rad/s: gains 1.2 / 1.05 and 0.9 / 1.05.
+  const LearnedMapping m = fit(0.12, 0.09);
+  EXPECT_NEAR(m.turn_intercept, 1.2 / 1.05, 1e-9);
+  EXPECT_NEAR(m.turn_slope, -0.3 / 1.05, 1e-9);
+  EXPECT_NEAR(m.turn_gain(1.0), 0.9 / 1.05, 1e-9);
+  // A fit whose intercept the reader would refuse (2.5 > kMaxTurnGain) is dropped: no turn term,
+  // and the table still round-trips.
+  const LearnedMapping wild = fit(0.10, -0.02);
+  EXPECT_EQ(wild.turn_intercept, 1.0);
+  EXPECT_EQ(wild.turn_slope, 0.0);
+  EXPECT_NO_THROW(parse_learned_mapping(format_learned_mapping(wild, "test"), "wild.txt"));
+}
+
 TEST(BuildLearnedMapping, TooFewSamplesAreRefusedWithTheCount) {
   std::vector<LearnSample> samples(10, LearnSample{0.5, 0.5, 1, 0.2, 0.1, 1.0, 0.2, 0.4});
   try {

@@ -110,7 +110,9 @@ void fit_turn_gain(std::span<const LearnSample> samples, LearnedMapping& m) {
   const double det = pp * rr - pr * pr;
   if (!(det > 1e-9 * std::max(1e-300, pp * rr))) return;
   const double a = (pz * rr - rz * pr) / det, b = (rz * pp - pz * pr) / det;
-  if (std::isfinite(a) && std::isfinite(b)) m.turn_intercept = a, m.turn_slope = b;
+  // An intercept outside [0, kMaxTurnGain] (what the reader accepts) would write a
+  // table no one can read: then no turn term.
+  if (std::isfinite(a) && std::isfinite(b) && a >= 0 && a <= LearnedMapping::kMaxTurnGain) m.turn_intercept = a, m.turn_slope = b;
 }
 
 }  // namespace
