@@ -7,6 +7,7 @@
 // Any input ends in a database whose poses stay finite through update(), or
 // in a legwork::Error: never a crash, a sanitizer report or a hang.
 #include "database_impl.hpp"
+#include "fuzz_body.hpp"
 
 #include <legwork/accent/accent.hpp>
 #include <legwork/io/bvh.hpp>
@@ -23,12 +24,7 @@ using namespace legwork;
 
 // 12 frames of the head and wrists of a real walk (data/cmu/bvh/walking/07_02.bvh) at 90 Hz.
 const std::vector<TrackerFrame>& stream() {
-  static const std::vector<TrackerFrame> frames = [] {
-    io::BvhReadOptions o;
-    o.drop_first_frame = true;
-    const Motion m = io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/07_02.bvh", o);
-    return tracker_frames_from_motion(m, 90.0, 12);
-  }();
+  static const std::vector<TrackerFrame> frames = fuzz::sample_frames("cmu/bvh/walking/07_02.bvh", 90.0, 12);
   return frames;
 }
 

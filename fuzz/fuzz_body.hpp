@@ -10,8 +10,22 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace legwork::fuzz {
+
+// The first `count` frames of a repo sample trial (path under data/, first
+// frame dropped) as trackers at `rate` Hz: the streams the targets replay.
+// (tracker_frames_from_motion's max_frames is a limit that throws, not a cut:
+// accent_db_fuzz passed 12 there, so its stream threw and the Error, caught
+// with the reader's, kept every input from reaching accent::update.)
+inline std::vector<TrackerFrame> sample_frames(const char* trial, double rate, std::size_t count) {
+  io::BvhReadOptions o;
+  o.drop_first_frame = true;
+  auto all = tracker_frames_from_motion(io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/" + trial, o), rate);
+  if (all.size() > count) all.resize(count);
+  return all;
+}
 
 inline const Skeleton& sample_skeleton() {
   static const Skeleton s = [] {

@@ -24,14 +24,7 @@ using namespace legwork;
 
 // The walk's trackers at 30 Hz, the first 3 s (through its first steps).
 const std::vector<TrackerFrame>& walk_frames() {
-  static const std::vector<TrackerFrame> f = [] {
-    io::BvhReadOptions o;
-    o.drop_first_frame = true;
-    const Motion m = io::load_bvh(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu/bvh/walking/05_01.bvh", o);
-    std::vector<TrackerFrame> all = tracker_frames_from_motion(m, 30.0);
-    if (all.size() > 90) all.resize(90);
-    return all;
-  }();
+  static const std::vector<TrackerFrame> f = fuzz::sample_frames("cmu/bvh/walking/05_01.bvh", 30.0, 90);
   return f;
 }
 

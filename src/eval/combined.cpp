@@ -59,7 +59,8 @@ Motion load_truth(const std::string& file, double rate) {
 // The learned leg mapping for each held-out subject, built the way `wip eval`
 // builds it: from the other subjects' trials only (unreadable trials are
 // left out here and listed as skipped by the main loop).
-std::map<std::string, std::optional<wip::LearnedMapping>> held_out_tables(const CombinedEvalRun& run, double rate) {
+using TablesBySubject = std::map<std::string, std::optional<wip::LearnedMapping>>;
+TablesBySubject held_out_tables(const CombinedEvalRun& run, double rate) {
   WipEvalOptions opt;
   opt.settings.signal.rate = rate;
   std::map<std::string, std::vector<wip::LearnSample>> by_subject;
@@ -114,7 +115,7 @@ json evaluate_combined(const CombinedEvalRun& run) {
   int done = 0;
   std::optional<wip::LearnedMapping> given;
   if (!run.wip_table.empty()) given = wip::read_learned_mapping(run.wip_table);
-  const auto tables = given ? decltype(held_out_tables(run, rate)){} : held_out_tables(run, rate);
+  const auto tables = given ? TablesBySubject{} : held_out_tables(run, rate);
   for (const auto& file : run.files) {
     const std::string name = std::filesystem::path(file).stem().string();
     if (run.progress) run.progress(done++, static_cast<int>(run.files.size()), name);
@@ -164,7 +165,7 @@ json evaluate_combined(const CombinedEvalRun& run) {
   json report;
   report["rate_hz"] = rate;
   report["database"] = run.database.empty() ? json(nullptr) : json(run.database);
-  report["wip_table"] = run.wip_table.empty() ? json("learned per trial from the other subjects' trials") : json(run.wip_table);
+  report["wip_table"] = run.wip_table.empty() ? json(nullptr) : json(run.wip_table);  // null: learned per trial from the other subjects
   report["ik_skeleton"] = db ? "database skeleton at the user's height" : "each trial's own skeleton";
   report["blend_time_s"] = settings.blend_time;
   report["methods"] = json::object();
@@ -184,8 +185,7 @@ std::string combined_table(const json& report) {
       {"combined_accent", "combined: accentuated upper body + walking-in-place legs (document's mapping)"},
       {"combined_accent_learned",
        "combined: accentuated upper body + walking-in-place legs (learned mapping, without the trial's subject)"}};
-  const bool given = report.contains("wip_table") && report["wip_table"].is_string() &&
-                     report["wip_table"].get<std::string>().rfind("learned per trial", 0) != 0;
+  const bool given = report.contains("wip_table") && report["wip_table"].is_string();
   std::string s = "| method | full body cm | lower body cm | hands cm (L / R) | foot skating cm/frame |\n|---|---|---|---|---|\n";
   char buf[256];
   for (const char* m : {"ik", "combined_ik", "combined_ik_learned", "accent", "combined_accent", "combined_accent_learned"}) {

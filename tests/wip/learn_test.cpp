@@ -129,6 +129,10 @@ TEST(LearnedMappingFile, BadFilesNameTheLineAndTheField) {
   EXPECT_NE(e.find("lead 1 since node 0 row 0: column 0 is not a finite number"), std::string::npos) << e;
   EXPECT_NE(e.find("table.txt:"), std::string::npos) << e;
   EXPECT_NE(error_of(good.substr(0, good.rfind('\n', good.size() / 2) + 1)).find("file ends inside the table"), std::string::npos);
+  bad = good;
+  const auto ti = bad.find("turn_intercept ") + 15;
+  bad.replace(ti, bad.find('\n', ti) - ti, "2.5");
+  EXPECT_NE(error_of(bad).find("'turn_intercept' must be within [0, 2]"), std::string::npos) << error_of(bad);
   // A count beyond an int (wip_table_fuzz: a float-to-int overflow before the check) or not whole.
   for (const char* count : {"2.3e87", "-1", "12.5"}) {
     bad = good;

@@ -43,7 +43,7 @@ struct LearnedMapping {
   // of format 1.
   static constexpr double kTurnTau = 1.2;          // s
   static constexpr double kMaxTurnRate = kPi;  // rad/s (180 deg/s)
-  static constexpr double kMaxTurnGain = 2.0;
+  static constexpr double kMaxTurnGain = 2.0;  // the reader's message says 2
   double turn_intercept = 1.0, turn_slope = 0.0;
   double apex_mean = 0.12;   // m: mean step apex (gait machine estimate) of the training frames
   double cadence_mean = 0.9; // strides/s: mean cadence of the training frames

@@ -246,7 +246,7 @@ LearnedMapping parse_learned_mapping(const std::string& text, const std::string&
     m.turn_intercept = r.value("turn_intercept");
     m.turn_slope = r.value("turn_slope");
     if (m.turn_intercept < 0 || m.turn_intercept > LearnedMapping::kMaxTurnGain)
-      r.fail("'turn_intercept' must be within [0, " + std::to_string(LearnedMapping::kMaxTurnGain).substr(0, 3) + "]");
+      r.fail("'turn_intercept' must be within [0, 2] (LearnedMapping::kMaxTurnGain)");
   }
   // A count, checked before the cast (wip_table_fuzz: 2e87 overflowed the int).
   const double samples = r.value("samples");
