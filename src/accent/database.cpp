@@ -236,6 +236,7 @@ const T* section(const Database::Impl& d, std::uint64_t offset, std::uint64_t co
 
 void validate_meta(const DatabaseMeta& m, const std::string& source);
 void scan_contents(const Database::Impl& d, const std::string& source);
+void open_row_order(Database::Impl& d, const std::string& source, bool verify);
 std::uint64_t checksum_and_scan(const Database::Impl& d, bool& contents_ok);
 void build_trees(Database::Impl& d, int leaf_size);
 
@@ -294,10 +295,59 @@ void open_block(Database::Impl& d, const std::string& source, bool verify, bool 
     if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count)
       fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
   validate_meta(d.meta, source);
+  open_row_order(d, source, verify);
   if (!contents_ok) scan_contents(d, source);  // names what the fast scan flagged
   const std::byte* section_at = section<std::byte>(d, h.index_offset, h.index_bytes, source, "search index");
   if (index && !verify) prefault(d, h.index_offset, h.index_bytes);
   if (index && !load_index(d, {section_at, h.index_bytes}, source)) build_trees(d, kIndexLeafSize);
+}
+
+// The window of each stored feature row and the row of each window (version
+// 7), per hand: inverse permutations that keep every row inside its tree's
+// window range (a class's, or all of them in a one-class database), so a class
+// mask still selects the right rows. One pass over the windows checks both:
+// every window's row lies in the window's range and holds that window back
+// (so no two windows share a row, and every row is some window's).
+void open_row_order(Database::Impl& d, const std::string& source, bool verify) {
+  const std::uint32_t n = d.header.window_count;
+  const auto* order = section<std::uint32_t>(d, d.header.order_offset, 4 * std::uint64_t{n}, source, "row order");
+  if (!verify) prefault(d, d.header.order_offset, 4 * std::uint64_t{n} * sizeof(std::uint32_t));
+  // The window range of each tree: its class's when the trees are per class.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> spans;
+  if (d.meta.ranges.size() <= 1) spans.push_back({0, n});
+  else
+    for (auto [a, b] : d.meta.ranges) spans.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)});
+  // Every window is checked once: the ranges must tile the windows in order.
+  std::uint32_t next = 0;
+  for (auto [a, b] : spans) {
+    if (a != next) fail(source, "class window ranges do not follow each other (a class starts at window " + std::to_string(a) +
+                                    ", expected " + std::to_string(next) + ")");
+    next = b;
+  }
+  if (next != n) fail(source, "class window ranges end at window " + std::to_string(next) + " of " + std::to_string(n));
+  for (int hand = 0; hand < 2; ++hand) {
+    const std::uint32_t* window_of_row = order + std::size_t{n} * static_cast<std::size_t>(hand);
+    const std::uint32_t* row_of_window = order + std::size_t{n} * static_cast<std::size_t>(2 + hand);
+    for (auto [a, b] : spans) {
+      std::uint32_t bad = 0;  // branch-free over the class; named below when set
+      for (std::uint32_t w = a; w < b; ++w) {
+        const std::uint32_t r = row_of_window[w];
+        const bool inside = r - a < b - a;
+        bad |= static_cast<std::uint32_t>(!inside) | (window_of_row[inside ? r : a] ^ w);
+      }
+      if (bad == 0) continue;
+      for (std::uint32_t w = a; w < b; ++w) {
+        const std::uint32_t r = row_of_window[w];
+        if (r < a || r >= b || window_of_row[r] != w)
+          fail(source, std::string(hand ? "right" : "left") + "-hand row order: window " + std::to_string(w) + "'s row " +
+                           std::to_string(r) + (r < a || r >= b ? " is outside its class's rows"
+                                                                 : " holds window " + std::to_string(window_of_row[r])) +
+                           "; rebuild the database");
+      }
+    }
+    d.window_of_row[hand] = window_of_row;
+    d.row_of_window[hand] = row_of_window;
+  }
 }
 
 // Contents beyond the checksum: a checksum-valid file can still hold values
@@ -342,7 +392,8 @@ void scan_contents(const Database::Impl& d, const std::string& source) {
   for (int hand = 0; hand < 2; ++hand)
     for (std::uint32_t w = 0; w < d.header.window_count; ++w)
       for (float v : d.features[hand][w])
-        if (!std::isfinite(v)) fail(source, "feature of window " + std::to_string(w) + " is not finite");
+        if (!std::isfinite(v))
+          fail(source, "feature of window " + std::to_string(d.window_of_row[hand][w]) + " is not finite");
   for (std::uint32_t w = 0; w < d.header.window_count; ++w)
     for (float v : d.align[w])
       if (!std::isfinite(v)) fail(source, "alignment point of window " + std::to_string(w) + " is not finite");
@@ -508,8 +559,12 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   h.head_up_offset = place(p.head_up.size() * sizeof(float));
   h.contact_offset = place(p.contacts.size());
   h.travel_offset = place(nw * sizeof(Travel));
+  // The rows are stored in their trees' leaf order (version 7).
+  std::array<std::vector<Feature>, 2> rows{p.features[0], p.features[1]};
+  std::array<std::vector<std::uint32_t>, 2> window_of_row;
   const std::vector<std::byte> index =
-      serialize_index({p.features[0].data(), p.features[1].data()}, nw, p.meta.ranges);
+      serialize_index({rows[0].data(), rows[1].data()}, nw, p.meta.ranges, window_of_row);
+  h.order_offset = place(4 * nw * sizeof(std::uint32_t));
   h.index_offset = place(index.size());
   h.index_bytes = index.size();
   h.file_bytes = at;
@@ -518,7 +573,13 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
     if (bytes) std::memcpy(block.data() + off, src, bytes);
   };
   put(h.meta_offset, meta.data(), meta.size());
-  for (int hand = 0; hand < 2; ++hand) put(h.feature_offset[hand], p.features[hand].data(), nw * sizeof(Feature));
+  for (int hand = 0; hand < 2; ++hand) {
+    put(h.feature_offset[hand], rows[hand].data(), nw * sizeof(Feature));
+    put(h.order_offset + hand * nw * sizeof(std::uint32_t), window_of_row[hand].data(), nw * sizeof(std::uint32_t));
+    std::vector<std::uint32_t> row_of_window(nw);
+    for (std::size_t r = 0; r < nw; ++r) row_of_window[window_of_row[hand][r]] = static_cast<std::uint32_t>(r);
+    put(h.order_offset + (2 + hand) * nw * sizeof(std::uint32_t), row_of_window.data(), nw * sizeof(std::uint32_t));
+  }
   put(h.align_offset, p.align.data(), nw * sizeof(AlignXZ));
   put(h.source_offset, p.sources.data(), nw * sizeof(WindowSource));
   put(h.pose_offset, p.poses.data(), p.poses.size() * sizeof(float));
@@ -557,9 +618,8 @@ int Database::find_class(const std::string& name) const {
   return -1;
 }
 std::pair<int, int> Database::class_range(int c) const { return impl_->meta.ranges[static_cast<std::size_t>(c)]; }
-const Feature& Database::feature(int hand, int window) const { return impl_->features[hand][window]; }
-std::span<const Feature> Database::features(int hand) const {
-  return {impl_->features[hand], static_cast<std::size_t>(window_count())};
+const Feature& Database::feature(int hand, int window) const {
+  return impl_->features[hand][impl_->row_of_window[hand][window]];
 }
 const AlignXZ& Database::align(int window) const { return impl_->align[window]; }
 const WindowSource& Database::source(int window) const { return impl_->sources[window]; }

@@ -18,7 +18,7 @@ namespace legwork::accent {
 
 inline constexpr std::uint32_t kEndianTag = 0x01020304u;
 
-// Fixed header at offset 0 (little-endian; 152 bytes).
+// Fixed header at offset 0 (little-endian; 160 bytes).
 struct FileHeader {
   char magic[8];
   std::uint32_t version;
@@ -36,8 +36,11 @@ struct FileHeader {
   std::uint64_t contact_offset;                // uint8[pose_count][2]: foot in contact (left, right), 0/1
   std::uint64_t index_offset, index_bytes;     // the stored KD-trees (since version 3; layout in database_index.cpp)
   std::uint64_t travel_offset;                 // Travel[window_count]: the performer's head travel (since version 5)
+  std::uint64_t order_offset;                  // u32[2][window_count] the window of each stored feature row, then
+                                               // u32[2][window_count] the row of each window, per hand (since
+                                               // version 7: rows in their trees' leaf order)
 };
-static_assert(sizeof(FileHeader) == 152);
+static_assert(sizeof(FileHeader) == 160);
 
 std::uint64_t block_checksum(std::span<const std::byte> block);
 
@@ -70,9 +73,14 @@ struct ClassIndex {
 // walk their class trees with one shared result set.) Each tree is nanoflann's own serialization (saveIndex) of a tree
 // over kTreeDim dimensions with leaves of kIndexLeafSize points.
 inline constexpr int kIndexLeafSize = 16;
-// Serializes the trees over `features` (per hand, window-major) and the class ranges.
-std::vector<std::byte> serialize_index(const std::array<const Feature*, 2>& features, std::size_t windows,
-                                       const std::vector<std::pair<int, int>>& ranges);
+// Serializes the trees over `features` (per hand, window-major) and the class
+// ranges. Since version 7 each tree's rows are reordered in place into the
+// tree's leaf order (a leaf's rows lie in one run of memory and the stored
+// permutation is the identity); window_of_row[hand][row] receives the window
+// each row holds. Rows never leave their class's range.
+std::vector<std::byte> serialize_index(const std::array<Feature*, 2>& features, std::size_t windows,
+                                       const std::vector<std::pair<int, int>>& ranges,
+                                       std::array<std::vector<std::uint32_t>, 2>& window_of_row);
 // Validates the section (sizes, counts, every node and point index; declared
 // sizes are never trusted) and fills d.all / d.index from it. Returns false,
 // leaving no trees, when the section was written by another nanoflann node
@@ -104,7 +112,11 @@ struct Database::Impl {
 
   DatabaseMeta meta;
 
+  // Feature rows per hand in storage order (version 7: each tree's leaf
+  // order); the search reads rows, everything else windows.
   const Feature* features[2] = {nullptr, nullptr};
+  const std::uint32_t* window_of_row[2] = {nullptr, nullptr};  // storage row -> window
+  const std::uint32_t* row_of_window[2] = {nullptr, nullptr};  // window -> storage row
   const AlignXZ* align = nullptr;
   const WindowSource* sources = nullptr;
   const float* poses = nullptr;

@@ -1,4 +1,5 @@
 // The KD-tree search index stored in the database block (format version 3;
+// since version 7 over feature rows stored in each tree's leaf order;
 // since version 4 one tree pair per class, no whole-database pair),
 // so a database loads with its index in milliseconds instead of rebuilding
 // the trees at every load.
@@ -107,6 +108,19 @@ TreeLayout check_tree(std::span<const std::byte> blob, std::size_t points, const
   if (c.read<std::uint64_t>("permutation size") != points) c.fail("permutation size differs from its point count");
   if (c.left() / 4 < points) c.fail("permutation runs past its end");
   t.perm_at = c.pos();
+  // Since version 7 the builder stores the identity (rows in leaf order): one
+  // sequential pass proves it is a permutation.
+  std::uint32_t differs = 0;
+  for (std::size_t i = 0; i < points; ++i) {
+    std::uint32_t v;
+    std::memcpy(&v, c.here() + 4 * i, 4);
+    differs |= v ^ static_cast<std::uint32_t>(i);
+  }
+  if (differs == 0) {
+    c.skip(4 * points);
+    t.nodes_at = c.pos();
+    return t;
+  }
   std::vector<std::uint8_t> seen(points, 0);
   std::uint32_t out_of_range = 0;
   for (std::size_t i = 0; i < points; ++i) {
@@ -217,18 +231,35 @@ void canonical_nodes(std::string& blob, std::size_t points, std::size_t tree) {
 
 }  // namespace
 
-std::vector<std::byte> serialize_index(const std::array<const Feature*, 2>& features, std::size_t windows,
-                                       const std::vector<std::pair<int, int>>& ranges) {
+std::vector<std::byte> serialize_index(const std::array<Feature*, 2>& features, std::size_t windows,
+                                       const std::vector<std::pair<int, int>>& ranges,
+                                       std::array<std::vector<std::uint32_t>, 2>& window_of_row) {
   const auto trees = tree_ranges(windows, ranges);
+  for (auto& order : window_of_row) {
+    order.resize(windows);
+    for (std::size_t w = 0; w < windows; ++w) order[w] = static_cast<std::uint32_t>(w);
+  }
   std::vector<std::string> blobs;
+  std::vector<Feature> rows;
   for (std::size_t t = 0; t < trees.size(); ++t) {
     const auto [a, b] = trees[t];
     if (a == b) {
       blobs.emplace_back();
       continue;
     }
-    FeatureCloud cloud{reinterpret_cast<const float*>(features[t % 2] + a), b - a};
+    Feature* at = features[t % 2] + a;
+    FeatureCloud cloud{reinterpret_cast<const float*>(at), b - a};
     KdTree tree(kTreeDim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kIndexLeafSize));
+    // Rows into the tree's leaf order: row a + i takes the point the tree
+    // visits i-th, and the permutation becomes the identity (the nodes' leaf
+    // ranges index the permutation, so they stay valid).
+    rows.assign(at, at + (b - a));
+    auto& order = window_of_row[t % 2];
+    for (std::size_t i = 0; i < b - a; ++i) {
+      at[i] = rows[tree.vAcc[i]];
+      order[a + i] = static_cast<std::uint32_t>(a + tree.vAcc[i]);
+      tree.vAcc[i] = static_cast<std::uint32_t>(i);
+    }
     std::ostringstream out(std::ios::binary);
     tree.saveIndex(out);
     blobs.push_back(std::move(out).str());

@@ -34,7 +34,9 @@ inline float squared_distance(const float* a, const float* b) {
 // report the k-th best full distance as the bound (prefix <= full, so no true
 // neighbour is ever pruned).
 struct FullDistanceResult {
-  const float* features;
+  const float* features;  // rows in storage order
+  const std::uint32_t* window_of_row;
+  const std::uint32_t* row_of_window;
   const float* query;
   int base;
   Match* out;  // holds squared distances
@@ -52,13 +54,15 @@ struct FullDistanceResult {
   bool full() const { return n == k; }
   bool addPoint(float, std::uint32_t index) {
     if (budget == 0) return false;  // spent in an earlier tree
-    add(base + static_cast<int>(index));
+    const int row = base + static_cast<int>(index);
+    add(static_cast<int>(window_of_row[row]), row);
     return budget < 0 || --budget > 0;  // false stops the tree search
   }
-  void add(int w) {
+  void add_window(int w) { add(w, static_cast<int>(row_of_window[w])); }
+  void add(int w, int row) {
     const float f = class_scale && per_window ? class_scale[db->source(w).cls] : 1.0f;
     const float s2 = !class_scale ? 1.0f : per_window ? f * f : tree_scale2;
-    const float d2 = s2 * squared_distance(features + static_cast<std::ptrdiff_t>(w) * kDim, query);
+    const float d2 = s2 * squared_distance(features + static_cast<std::ptrdiff_t>(row) * kDim, query);
     if (n == k && d2 >= out[n - 1].distance) return;
     for (int i = 0; i < n; ++i)
       if (out[i].window == w) return;  // a seed found again by the tree
@@ -120,6 +124,8 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
   int n = 0;  // out[] holds squared distances until the end
   if (mode == SearchMode::BruteForce || !d.indexed) {
     const float* feats = reinterpret_cast<const float*>(d.features[hand]);
+    const std::uint32_t* window_of_row = d.window_of_row[hand];
+    const std::uint32_t* row_of_window = d.row_of_window[hand];
     // Seeds first: a tight bound from the start rejects most rows on the prefix.
     for (int w : seeds)
       if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) {
@@ -127,14 +133,16 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
         for (int i = 0; i < n; ++i) dup = dup || out[static_cast<std::size_t>(i)].window == w;
         if (!dup)
           push_top(out, k, n, w,
-                   class_scale2(db.source(w).cls) * squared_distance(feats + static_cast<std::ptrdiff_t>(w) * kDim, query.data()));
+                   class_scale2(db.source(w).cls) *
+                       squared_distance(feats + static_cast<std::ptrdiff_t>(row_of_window[w]) * kDim, query.data()));
       }
     const int seeded = n;
     for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) {
       if (!allowed(class_mask, c)) continue;
       const float s2 = class_scale2(c);
-      for (int w = d.meta.ranges[c].first; w < d.meta.ranges[c].second; ++w) {
-        const float* row = feats + static_cast<std::ptrdiff_t>(w) * kDim;
+      // Rows stay inside their class's range (database.cpp, open_row_order).
+      for (int r = d.meta.ranges[c].first; r < d.meta.ranges[c].second; ++r) {
+        const float* row = feats + static_cast<std::ptrdiff_t>(r) * kDim;
         // The principal dimensions come first: most windows are rejected on them.
         float s = 0;
         for (int i = 0; i < 8; ++i) {
@@ -148,6 +156,7 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
         }
         s *= s2;
         if (n == k && s >= out[static_cast<std::size_t>(n - 1)].distance) continue;
+        const int w = static_cast<int>(window_of_row[r]);
         bool dup = false;
         for (int i = 0; i < n && seeded; ++i) dup = dup || out[static_cast<std::size_t>(i)].window == w;
         if (!dup) push_top(out, k, n, w, s);
@@ -156,14 +165,15 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
   } else {
     // One result set across the class trees: the k-th best full distance found
     // so far prunes every later tree too.
-    FullDistanceResult rs{reinterpret_cast<const float*>(d.features[hand]), query.data(), 0, out.data(), k, 0};
+    FullDistanceResult rs{reinterpret_cast<const float*>(d.features[hand]), d.window_of_row[hand],
+                          d.row_of_window[hand], query.data(), 0, out.data(), k, 0};
     if (scaled) {
       rs.class_scale = class_scale.data();
       rs.db = &db;
     }
     rs.per_window = true;  // seeds: each its own class's factor
     for (int w : seeds)
-      if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) rs.add(w);
+      if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) rs.add_window(w);
     const nanoflann::SearchParams params(32, mode == SearchMode::Fast ? eps : 0.0f);
     const int budget = mode == SearchMode::Fast && max_checks > 0 ? max_checks : -1;
     if (d.index.size() != d.meta.ranges.size() || d.meta.ranges.size() <= 1) {  // one class: one tree pair

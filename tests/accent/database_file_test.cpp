@@ -136,7 +136,11 @@ TEST(DatabaseFile, ChecksumValidButAbsurdContentsAreRejectedByName) {
   const float inf = std::numeric_limits<float>::infinity();
   std::memcpy(feature.data() + h.feature_offset[1] + sizeof(Feature) * 3, &inf, 4);
   write_with_checksum(bad, feature);
-  EXPECT_NE(load_error(bad).find("feature of window 3 is not finite"), std::string::npos) << load_error(bad);
+  std::uint32_t window_of_row3;  // rows are stored in the trees' leaf order (format 7): named by window
+  std::memcpy(&window_of_row3, block.data() + h.order_offset + 4 * (std::size_t{h.window_count} + 3), 4);
+  EXPECT_NE(load_error(bad).find("feature of window " + std::to_string(window_of_row3) + " is not finite"),
+            std::string::npos)
+      << load_error(bad);
   auto contact = block;
   contact[h.contact_offset + 5] = std::byte{2};
   write_with_checksum(bad, contact);
@@ -168,6 +172,80 @@ TEST(DatabaseFile, AFileOfAnotherWindowStrideIsRefusedByName) {
   set_meta_number(block, "stride", std::to_string(kStride + 1));
   write_with_checksum(bad, block);
   EXPECT_NE(load_error(bad).find("window stride differs from this build's " + std::to_string(kStride)), std::string::npos)
+      << load_error(bad);
+}
+
+// Format 7 stores each hand's feature rows in its trees' leaf order and the
+// window of each row beside them. The rows are a real reordering (not the
+// identity), the stored trees' permutation is the identity, every feature
+// reads back by window as the builder made it, and a row order that is not a
+// permutation inside each class's windows is refused by name.
+TEST(DatabaseFile, FeatureRowsAreStoredInLeafOrderAndTheirOrderIsChecked) {
+  const fs::path good = temp_dir() / "order.lwdb", bad = temp_dir() / "order-bad.lwdb";
+  const Database built = testing::indexed_database({"walking/07_01", "boxing/13_18"});
+  save_database(good.string(), built);
+  const auto block = read_all(good);
+  ASSERT_EQ(load_error(good), "(no error)");
+  FileHeader h;
+  std::memcpy(&h, block.data(), sizeof h);
+  const std::size_t n = h.window_count;
+  ASSERT_EQ(built.class_count(), 2);
+  std::vector<std::uint32_t> order(2 * n);  // window of each row, per hand (the row of each window follows)
+  std::memcpy(order.data(), block.data() + h.order_offset, 8 * n);
+  std::size_t moved = 0;
+  for (std::size_t r = 0; r < 2 * n; ++r) moved += order[r] != r % n;
+  EXPECT_GT(moved, n / 2) << "rows in leaf order differ from window order";
+
+  const Database loaded = load_database(good.string());
+  const auto& d = loaded.impl();
+  for (std::size_t c = 0; c < 2; ++c)
+    for (int hand = 0; hand < 2; ++hand) {
+      const auto& perm = d.index[c].tree[static_cast<std::size_t>(hand)]->vAcc;
+      for (std::size_t i = 0; i < perm.size(); ++i) ASSERT_EQ(perm[i], i) << "class " << c << " hand " << hand;
+    }
+  // By window, each feature is the one the row order names.
+  for (int hand = 0; hand < 2; ++hand)
+    for (std::size_t r = 0; r < n; ++r) {
+      const Feature& by_window = loaded.feature(hand, static_cast<int>(order[static_cast<std::size_t>(hand) * n + r]));
+      ASSERT_EQ(std::memcmp(by_window.data(), block.data() + h.feature_offset[hand] + r * sizeof(Feature), sizeof(Feature)), 0);
+    }
+
+  const int a = built.class_range(1).first;  // boxing's first window
+  ASSERT_GT(a, 0);
+  auto with = [&](std::size_t at, std::uint32_t value) {  // at: index into the four u32 arrays
+    auto x = block;
+    std::memcpy(x.data() + h.order_offset + 4 * at, &value, 4);
+    write_with_checksum(bad, x);
+    return load_error(bad);
+  };
+  const auto ua = static_cast<std::uint32_t>(a);
+  const std::size_t row_of_a = 2 * n + ua;  // left hand's row of window a
+  std::uint32_t row;
+  std::memcpy(&row, block.data() + h.order_offset + 4 * row_of_a, 4);
+  // Window a's row moved into walking's rows, past the end, and onto another window's row.
+  EXPECT_EQ(with(row_of_a, 0), "accent database '" + bad.string() + "': left-hand row order: window " + std::to_string(a) +
+                                   "'s row 0 is outside its class's rows; rebuild the database");
+  EXPECT_NE(with(row_of_a, 0xffffffffu).find("window " + std::to_string(a) + "'s row 4294967295 is outside its class's rows"),
+            std::string::npos);
+  EXPECT_NE(with(row_of_a, row + 1 < n ? row + 1 : row - 1).find("left-hand row order: window "), std::string::npos);
+  // A row that names another window than the one whose row it is (right hand).
+  std::uint32_t right_row;
+  std::memcpy(&right_row, block.data() + h.order_offset + 4 * (3 * n + ua), 4);
+  EXPECT_NE(with(n + right_row, ua + 1).find("right-hand row order: window " + std::to_string(a) + "'s row " +
+                                              std::to_string(right_row) + " holds window " + std::to_string(a + 1)),
+            std::string::npos)
+      << with(n + right_row, ua + 1);
+
+  // Class ranges that overlap would leave windows whose rows nobody checked.
+  auto overlap = block;
+  const std::string from = "[[0," + std::to_string(a) + "],[" + std::to_string(a) + ",";
+  const std::string to = "[[0," + std::to_string(a + 1) + "],[" + std::to_string(a) + ",";
+  ASSERT_EQ(from.size(), to.size());
+  replace_in_meta(overlap, from, to);
+  write_with_checksum(bad, overlap);
+  EXPECT_NE(load_error(bad).find("class window ranges do not follow each other (a class starts at window " +
+                                 std::to_string(a) + ", expected " + std::to_string(a + 1) + ")"),
+            std::string::npos)
       << load_error(bad);
 }
 

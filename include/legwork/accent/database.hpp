@@ -27,8 +27,10 @@ namespace legwork::accent {
 // 4: the checksum is XXH3-64 (was a serial FNV-1a);
 // 5: per-window head travel (Travel) and its spread. 6: feature windows of
 // kWindow samples kStride apart (features.hpp; the stride is stored in the
-// metadata and checked). Older files are refused with a "rebuild" message.
-inline constexpr std::uint32_t kFormatVersion = 6;
+// metadata and checked). 7: each hand's feature rows stored in its KD-trees'
+// leaf order, with the window of each row beside them. Older files are
+// refused with a "rebuild" message.
+inline constexpr std::uint32_t kFormatVersion = 7;
 // The first 8 bytes of every database file.
 inline constexpr char kMagic[8] = {'L', 'W', 'A', 'C', 'C', 'E', 'N', 'T'};
 
@@ -101,7 +103,6 @@ class Database {
 
   // Per-window data (spans into the mapped block). hand: 0 = left, 1 = right.
   const Feature& feature(int hand, int window) const;
-  std::span<const Feature> features(int hand) const;
   const AlignXZ& align(int window) const;
   const WindowSource& source(int window) const;
   // Candidate pose rotations (joint_count quaternions, float w,x,y,z).
