@@ -106,6 +106,24 @@ TEST(DatabaseFormat, AFormat4FileIsRefusedWithTheRebuildMessage) {
   }
 }
 
+// The accent_db fuzz target's seed (fuzz/corpus/README.md) must be a database
+// of the current format: a stale seed is refused at once, and every mutation
+// of it stops at the same check, so the fuzzer never reaches the engine
+// (session 24's first format-7 run spent 0.5 M executions that way). It is
+// the builder's bytes for its command, so it is also rebuilt bit for bit.
+TEST(DatabaseFormat, TheFuzzSeedDatabaseIsOfTheCurrentFormat) {
+  const std::string path = std::string(LEGWORK_SOURCE_DIR) + "/fuzz/corpus/accent_db/sample.lwdb";
+  const Database seed = load_database(path);
+  EXPECT_EQ(seed.class_count(), 1);
+  EXPECT_EQ(seed.classes()[0], "boxing");
+  BuildConfig cfg;
+  cfg.hop = 32;
+  const Database again = build_database(load_trials(std::string(LEGWORK_SOURCE_DIR) + "/data/cmu", {"boxing"}, {}), cfg);
+  ASSERT_EQ(again.bytes().size(), seed.bytes().size()) << "rebuild " << path << " with the command in fuzz/corpus/README.md";
+  EXPECT_EQ(std::memcmp(again.bytes().data(), seed.bytes().data(), seed.bytes().size()), 0)
+      << "rebuild " << path << " with the command in fuzz/corpus/README.md";
+}
+
 // Format 5 stores the performer's head travel per window: it survives the
 // file round trip bit for bit, and it is what the trials did: running
 // windows travel faster than walking ones, which travel faster than boxing
