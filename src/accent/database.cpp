@@ -291,10 +291,12 @@ void open_block(Database::Impl& d, const std::string& source, bool verify, bool 
   d.contacts = section<std::uint8_t>(d, h.contact_offset, std::uint64_t{h.pose_count} * 2, source, "foot contacts");
   d.travel = section<Travel>(d, h.travel_offset, h.window_count, source, "head travel");
   if (!verify) prefault(d, h.source_offset, std::uint64_t{h.window_count} * sizeof(WindowSource));
-  for (std::uint32_t w = 0; w < h.window_count; ++w)
-    if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count)
-      fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial or class");
   validate_meta(d.meta, source);
+  const std::size_t speeds = d.meta.settings.speeds.size();
+  for (std::uint32_t w = 0; w < h.window_count; ++w)
+    if (d.sources[w].pose >= h.pose_count || d.sources[w].trial >= d.meta.trials.size() || d.sources[w].cls >= h.class_count ||
+        d.sources[w].speed >= speeds)
+      fail(source, "window " + std::to_string(w) + " refers to a missing pose, trial, class or speed");
   open_row_order(d, source, verify);
   if (!contents_ok) scan_contents(d, source);  // names what the fast scan flagged
   const std::byte* section_at = section<std::byte>(d, h.index_offset, h.index_bytes, source, "search index");
@@ -366,6 +368,14 @@ void validate_meta(const DatabaseMeta& m, const std::string& source) {
   positive(m.space.fps, 10000, "feature fps");
   positive(m.height, 10, "height_m");
   positive(m.typical_distance, 1e6, "typical_distance");
+  // The engine plays a candidate forward at speeds[window's speed] / hop
+  // samples a database frame (accent.cpp, align_matches).
+  if (m.settings.hop < 1 || m.settings.hop > 10000)
+    fail(source, "build hop is " + std::to_string(m.settings.hop) + ", expected a whole number from 1 to 10000; rebuild the database");
+  if (m.settings.speeds.empty() || m.settings.speeds.size() > 256)
+    fail(source, "build speeds list has " + std::to_string(m.settings.speeds.size()) +
+                     " factors, expected 1 to 256; rebuild the database");
+  for (double v : m.settings.speeds) positive(v, 100, "a build speed factor");
   for (double v : m.space.scale)
     if (!std::isfinite(v)) fail(source, "feature scale is not finite");
   for (double v : m.space.projection)

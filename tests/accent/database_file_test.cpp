@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -159,6 +160,41 @@ TEST(DatabaseFile, ChecksumValidButAbsurdContentsAreRejectedByName) {
     EXPECT_NE(msg.find(expect), std::string::npos) << msg;
     EXPECT_NE(msg.find("rebuild the database"), std::string::npos) << msg;
   }
+}
+
+// A window's speed index picks the factor its candidate is played forward at
+// (speeds[index] / hop): an index past the list read freed memory in
+// accent::update (found by accent_db_fuzz in session 24, once its seed was of
+// the current format), so the index, the list and the hop are checked at load.
+TEST(DatabaseFile, AWindowsSpeedIndexTheHopAndTheSpeedListAreChecked) {
+  const fs::path good = temp_dir() / "speed.lwdb", bad = temp_dir() / "speed-bad.lwdb";
+  save_database(good.string(), testing::indexed_database({"walking/07_01"}));
+  const auto block = read_all(good);
+  ASSERT_EQ(load_error(good), "(no error)");
+  FileHeader h;
+  std::memcpy(&h, block.data(), sizeof h);
+  auto index = block;
+  index[h.source_offset + 5 * sizeof(WindowSource) + offsetof(WindowSource, speed)] = std::byte{3};  // 3 factors: 0..2
+  write_with_checksum(bad, index);
+  EXPECT_NE(load_error(bad).find("window 5 refers to a missing pose, trial, class or speed"), std::string::npos)
+      << load_error(bad);
+  auto hop = block;
+  set_meta_number(hop, "hop", "0");
+  write_with_checksum(bad, hop);
+  EXPECT_NE(load_error(bad).find("build hop is 0, expected a whole number from 1 to 10000; rebuild the database"),
+            std::string::npos)
+      << load_error(bad);
+  auto huge = block;
+  replace_in_meta(huge, "\"speeds\":[1.0,0.5,1.5]", "\"speeds\":[1.0,0.5,9e9]");
+  write_with_checksum(bad, huge);
+  EXPECT_NE(load_error(bad).find("a build speed factor is 9000000000.000000, expected a finite value in (0, 100.000000]"),
+            std::string::npos)
+      << load_error(bad);
+  auto none = block;
+  replace_in_meta(none, "\"speeds\":[1.0,0.5,1.5]", "\"speeds\":[           ]");
+  write_with_checksum(bad, none);
+  EXPECT_NE(load_error(bad).find("build speeds list has 0 factors, expected 1 to 256"), std::string::npos)
+      << load_error(bad);
 }
 
 // Format 6 stores the feature windows' stride: a file whose windows were taken
