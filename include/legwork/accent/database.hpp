@@ -28,8 +28,8 @@ namespace legwork::accent {
 // 5: per-window head travel (Travel) and its spread. 6: feature windows of
 // kWindow samples kStride apart (features.hpp; the stride is stored in the
 // metadata and checked). 7: each hand's feature rows stored in its KD-trees'
-// leaf order, with the window of each row beside them. Older files are
-// refused with a "rebuild" message.
+// leaf order, with the window of each row and the row of each window beside
+// them. Older files are refused with a "rebuild" message.
 inline constexpr std::uint32_t kFormatVersion = 7;
 // The first 8 bytes of every database file.
 inline constexpr char kMagic[8] = {'L', 'W', 'A', 'C', 'C', 'E', 'N', 'T'};
