@@ -173,28 +173,26 @@ TEST(DatabaseFile, AWindowsSpeedIndexTheHopAndTheSpeedListAreChecked) {
   ASSERT_EQ(load_error(good), "(no error)");
   FileHeader h;
   std::memcpy(&h, block.data(), sizeof h);
-  auto index = block;
-  index[h.source_offset + 5 * sizeof(WindowSource) + offsetof(WindowSource, speed)] = std::byte{3};  // 3 factors: 0..2
-  write_with_checksum(bad, index);
-  EXPECT_NE(load_error(bad).find("window 5 refers to a missing pose, trial, class or speed"), std::string::npos)
-      << load_error(bad);
-  auto hop = block;
-  set_meta_number(hop, "hop", "0");
-  write_with_checksum(bad, hop);
-  EXPECT_NE(load_error(bad).find("build hop is 0, expected a whole number from 1 to 10000; rebuild the database"),
-            std::string::npos)
-      << load_error(bad);
-  auto huge = block;
-  replace_in_meta(huge, "\"speeds\":[1.0,0.5,1.5]", "\"speeds\":[1.0,0.5,9e9]");
-  write_with_checksum(bad, huge);
-  EXPECT_NE(load_error(bad).find("a build speed factor is 9000000000.000000, expected a finite value in (0, 100.000000]"),
-            std::string::npos)
-      << load_error(bad);
-  auto none = block;
-  replace_in_meta(none, "\"speeds\":[1.0,0.5,1.5]", "\"speeds\":[           ]");
-  write_with_checksum(bad, none);
-  EXPECT_NE(load_error(bad).find("build speeds list has 0 factors, expected 1 to 256"), std::string::npos)
-      << load_error(bad);
+  // The load error after `mutate` changes a copy of the good block (checksum rewritten).
+  auto error_after = [&](auto mutate) {
+    auto x = block;
+    mutate(x);
+    write_with_checksum(bad, x);
+    return load_error(bad);
+  };
+  auto expect_error = [](const std::string& msg, const std::string& what) {
+    EXPECT_NE(msg.find(what), std::string::npos) << msg;
+  };
+  expect_error(error_after([&](auto& x) {  // 3 factors: 0..2
+                 x[h.source_offset + 5 * sizeof(WindowSource) + offsetof(WindowSource, speed)] = std::byte{3};
+               }),
+               "window 5 refers to a missing pose, trial, class or speed");
+  expect_error(error_after([](auto& x) { set_meta_number(x, "hop", "0"); }),
+               "build hop is 0, expected a whole number from 1 to 10000; rebuild the database");
+  expect_error(error_after([](auto& x) { replace_in_meta(x, "\"speeds\":[1.0,0.5,1.5]", "\"speeds\":[1.0,0.5,9e9]"); }),
+               "a build speed factor is 9000000000.000000, expected a finite value in (0, 100.000000]");
+  expect_error(error_after([](auto& x) { replace_in_meta(x, "\"speeds\":[1.0,0.5,1.5]", "\"speeds\":[           ]"); }),
+               "build speeds list has 0 factors, expected 1 to 256");
 }
 
 // Format 6 stores the feature windows' stride: a file whose windows were taken
