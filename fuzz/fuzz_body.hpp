@@ -39,15 +39,15 @@ inline const Skeleton& sample_skeleton() {
 // One IK avatar, back to a new stream for every fuzz input (reset()).
 class IkAvatar {
  public:
-  IkAvatar() : model_(ik::make_model(sample_skeleton())), state_(model_), pose_(model_.skeleton()) {}
+  IkAvatar() : model_(ik::make_model(sample_skeleton())), state_(model_), pose_(model_.skeleton()), before_(pose_) {}
   void restart() { ik::reset(model_, state_); }
   const Pose& pose() const { return pose_; }
   const Skeleton& skeleton() const { return model_.skeleton(); }
   // Any frame: the pose stays finite and a Rejected frame leaves it untouched.
   UpdateStatus drive(const TrackerFrame& f) {
-    const Pose before = pose_;
+    before_ = pose_;  // same sizes: no allocation per frame (vmc_fuzz drives one per packet)
     const UpdateStatus s = ik::update(model_, f, state_, pose_.ref());
-    if (s == UpdateStatus::Rejected && !same(before, pose_)) std::abort();
+    if (s == UpdateStatus::Rejected && !same(before_, pose_)) std::abort();
     for (std::size_t j = 0; j < pose_.rotations.size(); ++j)
       if (!pose_.rotations[j].coeffs().allFinite() || !pose_.translations[j].allFinite()) std::abort();
     return s;
@@ -64,6 +64,7 @@ class IkAvatar {
   ik::Model model_;
   ik::State state_;
   Pose pose_;
+  Pose before_;  // the pose before the last drive()
 };
 
 }  // namespace legwork::fuzz
