@@ -41,9 +41,15 @@ function(legwork_warnings target)
   endif()
 endfunction()
 
-# legwork_tests(NAME LIBS ...): tests/NAME/*_test.cpp -> one gtest executable.
+# legwork_tests(NAME LIBS ... [SUITES_IN_ONE_PROCESS Suite ...]):
+# tests/NAME/*_test.cpp -> one gtest executable, each test a ctest entry of
+# its own, except the suites named after SUITES_IN_ONE_PROCESS: each of those
+# is one entry (`Suite.*`) that runs all its tests in one process, for suites
+# whose tests share an expensive static fixture (an evaluation run, a
+# database) that a process per test would build again for every test (under
+# the sanitizers, 20 s each).
 function(legwork_tests name)
-  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "LIBS;SUITES_IN_ONE_PROCESS" ${ARGN})
   file(GLOB srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/${name}/*_test.cpp)
   if(NOT srcs)
     return()
@@ -51,7 +57,16 @@ function(legwork_tests name)
   add_executable(test_${name} ${srcs})
   target_link_libraries(test_${name} PRIVATE ${ARG_LIBS} legwork_testdata GTest::gtest_main)
   legwork_warnings(test_${name})
-  gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60
+  set(filter "")
+  foreach(suite IN LISTS ARG_SUITES_IN_ONE_PROCESS)
+    string(APPEND filter "${suite}.*:")
+    add_test(NAME ${suite}.* COMMAND test_${name} --gtest_filter=${suite}.*)
+    set_tests_properties(${suite}.* PROPERTIES ENVIRONMENT "LEGWORK_SOURCE_DIR=${PROJECT_SOURCE_DIR}" LABELS test_${name})
+  endforeach()
+  if(filter)
+    set(filter TEST_FILTER "-${filter}")
+  endif()
+  gtest_discover_tests(test_${name} DISCOVERY_TIMEOUT 60 ${filter}
     PROPERTIES ENVIRONMENT "LEGWORK_SOURCE_DIR=${PROJECT_SOURCE_DIR}" LABELS test_${name})
 endfunction()
 
