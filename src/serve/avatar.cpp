@@ -182,7 +182,7 @@ void Avatar::run_frame(const Item& it) {
     format_pose_binary(buffer_, m);
   else
     format_pose_json(buffer_, m);
-  sink_({buffer_, format_ == Format::Binary, true});
+  sink_({buffer_, format_ == Format::Binary, true, status == UpdateStatus::Restarted});
 }
 
 void Avatar::write_recording() {
@@ -258,6 +258,20 @@ void Workers::loop() {
     }
     if (a->process_one()) schedule(std::move(a));
   }
+}
+
+void queue_for_client(std::deque<Outgoing>& out, std::size_t first, Outgoing o) {
+  if (o.droppable) {
+    int waiting = 0;
+    for (const auto& x : out) waiting += x.droppable;
+    if (waiting >= kMaxWaitingPoses && first <= out.size()) {
+      const auto from = out.begin() + static_cast<std::ptrdiff_t>(first);
+      auto victim = std::find_if(from, out.end(), [](const Outgoing& x) { return x.droppable && !x.event; });
+      if (victim == out.end()) victim = std::find_if(from, out.end(), [](const Outgoing& x) { return x.droppable; });
+      if (victim != out.end()) out.erase(victim);
+    }
+  }
+  out.push_back(std::move(o));
 }
 
 }  // namespace legwork::serve

@@ -34,6 +34,7 @@ using tcp = net::ip::tcp;
 class WsSession;
 
 namespace {
+
 // The `rate` error's message for a dropped frame.
 std::string rate_message(RateVerdict v, double max_rate_hz) {
   const auto hz = [](double r) { return std::to_string(static_cast<long long>(std::lround(r))); };
@@ -86,17 +87,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
 
   void send(Outgoing o) {
     if (closed_) return;
-    if (o.droppable) {  // a lagging client gets the newest poses: drop the oldest waiting one
-      int waiting = 0;
-      for (const auto& x : out_) waiting += x.droppable;
-      if (waiting >= 8)
-        for (auto it = out_.begin() + (writing_ ? 1 : 0); it != out_.end(); ++it)
-          if (it->droppable) {
-            out_.erase(it);
-            break;
-          }
-    }
-    out_.push_back(std::move(o));
+    queue_for_client(out_, writing_ ? 1 : 0, std::move(o));  // a lagging client gets the newest poses
     if (!writing_) write_next();
   }
 

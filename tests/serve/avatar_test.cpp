@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <deque>
 #include <filesystem>
 #include <unistd.h>
 
@@ -97,6 +98,53 @@ TEST(Avatar, LatestSampleWinsWhenTheQueueIsFull) {
     EXPECT_EQ(json::parse(s.sent[k].data)["seq"], 6 - Avatar::kQueueCapacity + k + 1);
   // Idle again: the next push must be scheduled.
   EXPECT_TRUE(s.avatar->push(frames()[6], 7, SteadyClock::now()));
+}
+
+// A client that does not read: the queue keeps the newest kMaxWaitingPoses
+// poses, the one being written and every error, and drops a restarted pose
+// (the avatar was reset: the client must learn it) only when every waiting
+// pose is one.
+TEST(Avatar, ARestartedPoseIsTheLastPoseDroppedForAClientThatDoesNotRead) {
+  Session s;
+  Workers inline_workers(0);
+  for (std::size_t i = 0; i < 30; ++i) {
+    TrackerFrame f = frames()[i];
+    if (i >= 10) f.time += 6.0;  // a jump forward past FrameClock::kMaxGap: the stream restarts
+    if (s.avatar->push(f, i + 1, SteadyClock::now())) inline_workers.schedule(s.avatar);
+  }
+  ASSERT_EQ(s.sent.size(), 30u);
+  EXPECT_EQ(json::parse(s.sent[10].data)["status"], "restarted");
+  EXPECT_TRUE(s.sent[10].event);
+  for (std::size_t i = 0; i < 30; ++i) {
+    if (i != 10) {
+      EXPECT_FALSE(s.sent[i].event) << i;
+    }
+  }
+
+  std::deque<Outgoing> out;
+  out.push_back({"being written", false, true, false});
+  out.push_back({"an error", false, false, false});
+  for (const Outgoing& o : s.sent) queue_for_client(out, 1, o);
+  std::vector<std::string> statuses;
+  int droppable = 0;
+  for (std::size_t k = 2; k < out.size(); ++k) {
+    statuses.push_back(json::parse(out[k].data)["status"]);
+    droppable += out[k].droppable;
+  }
+  EXPECT_EQ(out[0].data, "being written");
+  EXPECT_EQ(out[1].data, "an error");
+  EXPECT_EQ(droppable + 1, kMaxWaitingPoses);  // + the one being written
+  ASSERT_EQ(out.size(), 2u + static_cast<std::size_t>(kMaxWaitingPoses) - 1);
+  EXPECT_EQ(statuses.front(), "restarted");  // kept, though 19 newer poses came after it
+  EXPECT_EQ(json::parse(out.back().data)["seq"], 30);
+  for (std::size_t k = 3; k < out.size(); ++k)  // the others are the newest, in order
+    EXPECT_EQ(json::parse(out[k].data)["seq"].get<int>(), 30 - static_cast<int>(out.size() - 1 - k));
+
+  // Only restarted poses waiting: the oldest of them goes, so the queue stays bounded.
+  std::deque<Outgoing> resets;
+  for (int i = 0; i < 3 * kMaxWaitingPoses; ++i) queue_for_client(resets, 0, {std::to_string(i), false, true, true});
+  ASSERT_EQ(resets.size(), static_cast<std::size_t>(kMaxWaitingPoses));
+  EXPECT_EQ(resets.front().data, std::to_string(2 * kMaxWaitingPoses));
 }
 
 TEST(Avatar, RejectedFramesAndBadOptionsGetErrors) {

@@ -12,6 +12,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <deque>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -26,8 +27,17 @@ struct Outgoing {
   std::string data;
   bool binary = false;
   bool droppable = false;  // poses: a newer one may replace it
+  bool event = false;      // a restarted pose: the last droppable one to go (the client learns of the reset)
 };
 using Sink = std::function<void(Outgoing)>;
+
+// Most poses that wait for a client that does not read them (docs/protocol.md, Flow).
+inline constexpr int kMaxWaitingPoses = 8;
+// Queues `o` for a client. A pose that would make more than kMaxWaitingPoses
+// wait first removes the oldest waiting pose from out[first...] (`first`
+// skips a message being written), a restarted pose only when every waiting
+// one is restarted: the client still learns that its avatar was reset.
+void queue_for_client(std::deque<Outgoing>& out, std::size_t first, Outgoing o);
 // Called on the worker after each consumed frame (VMC output).
 using PoseListener = std::function<void(const Skeleton&, ConstPoseRef, std::span<const Vec3> world)>;
 
