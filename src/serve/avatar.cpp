@@ -266,7 +266,7 @@ void queue_for_client(std::deque<Outgoing>& out, std::size_t first, Outgoing o) 
     for (const auto& x : out) waiting += x.droppable;
     if (waiting >= kMaxWaitingPoses && first <= out.size()) {
       const auto from = out.begin() + static_cast<std::ptrdiff_t>(first);
-      auto victim = std::find_if(from, out.end(), [](const Outgoing& x) { return x.droppable && !x.event; });
+      auto victim = std::find_if(from, out.end(), [](const Outgoing& x) { return x.droppable && !x.restarted; });
       if (victim == out.end()) victim = std::find_if(from, out.end(), [](const Outgoing& x) { return x.droppable; });
       if (victim != out.end()) out.erase(victim);
     }

@@ -34,7 +34,6 @@ using tcp = net::ip::tcp;
 class WsSession;
 
 namespace {
-
 // The `rate` error's message for a dropped frame.
 std::string rate_message(RateVerdict v, double max_rate_hz) {
   const auto hz = [](double r) { return std::to_string(static_cast<long long>(std::lround(r))); };

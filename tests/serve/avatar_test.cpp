@@ -114,10 +114,10 @@ TEST(Avatar, ARestartedPoseIsTheLastPoseDroppedForAClientThatDoesNotRead) {
   }
   ASSERT_EQ(s.sent.size(), 30u);
   EXPECT_EQ(json::parse(s.sent[10].data)["status"], "restarted");
-  EXPECT_TRUE(s.sent[10].event);
+  EXPECT_TRUE(s.sent[10].restarted);
   for (std::size_t i = 0; i < 30; ++i) {
     if (i != 10) {
-      EXPECT_FALSE(s.sent[i].event) << i;
+      EXPECT_FALSE(s.sent[i].restarted) << i;
     }
   }
 

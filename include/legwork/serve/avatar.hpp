@@ -12,7 +12,6 @@
 #include <deque>
 #include <functional>
 #include <memory>
-#include <deque>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -27,7 +26,7 @@ struct Outgoing {
   std::string data;
   bool binary = false;
   bool droppable = false;  // poses: a newer one may replace it
-  bool event = false;      // a restarted pose: the last droppable one to go (the client learns of the reset)
+  bool restarted = false;  // a restarted pose: the last droppable one to go (the client learns of the reset)
 };
 using Sink = std::function<void(Outgoing)>;
 
