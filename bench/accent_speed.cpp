@@ -49,12 +49,25 @@ std::vector<std::string> split_commas(const std::string& s) {
 
 const char* mode_name(SearchMode m) { return m == SearchMode::Fast ? "fast" : m == SearchMode::Exact ? "exact" : "brute"; }
 
+// --modes: comma-separated search mode names.
+std::vector<SearchMode> parse_modes(const std::string& list) {
+  std::vector<SearchMode> timed;
+  for (const auto& name : split_commas(list)) {
+    if (name == "brute") timed.push_back(SearchMode::BruteForce);
+    else if (name == "exact") timed.push_back(SearchMode::Exact);
+    else if (name == "fast") timed.push_back(SearchMode::Fast);
+    else throw std::runtime_error("--modes: unknown search mode '" + name + "' (expected brute, exact or fast)");
+  }
+  return timed;
+}
 
 struct BenchArgs {
   std::string db, json_path, data, classes;
   std::string input;
   bool drop_first = false, no_foot_lock = false, no_ik_blend = false, no_class_recognition = false;
   std::string classes_run;  // --run-classes: classes the timed avatar matches (default: all)
+  std::string modes = "brute,exact,fast";  // --modes: search modes timed
+  bool no_recall = false;                   // --no-recall: skip the recall pass
   double scale = 0, other_class_cost = Settings{}.other_class_cost;
   int repeat = 3, k = Settings{}.k_left, max_checks = Settings{}.fast_max_checks;
   float eps = Settings{}.fast_eps;
@@ -172,7 +185,8 @@ void record_load(json& j) {
 void measure_modes(const Database& db, const BenchArgs* a, const Motion& truth, const std::vector<TrackerFrame>& frames,
                    json& j) {
   json modes = json::object();
-  for (SearchMode mode : {SearchMode::BruteForce, SearchMode::Exact, SearchMode::Fast}) {
+  const std::vector<SearchMode> timed = parse_modes(a->modes);
+  for (SearchMode mode : timed) {
     Settings cfg;
     cfg.search = mode;
     cfg.fast_eps = a->eps;
@@ -214,6 +228,7 @@ void measure_modes(const Database& db, const BenchArgs* a, const Motion& truth, 
                               {"speedup_vs_152hz", fps_cpu / 152.0}, {"avatar_state_bytes", bytes}};
   }
   j["modes"] = modes;
+  if (!timed.empty()) j["avatar_state_bytes"] = modes[mode_name(timed.back())]["avatar_state_bytes"];
 }
 
 // A timed database build from --data (the --input trial excluded).
@@ -257,7 +272,10 @@ int run(int argc, char** argv) {
                  "while recognising the class, also search the others at this factor on their distances (0 = off)")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--run-classes", a->classes_run, "comma-separated classes the timed avatar matches (default: all)");
+  cmd->add_option("--modes", a->modes, "comma-separated search modes to time: brute, exact, fast (default: all three)");
+  cmd->add_flag("--no-recall", a->no_recall, "skip the fast-mode recall pass");
   CLI11_PARSE(app, argc, argv);
+  parse_modes(a->modes);  // a bad --modes fails before the database loads
   {
     json j;
     j["database"] = a->db;
@@ -270,11 +288,11 @@ int run(int argc, char** argv) {
     const auto frames = tracker_frames_from_motion(truth);
     j["input_frames"] = frames.size();
     measure_modes(db, a.get(), truth, frames, j);
-    measure_recall(db, a.get(), truth, frames, j);
+    if (!a->no_recall) measure_recall(db, a.get(), truth, frames, j);
     if (!a->data.empty()) measure_build(a.get(), j);
     j["peak_rss_kb"] = peak_rss_kb();
     std::printf("memory: database %.1f MB (mapped, shared by all avatars), %zu bytes per avatar, peak RSS %.1f MB\n",
-                db.bytes().size() / 1e6, j["avatar_state_bytes"].get<std::size_t>(), peak_rss_kb() / 1e3);
+                db.bytes().size() / 1e6, j.value("avatar_state_bytes", std::size_t{0}), peak_rss_kb() / 1e3);
     if (!a->json_path.empty()) {
       io::write_text_file(a->json_path, j.dump(2) + "\n");
       std::printf("wrote %s\n", a->json_path.c_str());

@@ -371,14 +371,19 @@ int posture_gate(const Model& model, const State& st, std::span<Match> m) {
   const Database& db = model.database();
   const Settings& cfg = model.settings();
   const bool tilt = cfg.max_head_tilt_deg > 0;
+  // |acos(up.y) - user_tilt| > limit, without an acos per candidate: acos
+  // falls as up.y rises, so a candidate is tilted when its up.y lies outside
+  // [cos(min(pi, user_tilt + limit)), cos(max(0, user_tilt - limit))].
   const double user_tilt = std::acos(std::clamp((st.last_head_rot * Vec3::UnitY()).y(), -1.0, 1.0));
   const double limit = deg2rad(cfg.max_head_tilt_deg);
+  const double up_low = user_tilt + limit < kPi ? std::cos(user_tilt + limit) : -2.0;
+  const double up_high = user_tilt - limit > 0 ? std::cos(user_tilt - limit) : 2.0;
   const float lowest = cfg.max_head_height_diff > 0 && st.travel[3] >= kUprightHeadHeight
                            ? static_cast<float>(st.travel[3] - cfg.max_head_height_diff)
                            : std::numeric_limits<float>::lowest();
   auto tilted = [&](int window) {
-    const Vec3 up = db.head_up(static_cast<int>(db.source(window).pose));
-    return std::abs(std::acos(std::clamp(up.y(), -1.0, 1.0)) - user_tilt) > limit;
+    const double y = db.head_up(static_cast<int>(db.source(window).pose)).y();
+    return y < up_low || y > up_high;
   };
   // A lower (lying, kneeling) user: no candidate's head higher by more than the
   // gate either, unless none would be left.

@@ -11,6 +11,8 @@
 namespace legwork::accent {
 namespace {
 
+static_assert(kTreeDim + 8 <= kDim, "the partial distance check reads 8 dimensions after the tree's");
+
 // Inserts (window, d2) into the sorted top-k list held in out[0..n).
 inline void push_top(std::span<Match> out, int k, int& n, int window, float d2) {
   if (n == k && d2 >= out[static_cast<std::size_t>(n - 1)].distance) return;
@@ -52,17 +54,29 @@ struct FullDistanceResult {
   bool per_window = false;
   float worstDist() const { return n == k ? out[n - 1].distance / tree_scale2 : std::numeric_limits<float>::max(); }
   bool full() const { return n == k; }
-  bool addPoint(float, std::uint32_t index) {
+  // `prefix` is the tree's distance over the first kTreeDim dimensions.
+  bool addPoint(float prefix, std::uint32_t index) {
     if (budget == 0) return false;  // spent in an earlier tree
     const int row = base + static_cast<int>(index);
-    add(static_cast<int>(window_of_row[row]), row);
+    add(static_cast<int>(window_of_row[row]), row, prefix);
     return budget < 0 || --budget > 0;  // false stops the tree search
   }
-  void add_window(int w) { add(w, static_cast<int>(row_of_window[w])); }
-  void add(int w, int row) {
+  void add_window(int w) { add(w, static_cast<int>(row_of_window[w]), -1.0f); }
+  // prefix >= 0: the squared distance over the first kTreeDim dimensions is
+  // known, and the next kTailCheck dimensions (the projection's largest after
+  // the tree's) reject most rows before the full distance (a lower bound:
+  // every term is >= 0). The distances kept are the full ones, as before.
+  static constexpr int kTailCheck = 8;
+  void add(int w, int row, float prefix) {
     const float f = class_scale && per_window ? class_scale[db->source(w).cls] : 1.0f;
     const float s2 = !class_scale ? 1.0f : per_window ? f * f : tree_scale2;
-    const float d2 = s2 * squared_distance(features + static_cast<std::ptrdiff_t>(row) * kDim, query);
+    const float* r = features + static_cast<std::ptrdiff_t>(row) * kDim;
+    if (prefix >= 0.0f && n == k) {
+      using Part = Eigen::Map<const Eigen::Array<float, kTailCheck, 1>>;
+      const float part = prefix + (Part(r + kTreeDim) - Part(query + kTreeDim)).square().sum();
+      if (s2 * part >= out[n - 1].distance) return;
+    }
+    const float d2 = s2 * squared_distance(r, query);
     if (n == k && d2 >= out[n - 1].distance) return;
     for (int i = 0; i < n; ++i)
       if (out[i].window == w) return;  // a seed found again by the tree

@@ -46,6 +46,15 @@ set_tests_properties(cli.accent_run_foot_lift cli.accent_run_foot_lift_range cli
 add_test(NAME cli.accent_speed COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
          --json ${O}/accent_speed.json)
 set_tests_properties(cli.accent_speed PROPERTIES FIXTURES_REQUIRED accent_db)
+# --modes / --no-recall: only the fast path is timed (what a profiler is pointed at).
+add_test(NAME cli.accent_speed_fast_only COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
+         --modes fast --no-recall)
+set_tests_properties(cli.accent_speed_fast_only PROPERTIES FIXTURES_REQUIRED accent_db
+                     PASS_REGULAR_EXPRESSION "fast +wall: mean" FAIL_REGULAR_EXPRESSION "brute|exact +wall|recall@")
+add_test(NAME cli.accent_speed_bad_mode COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --modes fast,quick)
+set_tests_properties(cli.accent_speed_bad_mode PROPERTIES FIXTURES_REQUIRED accent_db
+                     PASS_REGULAR_EXPRESSION "error: --modes: unknown search mode 'quick' \\(expected brute, exact or fast\\)"
+                     FAIL_REGULAR_EXPRESSION "database:")
 legwork_cli_error(accent_build_unknown_class "error: .*no class 'dancing' \\(classes present: basketball, boxing" accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --classes dancing
                  --out ${O}/x.lwdb)
 legwork_cli_error(accent_build_bad_ext "error: --out '.*x.db' must end in .lwdb" accent build --data ${PROJECT_SOURCE_DIR}/data/cmu --out ${O}/x.db)
