@@ -67,6 +67,7 @@ struct BenchArgs {
   bool drop_first = false, no_foot_lock = false, no_ik_blend = false, no_class_recognition = false;
   std::string classes_run;  // --run-classes: classes the timed avatar matches (default: all)
   std::string modes = "brute,exact,fast";  // --modes: search modes timed
+  std::vector<SearchMode> timed;           // the same, parsed
   bool no_recall = false;                   // --no-recall: skip the recall pass
   double scale = 0, other_class_cost = Settings{}.other_class_cost;
   int repeat = 3, k = Settings{}.k_left, max_checks = Settings{}.fast_max_checks;
@@ -185,7 +186,7 @@ void record_load(json& j) {
 void measure_modes(const Database& db, const BenchArgs* a, const Motion& truth, const std::vector<TrackerFrame>& frames,
                    json& j) {
   json modes = json::object();
-  const std::vector<SearchMode> timed = parse_modes(a->modes);
+  const std::vector<SearchMode>& timed = a->timed;
   for (SearchMode mode : timed) {
     Settings cfg;
     cfg.search = mode;
@@ -275,7 +276,7 @@ int run(int argc, char** argv) {
   cmd->add_option("--modes", a->modes, "comma-separated search modes to time: brute, exact, fast (default: all three)");
   cmd->add_flag("--no-recall", a->no_recall, "skip the fast-mode recall pass");
   CLI11_PARSE(app, argc, argv);
-  parse_modes(a->modes);  // a bad --modes fails before the database loads
+  a->timed = parse_modes(a->modes);  // a bad --modes fails before the database loads
   {
     json j;
     j["database"] = a->db;

@@ -11,8 +11,6 @@
 namespace legwork::accent {
 namespace {
 
-static_assert(kTreeDim + 8 <= kDim, "the partial distance check reads 8 dimensions after the tree's");
-
 // Inserts (window, d2) into the sorted top-k list held in out[0..n).
 inline void push_top(std::span<Match> out, int k, int& n, int window, float d2) {
   if (n == k && d2 >= out[static_cast<std::size_t>(n - 1)].distance) return;
@@ -67,6 +65,7 @@ struct FullDistanceResult {
   // the tree's) reject most rows before the full distance (a lower bound:
   // every term is >= 0). The distances kept are the full ones, as before.
   static constexpr int kTailCheck = 8;
+  static_assert(kTreeDim + kTailCheck <= kDim, "the partial check reads kTailCheck dimensions after the tree's");
   void add(int w, int row, float prefix) {
     const float f = class_scale && per_window ? class_scale[db->source(w).cls] : 1.0f;
     const float s2 = !class_scale ? 1.0f : per_window ? f * f : tree_scale2;
