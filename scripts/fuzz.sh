@@ -13,6 +13,11 @@
 #                                 clock; default 10) keeps a starved process from
 #                                 reporting false timeouts
 #   scripts/fuzz.sh --long RUNS TARGET...  only those targets (e.g. vmc walk_keys)
+#   LEGWORK_FUZZ_FORK=N (with --long; default 1): one run in libFuzzer's fork
+#                                 mode, N worker processes sharing one corpus,
+#                                 RUNS counted over all of them; timeouts and
+#                                 out-of-memory still stop it (-ignore_timeouts=0
+#                                 -ignore_ooms=0), as they stop a single process
 # Each target goes past parsing into the code that consumes the result: BVH
 # and GLB into forward kinematics and the writer; tracker CSV into
 # io::frames_from_table, the frame clock and usable(); walk files into the
@@ -42,6 +47,15 @@ fi
 timeout="${LEGWORK_FUZZ_TIMEOUT:-10}"
 if ! [[ "$timeout" =~ ^[1-9][0-9]{0,4}$ ]]; then
   echo "fuzz.sh: LEGWORK_FUZZ_TIMEOUT is '$timeout'; expected whole seconds from 1 to 99999" >&2
+  exit 2
+fi
+fork="${LEGWORK_FUZZ_FORK:-1}"
+if ! [[ "$fork" =~ ^[1-9][0-9]?$ ]]; then
+  echo "fuzz.sh: LEGWORK_FUZZ_FORK is '$fork'; expected a number of worker processes from 1 to 99" >&2
+  exit 2
+fi
+if [ "$fork" != 1 ] && [ $long = 0 ]; then
+  echo "fuzz.sh: LEGWORK_FUZZ_FORK=$fork applies to --long runs only (a bounded run is one process)" >&2
   exit 2
 fi
 # name:weight(% of the bounded run):max_len; the seeds of each are set up below.
@@ -125,6 +139,7 @@ run() {  # name seeds dict max_len seconds|runs
   mkdir -p "$corpus"
   local limit=(-max_total_time="$budget")
   if [ $long = 1 ]; then limit=(-runs="$budget" -max_total_time=$((${LEGWORK_FUZZ_LONG_HOURS:-6} * 3600))); fi
+  if [ "$fork" != 1 ]; then limit+=(-fork="$fork" -ignore_timeouts=0 -ignore_ooms=0 -ignore_crashes=0); fi
   echo "fuzz: $name (${limit[*]})" >&2
   local rc=0
   "$build/fuzz/${name}_fuzz" "$corpus" "$seed_dir" -dict="$dict" "${limit[@]}" -max_len="$max_len" \
@@ -132,6 +147,10 @@ run() {  # name seeds dict max_len seconds|runs
   local execs speed
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  if [ "$fork" != 1 ]; then  # fork mode's parent prints "#RUNS: cov: ... exec/s N ..." lines, no final stats
+    execs=$(sed -n 's/^#\([0-9]*\): cov:.*/\1/p' "$log" | tail -1)
+    speed=$(sed -n 's/^#[0-9]*: cov:.* exec\/s \([0-9]*\) .*/\1/p' "$log" | tail -1)
+  fi
   summary+=("fuzz: $name: ${execs:-?} executions, ${speed:-?} exec/s, corpus $(ls "$corpus" | wc -l) files, exit $rc")
   if [ $rc != 0 ]; then
     tail -60 "$log" >&2
