@@ -145,11 +145,15 @@ run() {  # name seeds dict max_len seconds|runs
   "$build/fuzz/${name}_fuzz" "$corpus" "$seed_dir" -dict="$dict" "${limit[@]}" -max_len="$max_len" \
     -timeout="$timeout" -rss_limit_mb=2560 -artifact_prefix="$build/artifacts/$name-" -print_final_stats=1 2>"$log" || rc=$?
   local execs speed
-  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
-  speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
-  if [ "$fork" != 1 ]; then  # fork mode's parent prints "#RUNS: cov: ... exec/s N ..." lines, no final stats
-    execs=$(sed -n 's/^#\([0-9]*\): cov:.*/\1/p' "$log" | tail -1)
-    speed=$(sed -n 's/^#[0-9]*: cov:.* exec\/s \([0-9]*\) .*/\1/p' "$log" | tail -1)
+  if [ "$fork" = 1 ]; then
+    execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+    speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  else  # fork mode's parent prints only "#RUNS: cov: ... time: Ns ..." lines (their exec/s is the last job's)
+    local last secs
+    last=$(grep '^#[0-9]*: cov:' "$log" | tail -1 || true)
+    execs=$(sed -n 's/^#\([0-9]*\): .*/\1/p' <<<"$last")
+    secs=$(sed -n 's/.* time: \([0-9]*\)s .*/\1/p' <<<"$last")
+    speed=$([ -n "$execs" ] && [ "${secs:-0}" -gt 0 ] && echo $((execs / secs)) || true)
   fi
   summary+=("fuzz: $name: ${execs:-?} executions, ${speed:-?} exec/s, corpus $(ls "$corpus" | wc -l) files, exit $rc")
   if [ $rc != 0 ]; then
