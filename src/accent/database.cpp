@@ -39,6 +39,9 @@ using json = nlohmann::json;
 
 std::size_t align64(std::size_t n) { return (n + 63) & ~static_cast<std::size_t>(63); }
 
+// The feature space section (version 8): scale, then projection, as doubles.
+constexpr std::size_t kSpaceValues = kRawDim + kDim * kDim;
+
 json vec3_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 
 json meta_json(const DatabaseMeta& p) {
@@ -65,9 +68,7 @@ json meta_json(const DatabaseMeta& p) {
                    {"stride", kStride},
                    {"raw_layout", "p0..p8 (xyz, head-relative m), v1..v8 (m/s), a2..a8 (m/s^2)"},
                    {"fps", p.space.fps},
-                   {"scale", p.space.scale},
-                   {"group_weight", p.space.group_weight},
-                   {"projection", p.space.projection}};
+                   {"group_weight", p.space.group_weight}};  // scale and projection: a binary section
   j["typical_distance"] = p.typical_distance;
   j["travel_scale"] = p.travel_scale;
   j["classes"] = p.classes;
@@ -201,9 +202,7 @@ void parse_meta(DatabaseMeta& m, const std::string& text, const std::string& sou
   if (r.integer(f, "features", "window") != kWindow) fail(source, "window size differs from this build's " + std::to_string(kWindow));
   if (r.integer(f, "features", "stride") != kStride) fail(source, "window stride differs from this build's " + std::to_string(kStride));
   m.space.fps = r.get<double>(f, "features", "fps");
-  m.space.scale = r.get<std::array<double, kRawDim>>(f, "features", "scale");
   m.space.group_weight = r.get<std::array<double, 3>>(f, "features", "group_weight");
-  m.space.projection = r.get<std::array<double, kDim * kDim>>(f, "features", "projection");
   m.typical_distance = r.get<double>(j, "", "typical_distance");
   m.travel_scale = r.get<Travel>(j, "", "travel_scale");
   m.classes = r.get<std::vector<std::string>>(j, "", "classes");
@@ -278,6 +277,9 @@ void open_block(Database::Impl& d, const std::string& source, bool verify, bool 
   }
   const char* meta = reinterpret_cast<const char*>(section<char>(d, h.meta_offset, h.meta_bytes, source, "metadata"));
   parse_meta(d.meta, std::string(meta, h.meta_bytes), source);
+  const double* space = section<double>(d, h.space_offset, kSpaceValues, source, "feature space");
+  std::memcpy(d.meta.space.scale.data(), space, sizeof d.meta.space.scale);
+  std::memcpy(d.meta.space.projection.data(), space + kRawDim, sizeof d.meta.space.projection);
   if (static_cast<std::uint32_t>(d.meta.skeleton.joint_count()) != h.joint_count) fail(source, "joint count disagrees with the skeleton");
   if (d.meta.classes.size() != h.class_count) fail(source, "class count disagrees with the class list");
   for (auto [a, b] : d.meta.ranges)
@@ -562,6 +564,7 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
   };
   h.meta_offset = place(meta.size());
   h.meta_bytes = meta.size();
+  h.space_offset = place(kSpaceValues * sizeof(double));
   for (int hand = 0; hand < 2; ++hand) h.feature_offset[hand] = place(nw * sizeof(Feature));
   h.align_offset = place(nw * sizeof(AlignXZ));
   h.source_offset = place(nw * sizeof(WindowSource));
@@ -583,6 +586,8 @@ std::vector<std::byte> serialize_block(const BlockParts& p) {
     if (bytes) std::memcpy(block.data() + off, src, bytes);
   };
   put(h.meta_offset, meta.data(), meta.size());
+  put(h.space_offset, p.meta.space.scale.data(), sizeof p.meta.space.scale);
+  put(h.space_offset + sizeof p.meta.space.scale, p.meta.space.projection.data(), sizeof p.meta.space.projection);
   for (int hand = 0; hand < 2; ++hand) {
     put(h.feature_offset[hand], rows[hand].data(), nw * sizeof(Feature));
     put(h.order_offset + hand * nw * sizeof(std::uint32_t), window_of_row[hand].data(), nw * sizeof(std::uint32_t));

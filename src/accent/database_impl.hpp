@@ -39,8 +39,10 @@ struct FileHeader {
   std::uint64_t order_offset;                  // u32[2][window_count] the window of each stored feature row, then
                                                // u32[2][window_count] the row of each window, per hand (since
                                                // version 7: rows in their trees' leaf order)
+  std::uint64_t space_offset;                  // f64 scale[kRawDim], then f64 projection[kDim * kDim]: the
+                                               // feature space's numbers (since version 8; in the JSON before)
 };
-static_assert(sizeof(FileHeader) == 160);
+static_assert(sizeof(FileHeader) == 168);
 
 std::uint64_t block_checksum(std::span<const std::byte> block);
 
