@@ -32,7 +32,7 @@ export class LiveSession {
     this.onError = onError || (() => {});
     this.onWelcome = onWelcome || (() => {});
     this.stats = { method: opts.method, state: 'connecting', posesReceived: 0, framesSent: 0, errors: 0, lastError: '',
-      lastHandError: NaN, maxHandError: 0, lastHeadError: NaN, rttMs: NaN, rttAvgMs: NaN, poseHz: 0, statusCounts: {}, serverUs: NaN, inputHandTravel: 0, medianHandError: NaN, lastCrossHandError: NaN };
+      lastHandError: NaN, maxHandError: 0, lastHeadError: NaN, rttMs: NaN, rttAvgMs: NaN, poseHz: 0, statusCounts: {}, restartFrames: [], serverUs: NaN, inputHandTravel: 0, medianHandError: NaN, lastCrossHandError: NaN };
     this.skeleton = null;
     this.hands = [-1, -1];
     this.sent = new Map(); // t -> {sentAt, frame}
@@ -103,6 +103,8 @@ export class LiveSession {
     if (m.server_us !== undefined) s.serverUs = m.server_us;
     const sent = this.sent.get(m.t) ?? this.sent.get(Math.round(m.t * 1e6) / 1e6);
     if (sent) {
+      // The trial frame each restarted pose answers (a seek's target, or 0 when the replay loops): the last 16.
+      if (m.status === 'restarted') s.restartFrames = [...s.restartFrames.slice(-15), sent.frame._i];
       const rtt = now - sent.sentAt;
       s.rttMs = rtt;
       s.rttAvgMs = Number.isNaN(s.rttAvgMs) ? rtt : s.rttAvgMs * 0.95 + rtt * 0.05;
