@@ -69,7 +69,7 @@ struct BenchArgs {
   std::string modes = "brute,exact,fast";  // --modes: search modes timed
   std::vector<SearchMode> timed;           // the same, parsed
   bool no_recall = false;                   // --no-recall: skip the recall pass
-  double scale = 0, other_class_cost = Settings{}.other_class_cost;
+  double scale = 0, other_class_cost = Settings{}.other_class_cost, search_interval = Settings{}.search_interval;
   int repeat = 3, k = Settings{}.k_left, max_checks = Settings{}.fast_max_checks;
   float eps = Settings{}.fast_eps;
 };
@@ -197,6 +197,7 @@ void measure_modes(const Database& db, const BenchArgs* a, const Motion& truth, 
     cfg.foot_lock = !a->no_foot_lock;
     cfg.recognize_class = !a->no_class_recognition;
     cfg.other_class_cost = a->other_class_cost;
+    cfg.search_interval = a->search_interval;
     cfg.classes = split_commas(a->classes_run);
     if (a->no_ik_blend) cfg.ik_blend_min = cfg.ik_blend_max = 0;
     std::vector<double> lat;
@@ -269,6 +270,8 @@ int run(int argc, char** argv) {
   cmd->add_flag("--no-ik-blend", a->no_ik_blend, "time the engine without the IK blend");
   cmd->add_flag("--no-class-recognition", a->no_class_recognition,
                 "with several classes allowed, search all of them every frame (default: recognise the class, search its index)");
+  cmd->add_option("--search-interval", a->search_interval,
+                  "seconds between two searches of the database (0 = every frame)")->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--other-class-cost", a->other_class_cost,
                  "while recognising the class, also search the others at this factor on their distances (0 = off)")
       ->check(CLI::Range(0.0, 1e6));

@@ -120,6 +120,11 @@ void register_run(CLI::App& parent) {
                   "this factor (1 = no preference; 0 = the recognised class only)")
       ->capture_default_str()
       ->check(zero_or_factor());
+  cmd->add_option("--search-interval", a->search_interval,
+                  "seconds between two searches of the database; in between each hand's matches are continued in "
+                  "their trials, as motion matching does (0 = search every frame)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--lying-crown", a->lying_crown,
                   "share of a lying user's candidate turn taken from the headset (yaw from its crown, which points "
                   "away from the feet; roll from its face), and of the standing IK body taken out (0 = off)")

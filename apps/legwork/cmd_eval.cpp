@@ -28,7 +28,7 @@ struct EngineOption {
   double lo, hi;
   const char* help;
 };
-constexpr std::array<EngineOption, 18> kEngineOptions{{
+constexpr std::array<EngineOption, 19> kEngineOptions{{
     {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
     {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
     {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
@@ -62,6 +62,8 @@ constexpr std::array<EngineOption, 18> kEngineOptions{{
      "engine: times the spring's half-life on the root for a lying user (1 = off)"},
     {"--other-class-cost", &accent::Settings::other_class_cost, 0.0, 1e6,
      "engine, no class given: factor on the distances of the classes other than the recognised one, also searched (0 = the recognised class only)"},
+    {"--search-interval", &accent::Settings::search_interval, 0.0, 1.0,
+     "engine: seconds between two searches of the database; in between each hand's matches are continued in their trials (0 = search every frame)"},
     {"--lying-crown", &accent::Settings::lying_crown, 0.0, 1.0,
      "engine: share of a lying user's candidate turn taken from the headset (yaw from its crown, roll from its face), and of the standing IK body taken out (0 = off)"},
 }};

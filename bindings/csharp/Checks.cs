@@ -56,6 +56,10 @@ static class Checks
         Expect.That("other class cost default", bad.OtherClassCost == 1.25, "OtherClassCost " + bad.OtherClassCost);
         bad.OtherClassCost = 0.5;
         Expect.Throws<LegworkException>("other class cost out of range", () => Model.CreateAccent(db, bad), "other_class_cost must be 0 (search only the classes to match) or a factor from 1 to 1e6");
+        bad = AccentSettings.Default();
+        Expect.That("search interval default", bad.SearchInterval == 0.044, "SearchInterval " + bad.SearchInterval);
+        bad.SearchInterval = 1.5;
+        Expect.Throws<LegworkException>("search interval out of range", () => Model.CreateAccent(db, bad), "search_interval must be between 0 and 1 second (0 = search every frame)");
 
         Model model = Model.CreateAccent(db, AccentSettings.Default());
         Avatar avatar = Avatar.Create(model);
@@ -75,11 +79,14 @@ static class Checks
         var info = avatar.Info;
         int active = (int)avatar.InfoNumber("active_class");
         Expect.That("recognised class", active >= 0 && active < db.ClassCount && db.ClassName(active) != null, "active_class " + active);
+        // A frame that searched covers 1..all classes; one that continued its matches (SearchInterval), none.
+        bool didSearch = avatar.InfoNumber("searched") == 1;
         double searched = avatar.InfoNumber("classes_searched");
-        Expect.That("classes searched", searched >= 1 && searched <= db.ClassCount, "classes_searched " + searched);
+        Expect.That("classes searched", didSearch ? searched >= 1 && searched <= db.ClassCount : searched == 0,
+                    "classes_searched " + searched + ", searched " + didSearch);
         string match = avatar.InfoText("match");
         Expect.That("match status", match == "matched" || match == "partial" || match == "unmatched", "match '" + match + "'");
-        Expect.That("info fields", info.Count == 7 && info.ContainsKey("match_weight") && (string)info["match"] == match,
+        Expect.That("info fields", info.Count == 8 && info.ContainsKey("match_weight") && (string)info["match"] == match,
                     info.Count + " fields");
         Expect.Throws<LegworkException>("unknown info field", () => avatar.InfoNumber("speed"),
                                         "no field 'speed' (this avatar's: match, match_weight");

@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 12u
+#define LW_ABI_VERSION 13u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -166,6 +166,9 @@ typedef struct lw_accent_settings {
   double other_class_cost; /* 0, or a factor in [1, 1e6]: while the class is recognised (recognize_class, several
                               classes allowed), the other allowed classes are searched too, their distances times this
                               factor; 0 = the recognised class only (ABI 11) */
+  double search_interval;  /* seconds (0..1) between two searches of the database; in between each hand's matches are
+                              continued in their trials (the last matches and their next windows, ranked by distance);
+                              0 = search every frame (ABI 13) */
 } lw_accent_settings;
 LW_API void lw_accent_settings_default(lw_accent_settings* s);
 /* The database must outlive the model. */

@@ -129,6 +129,10 @@ void bind_settings(pb::module_& m) {
                      "while the class is recognised (recognize_class, several classes allowed): the other allowed "
                      "classes are searched too, their distances times this factor (1..1e6; 1 = no preference); 0 = "
                      "the recognised class only")
+      .def_readwrite("search_interval", &Settings::search_interval,
+                     "seconds (0..1) between two searches of the database; in between each hand's matches are "
+                     "continued in their trials (the last matches and their next windows, ranked by distance), as "
+                     "motion matching does; 0 = search every frame")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
                      "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
       .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")
@@ -154,7 +158,9 @@ void bind_settings(pb::module_& m) {
       .def_readonly("ik_share", &Info::ik_share, "share of the IK body in the output (0..1)")
       .def_readonly("active_class", &Info::active_class, "recognised class (index into Database.classes), -1 = not recognising")
       .def_readonly("classes_searched", &Info::classes_searched,
-                    "classes this frame's search covered (the recognised one plus the others searched at other_class_cost)"));
+                    "classes this frame's search covered (the recognised one plus the others searched at other_class_cost)")
+      .def_readonly("searched", &Info::searched,
+                    "whether this frame searched the database (False: its matches were continued, search_interval)"));
 }
 
 pb::dict run_dict(AccentRun run) {

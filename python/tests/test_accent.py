@@ -107,10 +107,14 @@ def test_no_class_setting_recognises_walking(db, truth):
         for frame in frames:
             accent.update(model, frame, state, pose, info)
             active.append(info.active_class)
-            searched.append(info.classes_searched)
+            if info.searched:  # search_interval: a frame that continued its matches searched no class
+                searched.append(info.classes_searched)
+            else:
+                assert info.classes_searched == 0
             fields = info.fields()  # the server's and the C API's names for the same figures
             assert fields["active_class"] == info.active_class
             assert fields["classes_searched"] == info.classes_searched
+            assert fields["searched"] == (1 if info.searched else 0)
             assert fields["match_weight"] == pytest.approx(info.match_weight)
             assert (fields["matches_left"], fields["matches_right"]) == tuple(info.matches)
             assert fields["match"] == {accent.MatchStatus.Matched: "matched", accent.MatchStatus.Partial: "partial",
@@ -240,6 +244,10 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
     # the walk's class is recognised, so the walk changes
     ("other_class_cost", "--other-class-cost", 0.0, 1.25, True, 0.5,
      r"other_class_cost must be 0 \(search only the classes to match\) or a factor from 1 to 1e6"),
+    # searching every hop, the matches continued in between (effect: tests/accent's
+    # SearchingEveryHopContinuesTheMatchesInTheirTrials)
+    ("search_interval", "--search-interval", 0.0, 0.044, True, 1.5,
+     r"search_interval must be between 0 and 1 second \(0 = search every frame\)"),
 ])
 def test_engine_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path, name, flag, value, default, changes,
                                               bad, message):

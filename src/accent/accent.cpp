@@ -71,6 +71,8 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: lying_root_smoothing must be between 1 and 20 (times the root's smoothing half-life for a lying user; 1 = off)");
   if (!std::isfinite(cfg.other_class_cost) || (cfg.other_class_cost != 0 && cfg.other_class_cost < 1) || cfg.other_class_cost > 1e6)
     throw Error("accent: other_class_cost must be 0 (search only the classes to match) or a factor from 1 to 1e6 (other classes' distances multiplied by it)");
+  if (!std::isfinite(cfg.search_interval) || cfg.search_interval < 0 || cfg.search_interval > 1)
+    throw Error("accent: search_interval must be between 0 and 1 second (0 = search every frame)");
   if (!std::isfinite(cfg.lying_crown) || cfg.lying_crown < 0 || cfg.lying_crown > 1)
     throw Error("accent: lying_crown must be between 0 and 1 (the share of a lying user's candidate turn taken from the headset: yaw from its crown, roll from its face; 0 = off)");
   if (!std::isfinite(cfg.smooth_feedforward) || cfg.smooth_feedforward < 0 || cfg.smooth_feedforward > 1)
@@ -229,6 +231,22 @@ Model make_model(const Database& db, const Settings& settings) {
   return m;
 }
 
+int Model::next_window(int w) const {
+  const Database& db = database();
+  const WindowSource& src = db.source(w);
+  const int next = next_pose(static_cast<int>(src.pose));
+  if (next < 0) return -1;
+  // A pose's windows are consecutive, one per speed (builder.cpp): the next
+  // pose's lie within two poses' worth of windows after w.
+  const int last = std::min(db.window_count() - 1, w + 2 * static_cast<int>(db.settings().speeds.size()));
+  for (int v = w + 1; v <= last; ++v) {
+    const WindowSource& s = db.source(v);
+    if (s.pose == static_cast<std::uint32_t>(next) && s.speed == src.speed) return v;
+    if (s.pose > static_cast<std::uint32_t>(next)) break;
+  }
+  return -1;
+}
+
 std::size_t Model::bytes() const {
   const auto nj = static_cast<std::size_t>(skeleton_.joint_count());
   return sizeof(*this) + class_mask_.size() + allowed_.size() * sizeof(int) +
@@ -286,6 +304,8 @@ void reset(const Model& model, State& s) {
   std::fill(s.class_cost.begin(), s.class_cost.end(), -1.0);
   std::fill(s.class_seed.begin(), s.class_seed.end(), std::array<int, 2>{-1, -1});
   std::fill(s.active_mask.begin(), s.active_mask.end(), 0);
+  s.since_search = -1;
+  s.search_now = true;
 }
 
 std::size_t State::bytes() const {
@@ -456,8 +476,21 @@ int gather_matches(const Model& model, State& st, int h, double threshold) {
   std::span<const unsigned char> mask = st.active_class >= 0 ? std::span<const unsigned char>(st.active_mask) : model.class_mask();
   std::span<const float> class_scale;  // Settings::other_class_cost: every allowed class, the others' distances scaled
   if (!st.active_scale.empty() && st.active_class >= 0) class_scale = st.active_scale;
-  int got = search_knn(db, h, st.live[hu], k_fetch, cfg.search, cfg.fast_eps, mask, found,
-                       std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)), cfg.fast_max_checks, class_scale);
+  int got = 0;
+  if (st.search_now) {
+    got = search_knn(db, h, st.live[hu], k_fetch, cfg.search, cfg.fast_eps, mask, found,
+                     std::span<const int>(seeds.data(), static_cast<std::size_t>(ns)), cfg.fast_max_checks, class_scale);
+  } else {  // Settings::search_interval: the last matches, continued
+    std::array<int, 2 * kMaxK> cand;
+    int nc = 0;
+    for (int i = 0; i < ns; ++i) {
+      const int w = seeds[static_cast<std::size_t>(i)];
+      cand[static_cast<std::size_t>(nc++)] = w;
+      if (const int next = model.next_window(w); next >= 0) cand[static_cast<std::size_t>(nc++)] = next;
+    }
+    got = rank_windows(db, h, st.live[hu], k_fetch, mask, std::span<const int>(cand.data(), static_cast<std::size_t>(nc)),
+                       found, class_scale);
+  }
   if (threshold > 0)
     while (got > 0 && found[static_cast<std::size_t>(got - 1)].distance > threshold) --got;
   if (gates_posture(cfg)) got = posture_gate(model, st, found.first(static_cast<std::size_t>(got)));
@@ -832,12 +865,20 @@ bool blend_candidates(const Model& model, State& st, double threshold, double dt
   fill_align(w[0], w[1], query_xz);
   for (int h = 0; h < 2; ++h) model.database().feature_space().project(w[h], st.live[static_cast<std::size_t>(h)]);
   if (model.settings().travel_weight > 0 || model.settings().max_head_height_diff > 0) live_travel(model, st);
-  if (model.recognizes_class()) recognize_class(model, st, dt);
+  // Settings::search_interval: search when due (and always while a hand has
+  // no match); class recognition runs with the searches, over the time since
+  // the last one.
+  const double interval = model.settings().search_interval;
+  st.since_search = st.since_search < 0 ? interval : st.since_search + dt;
+  st.search_now = interval <= 0 || st.since_search >= interval * (1 - 1e-6) || st.match_count[0] == 0 || st.match_count[1] == 0;
+  const double searched_dt = st.search_now && interval > 0 ? st.since_search : dt;
+  if (st.search_now) st.since_search = 0;
+  if (model.recognizes_class() && st.search_now) recognize_class(model, st, searched_dt);
   for (int h = 0; h < 2; ++h) {
     st.match_count[static_cast<std::size_t>(h)] = gather_matches(model, st, h, threshold);
     align_matches(model, st, h, threshold, query_xz);
   }
-  if (model.recognizes_class()) score_active_class(model, st);
+  if (model.recognizes_class() && st.search_now) score_active_class(model, st);
   if (st.match_count[0] == 0 && st.match_count[1] == 0) return false;
   blend_matches(model, st, dt);
   blend_contacts(model, st);
@@ -1278,9 +1319,11 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
       info->foot_locked[f] = st.foot[f].locked;
     }
     info->ik_share = st.ik_share;
+    info->searched = matched ? st.search_now : st.have_head && !cfg.direct_only;
     info->active_class = st.active_class;
-    info->classes_searched = st.active_class < 0 ? static_cast<int>(model.allowed_classes().size())
-                                                 : static_cast<int>(std::count(st.active_mask.begin(), st.active_mask.end(), 1));
+    info->classes_searched = !info->searched ? 0  // continued matches (Settings::search_interval)
+                             : st.active_class < 0 ? static_cast<int>(model.allowed_classes().size())
+                                                   : static_cast<int>(std::count(st.active_mask.begin(), st.active_mask.end(), 1));
     const double typical = model.database().typical_distance();
     for (int h = 0; h < 2; ++h)
       info->best_distance[static_cast<std::size_t>(h)] = st.match_count[static_cast<std::size_t>(h)]
@@ -1298,6 +1341,7 @@ void describe(const Info& i, InfoFields& out) {
   out.add("matches_right", i.matches[1]);
   out.add("active_class", i.active_class);
   out.add("classes_searched", i.classes_searched);
+  out.add("searched", i.searched ? 1 : 0);
 }
 
 }  // namespace legwork::accent

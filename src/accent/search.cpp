@@ -123,7 +123,44 @@ std::size_t nearest_class_tree(const Database::Impl& d, int hand, const Feature&
   return best;
 }
 
+// The given windows into the sorted top-k list out[0..n) (squared distances).
+template <class Scale2>
+int rank_squared(const Database& db, int hand, const Feature& query, int k, std::span<const unsigned char> class_mask,
+                 std::span<const int> windows, std::span<Match> out, Scale2 scale2) {
+  const auto& d = db.impl();
+  const float* feats = reinterpret_cast<const float*>(d.features[hand]);
+  int n = 0;
+  for (int w : windows)
+    if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) {
+      bool dup = false;
+      for (int i = 0; i < n; ++i) dup = dup || out[static_cast<std::size_t>(i)].window == w;
+      if (!dup)
+        push_top(out, k, n, w,
+                 scale2(db.source(w).cls) *
+                     squared_distance(feats + static_cast<std::ptrdiff_t>(d.row_of_window[hand][w]) * kDim, query.data()));
+    }
+  return n;
+}
+
+// Squared class factors (class_scale), when given for every class.
+struct ClassScale2 {
+  std::span<const float> scale;
+  float operator()(std::size_t c) const { return scale.empty() ? 1.0f : scale[c] * scale[c]; }
+};
+ClassScale2 class_scale2_of(const Database& db, std::span<const float> class_scale) {
+  return {class_scale.size() >= db.impl().meta.ranges.size() ? class_scale : std::span<const float>{}};
+}
+
 }  // namespace
+
+int rank_windows(const Database& db, int hand, const Feature& query, int k, std::span<const unsigned char> class_mask,
+                 std::span<const int> windows, std::span<Match> out, std::span<const float> class_scale) {
+  k = std::min<int>(k, static_cast<int>(out.size()));
+  if (k <= 0) return 0;
+  const int n = rank_squared(db, hand, query, k, class_mask, windows, out, class_scale2_of(db, class_scale));
+  for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)].distance = std::sqrt(out[static_cast<std::size_t>(i)].distance);
+  return n;
+}
 
 int search_knn(const Database& db, int hand, const Feature& query, int k, SearchMode mode, float eps,
                std::span<const unsigned char> class_mask, std::span<Match> out, std::span<const int> seeds,
@@ -131,24 +168,14 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
   k = std::min<int>(k, static_cast<int>(out.size()));
   if (k <= 0) return 0;
   const auto& d = db.impl();
-  // Squared class factors (class_scale), when given for every class.
-  const bool scaled = !class_scale.empty() && class_scale.size() >= d.meta.ranges.size();
-  auto class_scale2 = [&](std::size_t c) { return scaled ? class_scale[c] * class_scale[c] : 1.0f; };
+  const ClassScale2 class_scale2 = class_scale2_of(db, class_scale);
+  const bool scaled = !class_scale2.scale.empty();
   int n = 0;  // out[] holds squared distances until the end
   if (mode == SearchMode::BruteForce || !d.indexed) {
     const float* feats = reinterpret_cast<const float*>(d.features[hand]);
     const std::uint32_t* window_of_row = d.window_of_row[hand];
-    const std::uint32_t* row_of_window = d.row_of_window[hand];
     // Seeds first: a tight bound from the start rejects most rows on the prefix.
-    for (int w : seeds)
-      if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) {
-        bool dup = false;
-        for (int i = 0; i < n; ++i) dup = dup || out[static_cast<std::size_t>(i)].window == w;
-        if (!dup)
-          push_top(out, k, n, w,
-                   class_scale2(db.source(w).cls) *
-                       squared_distance(feats + static_cast<std::ptrdiff_t>(row_of_window[w]) * kDim, query.data()));
-      }
+    n = rank_squared(db, hand, query, k, class_mask, seeds, out, class_scale2);
     const int seeded = n;
     for (std::size_t c = 0; c < d.meta.ranges.size(); ++c) {
       if (!allowed(class_mask, c)) continue;

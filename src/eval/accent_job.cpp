@@ -84,6 +84,7 @@ void run_accent_job(const AccentJob& a) {
   cfg.lying_root_smoothing = a.lying_root_smoothing;
   cfg.lying_crown = a.lying_crown;
   cfg.other_class_cost = a.other_class_cost;
+  cfg.search_interval = a.search_interval;
   cfg.joint_limits = !a.no_limits;
   cfg.exaggeration = a.exaggerate;
   cfg.classes = io::split_commas(a.classes);

@@ -113,6 +113,7 @@ void accent_options(const MethodOptions& opt, accent::Settings& c) {
   c.lying_root_smoothing = opt.lying_root_smoothing;
   c.lying_crown = opt.lying_crown;
   c.other_class_cost = opt.other_class_cost;
+  c.search_interval = opt.search_interval;
   c.exaggeration = opt.exaggeration;
   c.user_height = opt.user_height;
 }
@@ -218,6 +219,8 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("lying_crown " + std::to_string(opt.lying_crown) + " is outside [0, 1] (0 = off)");
   if (!(opt.other_class_cost == 0 || (opt.other_class_cost >= 1 && opt.other_class_cost <= 1e6)))
     throw Error("other_class_cost " + std::to_string(opt.other_class_cost) + " is neither 0 (off) nor in [1, 1e6]");
+  if (!(opt.search_interval >= 0 && opt.search_interval <= 1))
+    throw Error("search_interval " + std::to_string(opt.search_interval) + " is outside [0, 1] seconds (0 = every frame)");
   if (!(opt.foot_swing_speed >= 0 && opt.foot_swing_speed <= 10))
     throw Error("foot_swing_speed " + std::to_string(opt.foot_swing_speed) + " m/s is outside [0, 10]");
   if (!(opt.user_height == 0 || (opt.user_height >= kMinUserHeight && opt.user_height <= kMaxUserHeight))) {

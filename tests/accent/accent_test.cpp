@@ -157,6 +157,73 @@ TEST_F(HeldOut, NoClassGivenRecognisesTheActivityWithHysteresis) {
   EXPECT_LT(e_rec, e_told + 0.01);
 }
 
+// Settings::search_interval (the default, 0.044 s): at 90 Hz the database is
+// searched on every 4th frame (and when a hand has no match); in between each
+// hand's matches are the last frame's matches or their next windows in their
+// trials, never anything else. Held-out running 09_01 against the shared
+// walking and running trials: the continued body is measured beside the one
+// searched on every frame.
+TEST(AccentShared, SearchingEveryHopContinuesTheMatchesInTheirTrials) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  const std::string data = testdata::shared_cmu().string();
+  const std::string held_out = "bvh/running/09_01.bvh";
+  Database db = build_database(load_trials(data, {"walking", "running"}, {held_out}), BuildConfig{});
+  db.build_index();
+  const Motion input = testing::shared_trial(data + "/" + held_out);
+  Settings every_hop;  // the default
+  ASSERT_GT(every_hop.search_interval, 0.0);
+  Settings every_frame = every_hop;
+  every_frame.search_interval = 0;
+  testing::Avatar avatar(db, every_hop);
+  const auto frames = tracker_frames_from_motion(input);
+  ASSERT_NEAR(frames[1].time - frames[0].time, 1.0 / 90, 1e-9);
+  int searched = 0, run = 0, longest_run = 0, continued = 0, from_last = 0, moved_on = 0;
+  std::array<std::vector<int>, 2> last;
+  for (const TrackerFrame& f : frames) {
+    const Info info = avatar.update(f);
+    searched += info.searched;
+    run = info.searched ? 0 : run + 1;
+    longest_run = std::max(longest_run, run);
+    for (int h = 0; h < 2; ++h) {
+      const auto hu = static_cast<std::size_t>(h);
+      if (!info.searched) {
+        for (const Match& m : avatar.matches(h)) {
+          ++continued;
+          bool found = false;
+          for (int w : last[hu]) {
+            if (m.window == w) {
+              found = true;
+              ++from_last;
+            } else if (m.window == avatar.model.next_window(w)) {
+              found = true;
+              ++moved_on;
+            }
+            if (found) break;
+          }
+          ASSERT_TRUE(found) << "a continued frame took window " << m.window << ", neither a last match nor its next window";
+        }
+        EXPECT_EQ(info.classes_searched, 0);
+      }
+      last[hu].clear();
+      for (const Match& m : avatar.matches(h)) last[hu].push_back(m.window);
+    }
+  }
+  const double e_hop = measure(input, accentuate_motion(db, every_hop, input).output).body;
+  const double e_frame = measure(input, accentuate_motion(db, every_frame, input).output).body;
+  const auto n = static_cast<int>(frames.size());
+  std::printf("[ figures  ] running 09_01 at 90 Hz: %d of %d frames searched (longest run without: %d); of %d continued "
+              "matches %d kept, %d moved on one hop; role joints %.2f cm searching every hop, %.2f cm every frame\n",
+              searched, n, longest_run, continued, from_last, moved_on, 100 * e_hop, 100 * e_frame);
+  EXPECT_EQ(longest_run, 3);                // 4 frames of 11.1 ms reach 0.044 s
+  EXPECT_GE(searched, n / 4);
+  EXPECT_LT(searched, n / 3);
+  EXPECT_GT(moved_on, 0);                   // the matches do move on in their trials
+  EXPECT_GT(from_last, 0);
+  // Continuing the matches does not cost the body more than a tenth of its
+  // error here (the evaluation's folds: no worse, docs/accent.md).
+  EXPECT_LT(e_hop, 1.1 * e_frame);
+}
+
 // "No class given", other classes at a cost (Settings::other_class_cost):
 // subject 09 held out (11 runs and a walk) from a database of every class,
 // the class is recognised from the input; searching the other classes too,
@@ -189,6 +256,7 @@ TEST(AccentShared, NoClassGivenOtherClassesAtACostBringTheRunnerNearerTheTruth) 
     testing::Avatar avatar(db, at_cost);
     for (const TrackerFrame& f : tracker_frames_from_motion(input)) {
       const Info info = avatar.update(f);
+      if (!info.searched) continue;  // Settings::search_interval: a continued frame searches no class
       classes_searched += info.classes_searched;
       ++avatar_frames;
       for (int h = 0; h < 2; ++h)
@@ -670,6 +738,8 @@ TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
       }
     }
   };
+  refused(&Settings::search_interval, {-0.01, 1.5, std::numeric_limits<double>::quiet_NaN()},
+          "search_interval must be between 0 and 1 second (0 = search every frame)");
   refused(&Settings::foot_lift_height, {-0.01, 0.6, std::numeric_limits<double>::quiet_NaN()},
           "foot_lift_height must be between 0 and 0.5 metres");
   refused(&Settings::foot_lock_slack, {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()},

@@ -96,7 +96,7 @@ TEST(CApi, AccentAvatarEqualsTheCppApiBitForBit) {
     const UpdateStatus b = accent::update(cm, frames[static_cast<std::size_t>(i)], st, pose.ref(), &info);
     ASSERT_EQ(std::string(lw_status_name(a)), status_name(b));
     // The frame's figures: the C++ Info under the server's pose "info" names.
-    ASSERT_EQ(lw_avatar_info_count(avatar), 7);
+    ASSERT_EQ(lw_avatar_info_count(avatar), 8);
     double number = -1;
     const char* text = nullptr;
     ASSERT_EQ(lw_avatar_info_find(avatar, "match", &number, &text), LW_OK);
@@ -111,6 +111,8 @@ TEST(CApi, AccentAvatarEqualsTheCppApiBitForBit) {
     const char* name = nullptr;
     ASSERT_EQ(lw_avatar_info_field(avatar, 6, &name, &number, &text), LW_OK);
     ASSERT_STREQ(name, "classes_searched");
+    ASSERT_EQ(lw_avatar_info_find(avatar, "searched", &number, nullptr), LW_OK);  // search_interval (ABI 13)
+    ASSERT_EQ(number, info.searched ? 1 : 0);
     if (info.active_class >= 0) {
       ASSERT_STREQ(lw_database_class_name(db, info.active_class), cdb.classes()[static_cast<std::size_t>(info.active_class)].c_str());
       ++recognised;
@@ -556,6 +558,13 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
             std::string::npos)
       << lw_last_error();
   s.other_class_cost = 0;
+  EXPECT_DOUBLE_EQ(s.search_interval, legwork::accent::Settings{}.search_interval);  // ABI 13: the engine's default
+  s.search_interval = -0.1;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("search_interval must be between 0 and 1 second (0 = search every frame)"),
+            std::string::npos)
+      << lw_last_error();
+  s.search_interval = 0;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

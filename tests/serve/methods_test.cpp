@@ -98,6 +98,9 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   o.other_class_cost = 0.5;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "other_class_cost 0.500000 is neither 0 (off) nor in [1, 1e6]");
   o.other_class_cost = 0;
+  o.search_interval = -0.5;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "search_interval -0.500000 is outside [0, 1] seconds (0 = every frame)");
+  o.search_interval = 0;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];

@@ -119,6 +119,7 @@ TEST(Protocol, AccentSettingsAreHelloFields) {
                          Field{"lying_root_smoothing", &MethodOptions::lying_root_smoothing, d.lying_root_smoothing, 8},  // a lying user's root
                          Field{"lying_crown", &MethodOptions::lying_crown, d.lying_crown, 0.5},  // a lying user turned by the crown
                          Field{"other_class_cost", &MethodOptions::other_class_cost, d.other_class_cost, 1.5},  // other classes at a cost
+                         Field{"search_interval", &MethodOptions::search_interval, d.search_interval, 0.1},  // searches every hop
                          Field{"foot_lift_height", &MethodOptions::foot_lift_height, d.foot_lift_height, 0.1}}) {  // released feet's lift
     SCOPED_TRACE(f.name);
     EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.*f.option, f.engine_default);

@@ -53,6 +53,16 @@ struct Settings {
   // database at the same CPU time per frame (docs/accent.md).
   float fast_eps = 2.0f;
   int fast_max_checks = 1500;  // Fast mode: candidates examined per class tree (bounds p99)
+  // Seconds between two searches of the database (0 = every frame, the
+  // document's). In between, as motion matching does, each hand's matches
+  // are continued instead: the last frame's matches and each one's next
+  // window in its trial (same speed, one hop on) are ranked by their distance
+  // to this frame's query, with no index search; class recognition waits for
+  // the next search. A search also runs when a hand had no match. 0.044: one
+  // window hop of the default build (4 samples at 90 Hz), so the continued
+  // windows reach the next search's; at 90 Hz every 4th frame searches
+  // (docs/accent.md, "Searching every hop").
+  double search_interval = 0.044;
   int k_left = 15, k_right = 15;  // matches per hand (at most kMaxK; the paper used 5, 15 measured better)
   // Match distance limit in units of Database::typical_distance(); <= 0: none.
   double threshold = 6.0;
@@ -217,6 +227,9 @@ struct Info {
   // searched at other_class_cost (those whose probed cost could still enter
   // the matches).
   int classes_searched = 0;
+  // Settings::search_interval: whether this frame searched the database
+  // (false: the last matches were continued in their trials).
+  bool searched = true;
 };
 
 // Everything derived from the database and the settings; immutable.
@@ -258,6 +271,9 @@ class Model {
   const ik::Model* ik_model() const { return ik_.get(); }
   // The pose one hop later in the same trial (-1 at a trial's last window).
   int next_pose(int pose) const { return next_pose_[static_cast<std::size_t>(pose)]; }
+  // The window that continues window w in its trial: the same speed and copy
+  // at the next pose (one hop on); -1 at the trial's end (Settings::search_interval).
+  int next_window(int w) const;
   // Model bytes (shared by every avatar of this model).
   std::size_t bytes() const;
 
@@ -352,6 +368,10 @@ struct State {
   std::vector<std::array<int, 2>> class_seed;  // best window per class and hand (seeds the probes)
   std::vector<unsigned char> active_mask, probe_mask;
   std::vector<float> active_scale;  // Settings::other_class_cost around the recognised class
+  // Settings::search_interval: input seconds since the last search (< 0: none
+  // since the last reset) and this frame's choice.
+  double since_search = -1;
+  bool search_now = true;
   Pose smoothed;                // EWMA output
   std::vector<Quat> spring_rot; // spring filter: filtered local rotations...
   std::vector<Vec3> spring_vel; // ...and their angular velocities

@@ -37,4 +37,11 @@ int search_knn(const Database& db, int hand, const Feature& query, int k, Search
                std::span<const unsigned char> class_mask, std::span<Match> out, std::span<const int> seeds = {},
                int max_checks = 0, std::span<const float> class_scale = {});
 
+// Up to k of the given windows nearest to `query`, ranked as search_knn ranks
+// (class_mask and class_scale likewise), without the index: duplicates and
+// windows out of range or of a masked class are skipped. The continuation
+// between two searches (Settings::search_interval). Returns the number written.
+int rank_windows(const Database& db, int hand, const Feature& query, int k, std::span<const unsigned char> class_mask,
+                 std::span<const int> windows, std::span<Match> out, std::span<const float> class_scale = {});
+
 }  // namespace legwork::accent

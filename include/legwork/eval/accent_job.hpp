@@ -25,6 +25,7 @@ struct AccentJob {
   double lying_root_smoothing = accent::Settings{}.lying_root_smoothing;
   double lying_crown = accent::Settings{}.lying_crown;
   double other_class_cost = accent::Settings{}.other_class_cost;
+  double search_interval = accent::Settings{}.search_interval;
   double foot_lift_height = accent::Settings{}.foot_lift_height;
   double foot_lock_slack = accent::Settings{}.foot_lock_slack;
   double foot_swing_speed = accent::Settings{}.foot_swing_speed;

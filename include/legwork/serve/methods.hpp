@@ -60,6 +60,8 @@ struct MethodOptions {
   double lying_crown = 1.0;
   // accent (and combined's upper body): accent::Settings::other_class_cost, the engine's default (0 = the recognised class only).
   double other_class_cost = 1.25;
+  // accent (and combined's upper body): accent::Settings::search_interval, the engine's default (0 = search every frame).
+  double search_interval = 0.044;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
   std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)
