@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -24,6 +25,16 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string sample(const std::string& rel) { return std::string(LEGWORK_SOURCE_DIR) + "/data/" + rel; }
+
+// This process's database file, removed when the process exits (each test
+// runs in its own process: the files of earlier runs piled up in /tmp).
+std::string database_path() {
+  return (fs::temp_directory_path() / ("legwork_capi_test_" + std::to_string(::getpid()) + ".lwdb")).string();
+}
+void remove_database_file() {
+  std::error_code ec;
+  fs::remove(database_path(), ec);
+}
 
 // A database over the repo's sample trials without 07_02, built once.
 const std::string& database_file() {
@@ -36,8 +47,9 @@ const std::string& database_file() {
       t.motion = testdata::load_sample(std::string("cmu/bvh/") + name + ".bvh");
       trials.push_back(std::move(t));
     }
-    const std::string p = (fs::temp_directory_path() / ("legwork_capi_test_" + std::to_string(::getpid()) + ".lwdb")).string();
+    const std::string p = database_path();
     accent::save_database(p, accent::build_database(trials, accent::BuildConfig{}));
+    std::atexit(remove_database_file);
     return p;
   }();
   return path;
