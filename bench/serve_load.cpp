@@ -254,6 +254,10 @@ int main(int argc, char** argv) {
   app.add_option("--method", method, "session method");
   std::vector<std::string> classes;
   app.add_option("--classes", classes, "hello classes (accent; default: none given, the server recognises the activity)")->delimiter(',');
+  double search_interval = -1;
+  app.add_option("--search-interval", search_interval,
+                 "hello search_interval in seconds (accent: between two database searches; default: the server's)")
+      ->check(CLI::Range(0.0, 1.0));
   double user_height = -1;
   app.add_option("--user-height", user_height,
                  "hello user_height in metres (default: the trial subject's standing height, as the viewer sends; 0: none)");
@@ -276,6 +280,7 @@ int main(int argc, char** argv) {
   json hello = {{"type", "hello"}, {"version", 1}, {"method", method}, {"format", "binary"}, {"record", false}};
   if (user_height > 0 && method != "walker") hello["user_height"] = user_height;
   if (!classes.empty()) hello["classes"] = classes;
+  if (search_interval >= 0) hello["search_interval"] = search_interval;
   std::vector<std::string> frames;
   for (auto f : tracker_frames_from_motion(motion, 90.0)) {
     f.foot(kLeft).valid = f.foot(kRight).valid = false;
