@@ -1319,7 +1319,7 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
       info->foot_locked[f] = st.foot[f].locked;
     }
     info->ik_share = st.ik_share;
-    info->searched = matched ? st.search_now : st.have_head && !cfg.direct_only;
+    info->searched = st.have_head && !cfg.direct_only && st.search_now;  // blend_candidates ran and searched
     info->active_class = st.active_class;
     info->classes_searched = !info->searched ? 0  // continued matches (Settings::search_interval)
                              : st.active_class < 0 ? static_cast<int>(model.allowed_classes().size())
