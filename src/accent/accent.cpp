@@ -304,7 +304,7 @@ void reset(const Model& model, State& s) {
   std::fill(s.class_cost.begin(), s.class_cost.end(), -1.0);
   std::fill(s.class_seed.begin(), s.class_seed.end(), std::array<int, 2>{-1, -1});
   std::fill(s.active_mask.begin(), s.active_mask.end(), 0);
-  s.since_search = -1;
+  s.since_search = 0;
   s.search_now = true;
 }
 
@@ -869,11 +869,10 @@ bool blend_candidates(const Model& model, State& st, double threshold, double dt
   // no match); class recognition runs with the searches, over the time since
   // the last one.
   const double interval = model.settings().search_interval;
-  st.since_search = st.since_search < 0 ? interval : st.since_search + dt;
-  st.search_now = interval <= 0 || st.since_search >= interval * (1 - 1e-6) || st.match_count[0] == 0 || st.match_count[1] == 0;
-  const double searched_dt = st.search_now && interval > 0 ? st.since_search : dt;
+  st.since_search += dt;
+  st.search_now = st.since_search >= interval * (1 - 1e-6) || st.match_count[0] == 0 || st.match_count[1] == 0;
+  if (st.search_now && model.recognizes_class()) recognize_class(model, st, st.since_search);
   if (st.search_now) st.since_search = 0;
-  if (model.recognizes_class() && st.search_now) recognize_class(model, st, searched_dt);
   for (int h = 0; h < 2; ++h) {
     st.match_count[static_cast<std::size_t>(h)] = gather_matches(model, st, h, threshold);
     align_matches(model, st, h, threshold, query_xz);

@@ -368,9 +368,9 @@ struct State {
   std::vector<std::array<int, 2>> class_seed;  // best window per class and hand (seeds the probes)
   std::vector<unsigned char> active_mask, probe_mask;
   std::vector<float> active_scale;  // Settings::other_class_cost around the recognised class
-  // Settings::search_interval: input seconds since the last search (< 0: none
-  // since the last reset) and this frame's choice.
-  double since_search = -1;
+  // Settings::search_interval: input seconds since the last search (a frame
+  // after a reset searches anyway: it has no matches) and this frame's choice.
+  double since_search = 0;
   bool search_now = true;
   Pose smoothed;                // EWMA output
   std::vector<Quat> spring_rot; // spring filter: filtered local rotations...
