@@ -71,6 +71,7 @@ struct BenchArgs {
   bool no_recall = false;                   // --no-recall: skip the recall pass
   double scale = 0, other_class_cost = Settings{}.other_class_cost, search_interval = Settings{}.search_interval;
   int repeat = 3, k = Settings{}.k_left, max_checks = Settings{}.fast_max_checks;
+  int avatars = 1;  // --avatars: updated round robin on this core (a server's sessions)
   float eps = Settings{}.fast_eps;
 };
 
@@ -181,8 +182,11 @@ void record_load(json& j) {
               std::thread::hardware_concurrency());
 }
 
+// Frames between two avatars' starting points in the trial (--avatars; as serve_load's clients).
+constexpr std::size_t kAvatarOffset = 7;
+
 // Per-frame latency (mean, p99) and frames/s (wall and thread CPU) of one
-// avatar over the trial, per search mode.
+// avatar (or --avatars round robin) over the trial, per search mode.
 void measure_modes(const Database& db, const BenchArgs* a, const Motion& truth, const std::vector<TrackerFrame>& frames,
                    json& j) {
   json modes = json::object();
@@ -201,21 +205,34 @@ void measure_modes(const Database& db, const BenchArgs* a, const Motion& truth, 
     cfg.classes = split_commas(a->classes_run);
     if (a->no_ik_blend) cfg.ik_blend_min = cfg.ik_blend_max = 0;
     std::vector<double> lat;
-    lat.reserve(frames.size() * static_cast<std::size_t>(a->repeat));
+    lat.reserve(frames.size() * static_cast<std::size_t>(a->repeat * a->avatars));
     double total = 0, cpu = 0;
     std::size_t bytes = 0;
     for (int r = 0; r < a->repeat; ++r) {
-      const Model model = make_model(db, cfg);
-      State state(model);
-      Pose pose(model.skeleton());
-      bytes = state.bytes();
+      // --avatars: each its own model and state (as a server's sessions), avatar i
+      // kAvatarOffset x i frames into the trial, all updated once per input frame.
+      std::vector<Model> models;
+      std::vector<State> states;
+      std::vector<Pose> poses;
+      models.reserve(static_cast<std::size_t>(a->avatars));
+      states.reserve(static_cast<std::size_t>(a->avatars));
+      for (int i = 0; i < a->avatars; ++i) {
+        models.push_back(make_model(db, cfg));
+        states.emplace_back(models.back());
+        poses.emplace_back(models.back().skeleton());
+      }
+      bytes = states[0].bytes();
       const double c0 = thread_cpu_seconds();
-      for (const auto& f : frames) {
-        const auto s = Clock::now();
-        update(model, f, state, pose.ref());
-        const double dt = seconds_since(s);
-        lat.push_back(dt);
-        total += dt;
+      for (std::size_t f = 0; f < frames.size(); ++f) {
+        for (std::size_t i = 0; i < models.size(); ++i) {
+          TrackerFrame in = frames[(f + kAvatarOffset * i) % frames.size()];
+          in.time = frames[f].time;
+          const auto s = Clock::now();
+          update(models[i], in, states[i], poses[i].ref());
+          const double dt = seconds_since(s);
+          lat.push_back(dt);
+          total += dt;
+        }
       }
       cpu += thread_cpu_seconds() - c0;
     }
@@ -223,13 +240,15 @@ void measure_modes(const Database& db, const BenchArgs* a, const Motion& truth, 
     const double p99_us = 1e6 * percentile(lat, 0.99);
     const double fps_run = static_cast<double>(lat.size()) / total;
     const double fps_cpu = static_cast<double>(lat.size()) / cpu;
-    std::printf("%-6s wall: mean %7.2f us, p99 %7.2f us, %8.0f frames/s | CPU time: %8.0f frames/s (%.0fx the document's 152 Hz)\n",
-                mode_name(mode), mean_us, p99_us, fps_run, fps_cpu, fps_cpu / 152.0);
+    std::printf("%-6s wall: mean %7.2f us, p99 %7.2f us, %8.0f frames/s | CPU time: %8.0f frames/s (%.0fx the document's 152 Hz)%s\n",
+                mode_name(mode), mean_us, p99_us, fps_run, fps_cpu, fps_cpu / 152.0,
+                a->avatars > 1 ? (", " + std::to_string(a->avatars) + " avatars round robin").c_str() : "");
     modes[mode_name(mode)] = {{"mean_us", mean_us}, {"p99_us", p99_us}, {"frames_per_second", fps_run},
                               {"frames_per_cpu_second", fps_cpu}, {"cpu_us_per_frame", 1e6 * cpu / static_cast<double>(lat.size())},
                               {"speedup_vs_152hz", fps_cpu / 152.0}, {"avatar_state_bytes", bytes}};
   }
   j["modes"] = modes;
+  j["avatars"] = a->avatars;
   if (!timed.empty()) j["avatar_state_bytes"] = modes[mode_name(timed.back())]["avatar_state_bytes"];
 }
 
@@ -278,6 +297,10 @@ int run(int argc, char** argv) {
   cmd->add_option("--run-classes", a->classes_run, "comma-separated classes the timed avatar matches (default: all)");
   cmd->add_option("--modes", a->modes, "comma-separated search modes to time: brute, exact, fast (default: all three)");
   cmd->add_flag("--no-recall", a->no_recall, "skip the fast-mode recall pass");
+  cmd->add_option("--avatars", a->avatars,
+                  "time this many avatars updated round robin on this core, each its own model and state and 7 frames "
+                  "further into the trial (a server's sessions: their states compete for the cache)")
+      ->check(CLI::Range(1, 5000));
   CLI11_PARSE(app, argc, argv);
   a->timed = parse_modes(a->modes);  // a bad --modes fails before the database loads
   {

@@ -24,6 +24,7 @@
 #include <boost/beast.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -97,12 +98,13 @@ constexpr long kPeriodUs = 11111;  // 90 Hz
 
 class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
  public:
-  // phase: when in the 11.1 ms frame period this client sends (0..1).
+  // phase: when in the 11.1 ms frame period this client sends (0..1);
+  // delay: whole periods before its first frame (--start-spread).
   // hello: the session's hello message (JSON text).
   ReplayClient(net::io_context& ioc, const std::vector<std::string>& frames, Run& run, std::string hello, double seconds,
-               int offset, double phase)
+               int offset, double phase, long delay)
       : ws_(net::make_strand(ioc)), timer_(ioc), frames_(frames), run_(run), hello_(std::move(hello)), seconds_(seconds),
-        index_(static_cast<std::size_t>(offset) % frames.size()), phase_(phase) {}
+        index_(static_cast<std::size_t>(offset) % frames.size()), phase_(phase), delay_(delay) {}
 
   void start(const tcp::endpoint& ep) {
     beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(10));
@@ -145,8 +147,8 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
     if (ws_.got_text()) {
       const json j = json::parse(beast::buffers_to_string(buf_.data()), nullptr, false);
       if (j.value("type", "") == "welcome") {
-        start_ = now;
-        next_ = now + std::chrono::microseconds(static_cast<long>(phase_ * kPeriodUs));
+        next_ = now + std::chrono::microseconds(static_cast<long>(phase_ * kPeriodUs) + delay_ * kPeriodUs);
+        start_ = next_;
         timer_.expires_at(next_);
         timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
           if (!ec && !self->failed_) self->tick();
@@ -203,6 +205,7 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
   double seconds_;
   std::size_t index_;
   double phase_;
+  long delay_;
   beast::flat_buffer buf_;
   std::vector<Clock::time_point> sent_at_;
   Clock::time_point start_, next_;
@@ -211,14 +214,20 @@ class ReplayClient : public std::enable_shared_from_this<ReplayClient> {
 
 // Clients send at evenly spread phases of the frame period, as independent
 // headsets do; `aligned` makes them all send at once (the worst case).
+// `start_spread` seconds: client i starts its stream frac(i x 0.618...) of it
+// later, in whole periods, as users who joined at different moments (0: all
+// in the first period; their avatars then search the database on the same frames).
 Run run_clients(const tcp::endpoint& ep, const std::vector<std::string>& frames, int clients, double seconds,
-                const std::string& hello, bool aligned) {
+                const std::string& hello, bool aligned, double start_spread) {
   Run run;
   run.clients = clients;
   net::io_context ioc;
-  for (int i = 0; i < clients; ++i)
-    std::make_shared<ReplayClient>(ioc, frames, run, hello, seconds, i * 7, aligned ? 0.0 : double(i) / clients)->start(ep);
-  ioc.run_for(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds + 15)));
+  for (int i = 0; i < clients; ++i) {
+    const double u = std::fmod(0.6180339887498949 * i, 1.0);
+    const long delay = aligned ? 0 : static_cast<long>(u * start_spread * 1e6 / kPeriodUs);
+    std::make_shared<ReplayClient>(ioc, frames, run, hello, seconds, i * 7, aligned ? 0.0 : double(i) / clients, delay)->start(ep);
+  }
+  ioc.run_for(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds + start_spread + 15)));
   auto& l = run.latency_ms;
   std::sort(l.begin(), l.end());
   if (!l.empty()) {
@@ -254,7 +263,11 @@ int main(int argc, char** argv) {
   app.add_option("--method", method, "session method");
   std::vector<std::string> classes;
   app.add_option("--classes", classes, "hello classes (accent; default: none given, the server recognises the activity)")->delimiter(',');
-  double search_interval = -1;
+  double search_interval = -1, start_spread = 0;
+  app.add_option("--start-spread", start_spread,
+                 "seconds over which the clients' streams start (not with --aligned), as users joining at different "
+                 "moments; 0 = all in the first frame period")
+      ->check(CLI::Range(0.0, 10.0));
   app.add_option("--search-interval", search_interval,
                  "hello search_interval in seconds (accent: between two database searches; default: the server's)")
       ->check(CLI::Range(0.0, 1.0));
@@ -293,7 +306,7 @@ int main(int argc, char** argv) {
   auto step = [&](int n, bool& answered) {
     const double cpu0 = cpu_seconds(server_pids), wait0 = runqueue_wait_seconds(server_pids);
     const double self_wait0 = runqueue_wait_seconds({static_cast<int>(getpid())});
-    Run r = run_clients(ep, frames, n, seconds, hello.dump(), aligned);
+    Run r = run_clients(ep, frames, n, seconds, hello.dump(), aligned, start_spread);
     if (r.answered > 0) {
       const auto per_frame = [&](double s) { return 1e6 * s / static_cast<double>(r.answered); };
       r.client_wait_us_per_frame = per_frame(runqueue_wait_seconds({static_cast<int>(getpid())}) - self_wait0);
@@ -329,7 +342,7 @@ int main(int argc, char** argv) {
   }
   std::printf("%s: %d avatars sustained at 90 Hz with p99 <= %.1f ms (method %s)\n", label.c_str(), sustained, p99_limit, method.c_str());
   if (!out.empty()) {
-    std::ofstream(out) << json{{"label", label}, {"method", method}, {"hello", hello}, {"rate_hz", 90}, {"p99_limit_ms", p99_limit}, {"aligned", aligned},
+    std::ofstream(out) << json{{"label", label}, {"method", method}, {"hello", hello}, {"rate_hz", 90}, {"p99_limit_ms", p99_limit}, {"aligned", aligned}, {"start_spread_seconds", start_spread},
                                {"sustained_avatars", sustained}, {"steps", steps}}
                               .dump(2)
                        << "\n";

@@ -7,9 +7,11 @@
 # Prints the figures and writes OUT.json (default serve-bench.json).
 #   scripts/serve-bench.sh [--out FILE] [--method ik|accent] [--db FILE] [--classes a,b] [--seconds S] [--max-clients N]
 #                          [--build DIR] [--workers N (default 0)] [--aligned] [--one-only] [--search-interval S]
+#                          [--start-spread S]
 # --classes: the sessions' accent classes (default none: the server recognises the activity);
 # --search-interval: the sessions' accent search interval in seconds (default: the server's, 0.044);
 # --aligned: clients send at the same instant (default: spread over the frame period);
+# --start-spread: seconds over which the clients' streams start (default 0: all in the first period);
 # --one-only: skip the two-process HAProxy run.
 # serve_load reports the servers' CPU per frame and their run-queue wait (CPU time other
 # processes took from them): on a shared machine the latency figures include it.
@@ -29,6 +31,7 @@ while [ $# -gt 0 ]; do
     --classes) load_args+=(--classes "$2"); shift 2 ;;
     --search-interval) load_args+=(--search-interval "$2"); shift 2 ;;
     --aligned) load_args+=(--aligned); shift ;;
+    --start-spread) load_args+=(--start-spread "$2"); shift 2 ;;
     --one-only) one_only=1; shift ;;
     *) echo "serve-bench: unknown option $1" >&2; exit 2 ;;
   esac

@@ -51,6 +51,14 @@ add_test(NAME cli.accent_speed_fast_only COMMAND accent_speed --db ${ACC_DB} --i
          --modes fast --no-recall)
 set_tests_properties(cli.accent_speed_fast_only PROPERTIES FIXTURES_REQUIRED accent_db
                      PASS_REGULAR_EXPRESSION "fast +wall: mean" FAIL_REGULAR_EXPRESSION "brute|exact +wall|recall@")
+# --avatars: several avatars, each its own state, timed round robin (a server's sessions).
+add_test(NAME cli.accent_speed_avatars COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --drop-first --repeat 1
+         --modes fast --no-recall --avatars 3)
+set_tests_properties(cli.accent_speed_avatars PROPERTIES FIXTURES_REQUIRED accent_db
+                     PASS_REGULAR_EXPRESSION "fast +wall: mean .*, 3 avatars round robin")
+add_test(NAME cli.accent_speed_bad_avatars COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --avatars 0)
+set_tests_properties(cli.accent_speed_bad_avatars PROPERTIES FIXTURES_REQUIRED accent_db
+                     PASS_REGULAR_EXPRESSION "--avatars: Value 0 not in range 1 to 5000" FAIL_REGULAR_EXPRESSION "database:")
 add_test(NAME cli.accent_speed_bad_mode COMMAND accent_speed --db ${ACC_DB} --input ${D}/walking/07_02.bvh --modes fast,quick)
 set_tests_properties(cli.accent_speed_bad_mode PROPERTIES FIXTURES_REQUIRED accent_db
                      PASS_REGULAR_EXPRESSION "error: --modes: unknown search mode 'quick' \\(expected brute, exact or fast\\)"
