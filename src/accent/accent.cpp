@@ -16,22 +16,25 @@
 namespace legwork::accent {
 namespace {
 
-// Swing-twist clamp of a local rotation about the bone axis.
-Quat clamp_rotation(const Quat& q, const Vec3& axis, double max_swing, double max_twist) {
+// Swing-twist clamp of a local rotation about the bone axis (limits and their
+// half angles' cosines as in Model::Limit).
+Quat clamp_rotation(const Quat& q, const Model::Limit& l) {
+  const Vec3& axis = l.axis;
   const Vec3 v(q.x(), q.y(), q.z());
   const Vec3 p = axis * v.dot(axis);
   Quat twist(q.w(), p.x(), p.y(), p.z());
   if (twist.norm() < 1e-9) twist = Quat::Identity();
   twist.normalize();
   Quat swing = q * twist.conjugate();
-  auto limit = [](Quat r, double max_angle) {
+  auto limit = [](Quat r, double max_angle, double cos_half_max) {
     if (r.w() < 0) r.coeffs() = -r.coeffs();
+    if (r.w() >= cos_half_max) return r;  // within the limit: its angle is at most max_angle
     const double angle = 2.0 * std::acos(std::clamp(r.w(), -1.0, 1.0));
     if (angle <= max_angle || angle < 1e-9) return r;
     return Quat::Identity().slerp(max_angle / angle, r);
   };
-  if (max_swing > 0) swing = limit(swing, max_swing);
-  if (max_twist > 0) twist = limit(twist, max_twist);
+  if (l.swing > 0) swing = limit(swing, l.swing, l.cos_half_swing);
+  if (l.twist > 0) twist = limit(twist, l.twist, l.cos_half_twist);
   return (swing * twist).normalized();
 }
 
@@ -118,15 +121,19 @@ std::vector<unsigned char> make_class_mask(const Database& db, const std::vector
 }
 
 // Joint limits per joint type (swing from the rest pose, twist about the bone), degrees.
+Model::Limit make_limit(const Vec3& axis, double swing, double twist) {
+  return {axis, swing, twist, std::cos(0.5 * swing), std::cos(0.5 * twist)};
+}
+
 std::vector<Model::Limit> make_limits(const Skeleton& skel) {
   const auto& r = skel.roles;
   std::vector<Model::Limit> limit(static_cast<std::size_t>(skel.joint_count()));
   auto set = [&](Role role, double swing, double twist) {
     if (!r.has(role)) return;
     const int j = r[role];
-    limit[static_cast<std::size_t>(j)] = {rest_direction(skel, j), deg2rad(swing), deg2rad(twist)};
+    limit[static_cast<std::size_t>(j)] = make_limit(rest_direction(skel, j), deg2rad(swing), deg2rad(twist));
   };
-  for (int j : r.spine_chain) limit[static_cast<std::size_t>(j)] = {rest_direction(skel, j), deg2rad(45), deg2rad(35)};
+  for (int j : r.spine_chain) limit[static_cast<std::size_t>(j)] = make_limit(rest_direction(skel, j), deg2rad(45), deg2rad(35));
   set(Role::Neck, 50, 60);
   set(Role::Head, 60, 80);
   for (Role c : {Role::LeftClavicle, Role::RightClavicle}) set(c, 35, 25);
@@ -581,8 +588,8 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
     st.ahead[hu][iu] = next >= 0 ? db.settings().speeds[src.speed] / db.settings().hop : 0.0;
     Quat q0(root[0], root[1], root[2], root[3]), n0(after[0], after[1], after[2], after[3]);
     if (model.settings().align) {
-      const double yaw = align_yaw(query_xz, db.align(win));
-      const Quat turn = crown_share > 0 ? lying_turn(db, root, st.last_head_rot, crown_share, yaw) : yaw_rotation(yaw);
+      const Quat turn = crown_share > 0 ? lying_turn(db, root, st.last_head_rot, crown_share, align_yaw(query_xz, db.align(win)))
+                                        : align_turn(query_xz, db.align(win));
       q0 = turn * q0;
       n0 = turn * n0;
     }
@@ -1158,7 +1165,7 @@ void finish_pose(const Model& model, State& st, const Quat& head_rotation, const
     for (int j = 1; j < n; ++j) {
       const auto& l = model.limit(j);
       if (l.swing > 0 || l.twist > 0)
-        out.rotations[static_cast<std::size_t>(j)] = clamp_rotation(out.rotations[static_cast<std::size_t>(j)], l.axis, l.swing, l.twist);
+        out.rotations[static_cast<std::size_t>(j)] = clamp_rotation(out.rotations[static_cast<std::size_t>(j)], l);
     }
   if (model.settings().drive_head) drive_head(model, st, head_rotation, out);
   for (int j = 0; j < n; ++j) out.translations[static_cast<std::size_t>(j)] = skel.rest_offsets[static_cast<std::size_t>(j)];

@@ -64,7 +64,9 @@ void fill_align(const HandWindow& left, const HandWindow& right, AlignXZ& out) {
   }
 }
 
-double align_yaw(const AlignXZ& q, const AlignXZ& s) {
+namespace {
+// The closed form's sums: the aligning angle is atan2(num, den).
+void align_sums(const AlignXZ& q, const AlignXZ& s, double& num, double& den) {
   // Sums of the closed form; c_i rises linearly over the window for both hands,
   // so the latest samples (the pose we output) count most.
   double sc = 0, sxq = 0, szq = 0, sxs = 0, szs = 0, cross = 0, dot = 0;
@@ -78,10 +80,34 @@ double align_yaw(const AlignXZ& q, const AlignXZ& s) {
       cross += c * (xq * zs - xs * zq);
       dot += c * (xq * xs + zq * zs);
     }
-  const double num = cross - (sxq * szs - sxs * szq) / sc;
-  const double den = dot - (sxq * sxs + szq * szs) / sc;
+  num = cross - (sxq * szs - sxs * szq) / sc;
+  den = dot - (sxq * sxs + szq * szs) / sc;
+}
+}  // namespace
+
+double align_yaw(const AlignXZ& q, const AlignXZ& s) {
+  double num = 0, den = 0;
+  align_sums(q, s, num, den);
   if (std::abs(num) < 1e-300 && std::abs(den) < 1e-300) return 0.0;
   return std::atan2(num, den);
+}
+
+Quat align_turn(const AlignXZ& q, const AlignXZ& s) {
+  double num = 0, den = 0;
+  align_sums(q, s, num, den);
+  if (std::abs(num) < 1e-300 && std::abs(den) < 1e-300) return Quat::Identity();
+  // The angle's cosine and sine, then the half angle's (cos >= 0, the angle in
+  // (-pi, pi]), each from the better-conditioned of the two half-angle forms.
+  const double r = std::sqrt(num * num + den * den), c = den / r, sn = num / r;
+  double ch, sh;
+  if (c >= 0) {
+    ch = std::sqrt(0.5 * (1 + c));
+    sh = sn / (2 * ch);
+  } else {
+    sh = std::copysign(std::sqrt(0.5 * (1 - c)), sn);
+    ch = sn / (2 * sh);
+  }
+  return Quat(ch, 0, sh, 0);
 }
 
 }  // namespace legwork::accent

@@ -1,6 +1,7 @@
 // Feature extraction and rotation alignment against analytic answers.
 #include <legwork/accent/offline/builder.hpp>
 #include <legwork/accent/features.hpp>
+#include <legwork/core/rotation.hpp>
 
 #include "accent_testing.hpp"
 
@@ -74,7 +75,27 @@ TEST(AccentAlignment, RecoversAKnownRotationAboutY) {
       }
       // Float storage of q bounds the achievable precision; compare in double on the same data.
       EXPECT_NEAR(std::remainder(align_yaw(q, s) - angle, 2 * kPi), 0.0, 1e-6) << "angle " << angle << " window " << win;
+      // The engine's per-candidate form: the same turn as a quaternion, without the angle.
+      const Quat turn = align_turn(q, s), expected = yaw_rotation(align_yaw(q, s));
+      EXPECT_NEAR(std::abs(turn.dot(expected)), 1.0, 1e-12) << "angle " << angle << " window " << win;
+      EXPECT_NEAR(turn.norm(), 1.0, 1e-12);
+      EXPECT_GE(turn.w(), 0.0);
+      EXPECT_NEAR(turn.x(), 0.0, 0.0);
+      EXPECT_NEAR(turn.z(), 0.0, 0.0);
     }
+  }
+  // Small angles keep their precision (the half-angle sine from the sine, not from 1 - cos).
+  const AlignXZ& s = db.align(10);
+  for (double angle : {1e-3, -2e-5, 1e-7}) {
+    AlignXZ q;
+    const double c = std::cos(angle), sn = std::sin(angle);
+    for (int k = 0; k < 2 * kWindow; ++k) {
+      const double x = s[static_cast<std::size_t>(2 * k)], z = s[static_cast<std::size_t>(2 * k + 1)];
+      q[static_cast<std::size_t>(2 * k)] = static_cast<float>(c * x + sn * z);
+      q[static_cast<std::size_t>(2 * k + 1)] = static_cast<float>(-sn * x + c * z);
+    }
+    const double yaw = align_yaw(q, s);
+    EXPECT_NEAR(align_turn(q, s).y(), std::sin(yaw / 2), 1e-15) << "angle " << angle;
   }
 }
 

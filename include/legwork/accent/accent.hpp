@@ -239,6 +239,7 @@ class Model {
   struct Limit {
     Vec3 axis = Vec3::UnitY();
     double swing = 0, twist = 0;  // radians; 0 = unlimited
+    double cos_half_swing = 1, cos_half_twist = 1;  // cos(swing / 2), cos(twist / 2): within the limit without an acos
   };
 
   const Database& database() const { return *db_; }

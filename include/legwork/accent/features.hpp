@@ -70,6 +70,9 @@ struct FeatureSpace {
 // to s. Inputs: xz pairs per sample, [hand][sample][x,z].
 using AlignXZ = std::array<float, 2 * kWindow * 2>;  // [hand 0/1][sample][x/z]
 double align_yaw(const AlignXZ& q, const AlignXZ& s);
+// The same rotation as a quaternion, yaw_rotation(align_yaw(q, s)) up to
+// rounding, without the angle's atan2, cos and sin (the per-candidate path).
+Quat align_turn(const AlignXZ& q, const AlignXZ& s);
 void fill_align(const HandWindow& left, const HandWindow& right, AlignXZ& out);
 
 }  // namespace legwork::accent
