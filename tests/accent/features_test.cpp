@@ -55,6 +55,18 @@ TEST(AccentFeatures, SinusoidDerivativesMatchAnalyticWithinDiscretisationError) 
   }
 }
 
+// Window s turned about y by `angle`: x' = c x + s z, z' = -s x + c z.
+AlignXZ rotated_about_y(const AlignXZ& s, double angle) {
+  AlignXZ q;
+  const double c = std::cos(angle), sn = std::sin(angle);
+  for (int k = 0; k < 2 * kWindow; ++k) {
+    const double x = s[static_cast<std::size_t>(2 * k)], z = s[static_cast<std::size_t>(2 * k + 1)];
+    q[static_cast<std::size_t>(2 * k)] = static_cast<float>(c * x + sn * z);
+    q[static_cast<std::size_t>(2 * k + 1)] = static_cast<float>(-sn * x + c * z);
+  }
+  return q;
+}
+
 TEST(AccentAlignment, RecoversAKnownRotationAboutY) {
   // A real database window (07_01's hands), rotated about y by known angles.
   const auto trials = testing::sample_trials({"walking/07_01"});
@@ -65,14 +77,7 @@ TEST(AccentAlignment, RecoversAKnownRotationAboutY) {
   for (double angle : {0.0, 0.3, -1.1, 2.5, -3.0}) {
     for (int win : {10, db.window_count() / 2}) {
       const AlignXZ& s = db.align(win);
-      AlignXZ q;
-      const double c = std::cos(angle), sn = std::sin(angle);
-      for (int k = 0; k < 2 * kWindow; ++k) {
-        const double x = s[static_cast<std::size_t>(2 * k)], z = s[static_cast<std::size_t>(2 * k + 1)];
-        // R_y(angle) applied to s: x' = c x + s z, z' = -s x + c z.
-        q[static_cast<std::size_t>(2 * k)] = static_cast<float>(c * x + sn * z);
-        q[static_cast<std::size_t>(2 * k + 1)] = static_cast<float>(-sn * x + c * z);
-      }
+      const AlignXZ q = rotated_about_y(s, angle);
       // Float storage of q bounds the achievable precision; compare in double on the same data.
       EXPECT_NEAR(std::remainder(align_yaw(q, s) - angle, 2 * kPi), 0.0, 1e-6) << "angle " << angle << " window " << win;
       // The engine's per-candidate form: the same turn as a quaternion, without the angle.
@@ -87,13 +92,7 @@ TEST(AccentAlignment, RecoversAKnownRotationAboutY) {
   // Small angles keep their precision (the half-angle sine from the sine, not from 1 - cos).
   const AlignXZ& s = db.align(10);
   for (double angle : {1e-3, -2e-5, 1e-7}) {
-    AlignXZ q;
-    const double c = std::cos(angle), sn = std::sin(angle);
-    for (int k = 0; k < 2 * kWindow; ++k) {
-      const double x = s[static_cast<std::size_t>(2 * k)], z = s[static_cast<std::size_t>(2 * k + 1)];
-      q[static_cast<std::size_t>(2 * k)] = static_cast<float>(c * x + sn * z);
-      q[static_cast<std::size_t>(2 * k + 1)] = static_cast<float>(-sn * x + c * z);
-    }
+    const AlignXZ q = rotated_about_y(s, angle);
     const double yaw = align_yaw(q, s);
     EXPECT_NEAR(align_turn(q, s).y(), std::sin(yaw / 2), 1e-15) << "angle " << angle;
   }
