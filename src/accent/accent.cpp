@@ -120,11 +120,12 @@ std::vector<unsigned char> make_class_mask(const Database& db, const std::vector
   return mask;
 }
 
-// Joint limits per joint type (swing from the rest pose, twist about the bone), degrees.
+// One joint's limit (radians) with its half angles' cosines.
 Model::Limit make_limit(const Vec3& axis, double swing, double twist) {
   return {axis, swing, twist, std::cos(0.5 * swing), std::cos(0.5 * twist)};
 }
 
+// Joint limits per joint type (swing from the rest pose, twist about the bone), degrees.
 std::vector<Model::Limit> make_limits(const Skeleton& skel) {
   const auto& r = skel.roles;
   std::vector<Model::Limit> limit(static_cast<std::size_t>(skel.joint_count()));

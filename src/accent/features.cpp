@@ -98,7 +98,9 @@ Quat align_turn(const AlignXZ& q, const AlignXZ& s) {
   if (std::abs(num) < 1e-300 && std::abs(den) < 1e-300) return Quat::Identity();
   // The angle's cosine and sine, then the half angle's (cos >= 0, the angle in
   // (-pi, pi]), each from the better-conditioned of the two half-angle forms.
-  const double r = std::sqrt(num * num + den * den), c = den / r, sn = num / r;
+  const double r = std::sqrt(num * num + den * den);
+  if (!(r > 0)) return Quat::Identity();  // the squares underflowed (no turn to speak of)
+  const double c = den / r, sn = num / r;
   double ch, sh;
   if (c >= 0) {
     ch = std::sqrt(0.5 * (1 + c));
