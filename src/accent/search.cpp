@@ -123,10 +123,18 @@ std::size_t nearest_class_tree(const Database::Impl& d, int hand, const Feature&
   return best;
 }
 
+// Squared class factors (class_scale), when given for every class.
+struct ClassScale2 {
+  std::span<const float> scale;
+  float operator()(std::size_t c) const { return scale.empty() ? 1.0f : scale[c] * scale[c]; }
+};
+ClassScale2 class_scale2_of(const Database& db, std::span<const float> class_scale) {
+  return {class_scale.size() >= db.impl().meta.ranges.size() ? class_scale : std::span<const float>{}};
+}
+
 // The given windows into the sorted top-k list out[0..n) (squared distances).
-template <class Scale2>
 int rank_squared(const Database& db, int hand, const Feature& query, int k, std::span<const unsigned char> class_mask,
-                 std::span<const int> windows, std::span<Match> out, Scale2 scale2) {
+                 std::span<const int> windows, std::span<Match> out, const ClassScale2& scale2) {
   const auto& d = db.impl();
   const float* feats = reinterpret_cast<const float*>(d.features[hand]);
   int n = 0;
@@ -140,15 +148,6 @@ int rank_squared(const Database& db, int hand, const Feature& query, int k, std:
                      squared_distance(feats + static_cast<std::ptrdiff_t>(d.row_of_window[hand][w]) * kDim, query.data()));
     }
   return n;
-}
-
-// Squared class factors (class_scale), when given for every class.
-struct ClassScale2 {
-  std::span<const float> scale;
-  float operator()(std::size_t c) const { return scale.empty() ? 1.0f : scale[c] * scale[c]; }
-};
-ClassScale2 class_scale2_of(const Database& db, std::span<const float> class_scale) {
-  return {class_scale.size() >= db.impl().meta.ranges.size() ? class_scale : std::span<const float>{}};
 }
 
 }  // namespace
