@@ -605,29 +605,35 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
 }
 
 // Blend one joint's rotation over the candidates of the hands in `share`.
+// `Root`: joint 0, whose candidate rotations are the aligned ones.
+template <bool Root>
 Quat blend_joint(const State& st, int j, const double share[2], Quat& ahead) {
-  const auto ju = static_cast<std::size_t>(j);
+  const auto ju = 4 * static_cast<std::size_t>(j);
   Eigen::Vector4d acc = Eigen::Vector4d::Zero(), acc_ahead = Eigen::Vector4d::Zero();
   Eigen::Vector4d ref = Eigen::Vector4d::Zero();
+  bool have_ref = false;
   for (int h = 0; h < 2; ++h) {
     if (share[h] == 0) continue;
     const auto hu = static_cast<std::size_t>(h);
     for (int i = 0; i < st.match_count[hu]; ++i) {
       const auto iu = static_cast<std::size_t>(i);
       Eigen::Vector4d q, n;
-      if (j == 0) {
+      if constexpr (Root) {
         const Quat& r0 = st.root_aligned[hu][iu];
         const Quat& n0 = st.root_next_aligned[hu][iu];
         q = {r0.w(), r0.x(), r0.y(), r0.z()};
         n = {n0.w(), n0.x(), n0.y(), n0.z()};
       } else {
-        const float* rot = st.pose_rot[hu][iu];
-        const float* nxt = st.next_rot[hu][iu];
-        q = {rot[4 * ju], rot[4 * ju + 1], rot[4 * ju + 2], rot[4 * ju + 3]};
-        n = {nxt[4 * ju], nxt[4 * ju + 1], nxt[4 * ju + 2], nxt[4 * ju + 3]};
+        const float* rot = st.pose_rot[hu][iu] + ju;
+        const float* nxt = st.next_rot[hu][iu] + ju;
+        q = {rot[0], rot[1], rot[2], rot[3]};
+        n = {nxt[0], nxt[1], nxt[2], nxt[3]};
       }
-      if (ref.isZero()) ref = q;
-      const double wq = q.dot(ref) < 0 ? -share[h] * st.weight[hu][iu] : share[h] * st.weight[hu][iu];  // same hemisphere as the first candidate
+      if (!have_ref) {  // the hemisphere of the first candidate
+        ref = q;
+        have_ref = true;
+      }
+      const double wq = q.dot(ref) < 0 ? -share[h] * st.weight[hu][iu] : share[h] * st.weight[hu][iu];
       const double a = st.ahead[hu][iu];
       acc += wq * q;
       acc_ahead += wq * ((1.0 - a) * q + (n.dot(q) < 0 ? -a : a) * n);
@@ -683,7 +689,7 @@ void blend_matches(const Model& model, State& st, double dt) {
     }
     weight_total += joint_weight;
     Quat ahead;
-    const Quat now = blend_joint(st, j, share, ahead);
+    const Quat now = j == 0 ? blend_joint<true>(st, j, share, ahead) : blend_joint<false>(st, j, share, ahead);
     st.synth.rotations[static_cast<std::size_t>(j)] = now;
     // The candidates' own motion: one database frame on, as a rotation rate.
     st.motion_vel[static_cast<std::size_t>(j)] += follow * (rotation_log(ahead * now.conjugate()) * fps - st.motion_vel[static_cast<std::size_t>(j)]);
