@@ -569,7 +569,7 @@ Quat lying_turn(const Database& db, std::span<const float> pose, const Quat& hea
 // Align: each candidate's root rotated about y by the weighted closed-form
 // alignment (for a lying user, also turned by lying_turn); weights inversely
 // proportional to the match distance.
-void align_matches(const Model& model, State& st, int h, double threshold, const AlignXZ& query_xz) {
+void align_matches(const Model& model, State& st, int h, double threshold, const AlignQuery& query) {
   const Database& db = model.database();
   const double typical = db.typical_distance();
   const auto hu = static_cast<std::size_t>(h);
@@ -589,8 +589,8 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
     st.ahead[hu][iu] = next >= 0 ? db.settings().speeds[src.speed] / db.settings().hop : 0.0;
     Quat q0(root[0], root[1], root[2], root[3]), n0(after[0], after[1], after[2], after[3]);
     if (model.settings().align) {
-      const Quat turn = crown_share > 0 ? lying_turn(db, root, st.last_head_rot, crown_share, align_yaw(query_xz, db.align(win)))
-                                        : align_turn(query_xz, db.align(win));
+      const Quat turn = crown_share > 0 ? lying_turn(db, root, st.last_head_rot, crown_share, align_yaw(query, db.align(win)))
+                                        : align_turn(query, db.align(win));
       q0 = turn * q0;
       n0 = turn * n0;
     }
@@ -875,8 +875,9 @@ bool blend_candidates(const Model& model, State& st, double threshold, double dt
   HandWindow w[2];
   window_at(model, st, 0, w[0]);
   window_at(model, st, 1, w[1]);
-  AlignXZ query_xz;
-  fill_align(w[0], w[1], query_xz);
+  AlignXZ live_xz;
+  fill_align(w[0], w[1], live_xz);
+  const AlignQuery query = align_query(live_xz);
   for (int h = 0; h < 2; ++h) model.database().feature_space().project(w[h], st.live[static_cast<std::size_t>(h)]);
   if (model.settings().travel_weight > 0 || model.settings().max_head_height_diff > 0) live_travel(model, st);
   // Settings::search_interval: search when due (and always while a hand has
@@ -889,7 +890,7 @@ bool blend_candidates(const Model& model, State& st, double threshold, double dt
   if (st.search_now) st.since_search = 0;
   for (int h = 0; h < 2; ++h) {
     st.match_count[static_cast<std::size_t>(h)] = gather_matches(model, st, h, threshold);
-    align_matches(model, st, h, threshold, query_xz);
+    align_matches(model, st, h, threshold, query);
   }
   if (model.recognizes_class() && st.search_now) score_active_class(model, st);
   if (st.match_count[0] == 0 && st.match_count[1] == 0) return false;

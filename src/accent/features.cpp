@@ -65,34 +65,58 @@ void fill_align(const HandWindow& left, const HandWindow& right, AlignXZ& out) {
 }
 
 namespace {
+// Each sample's weight c_i = (i + 1) / kWindow, rising over the window for
+// both hands, so the latest samples (the pose we output) count most; and their sum.
+constexpr std::array<double, kWindow> kAlignWeight = [] {
+  std::array<double, kWindow> c{};
+  for (int i = 0; i < kWindow; ++i) c[static_cast<std::size_t>(i)] = static_cast<double>(i + 1) / kWindow;
+  return c;
+}();
+constexpr double kAlignWeightSum = kWindow + 1.0;  // both hands: 2 x sum of (i + 1) / kWindow = 2 x (kWindow + 1) / 2
+
 // The closed form's sums: the aligning angle is atan2(num, den).
-void align_sums(const AlignXZ& q, const AlignXZ& s, double& num, double& den) {
-  // Sums of the closed form; c_i rises linearly over the window for both hands,
-  // so the latest samples (the pose we output) count most.
-  double sc = 0, sxq = 0, szq = 0, sxs = 0, szs = 0, cross = 0, dot = 0;
+void align_sums(const AlignQuery& q, const AlignXZ& s, double& num, double& den) {
+  double sxs = 0, szs = 0, cross = 0, dot = 0;
   for (int h = 0; h < 2; ++h)
     for (int i = 0; i < kWindow; ++i) {
-      const double c = static_cast<double>(i + 1) / kWindow;
+      const double c = kAlignWeight[static_cast<std::size_t>(i)];
       const auto k = static_cast<std::size_t>(h * 2 * kWindow + 2 * i);
-      const double xq = q[k], zq = q[k + 1], xs = s[k], zs = s[k + 1];
-      sc += c;
-      sxq += c * xq, szq += c * zq, sxs += c * xs, szs += c * zs;
-      cross += c * (xq * zs - xs * zq);
-      dot += c * (xq * xs + zq * zs);
+      const double cxq = q.cxz[k], czq = q.cxz[k + 1], xs = s[k], zs = s[k + 1];
+      sxs += c * xs, szs += c * zs;
+      cross += cxq * zs - xs * czq;
+      dot += cxq * xs + czq * zs;
     }
-  num = cross - (sxq * szs - sxs * szq) / sc;
-  den = dot - (sxq * sxs + szq * szs) / sc;
+  num = cross - (q.sx * szs - sxs * q.sz) / kAlignWeightSum;
+  den = dot - (q.sx * sxs + q.sz * szs) / kAlignWeightSum;
 }
 }  // namespace
 
-double align_yaw(const AlignXZ& q, const AlignXZ& s) {
+AlignQuery align_query(const AlignXZ& q) {
+  AlignQuery a;
+  for (int h = 0; h < 2; ++h)
+    for (int i = 0; i < kWindow; ++i) {
+      const double c = kAlignWeight[static_cast<std::size_t>(i)];
+      const auto k = static_cast<std::size_t>(h * 2 * kWindow + 2 * i);
+      a.cxz[k] = c * q[k];
+      a.cxz[k + 1] = c * q[k + 1];
+      a.sx += a.cxz[k];
+      a.sz += a.cxz[k + 1];
+    }
+  return a;
+}
+
+double align_yaw(const AlignQuery& q, const AlignXZ& s) {
   double num = 0, den = 0;
   align_sums(q, s, num, den);
   if (std::abs(num) < 1e-300 && std::abs(den) < 1e-300) return 0.0;
   return std::atan2(num, den);
 }
 
-Quat align_turn(const AlignXZ& q, const AlignXZ& s) {
+double align_yaw(const AlignXZ& q, const AlignXZ& s) { return align_yaw(align_query(q), s); }
+
+Quat align_turn(const AlignXZ& q, const AlignXZ& s) { return align_turn(align_query(q), s); }
+
+Quat align_turn(const AlignQuery& q, const AlignXZ& s) {
   double num = 0, den = 0;
   align_sums(q, s, num, den);
   if (std::abs(num) < 1e-300 && std::abs(den) < 1e-300) return Quat::Identity();

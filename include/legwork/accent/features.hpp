@@ -69,9 +69,18 @@ struct FeatureSpace {
 // the window, centroids removed. Apply as Eigen::AngleAxisd(theta, Vec3::UnitY())
 // to s. Inputs: xz pairs per sample, [hand][sample][x,z].
 using AlignXZ = std::array<float, 2 * kWindow * 2>;  // [hand 0/1][sample][x/z]
+// The live window's part of the closed form, computed once per frame for all
+// its candidates: each sample's x and z times its weight, and their sums.
+struct AlignQuery {
+  std::array<double, 2 * kWindow * 2> cxz{};  // c_i x_i, c_i z_i: [hand][sample][x/z]
+  double sx = 0, sz = 0;                      // sums of c_i x_i and c_i z_i
+};
+AlignQuery align_query(const AlignXZ& q);
+double align_yaw(const AlignQuery& q, const AlignXZ& s);
 double align_yaw(const AlignXZ& q, const AlignXZ& s);
 // The same rotation as a quaternion, yaw_rotation(align_yaw(q, s)) up to
 // rounding, without the angle's atan2, cos and sin (the per-candidate path).
+Quat align_turn(const AlignQuery& q, const AlignXZ& s);
 Quat align_turn(const AlignXZ& q, const AlignXZ& s);
 void fill_align(const HandWindow& left, const HandWindow& right, AlignXZ& out);
 
