@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 
 namespace legwork::accent {
 namespace {
@@ -605,44 +606,47 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
 }
 
 // Blend one joint's rotation over the candidates of the hands in `share`.
-// `Root`: joint 0, whose candidate rotations are the aligned ones.
+// `Root`: joint 0, whose candidate rotations are the aligned ones (double);
+// the other joints' are the database's floats, blended in float.
 template <bool Root>
 Quat blend_joint(const State& st, int j, const double share[2], Quat& ahead) {
+  using Real = std::conditional_t<Root, double, float>;
+  using Vec4 = Eigen::Matrix<Real, 4, 1>;
   const auto ju = 4 * static_cast<std::size_t>(j);
-  Eigen::Vector4d acc = Eigen::Vector4d::Zero(), acc_ahead = Eigen::Vector4d::Zero();
-  Eigen::Vector4d ref = Eigen::Vector4d::Zero();
+  Vec4 acc = Vec4::Zero(), acc_ahead = Vec4::Zero(), ref = Vec4::Zero();
   bool have_ref = false;
   for (int h = 0; h < 2; ++h) {
     if (share[h] == 0) continue;
     const auto hu = static_cast<std::size_t>(h);
     for (int i = 0; i < st.match_count[hu]; ++i) {
       const auto iu = static_cast<std::size_t>(i);
-      Eigen::Vector4d q, n;
+      Vec4 q, n;
       if constexpr (Root) {
         const Quat& r0 = st.root_aligned[hu][iu];
         const Quat& n0 = st.root_next_aligned[hu][iu];
         q = {r0.w(), r0.x(), r0.y(), r0.z()};
         n = {n0.w(), n0.x(), n0.y(), n0.z()};
       } else {
-        const float* rot = st.pose_rot[hu][iu] + ju;
-        const float* nxt = st.next_rot[hu][iu] + ju;
-        q = {rot[0], rot[1], rot[2], rot[3]};
-        n = {nxt[0], nxt[1], nxt[2], nxt[3]};
+        q = Eigen::Map<const Vec4>(st.pose_rot[hu][iu] + ju);
+        n = Eigen::Map<const Vec4>(st.next_rot[hu][iu] + ju);
       }
       if (!have_ref) {  // the hemisphere of the first candidate
         ref = q;
         have_ref = true;
       }
-      const double wq = q.dot(ref) < 0 ? -share[h] * st.weight[hu][iu] : share[h] * st.weight[hu][iu];
-      const double a = st.ahead[hu][iu];
+      const Real w = static_cast<Real>(share[h] * st.weight[hu][iu]), a = static_cast<Real>(st.ahead[hu][iu]);
+      const Real wq = q.dot(ref) < 0 ? -w : w;
+      // acc += wq q; acc_ahead += wq ((1 - a) q + a n), n on q's hemisphere.
+      const Real wa = wq * a;
       acc += wq * q;
-      acc_ahead += wq * ((1.0 - a) * q + (n.dot(q) < 0 ? -a : a) * n);
+      acc_ahead += (wq - wa) * q + (n.dot(q) < 0 ? -wa : wa) * n;
     }
   }
-  const double len = acc.norm(), len_ahead = acc_ahead.norm();
-  ahead = len_ahead > 1e-12 ? Quat(acc_ahead[0] / len_ahead, acc_ahead[1] / len_ahead, acc_ahead[2] / len_ahead, acc_ahead[3] / len_ahead)
+  const Eigen::Vector4d sum = acc.template cast<double>(), sum_ahead = acc_ahead.template cast<double>();
+  const double len = sum.norm(), len_ahead = sum_ahead.norm();
+  ahead = len_ahead > 1e-12 ? Quat(sum_ahead[0] / len_ahead, sum_ahead[1] / len_ahead, sum_ahead[2] / len_ahead, sum_ahead[3] / len_ahead)
                             : Quat::Identity();
-  return len > 1e-12 ? Quat(acc[0] / len, acc[1] / len, acc[2] / len, acc[3] / len) : Quat::Identity();
+  return len > 1e-12 ? Quat(sum[0] / len, sum[1] / len, sum[2] / len, sum[3] / len) : Quat::Identity();
 }
 
 // Time constant (s) of the low-pass on the candidates' motion (smooth_feedforward):
