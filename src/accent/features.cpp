@@ -66,26 +66,26 @@ void fill_align(const HandWindow& left, const HandWindow& right, AlignXZ& out) {
 
 namespace {
 // Each sample's weight c_i = (i + 1) / kWindow, rising over the window for
-// both hands, so the latest samples (the pose we output) count most; and their sum.
-constexpr std::array<double, kWindow> kAlignWeight = [] {
-  std::array<double, kWindow> c{};
-  for (int i = 0; i < kWindow; ++i) c[static_cast<std::size_t>(i)] = static_cast<double>(i + 1) / kWindow;
+// both hands ([hand][sample], as AlignXZ), so the latest samples (the pose we
+// output) count most; and their sum.
+constexpr std::size_t kAlignSamples = 2 * kWindow;
+constexpr std::array<double, kAlignSamples> kAlignWeight = [] {
+  std::array<double, kAlignSamples> c{};
+  for (std::size_t p = 0; p < kAlignSamples; ++p) c[p] = static_cast<double>(p % kWindow + 1) / kWindow;
   return c;
 }();
-constexpr double kAlignWeightSum = kWindow + 1.0;  // both hands: 2 x sum of (i + 1) / kWindow = 2 x (kWindow + 1) / 2
+constexpr double kAlignWeightSum = kWindow + 1.0;  // 2 hands x the sum of (i + 1) / kWindow, (kWindow + 1) / 2
 
 // The closed form's sums: the aligning angle is atan2(num, den).
 void align_sums(const AlignQuery& q, const AlignXZ& s, double& num, double& den) {
   double sxs = 0, szs = 0, cross = 0, dot = 0;
-  for (int h = 0; h < 2; ++h)
-    for (int i = 0; i < kWindow; ++i) {
-      const double c = kAlignWeight[static_cast<std::size_t>(i)];
-      const auto k = static_cast<std::size_t>(h * 2 * kWindow + 2 * i);
-      const double cxq = q.cxz[k], czq = q.cxz[k + 1], xs = s[k], zs = s[k + 1];
-      sxs += c * xs, szs += c * zs;
-      cross += cxq * zs - xs * czq;
-      dot += cxq * xs + czq * zs;
-    }
+  for (std::size_t p = 0; p < kAlignSamples; ++p) {
+    const double c = kAlignWeight[p];
+    const double cxq = q.cxz[2 * p], czq = q.cxz[2 * p + 1], xs = s[2 * p], zs = s[2 * p + 1];
+    sxs += c * xs, szs += c * zs;
+    cross += cxq * zs - xs * czq;
+    dot += cxq * xs + czq * zs;
+  }
   num = cross - (q.sx * szs - sxs * q.sz) / kAlignWeightSum;
   den = dot - (q.sx * sxs + q.sz * szs) / kAlignWeightSum;
 }
@@ -93,15 +93,11 @@ void align_sums(const AlignQuery& q, const AlignXZ& s, double& num, double& den)
 
 AlignQuery align_query(const AlignXZ& q) {
   AlignQuery a;
-  for (int h = 0; h < 2; ++h)
-    for (int i = 0; i < kWindow; ++i) {
-      const double c = kAlignWeight[static_cast<std::size_t>(i)];
-      const auto k = static_cast<std::size_t>(h * 2 * kWindow + 2 * i);
-      a.cxz[k] = c * q[k];
-      a.cxz[k + 1] = c * q[k + 1];
-      a.sx += a.cxz[k];
-      a.sz += a.cxz[k + 1];
-    }
+  for (std::size_t k = 0; k < 2 * kAlignSamples; ++k) a.cxz[k] = kAlignWeight[k / 2] * q[k];
+  for (std::size_t p = 0; p < kAlignSamples; ++p) {
+    a.sx += a.cxz[2 * p];
+    a.sz += a.cxz[2 * p + 1];
+  }
   return a;
 }
 
@@ -111,10 +107,6 @@ double align_yaw(const AlignQuery& q, const AlignXZ& s) {
   if (std::abs(num) < 1e-300 && std::abs(den) < 1e-300) return 0.0;
   return std::atan2(num, den);
 }
-
-double align_yaw(const AlignXZ& q, const AlignXZ& s) { return align_yaw(align_query(q), s); }
-
-Quat align_turn(const AlignXZ& q, const AlignXZ& s) { return align_turn(align_query(q), s); }
 
 Quat align_turn(const AlignQuery& q, const AlignXZ& s) {
   double num = 0, den = 0;

@@ -77,7 +77,7 @@ TEST(AccentAlignment, RecoversAKnownRotationAboutY) {
   for (double angle : {0.0, 0.3, -1.1, 2.5, -3.0}) {
     for (int win : {10, db.window_count() / 2}) {
       const AlignXZ& s = db.align(win);
-      const AlignXZ q = rotated_about_y(s, angle);
+      const AlignQuery q = align_query(rotated_about_y(s, angle));
       // Float storage of q bounds the achievable precision; compare in double on the same data.
       EXPECT_NEAR(std::remainder(align_yaw(q, s) - angle, 2 * kPi), 0.0, 1e-6) << "angle " << angle << " window " << win;
       // The engine's per-candidate form: the same turn as a quaternion, without the angle.
@@ -92,7 +92,7 @@ TEST(AccentAlignment, RecoversAKnownRotationAboutY) {
   // Small angles keep their precision (the half-angle sine from the sine, not from 1 - cos).
   const AlignXZ& s = db.align(10);
   for (double angle : {1e-3, -2e-5, 1e-7}) {
-    const AlignXZ q = rotated_about_y(s, angle);
+    const AlignQuery q = align_query(rotated_about_y(s, angle));
     const double yaw = align_yaw(q, s);
     EXPECT_NEAR(align_turn(q, s).y(), std::sin(yaw / 2), 1e-15) << "angle " << angle;
   }

@@ -77,11 +77,9 @@ struct AlignQuery {
 };
 AlignQuery align_query(const AlignXZ& q);
 double align_yaw(const AlignQuery& q, const AlignXZ& s);
-double align_yaw(const AlignXZ& q, const AlignXZ& s);
 // The same rotation as a quaternion, yaw_rotation(align_yaw(q, s)) up to
 // rounding, without the angle's atan2, cos and sin (the per-candidate path).
 Quat align_turn(const AlignQuery& q, const AlignXZ& s);
-Quat align_turn(const AlignXZ& q, const AlignXZ& s);
 void fill_align(const HandWindow& left, const HandWindow& right, AlignXZ& out);
 
 }  // namespace legwork::accent
