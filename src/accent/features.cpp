@@ -31,15 +31,10 @@ void raw_feature(const HandWindow& w, double db_fps, RawFeature& out) {
 }
 
 void FeatureSpace::project(const HandWindow& w, Feature& out) const {
-  for (int r = 0; r < kDim; ++r) {
-    const double* row = projection.data() + static_cast<std::ptrdiff_t>(r) * kPosDim;
-    double s = 0;
-    for (int i = 0; i < kWindow; ++i) {
-      const Vec3& p = w[static_cast<std::size_t>(i)];
-      s += row[3 * i] * p.x() + row[3 * i + 1] * p.y() + row[3 * i + 2] * p.z();
-    }
-    out[static_cast<std::size_t>(r)] = static_cast<float>(s);
-  }
+  static_assert(sizeof(HandWindow) == kPosDim * sizeof(double), "a hand window is kPosDim packed doubles");
+  const Eigen::Map<const Eigen::Matrix<double, kDim, kPosDim, Eigen::RowMajor>> p(projection.data());
+  const Eigen::Map<const Eigen::Matrix<double, kPosDim, 1>> x(w[0].data());
+  Eigen::Map<Eigen::Matrix<float, kDim, 1>>(out.data()) = (p * x).cast<float>();
 }
 
 double FeatureSpace::raw_distance(const HandWindow& a, const HandWindow& b) const {
@@ -76,27 +71,36 @@ constexpr std::array<double, kAlignSamples> kAlignWeight = [] {
 }();
 constexpr double kAlignWeightSum = kWindow + 1.0;  // 2 hands x the sum of (i + 1) / kWindow, (kWindow + 1) / 2
 
-// The closed form's sums: the aligning angle is atan2(num, den).
+// The closed form's sums: the aligning angle is atan2(num, den), with
+//   num = sum c (x_q - xm_q) z_s - c (z_q - zm_q) x_s,  den = sum c (x_q - xm_q) x_s + c (z_q - zm_q) z_s
+// (the candidate's own centroid drops out against the query's centred samples).
+// Each sample's (x, z) pair is one two-lane packet; the lanes are added at the end.
 void align_sums(const AlignQuery& q, const AlignXZ& s, double& num, double& den) {
-  double sxs = 0, szs = 0, cross = 0, dot = 0;
+  using Pair = Eigen::Array2d;
+  Pair dot = Pair::Zero(), cross = Pair::Zero();
   for (std::size_t p = 0; p < kAlignSamples; ++p) {
-    const double c = kAlignWeight[p];
-    const double cxq = q.cxz[2 * p], czq = q.cxz[2 * p + 1], xs = s[2 * p], zs = s[2 * p + 1];
-    sxs += c * xs, szs += c * zs;
-    cross += cxq * zs - xs * czq;
-    dot += cxq * xs + czq * zs;
+    const Pair xz = Eigen::Map<const Eigen::Array2f>(s.data() + 2 * p).cast<double>();
+    const Pair cq = Eigen::Map<const Pair>(q.cxz.data() + 2 * p);
+    dot += cq * xz;              // c x_q x_s, c z_q z_s
+    cross += cq * xz.reverse();  // c x_q z_s, c z_q x_s
   }
-  num = cross - (q.sx * szs - sxs * q.sz) / kAlignWeightSum;
-  den = dot - (q.sx * sxs + q.sz * szs) / kAlignWeightSum;
+  num = cross[0] - cross[1];
+  den = dot[0] + dot[1];
 }
 }  // namespace
 
 AlignQuery align_query(const AlignXZ& q) {
-  AlignQuery a;
-  for (std::size_t k = 0; k < 2 * kAlignSamples; ++k) a.cxz[k] = kAlignWeight[k / 2] * q[k];
+  double sx = 0, sz = 0;  // the weighted centroid
   for (std::size_t p = 0; p < kAlignSamples; ++p) {
-    a.sx += a.cxz[2 * p];
-    a.sz += a.cxz[2 * p + 1];
+    sx += kAlignWeight[p] * q[2 * p];
+    sz += kAlignWeight[p] * q[2 * p + 1];
+  }
+  sx /= kAlignWeightSum;
+  sz /= kAlignWeightSum;
+  AlignQuery a;
+  for (std::size_t p = 0; p < kAlignSamples; ++p) {
+    a.cxz[2 * p] = kAlignWeight[p] * (q[2 * p] - sx);
+    a.cxz[2 * p + 1] = kAlignWeight[p] * (q[2 * p + 1] - sz);
   }
   return a;
 }

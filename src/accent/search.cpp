@@ -22,6 +22,20 @@ inline void push_top(std::span<Match> out, int k, int& n, int window, float d2) 
   out[static_cast<std::size_t>(i)] = {window, d2};
 }
 
+// push_top, unless the window is already in out[0..n). Only for distances all
+// computed alike (squared_distance, one class factor each): the same window then
+// has the same distance, so only the entries equal to d2 need a look.
+inline void push_unique(std::span<Match> out, int k, int& n, int window, float d2) {
+  if (n == k && d2 >= out[static_cast<std::size_t>(n - 1)].distance) return;
+  int i = n;
+  while (i > 0 && out[static_cast<std::size_t>(i - 1)].distance > d2) --i;
+  for (int j = i - 1; j >= 0 && out[static_cast<std::size_t>(j)].distance == d2; --j)
+    if (out[static_cast<std::size_t>(j)].window == window) return;
+  if (n < k) ++n;
+  for (int m = n - 1; m > i; --m) out[static_cast<std::size_t>(m)] = out[static_cast<std::size_t>(m - 1)];
+  out[static_cast<std::size_t>(i)] = {window, d2};
+}
+
 // Squared distance between two feature rows, in SIMD packets (Eigen sums
 // them in independent lanes: a scalar loop is one serial chain of kDim adds).
 inline float squared_distance(const float* a, const float* b) {
@@ -139,14 +153,10 @@ int rank_squared(const Database& db, int hand, const Feature& query, int k, std:
   const float* feats = reinterpret_cast<const float*>(d.features[hand]);
   int n = 0;
   for (int w : windows)
-    if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls)) {
-      bool dup = false;
-      for (int i = 0; i < n; ++i) dup = dup || out[static_cast<std::size_t>(i)].window == w;
-      if (!dup)
-        push_top(out, k, n, w,
-                 scale2(db.source(w).cls) *
-                     squared_distance(feats + static_cast<std::ptrdiff_t>(d.row_of_window[hand][w]) * kDim, query.data()));
-    }
+    if (w >= 0 && w < db.window_count() && allowed(class_mask, db.source(w).cls))
+      push_unique(out, k, n, w,
+                  scale2(db.source(w).cls) *
+                      squared_distance(feats + static_cast<std::ptrdiff_t>(d.row_of_window[hand][w]) * kDim, query.data()));
   return n;
 }
 

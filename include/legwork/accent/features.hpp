@@ -70,10 +70,10 @@ struct FeatureSpace {
 // to s. Inputs: xz pairs per sample, [hand][sample][x,z].
 using AlignXZ = std::array<float, 2 * kWindow * 2>;  // [hand 0/1][sample][x/z]
 // The live window's part of the closed form, computed once per frame for all
-// its candidates: each sample's x and z times its weight, and their sums.
+// its candidates: each sample's offset from the window's weighted centroid
+// (xm, zm), times its weight.
 struct AlignQuery {
-  std::array<double, 2 * kWindow * 2> cxz{};  // c_i x_i, c_i z_i: [hand][sample][x/z]
-  double sx = 0, sz = 0;                      // sums of c_i x_i and c_i z_i
+  std::array<double, 2 * kWindow * 2> cxz{};  // c_i (x_i - xm), c_i (z_i - zm): [hand][sample][x/z]
 };
 AlignQuery align_query(const AlignXZ& q);
 double align_yaw(const AlignQuery& q, const AlignXZ& s);
