@@ -272,6 +272,10 @@ State::State(const Model& model) {
   spring_rot.assign(n, Quat::Identity());
   spring_vel.assign(n, Vec3::Zero());
   motion_vel.assign(n, Vec3::Zero());
+  blend_share.assign(2 * n, 0.0f);
+  blend_ref.assign(4 * n, 0.0f);
+  blend_sum.assign(4 * n, 0.0f);
+  blend_sum_ahead.assign(4 * n, 0.0f);
   model_rot.resize(n);
   model_space.resize(n);
   const auto nc = static_cast<std::size_t>(model.database().class_count());
@@ -320,7 +324,7 @@ void reset(const Model& model, State& s) {
 std::size_t State::bytes() const {
   const auto nj = spring_rot.size();
   return sizeof(*this) + 3 * nj * (sizeof(Quat) + sizeof(Vec3)) + nj * (sizeof(Quat) + 2 * sizeof(Vec3)) +
-         nj * (sizeof(Transform) + sizeof(Quat)) +
+         nj * (sizeof(Transform) + sizeof(Quat)) + 14 * nj * sizeof(float) +
          class_cost.size() * (2 * sizeof(double) + sizeof(std::array<int, 2>) + 2) + active_scale.size() * sizeof(float);
 }
 
@@ -605,48 +609,103 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
   for (int i = 0; i < got; ++i) st.weight[hu][static_cast<std::size_t>(i)] /= wsum;
 }
 
-// Blend one joint's rotation over the candidates of the hands in `share`.
-// `Root`: joint 0, whose candidate rotations are the aligned ones (double);
-// the other joints' are the database's floats, blended in float.
-template <bool Root>
-Quat blend_joint(const State& st, int j, const double share[2], Quat& ahead) {
-  using Real = std::conditional_t<Root, double, float>;
-  using Vec4 = Eigen::Matrix<Real, 4, 1>;
-  const auto ju = 4 * static_cast<std::size_t>(j);
-  Vec4 acc = Vec4::Zero(), acc_ahead = Vec4::Zero(), ref = Vec4::Zero();
+// Blend the root's rotation (joint 0) over the candidates of the hands in
+// `share`: their aligned rotations, in double, each on the first one's
+// hemisphere; `ahead` gets the blend one database frame on.
+Quat blend_root(const State& st, const double share[2], Quat& ahead) {
+  Eigen::Vector4d acc = Eigen::Vector4d::Zero(), acc_ahead = Eigen::Vector4d::Zero(), ref = Eigen::Vector4d::Zero();
   bool have_ref = false;
   for (int h = 0; h < 2; ++h) {
     if (share[h] == 0) continue;
     const auto hu = static_cast<std::size_t>(h);
     for (int i = 0; i < st.match_count[hu]; ++i) {
       const auto iu = static_cast<std::size_t>(i);
-      Vec4 q, n;
-      if constexpr (Root) {
-        const Quat& r0 = st.root_aligned[hu][iu];
-        const Quat& n0 = st.root_next_aligned[hu][iu];
-        q = {r0.w(), r0.x(), r0.y(), r0.z()};
-        n = {n0.w(), n0.x(), n0.y(), n0.z()};
-      } else {
-        q = Eigen::Map<const Vec4>(st.pose_rot[hu][iu] + ju);
-        n = Eigen::Map<const Vec4>(st.next_rot[hu][iu] + ju);
-      }
-      if (!have_ref) {  // the hemisphere of the first candidate
+      const Quat& r0 = st.root_aligned[hu][iu];
+      const Quat& n0 = st.root_next_aligned[hu][iu];
+      const Eigen::Vector4d q(r0.w(), r0.x(), r0.y(), r0.z()), n(n0.w(), n0.x(), n0.y(), n0.z());
+      if (!have_ref) {
         ref = q;
         have_ref = true;
       }
-      const Real w = static_cast<Real>(share[h] * st.weight[hu][iu]), a = static_cast<Real>(st.ahead[hu][iu]);
-      const Real wq = q.dot(ref) < 0 ? -w : w;
+      const double w = share[h] * st.weight[hu][iu], a = st.ahead[hu][iu];
+      const double wq = q.dot(ref) < 0 ? -w : w;
       // acc += wq q; acc_ahead += wq ((1 - a) q + a n), n on q's hemisphere.
-      const Real wa = wq * a;
+      const double wa = wq * a;
       acc += wq * q;
       acc_ahead += (wq - wa) * q + (n.dot(q) < 0 ? -wa : wa) * n;
     }
   }
-  const Eigen::Vector4d sum = acc.template cast<double>(), sum_ahead = acc_ahead.template cast<double>();
-  const double len = sum.norm(), len_ahead = sum_ahead.norm();
-  ahead = len_ahead > 1e-12 ? Quat(sum_ahead[0] / len_ahead, sum_ahead[1] / len_ahead, sum_ahead[2] / len_ahead, sum_ahead[3] / len_ahead)
+  const double len = acc.norm(), len_ahead = acc_ahead.norm();
+  ahead = len_ahead > 1e-12 ? Quat(acc_ahead[0] / len_ahead, acc_ahead[1] / len_ahead, acc_ahead[2] / len_ahead,
+                                   acc_ahead[3] / len_ahead)
                             : Quat::Identity();
-  return len > 1e-12 ? Quat(sum[0] / len, sum[1] / len, sum[2] / len, sum[3] / len) : Quat::Identity();
+  return len > 1e-12 ? Quat(acc[0] / len, acc[1] / len, acc[2] / len, acc[3] / len) : Quat::Identity();
+}
+
+// One candidate's part of the blend of `joints` joints (4 floats w, x, y, z a
+// joint in every array): with w = share[j] x weight, on the reference's hemisphere,
+//   sum[j] += w q[j];  sum_ahead[j] += w ((1 - a) q[j] + a n[j]), n[j] on q[j]'s.
+// Four joints at a time in 4-float packets: their dot products come out of one
+// transposed block of products, summed in the order Eigen's 4-float dot sums
+// them, so every joint gets the same sums as from the one-joint loop below.
+void add_candidate(int joints, const float* q, const float* n, const float* ref, const float* share, float weight,
+                   float a, float* sum, float* sum_ahead) {
+  int j = 0;
+#ifdef EIGEN_VECTORIZE
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"  // a packet type as a template argument (PacketBlock)
+  namespace ei = Eigen::internal;
+  using P = ei::Packet4f;
+  const P weight4 = ei::pset1<P>(weight), a4 = ei::pset1<P>(a), sign = ei::pset1<P>(-0.0f), zero = ei::pset1<P>(0.0f);
+  for (; j + 4 <= joints; j += 4) {
+    P qv[4], nv[4];
+    ei::PacketBlock<P, 4> pq, pn;
+    for (int l = 0; l < 4; ++l) {
+      qv[l] = ei::ploadu<P>(q + 4 * (j + l));
+      nv[l] = ei::ploadu<P>(n + 4 * (j + l));
+      pq.packet[l] = ei::pmul(qv[l], ei::ploadu<P>(ref + 4 * (j + l)));
+      pn.packet[l] = ei::pmul(nv[l], qv[l]);
+    }
+    ei::ptranspose(pq);  // packet[c]: component c's products of the four joints
+    ei::ptranspose(pn);
+    const P dq = ei::padd(ei::padd(pq.packet[0], pq.packet[2]), ei::padd(pq.packet[1], pq.packet[3]));
+    const P dn = ei::padd(ei::padd(pn.packet[0], pn.packet[2]), ei::padd(pn.packet[1], pn.packet[3]));
+    const P w = ei::pmul(ei::ploadu<P>(share + j), weight4);
+    const P wq = ei::pxor(w, ei::pand(ei::pcmp_lt(dq, zero), sign));  // -w where q . ref < 0
+    const P wa = ei::pmul(wq, a4);
+    const P wn = ei::pxor(wa, ei::pand(ei::pcmp_lt(dn, zero), sign));
+    const P wb = ei::psub(wq, wa);
+    alignas(16) float wq1[4], wb1[4], wn1[4];
+    ei::pstore(wq1, wq);
+    ei::pstore(wb1, wb);
+    ei::pstore(wn1, wn);
+    for (int l = 0; l < 4; ++l) {
+      float* s = sum + 4 * (j + l);
+      float* t = sum_ahead + 4 * (j + l);
+      ei::pstoreu(s, ei::padd(ei::ploadu<P>(s), ei::pmul(ei::pset1<P>(wq1[l]), qv[l])));
+      ei::pstoreu(t, ei::padd(ei::ploadu<P>(t), ei::padd(ei::pmul(ei::pset1<P>(wb1[l]), qv[l]),
+                                                        ei::pmul(ei::pset1<P>(wn1[l]), nv[l]))));
+    }
+  }
+#pragma GCC diagnostic pop
+#endif
+  using Vec4 = Eigen::Vector4f;
+  for (; j < joints; ++j) {
+    const Eigen::Map<const Vec4> qj(q + 4 * j), nj(n + 4 * j), rj(ref + 4 * j);
+    const float w = share[j] * weight;
+    const float wq = qj.dot(rj) < 0 ? -w : w;
+    const float wa = wq * a;
+    Eigen::Map<Vec4>(sum + 4 * j) += wq * qj;
+    Eigen::Map<Vec4>(sum_ahead + 4 * j) += (wq - wa) * qj + (nj.dot(qj) < 0 ? -wa : wa) * nj;
+  }
+}
+
+// A quaternion (w, x, y, z) from a sum of them: normalised in double, the
+// identity when the sum vanishes.
+Quat normalized_sum(const float* s) {
+  const Eigen::Vector4d v(s[0], s[1], s[2], s[3]);
+  const double len = v.norm();
+  return len > 1e-12 ? Quat(v[0] / len, v[1] / len, v[2] / len, v[3] / len) : Quat::Identity();
 }
 
 // Time constant (s) of the low-pass on the candidates' motion (smooth_feedforward):
@@ -670,9 +729,16 @@ void blend_matches(const Model& model, State& st, double dt) {
   };
   const double cl = mean_conf(0), cr = mean_conf(1);
   const int n = model.skeleton().joint_count();
+  const auto nu = static_cast<std::size_t>(n);
   const double fps = model.database().feature_space().fps;
   const double follow = 1.0 - std::exp(-dt / kMotionSeconds);
+  // Each joint's share of each hand's candidates (left-arm joints from the
+  // left hand's, right-arm joints from the right's, the rest from both), and
+  // the global match weight.
+  float* share_l = st.blend_share.data();
+  float* share_r = share_l + nu;
   double weight_total = 0;
+  double root_share[2] = {0, 0};
   for (int j = 0; j < n; ++j) {
     double share[2] = {0, 0};
     double joint_weight = 0;
@@ -692,13 +758,47 @@ void blend_matches(const Model& model, State& st, double dt) {
         break;
     }
     weight_total += joint_weight;
-    Quat ahead;
-    const Quat now = j == 0 ? blend_joint<true>(st, j, share, ahead) : blend_joint<false>(st, j, share, ahead);
-    st.synth.rotations[static_cast<std::size_t>(j)] = now;
-    // The candidates' own motion: one database frame on, as a rotation rate.
-    st.motion_vel[static_cast<std::size_t>(j)] += follow * (rotation_log(ahead * now.conjugate()) * fps - st.motion_vel[static_cast<std::size_t>(j)]);
+    const auto ju = static_cast<std::size_t>(j);
+    share_l[ju] = static_cast<float>(share[0]);
+    share_r[ju] = static_cast<float>(share[1]);
+    if (j == 0) root_share[0] = share[0], root_share[1] = share[1];
   }
   st.match_weight = std::clamp(weight_total / n, 0.0, 1.0);
+
+  // The root from the aligned rotations (double); the candidates' own motion
+  // is its blend one database frame on, as a rotation rate.
+  Quat ahead;
+  Quat now = blend_root(st, root_share, ahead);
+  st.synth.rotations[0] = now;
+  st.motion_vel[0] += follow * (rotation_log(ahead * now.conjugate()) * fps - st.motion_vel[0]);
+
+  // The other joints from the database's float rotations, summed in float one
+  // candidate at a time over all joints, each joint on the hemisphere of its
+  // first candidate (from the first hand with a share in it).
+  float* ref = st.blend_ref.data();
+  float* sum = st.blend_sum.data();
+  float* sum_ahead = st.blend_sum_ahead.data();
+  std::fill(sum, sum + 4 * nu, 0.0f);
+  std::fill(sum_ahead, sum_ahead + 4 * nu, 0.0f);
+  for (std::size_t j = 1; j < nu; ++j) {
+    const std::size_t h = share_l[j] != 0 ? 0 : 1;
+    if (st.match_count[h] > 0) std::copy_n(st.pose_rot[h][0] + 4 * j, 4, ref + 4 * j);
+  }
+  for (int h = 0; h < 2; ++h) {
+    const auto hu = static_cast<std::size_t>(h);
+    const float* share = h == 0 ? share_l : share_r;
+    for (int i = 0; i < st.match_count[hu]; ++i) {
+      const auto iu = static_cast<std::size_t>(i);
+      add_candidate(n - 1, st.pose_rot[hu][iu] + 4, st.next_rot[hu][iu] + 4, ref + 4, share + 1,
+                    static_cast<float>(st.weight[hu][iu]), static_cast<float>(st.ahead[hu][iu]), sum + 4, sum_ahead + 4);
+    }
+  }
+  for (std::size_t j = 1; j < nu; ++j) {
+    now = normalized_sum(sum + 4 * j);
+    ahead = normalized_sum(sum_ahead + 4 * j);
+    st.synth.rotations[j] = now;
+    st.motion_vel[j] += follow * (rotation_log(ahead * now.conjugate()) * fps - st.motion_vel[j]);
+  }
 }
 
 // The candidates' foot contacts, blended with the weights of the body joints

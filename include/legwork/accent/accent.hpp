@@ -386,6 +386,9 @@ struct State {
   std::array<std::array<double, kMaxK>, 2> ahead{};  // share of the way to the next pose one database frame on
   std::array<std::array<double, kMaxK>, 2> weight{}, confidence{};
   std::array<std::array<const float*, kMaxK>, 2> pose_rot{};  // each candidate's pose rotations
+  // The candidate blend's scratch (blend_matches): per joint, each hand's share (2 x n), and the
+  // reference hemisphere and the two sums (4 floats a joint each).
+  std::vector<float> blend_share, blend_ref, blend_sum, blend_sum_ahead;
   std::vector<Quat> model_rot;
   std::vector<Transform> model_space;
   Pose synth, direct;
