@@ -2,22 +2,42 @@
 
 namespace legwork {
 
+namespace {
+void fk_joint(const int* parent, ConstPoseRef pose, int j, std::span<Transform> out) {
+  const Quat& r = pose.rotations[static_cast<std::size_t>(j)];
+  const Vec3& t = pose.translations[static_cast<std::size_t>(j)];
+  Transform& g = out[static_cast<std::size_t>(j)];
+  const int p = parent[j];
+  if (p < 0) {
+    g.rotation = r;
+    g.translation = t;
+  } else {
+    const Transform& gp = out[static_cast<std::size_t>(p)];
+    g.rotation = gp.rotation * r;
+    g.translation = gp.rotation * t + gp.translation;
+  }
+}
+}  // namespace
+
 void forward_kinematics(const Skeleton& skel, ConstPoseRef pose, std::span<Transform> out) {
   const int n = skel.joint_count();
   const int* parent = skel.parents.data();
-  for (int j = 0; j < n; ++j) {
-    const Quat& r = pose.rotations[static_cast<std::size_t>(j)];
-    const Vec3& t = pose.translations[static_cast<std::size_t>(j)];
-    Transform& g = out[static_cast<std::size_t>(j)];
-    const int p = parent[j];
-    if (p < 0) {
-      g.rotation = r;
-      g.translation = t;
-    } else {
-      const Transform& gp = out[static_cast<std::size_t>(p)];
-      g.rotation = gp.rotation * r;
-      g.translation = gp.rotation * t + gp.translation;
-    }
+  for (int j = 0; j < n; ++j) fk_joint(parent, pose, j, out);
+}
+
+void forward_kinematics_subtree(const Skeleton& skel, ConstPoseRef pose, int root, std::span<Transform> out) {
+  // Parents come before their children, so the subtree lies in [root, n): a
+  // joint is in it when its parent is. Joints past kStack are redone whatever
+  // their parent (correct, only slower for huge rigs).
+  constexpr int kStack = 256;
+  const int n = skel.joint_count();
+  const int* parent = skel.parents.data();
+  bool in[kStack] = {};
+  for (int j = root; j < n; ++j) {
+    const bool mine = j == root || j >= kStack || (parent[j] >= root && parent[j] < kStack && in[parent[j]]);
+    if (!mine) continue;
+    if (j < kStack) in[j] = true;
+    fk_joint(parent, pose, j, out);
   }
 }
 

@@ -114,7 +114,7 @@ void Solver::place_head() {
   const double neck_part = S.neck_share / static_cast<double>(M.neck_.size());
   for (int j : M.neck_) out.rotations[idx(j)] = Quat::Identity().slerp(neck_part, delta);
   out.rotations[idx(M.head_)] = Quat::Identity().slerp(1.0 - S.neck_share, delta);
-  forward_kinematics(skel, out, model);
+  forward_kinematics_subtree(skel, out, M.neck_.front(), model);  // only the neck and the head turned
   const Vec3 shift = in.head_position - model[idx(M.head_)].translation;
   out.translations[root] += shift;
   for (auto& t : model) t.translation += shift;

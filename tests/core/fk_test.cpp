@@ -55,6 +55,48 @@ TEST(ForwardKinematics, MatchesChainedTransformsAndBatch) {
   for (std::size_t j = 0; j < n; ++j) EXPECT_LT((all[10 * n + j] - g[j].translation).norm(), 1e-12);
 }
 
+// After a change inside one subtree (frame 10's neck and arm rotations put
+// into frame 40), redoing that subtree gives what a whole FK gives; a joint
+// outside it is left as it was, even when its entry is stale.
+TEST(ForwardKinematics, ASubtreeRedoneEqualsTheWholeAndLeavesTheRestAlone) {
+  Motion m = walk();
+  const auto& s = m.skeleton;
+  const auto n = static_cast<std::size_t>(s.joint_count());
+  const int neck = s.find("Neck"), clavicle = s.find("LeftShoulder"), hand = s.find("LeftHand"), foot = s.find("RightFoot");
+  ASSERT_GE(neck, 0);
+  ASSERT_GE(clavicle, 0);
+  ASSERT_GE(hand, 0);
+  ASSERT_GE(foot, 0);
+  std::vector<Transform> whole(n), part(n);
+  for (int root : {neck, clavicle}) {
+    Pose p(s);
+    const ConstPoseRef f40 = m.frame(40);
+    p.rotations.assign(f40.rotations.begin(), f40.rotations.end());
+    p.translations.assign(f40.translations.begin(), f40.translations.end());
+    forward_kinematics(s, p.ref(), part);
+    std::vector<bool> inside(n, false);
+    for (int j = 0; j < s.joint_count(); ++j) {
+      const int parent = s.parents[static_cast<std::size_t>(j)];
+      inside[static_cast<std::size_t>(j)] = j == root || (parent >= 0 && inside[static_cast<std::size_t>(parent)]);
+      if (inside[static_cast<std::size_t>(j)]) p.rotations[static_cast<std::size_t>(j)] = m.frame(10).rotations[static_cast<std::size_t>(j)];
+    }
+    const Transform stale{Quat(0, 1, 0, 0), Vec3(9, 9, 9)};
+    part[static_cast<std::size_t>(foot)] = stale;
+    forward_kinematics_subtree(s, p.ref(), root, part);
+    forward_kinematics(s, p.ref(), whole);
+    int redone = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j == static_cast<std::size_t>(foot)) continue;
+      EXPECT_LT((part[j].translation - whole[j].translation).norm(), 1e-12) << s.names[j];
+      EXPECT_LT(quat_distance(part[j].rotation, whole[j].rotation), 1e-12) << s.names[j];
+      redone += inside[j];
+    }
+    EXPECT_TRUE(inside[static_cast<std::size_t>(root == neck ? s.find("Head") : hand)]);
+    EXPECT_GE(redone, 3);
+    EXPECT_EQ(part[static_cast<std::size_t>(foot)].translation, stale.translation);  // outside: untouched
+  }
+}
+
 TEST(ForwardKinematics, LocalFromModelInvertsFk) {
   Motion m = walk();
   const auto& s = m.skeleton;

@@ -11,6 +11,10 @@ namespace legwork {
 
 // Model-space transforms of every joint. `out` must have joint_count entries.
 void forward_kinematics(const Skeleton& skel, ConstPoseRef pose, std::span<Transform> out);
+// The same for the subtree of joint `root` only (root and its descendants),
+// after a change to their local transforms: the other joints' entries of `out`
+// are already the pose's and stay as they are.
+void forward_kinematics_subtree(const Skeleton& skel, ConstPoseRef pose, int root, std::span<Transform> out);
 // Model-space positions only (cheaper). `out` must have joint_count entries.
 void forward_positions(const Skeleton& skel, ConstPoseRef pose, std::span<Vec3> out);
 // Batched over a whole motion: out has frame_count * joint_count entries,
