@@ -609,6 +609,18 @@ void align_matches(const Model& model, State& st, int h, double threshold, const
   for (int i = 0; i < got; ++i) st.weight[hu][static_cast<std::size_t>(i)] /= wsum;
 }
 
+// One candidate's rotation q (and n, its rotation one database frame on) into
+// a joint's two sums, with weight w on the reference's hemisphere:
+//   sum += w q;  sum_ahead += w ((1 - a) q + a n), n on q's hemisphere.
+template <typename Q, typename Sum>
+void add_rotation(const Q& q, const Q& n, const Q& ref, typename Q::Scalar w, typename Q::Scalar a, Sum&& sum,
+                  Sum&& sum_ahead) {
+  const auto wq = q.dot(ref) < 0 ? -w : w;
+  const auto wa = wq * a;
+  sum += wq * q;
+  sum_ahead += (wq - wa) * q + (n.dot(q) < 0 ? -wa : wa) * n;
+}
+
 // Blend the root's rotation (joint 0) over the candidates of the hands in
 // `share`: their aligned rotations, in double, each on the first one's
 // hemisphere; `ahead` gets the blend one database frame on.
@@ -627,12 +639,7 @@ Quat blend_root(const State& st, const double share[2], Quat& ahead) {
         ref = q;
         have_ref = true;
       }
-      const double w = share[h] * st.weight[hu][iu], a = st.ahead[hu][iu];
-      const double wq = q.dot(ref) < 0 ? -w : w;
-      // acc += wq q; acc_ahead += wq ((1 - a) q + a n), n on q's hemisphere.
-      const double wa = wq * a;
-      acc += wq * q;
-      acc_ahead += (wq - wa) * q + (n.dot(q) < 0 ? -wa : wa) * n;
+      add_rotation(q, n, ref, share[h] * st.weight[hu][iu], st.ahead[hu][iu], acc, acc_ahead);
     }
   }
   const double len = acc.norm(), len_ahead = acc_ahead.norm();
@@ -692,11 +699,7 @@ void add_candidate(int joints, const float* q, const float* n, const float* ref,
   using Vec4 = Eigen::Vector4f;
   for (; j < joints; ++j) {
     const Eigen::Map<const Vec4> qj(q + 4 * j), nj(n + 4 * j), rj(ref + 4 * j);
-    const float w = share[j] * weight;
-    const float wq = qj.dot(rj) < 0 ? -w : w;
-    const float wa = wq * a;
-    Eigen::Map<Vec4>(sum + 4 * j) += wq * qj;
-    Eigen::Map<Vec4>(sum_ahead + 4 * j) += (wq - wa) * qj + (nj.dot(qj) < 0 ? -wa : wa) * nj;
+    add_rotation(qj, nj, rj, share[j] * weight, a, Eigen::Map<Vec4>(sum + 4 * j), Eigen::Map<Vec4>(sum_ahead + 4 * j));
   }
 }
 

@@ -27,7 +27,7 @@ inline void push_top(std::span<Match> out, int k, int& n, int window, float d2) 
 // has the same distance, so only the entries equal to d2 need a look.
 inline void push_unique(std::span<Match> out, int k, int& n, int window, float d2) {
   if (n == k && d2 >= out[static_cast<std::size_t>(n - 1)].distance) return;
-  int i = n;
+  int i = n;  // the insertion point: found first, as the check needs it, then the entries moved
   while (i > 0 && out[static_cast<std::size_t>(i - 1)].distance > d2) --i;
   for (int j = i - 1; j >= 0 && out[static_cast<std::size_t>(j)].distance == d2; --j)
     if (out[static_cast<std::size_t>(j)].window == window) return;
