@@ -140,6 +140,7 @@ void Solver::torso(double lean) {
 // Clavicles help long reaches: each swings just enough to bring its shoulder
 // within reach of the hand, up to a limit.
 void Solver::clavicles() {
+  int swung[2] = {-1, -1};
   for (int s = 0; s < 2; ++s) {
     const int c = M.clavicle_[s];
     if (c < 0 || !in.hand_valid[idx(s)]) continue;
@@ -155,8 +156,11 @@ void Solver::clavicles() {
     const double angle = std::min(S.clavicle_reach, 1.2 * excess / len);
     const Quat cm = (Quat(Eigen::AngleAxisd(angle, axis.normalized())) * model[idx(c)].rotation).normalized();
     out.rotations[idx(c)] = (parent_model_rotation(skel, model, c).conjugate() * cm).normalized();
+    swung[s] = c;
   }
-  forward_kinematics(skel, out, model);
+  // The model transforms (place_head's) change only below a swung clavicle.
+  for (int c : swung)
+    if (c >= 0) forward_kinematics_subtree(skel, out, c, model);
 }
 
 // Still out of reach (arms stretched overhead while lying, a long reach):
