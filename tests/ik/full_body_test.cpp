@@ -109,6 +109,45 @@ TEST(FullBodyIk, HeadExactHandsOnTargetOnAWalk) {
               1000 * r.max_hand_err, 100 * r.lower_err, r.steps);
 }
 
+// Controllers 3 cm further out than the real hands (along shoulder -> hand).
+// Where the arm cannot reach, the clavicle swings; the arm's IK must then start
+// from the moved shoulder, so each hand ends on its controller whenever the
+// controller is within the arm's length of the output's shoulder, and short of
+// it by exactly the rest otherwise (the two-bone solve straightens the arm).
+TEST(FullBodyIk, HandsBeyondTheArmsReachSwingTheClaviclesAndReachFromTheMovedShoulder) {
+  const Motion truth = load90("cmu/bvh/walking/07_01.bvh");
+  const Skeleton& skel = truth.skeleton;
+  const Model model = make_model(skel);
+  State state(model);
+  Pose pose(skel);
+  std::vector<Transform> g(static_cast<std::size_t>(skel.joint_count())), o(g.size());
+  const auto at = [&](std::span<const Transform> x, Role r) { return x[static_cast<std::size_t>(skel.roles[r])].translation; };
+  const Role clavicles[2] = {Role::LeftClavicle, Role::RightClavicle}, shoulders[2] = {Role::LeftShoulder, Role::RightShoulder},
+             elbows[2] = {Role::LeftElbow, Role::RightElbow}, hands[2] = {Role::LeftHand, Role::RightHand};
+  int swung = 0, short_of_reach = 0;
+  double worst_excess_error = 0;
+  for (int f = 0; f < truth.frame_count(); ++f) {
+    forward_kinematics(skel, truth.frame(f), g);
+    TrackerFrame in = tracker_of(skel, g, f / truth.fps);
+    for (int s = 0; s < 2; ++s) in.hand(s).position += 0.03 * (at(g, hands[s]) - at(g, shoulders[s])).normalized();
+    ASSERT_NE(update(model, in, state, pose.ref()), UpdateStatus::Rejected);
+    forward_kinematics(skel, pose.ref(), o);
+    for (int s = 0; s < 2; ++s) {
+      swung += pose.rotations[static_cast<std::size_t>(skel.roles[clavicles[s]])].angularDistance(Quat::Identity()) > 1e-6;
+      const double arm = (at(o, elbows[s]) - at(o, shoulders[s])).norm() + (at(o, hands[s]) - at(o, elbows[s])).norm();
+      const double beyond = std::max(0.0, (in.hand(s).position - at(o, shoulders[s])).norm() - arm);
+      short_of_reach += beyond > 0;
+      const double miss = (at(o, hands[s]) - in.hand(s).position).norm();
+      worst_excess_error = std::max(worst_excess_error, std::abs(miss - beyond));
+    }
+  }
+  std::printf("07_01, controllers 3 cm out: a clavicle swung on %d of %d arm-frames, %d still beyond reach; "
+              "hand miss - distance beyond reach: worst %.2g m\n",
+              swung, 2 * truth.frame_count(), short_of_reach, worst_excess_error);
+  EXPECT_GT(swung, truth.frame_count() / 10);
+  EXPECT_LT(worst_excess_error, 1e-6);
+}
+
 TEST(FullBodyIk, StandingStillPlantsTheFeetAndCrouchesWhenTheHeadDrops) {
   const Motion walk = load90("cmu/bvh/walking/07_01.bvh");
   const Skeleton& skel = walk.skeleton;
