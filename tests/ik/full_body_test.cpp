@@ -115,11 +115,9 @@ TEST(FullBodyIk, HeadExactHandsOnTargetOnAWalk) {
 // controller is within the arm's length of the output's shoulder, and short of
 // it by exactly the rest otherwise (the two-bone solve straightens the arm).
 TEST(FullBodyIk, HandsBeyondTheArmsReachSwingTheClaviclesAndReachFromTheMovedShoulder) {
-  const Motion truth = load90("cmu/bvh/walking/07_01.bvh");
+  WalkAvatar a;
+  const Motion& truth = a.walk;
   const Skeleton& skel = truth.skeleton;
-  const Model model = make_model(skel);
-  State state(model);
-  Pose pose(skel);
   std::vector<Transform> g(static_cast<std::size_t>(skel.joint_count())), o(g.size());
   const auto at = [&](std::span<const Transform> x, Role r) { return x[static_cast<std::size_t>(skel.roles[r])].translation; };
   const Role clavicles[2] = {Role::LeftClavicle, Role::RightClavicle}, shoulders[2] = {Role::LeftShoulder, Role::RightShoulder},
@@ -128,12 +126,12 @@ TEST(FullBodyIk, HandsBeyondTheArmsReachSwingTheClaviclesAndReachFromTheMovedSho
   double worst_excess_error = 0;
   for (int f = 0; f < truth.frame_count(); ++f) {
     forward_kinematics(skel, truth.frame(f), g);
-    TrackerFrame in = tracker_of(skel, g, f / truth.fps);
+    TrackerFrame in = a.frames[static_cast<std::size_t>(f)];
     for (int s = 0; s < 2; ++s) in.hand(s).position += 0.03 * (at(g, hands[s]) - at(g, shoulders[s])).normalized();
-    ASSERT_NE(update(model, in, state, pose.ref()), UpdateStatus::Rejected);
-    forward_kinematics(skel, pose.ref(), o);
+    ASSERT_NE(update(a.model, in, a.state, a.pose.ref()), UpdateStatus::Rejected);
+    forward_kinematics(skel, a.pose.ref(), o);
     for (int s = 0; s < 2; ++s) {
-      swung += pose.rotations[static_cast<std::size_t>(skel.roles[clavicles[s]])].angularDistance(Quat::Identity()) > 1e-6;
+      swung += a.pose.rotations[static_cast<std::size_t>(skel.roles[clavicles[s]])].angularDistance(Quat::Identity()) > 1e-6;
       const double arm = (at(o, elbows[s]) - at(o, shoulders[s])).norm() + (at(o, hands[s]) - at(o, elbows[s])).norm();
       const double beyond = std::max(0.0, (in.hand(s).position - at(o, shoulders[s])).norm() - arm);
       short_of_reach += beyond > 0;
