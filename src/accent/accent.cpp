@@ -621,6 +621,14 @@ void add_rotation(const Q& q, const Q& n, const Q& ref, typename Q::Scalar w, ty
   sum_ahead += (wq - wa) * q + (n.dot(q) < 0 ? -wa : wa) * n;
 }
 
+// A quaternion (w, x, y, z) from a sum of them: normalised in double, the
+// identity when the sum vanishes.
+Quat normalized_sum(const Eigen::Vector4d& v) {
+  const double len = v.norm();
+  return len > 1e-12 ? Quat(v[0] / len, v[1] / len, v[2] / len, v[3] / len) : Quat::Identity();
+}
+Quat normalized_sum(const float* s) { return normalized_sum(Eigen::Vector4d(s[0], s[1], s[2], s[3])); }
+
 // Blend the root's rotation (joint 0) over the candidates of the hands in
 // `share`: their aligned rotations, in double, each on the first one's
 // hemisphere; `ahead` gets the blend one database frame on.
@@ -642,11 +650,8 @@ Quat blend_root(const State& st, const double share[2], Quat& ahead) {
       add_rotation(q, n, ref, share[h] * st.weight[hu][iu], st.ahead[hu][iu], acc, acc_ahead);
     }
   }
-  const double len = acc.norm(), len_ahead = acc_ahead.norm();
-  ahead = len_ahead > 1e-12 ? Quat(acc_ahead[0] / len_ahead, acc_ahead[1] / len_ahead, acc_ahead[2] / len_ahead,
-                                   acc_ahead[3] / len_ahead)
-                            : Quat::Identity();
-  return len > 1e-12 ? Quat(acc[0] / len, acc[1] / len, acc[2] / len, acc[3] / len) : Quat::Identity();
+  ahead = normalized_sum(acc_ahead);
+  return normalized_sum(acc);
 }
 
 // One candidate's part of the blend of `joints` joints (4 floats w, x, y, z a
@@ -701,14 +706,6 @@ void add_candidate(int joints, const float* q, const float* n, const float* ref,
     const Eigen::Map<const Vec4> qj(q + 4 * j), nj(n + 4 * j), rj(ref + 4 * j);
     add_rotation(qj, nj, rj, share[j] * weight, a, Eigen::Map<Vec4>(sum + 4 * j), Eigen::Map<Vec4>(sum_ahead + 4 * j));
   }
-}
-
-// A quaternion (w, x, y, z) from a sum of them: normalised in double, the
-// identity when the sum vanishes.
-Quat normalized_sum(const float* s) {
-  const Eigen::Vector4d v(s[0], s[1], s[2], s[3]);
-  const double len = v.norm();
-  return len > 1e-12 ? Quat(v[0] / len, v[1] / len, v[2] / len, v[3] / len) : Quat::Identity();
 }
 
 // Time constant (s) of the low-pass on the candidates' motion (smooth_feedforward):
