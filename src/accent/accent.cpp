@@ -660,6 +660,8 @@ Quat blend_root(const State& st, const double share[2], Quat& ahead) {
 // Four joints at a time in 4-float packets: their dot products come out of one
 // transposed block of products, summed in the order Eigen's 4-float dot sums
 // them, so every joint gets the same sums as from the one-joint loop below.
+// Joints with no share (the other hand's arm) are skipped, four at a time where
+// the packet holds no share at all.
 void add_candidate(int joints, const float* q, const float* n, const float* ref, const float* share, float weight,
                    float a, float* sum, float* sum_ahead) {
   int j = 0;
@@ -670,6 +672,8 @@ void add_candidate(int joints, const float* q, const float* n, const float* ref,
   using P = ei::Packet4f;
   const P weight4 = ei::pset1<P>(weight), a4 = ei::pset1<P>(a), sign = ei::pset1<P>(-0.0f), zero = ei::pset1<P>(0.0f);
   for (; j + 4 <= joints; j += 4) {
+    const P w = ei::pmul(ei::ploadu<P>(share + j), weight4);
+    if (!ei::predux_any(ei::pcmp_lt(zero, ei::pabs(w)))) continue;  // no share in these four joints (the other arm)
     P qv[4], nv[4];
     ei::PacketBlock<P, 4> pq, pn;
     for (int l = 0; l < 4; ++l) {
@@ -682,7 +686,6 @@ void add_candidate(int joints, const float* q, const float* n, const float* ref,
     ei::ptranspose(pn);
     const P dq = ei::padd(ei::padd(pq.packet[0], pq.packet[2]), ei::padd(pq.packet[1], pq.packet[3]));
     const P dn = ei::padd(ei::padd(pn.packet[0], pn.packet[2]), ei::padd(pn.packet[1], pn.packet[3]));
-    const P w = ei::pmul(ei::ploadu<P>(share + j), weight4);
     const P wq = ei::pxor(w, ei::pand(ei::pcmp_lt(dq, zero), sign));  // -w where q . ref < 0
     const P wa = ei::pmul(wq, a4);
     const P wn = ei::pxor(wa, ei::pand(ei::pcmp_lt(dn, zero), sign));
@@ -703,6 +706,7 @@ void add_candidate(int joints, const float* q, const float* n, const float* ref,
 #endif
   using Vec4 = Eigen::Vector4f;
   for (; j < joints; ++j) {
+    if (share[j] == 0) continue;
     const Eigen::Map<const Vec4> qj(q + 4 * j), nj(n + 4 * j), rj(ref + 4 * j);
     add_rotation(qj, nj, rj, share[j] * weight, a, Eigen::Map<Vec4>(sum + 4 * j), Eigen::Map<Vec4>(sum_ahead + 4 * j));
   }
