@@ -180,6 +180,12 @@ void register_run(CLI::App& parent) {
                   "(0 = off)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
+  cmd->add_flag("--no-floor", a->no_floor,
+                "let feet follow the synthesized pose below the floor (default: never through it; the knee bends, "
+                "feet pushed into it stand on it)");
+  cmd->add_option("--floor-height", a->floor_height, "metres: the play area's floor, y = this (0 = a floor-level tracking origin)")
+      ->capture_default_str()
+      ->check(CLI::Range(-10.0, 10.0));
   cmd->add_option("--max-head-tilt", a->max_tilt, "reject candidates whose head tilt differs from the headset's by more than this (degrees, 0 = off)")
       ->check(non_negative_number());
   cmd->add_option("--target", a->target, "retarget the result by joint roles onto this BVH's skeleton");

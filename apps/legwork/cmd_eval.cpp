@@ -28,7 +28,7 @@ struct EngineOption {
   double lo, hi;
   const char* help;
 };
-constexpr std::array<EngineOption, 19> kEngineOptions{{
+constexpr std::array<EngineOption, 20> kEngineOptions{{
     {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
     {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
     {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
@@ -66,6 +66,7 @@ constexpr std::array<EngineOption, 19> kEngineOptions{{
      "engine: seconds between two searches of the database; in between each hand's matches are continued in their trials (0 = search every frame)"},
     {"--lying-crown", &accent::Settings::lying_crown, 0.0, 1.0,
      "engine: share of a lying user's candidate turn taken from the headset (yaw from its crown, roll from its face), and of the standing IK body taken out (0 = off)"},
+    {"--floor-height", &accent::Settings::floor_height, -10.0, 10.0, "engine: metres, the play area's floor (y = this)"},
 }};
 
 struct EvalArgs {
@@ -76,7 +77,7 @@ struct EvalArgs {
   // Engine switches (unset = the engine's own defaults).
   int hop = -1, k = -1, speed_variants = -1;
   std::array<std::optional<double>, kEngineOptions.size()> engine;  // one per kEngineOptions row
-  bool mirror = false, exact = false;
+  bool mirror = false, exact = false, no_floor = false;
 };
 
 // One override slot per option row: a row added to the table without growing
@@ -130,6 +131,7 @@ void register_eval(CLI::App& app) {
   }
   cmd->add_flag("--mirror", a->mirror, "engine: add mirrored trials to every database");
   cmd->add_flag("--exact", a->exact, "engine: exact k-NN search instead of the fast approximate one");
+  cmd->add_flag("--no-floor", a->no_floor, "engine: feet may go through the floor (floor = false)");
   cmd->callback([a] {
     if (a->video && a->out.empty()) throw Error("--video needs --out DIR");
     if (!a->out.empty()) io::require_writable_folder(a->out, "--out");
@@ -161,6 +163,7 @@ void register_eval(CLI::App& app) {
     for (std::size_t i = 0; i < kEngineOptions.size(); ++i)
       if (a->engine[i]) opt.config.*kEngineOptions[i].field = *a->engine[i];
     if (a->exact) opt.config.search = accent::SearchMode::Exact;
+    if (a->no_floor) opt.config.floor = false;
     opt.progress = io::status_printer("[eval] ");
 
     const eval::EvalResult res = eval::run_evaluation(data, test.get(), opt);

@@ -60,6 +60,10 @@ static class Checks
         Expect.That("search interval default", bad.SearchInterval == 0.044, "SearchInterval " + bad.SearchInterval);
         bad.SearchInterval = 1.5;
         Expect.Throws<LegworkException>("search interval out of range", () => Model.CreateAccent(db, bad), "search_interval must be between 0 and 1 second (0 = search every frame)");
+        bad = AccentSettings.Default();
+        Expect.That("floor default", bad.Floor == 1 && bad.FloorHeight == 0, "Floor " + bad.Floor + ", FloorHeight " + bad.FloorHeight);
+        bad.FloorHeight = 12;
+        Expect.Throws<LegworkException>("floor height out of range", () => Model.CreateAccent(db, bad), "floor_height must be between -10 and 10 metres");
 
         Model model = Model.CreateAccent(db, AccentSettings.Default());
         Avatar avatar = Avatar.Create(model);

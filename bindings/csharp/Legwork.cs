@@ -89,6 +89,8 @@ namespace Legwork
         public double LyingCrown;      // (0..1) share of a lying user's candidate turn from the headset (yaw from its crown, roll from its face; the standing IK body taken out); 0 = off (ABI 10)
         public double OtherClassCost;  // 0, or a factor (1..1e6): while the class is recognised, the other classes are searched too, their distances times it; 0 = the recognised class only (ABI 11)
         public double SearchInterval;  // seconds (0..1) between two searches of the database; in between the matches are continued in their trials; 0 = every frame (ABI 13)
+        public int Floor;              // 1: feet never go through the floor (the knee bends; a foot pushed into it stands on it); 0: they may (ABI 14)
+        public double FloorHeight;     // metres (-10..10): the play area's floor is y = FloorHeight (ABI 14)
 
         public static AccentSettings Default()
         {
@@ -192,7 +194,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 13;
+        public const uint AbiVersion = 14;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 13u
+#define LW_ABI_VERSION 14u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -169,6 +169,10 @@ typedef struct lw_accent_settings {
   double search_interval;  /* seconds (0..1) between two searches of the database; in between each hand's matches are
                               continued in their trials (the last matches and their next windows, ranked by distance);
                               0 = search every frame (ABI 13) */
+  int32_t floor;           /* 1: feet never go through the floor (the knee bends; a foot pushed into it stands on it);
+                              0: they follow the synthesized pose below it too (ABI 14) */
+  double floor_height;     /* metres (-10..10): the play area's floor is y = floor_height (0 = a floor-level tracking
+                              origin) (ABI 14) */
 } lw_accent_settings;
 LW_API void lw_accent_settings_default(lw_accent_settings* s);
 /* The database must outlive the model. */

@@ -133,6 +133,11 @@ void bind_settings(pb::module_& m) {
                      "seconds (0..1) between two searches of the database; in between each hand's matches are "
                      "continued in their trials (the last matches and their next windows, ranked by distance), as "
                      "motion matching does; 0 = search every frame")
+      .def_readwrite("floor", &Settings::floor,
+                     "feet never go through the floor (the knee bends; a foot pushed into it while moving slowly stands "
+                     "on it); False: they follow the synthesized pose below it too")
+      .def_readwrite("floor_height", &Settings::floor_height,
+                     "metres (-10..10): the play area's floor is y = floor_height (0 = a floor-level tracking origin)")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,
                      "seconds: a locked foot creeps toward the synthesized one (0 = held still)")
       .def_readwrite("ik_blend_min", &Settings::ik_blend_min, "share of the IK body at close matches (0..1)")

@@ -226,6 +226,21 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
         accent.make_model(db, s)
 
 
+def test_no_floor_equals_the_cli_flag(cli, db, db_path, truth, tmp_path):
+    """Settings.floor = False is `accent run --no-floor`: the same motion either way, and a different one from the
+    default's (the walk's synthesized feet dip below their rest heights over the floor on some frames)."""
+    out_bvh = tmp_path / "no_floor.bvh"
+    cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--no-floor")
+    s = settings_for(truth)
+    assert s.floor is True and s.floor_height == 0.0  # the defaults
+    default = accent.accentuate_motion(db, s, truth)["motion"]
+    s.floor = False
+    loose = accent.accentuate_motion(db, s, truth)["motion"]
+    back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
+    assert np.abs(back.positions() - loose.positions()).max() < 2e-4
+    assert np.abs(default.positions() - loose.positions()).max() > 1e-3
+
+
 @pytest.mark.parametrize("name, flag, value, default, changes, bad, message", [
     # the travel terms' weight (0 = hand features only)
     ("travel_weight", "--travel-weight", 0.0, 2.0, True, -1.0, r"travel_weight must be between 0 and 100 \(0 = off\)"),
@@ -248,6 +263,9 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
     # SearchingEveryHopContinuesTheMatchesInTheirTrials)
     ("search_interval", "--search-interval", 0.0, 0.044, True, 1.5,
      r"search_interval must be between 0 and 1 second \(0 = search every frame\)"),
+    # where the floor is: half a metre up, every foot stands higher (effect: tests/accent's
+    # FeetNeverGoThroughTheFloorAndFeetPushedIntoItStand)
+    ("floor_height", "--floor-height", 0.5, 0.0, True, 12.0, r"floor_height must be between -10 and 10 metres"),
 ])
 def test_engine_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_path, name, flag, value, default, changes,
                                               bad, message):

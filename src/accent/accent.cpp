@@ -94,6 +94,8 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: foot_lock_slack must be between 0 and 1 metre");
   if (!std::isfinite(cfg.foot_swing_speed) || cfg.foot_swing_speed < 0 || cfg.foot_swing_speed > 10)
     throw Error("accent: foot_swing_speed must be between 0 and 10 m/s");
+  if (!std::isfinite(cfg.floor_height) || cfg.floor_height < -10 || cfg.floor_height > 10)
+    throw Error("accent: floor_height must be between -10 and 10 metres");
   if (!(cfg.ik_blend_min >= 0 && cfg.ik_blend_min <= cfg.ik_blend_max && cfg.ik_blend_max <= 1))
     throw Error("accent: IK blend shares need 0 <= ik_blend_min <= ik_blend_max <= 1");
   if (!(cfg.class_seconds >= 0) || !(cfg.class_hold_seconds >= 0) || !(cfg.class_margin >= 0 && cfg.class_margin < 1) ||
@@ -222,6 +224,16 @@ Model make_model(const Database& db, const Settings& settings) {
     for (std::size_t f = 0; f < 2; ++f) {
       const Role toe = f == 0 ? Role::LeftToe : Role::RightToe;
       m.toe_[f] = r.has(toe) && skel.is_ancestor(m.leg_[f].end, r[toe]) ? r[toe] : -1;
+      // The sole: the lowest of the ankle, the toe and the toe's end site at rest.
+      const auto end = static_cast<std::size_t>(m.leg_[f].end);
+      double sole = rest[end].y();
+      if (const int t = m.toe_[f]; t >= 0) {
+        const auto tu = static_cast<std::size_t>(t);
+        sole = std::min(sole, rest[tu].y());
+        if (skel.has_end_site[tu]) sole = std::min(sole, rest[tu].y() + skel.end_sites[tu].y());
+        m.toe_rest_[f] = rest[tu].y() - sole;
+      }
+      m.ankle_rest_[f] = rest[end].y() - sole;
     }
   }
   m.arm_ = {ik::left_arm(skel), ik::right_arm(skel)};
@@ -232,7 +244,9 @@ Model make_model(const Database& db, const Settings& settings) {
   }
   if (settings.ik_blend_max > 0) {
     try {
-      m.ik_ = std::make_shared<const ik::Model>(ik::make_model(skel));
+      ik::Settings ik_cfg;
+      ik_cfg.floor_height = settings.floor_height;
+      m.ik_ = std::make_shared<const ik::Model>(ik::make_model(skel, ik_cfg));
     } catch (const Error&) {
       m.ik_ = nullptr;  // a skeleton the IK cannot take: synthesis alone
     }
@@ -1015,14 +1029,17 @@ constexpr double kFloorRelax = 0.1;
 // damped spring on the swing clearance's lift (continuous velocity: no jerk).
 constexpr double kSwingSeconds = 0.05;
 constexpr double kClearanceHalflife = 0.04;
+// Speed (m/s, scaled with the user) below which a foot pushed into the floor is
+// planted (Settings::floor): the default swing speed.
+constexpr double kPressedSpeed = 0.5;
 
 // One foot's lock state for this frame: touch down, let go, creep beyond the
 // slack, stay within the leg's reach. `ankle` is the synthesized ankle (world).
-void update_lock(const Model& model, State& st, int f, const Transform& ankle, double dt) {
+void update_lock(const Model& model, State& st, int f, const Transform& ankle, bool pressed, double dt) {
   const Settings& cfg = model.settings();
   State::FootLock& lock = st.foot[static_cast<std::size_t>(f)];
   const double c = st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback);
-  const bool contact = c > (lock.locked ? cfg.contact_off : cfg.contact_on);
+  const bool contact = cfg.foot_lock && (pressed || c > (lock.locked ? cfg.contact_off : cfg.contact_on));
   if (contact && !lock.locked) {
     // Touch down where the foot is shown now (mid-release: between the old lock and the synthesized foot).
     const double w = smooth01(lock.weight);
@@ -1051,12 +1068,13 @@ void update_lock(const Model& model, State& st, int f, const Transform& ankle, d
 // Swing clearance (Settings::foot_swing_speed): metres to lift a free foot
 // whose synthesized ankle moves fast (a swing) and whose ankle or toe would
 // pass lower than foot_lift_height above its floor (the lowest height each
-// recently had); smoothed by a critically damped spring. `target_y` and
+// recently had, never below `ankle_floor` / `toe_floor`: the play area's floor
+// with Settings::floor); smoothed by a critically damped spring. `target_y` and
 // `toe_y` are where the ankle and the toe (if `has_toe`) would be shown,
 // `upright` 0..1 the headset's uprightness (a swimmer's feet have no floor),
 // `contact` the foot's blended candidate contact.
 double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& ankle, double target_y, bool has_toe,
-                       double toe_y, double upright, double contact, double dt) {
+                       double toe_y, double ankle_floor, double toe_floor, double upright, double contact, double dt) {
   const Settings& cfg = model.settings();
   // The stream's first frame (or the first after a reset): nothing has been
   // shown yet, so a foot its candidates do not put down is swinging now and is
@@ -1070,12 +1088,12 @@ double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& an
     lock.have_floor = true;
     lock.swing = !lock.locked && contact < cfg.contact_off ? 1.0 : 0.0;
   }
-  lock.floor = std::min(lock.floor + kFloorRelax * dt, ankle.y());
-  lock.toe_floor = std::min(lock.toe_floor + kFloorRelax * dt, toe_y);
+  lock.floor = std::max(std::min(lock.floor + kFloorRelax * dt, ankle.y()), ankle_floor);
+  lock.toe_floor = std::max(std::min(lock.toe_floor + kFloorRelax * dt, toe_y), toe_floor);
   Vec3 step = ankle - lock.previous;
   step.y() = 0;
   lock.previous = ankle;
-  if (cfg.foot_swing_speed <= 0) return 0.0;
+  if (cfg.foot_swing_speed <= 0 || !cfg.foot_lock) return 0.0;
   const bool swinging = !lock.locked && dt > 0 && step.norm() > cfg.foot_swing_speed * model.scale() * dt;
   if (!fresh) lock.swing = lock.locked ? 0.0 : lock.swing + (1.0 - std::exp(-dt / kSwingSeconds)) * ((swinging ? 1.0 : 0.0) - lock.swing);
   // Lift until the ankle and the toe are each foot_lift_height above their floors.
@@ -1095,18 +1113,32 @@ double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& an
   return std::max(0.0, lock.lift);
 }
 
-// Foot locking (Settings::foot_lock): on the placed pose (st.model_space
-// holds its world transforms), hold each planted ankle where it touched down;
-// released feet travel back on a lifted arc, swinging feet clear the floor.
+// Foot locking (Settings::foot_lock) and the floor (Settings::floor): on the
+// placed pose (st.model_space holds its world transforms), hold each planted
+// ankle where it touched down; released feet travel back on a lifted arc,
+// swinging feet clear the floor, no foot goes through it.
 void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
   const Settings& cfg = model.settings();
   const double up = (st.last_head_rot * Vec3::UnitY()).y();
   const double upright = smooth01(std::clamp((up - 0.174) / (0.5 - 0.174), 0.0, 1.0));
+  // The lowest the ankle and the toe may be shown: their rest heights above the floor.
+  constexpr double kNoFloor = -std::numeric_limits<double>::infinity();
   for (int f = 0; f < 2; ++f) {
     State::FootLock& lock = st.foot[static_cast<std::size_t>(f)];
     const ik::TwoBoneChain& chain = model.leg(f);
     const Transform ankle = st.model_space[static_cast<std::size_t>(chain.end)];  // synthesized
-    update_lock(model, st, f, ankle, dt);
+    const int toe = model.toe(f);
+    const double ankle_floor = cfg.floor ? cfg.floor_height + model.ankle_rest_height(f) : kNoFloor;
+    const double toe_floor = cfg.floor && toe >= 0 ? cfg.floor_height + model.toe_rest_height(f) : kNoFloor;
+    // A foot the synthesized pose pushes into the floor, moving slower than a
+    // swing, stands on it: planted as if its candidates said so.
+    Vec3 step = ankle.translation - lock.previous;
+    step.y() = 0;
+    const bool pressed =
+        (ankle.translation.y() < ankle_floor ||
+         (toe >= 0 && st.model_space[static_cast<std::size_t>(toe)].translation.y() < toe_floor)) &&
+        lock.have_floor && dt > 0 && step.norm() < kPressedSpeed * model.scale() * dt;
+    update_lock(model, st, f, ankle, pressed, dt);
     const double w = smooth01(lock.weight);
     // A released foot travels from the lock to the synthesized ankle on a lifted
     // arc (sin^2: no velocity step at either end) instead of along the floor.
@@ -1118,15 +1150,16 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     const Quat foot = ankle.rotation.slerp(w, lock.rotation);
     // The toe as it will be shown: its offset from the ankle turned with the foot.
     double toe_y = 0;
-    if (const int toe = model.toe(f); toe >= 0) {
+    if (toe >= 0) {
       const Vec3 offset = st.model_space[static_cast<std::size_t>(toe)].translation - ankle.translation;
       toe_y = target.position.y() + (foot * (ankle.rotation.conjugate() * offset)).y();
     }
-    const double lift =
-        swing_clearance(model, lock, ankle.translation, target.position.y(), model.toe(f) >= 0, toe_y, upright,
-                        st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback), dt);
-    if (lock.weight <= 0 && lift < 1e-5) continue;
-    target.position.y() += lift;
+    const double lift = swing_clearance(model, lock, ankle.translation, target.position.y(), toe >= 0, toe_y, ankle_floor,
+                                        toe_floor, upright, st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback), dt);
+    // Never through the floor: the knee bends to raise the ankle and the toe to their floors.
+    const double under = std::max(ankle_floor - (target.position.y() + lift), toe_floor - (toe_y + lift));
+    if (lock.weight <= 0 && lift < 1e-5 && !(under > 0)) continue;
+    target.position.y() += lift + std::max(0.0, under);
     target.rotation = foot;
     target.position_weight = 1.0;
     target.rotation_weight = 1.0;
@@ -1418,7 +1451,7 @@ UpdateStatus update(const Model& model, const TrackerFrame& in, State& st, PoseR
   if (st.ik && !cfg.direct_only) blend_ik(model, in, st, dt, out);
   if (cfg.smooth && cfg.smooth_halflife > 0 && !cfg.direct_only) spring_filter(model, st, dt, out);
   finish_pose(model, st, st.last_head_rot, st.last_head, std::max(cfg.hand_ik, st.fallback), out);
-  if (cfg.foot_lock && model.can_lock_feet() && !cfg.direct_only) lock_feet(model, st, dt, out);
+  if ((cfg.foot_lock || cfg.floor) && model.can_lock_feet() && !cfg.direct_only) lock_feet(model, st, dt, out);
   // Never hand out a broken pose: fall back to the neutral one.
   if (!pose_finite(out)) {
     const Pose& neutral = model.neutral();

@@ -98,6 +98,8 @@ void run_accent_job(const AccentJob& a) {
   cfg.foot_swing_speed = a.foot_swing_speed;
   cfg.travel_weight = a.travel_weight;
   cfg.max_head_height_diff = a.max_head_height_diff;
+  cfg.floor = !a.no_floor;
+  cfg.floor_height = a.floor_height;
   const double fps = db.feature_space().fps;
   std::vector<TrackerFrame> frames;
   Motion truth;

@@ -420,6 +420,8 @@ json report_json(const EvalResult& r) {
                         {"foot_lift_height", v.config.foot_lift_height},
                         {"foot_lock_slack", v.config.foot_lock_slack},
                         {"foot_swing_speed", v.config.foot_swing_speed},
+                        {"floor", v.config.floor},
+                        {"floor_height", v.config.floor_height},
                         {"travel_weight", v.config.travel_weight},
                         {"max_head_height_diff", v.config.max_head_height_diff},
                         {"ik_blend_min", v.config.ik_blend_min},

@@ -376,6 +376,8 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
       [](Variant& x) { x.config.max_head_height_diff = 0; });
   add("no_swing_clearance", "swinging feet not lifted clear of the floor (foot_swing_speed = 0)",
       [](Variant& x) { x.config.foot_swing_speed = 0; });
+  add("no_floor", "feet may go through the floor (floor = false: no knee bend to keep them above it, feet pushed into it not planted)",
+      [](Variant& x) { x.config.floor = false; });
   return v;
 }
 

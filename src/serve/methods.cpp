@@ -114,6 +114,8 @@ void accent_options(const MethodOptions& opt, accent::Settings& c) {
   c.lying_crown = opt.lying_crown;
   c.other_class_cost = opt.other_class_cost;
   c.search_interval = opt.search_interval;
+  c.floor = opt.floor;
+  c.floor_height = opt.floor_height;
   c.exaggeration = opt.exaggeration;
   c.user_height = opt.user_height;
 }
@@ -221,6 +223,8 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("other_class_cost " + std::to_string(opt.other_class_cost) + " is neither 0 (off) nor in [1, 1e6]");
   if (!(opt.search_interval >= 0 && opt.search_interval <= 1))
     throw Error("search_interval " + std::to_string(opt.search_interval) + " is outside [0, 1] seconds (0 = every frame)");
+  if (!(opt.floor_height >= -10 && opt.floor_height <= 10))
+    throw Error("floor_height " + std::to_string(opt.floor_height) + " m is outside [-10, 10]");
   if (!(opt.foot_swing_speed >= 0 && opt.foot_swing_speed <= 10))
     throw Error("foot_swing_speed " + std::to_string(opt.foot_swing_speed) + " m/s is outside [0, 10]");
   if (!(opt.user_height == 0 || (opt.user_height >= kMinUserHeight && opt.user_height <= kMaxUserHeight))) {

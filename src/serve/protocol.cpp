@@ -100,6 +100,8 @@ Hello parse_hello(const json& j) {
   if (auto lc = j.find("lying_crown"); lc != j.end()) h.method.lying_crown = number(*lc, "hello.lying_crown");
   if (auto oc = j.find("other_class_cost"); oc != j.end()) h.method.other_class_cost = number(*oc, "hello.other_class_cost");
   if (auto si = j.find("search_interval"); si != j.end()) h.method.search_interval = number(*si, "hello.search_interval");
+  if (auto fl = j.find("floor"); fl != j.end()) h.method.floor = boolean(*fl, "hello.floor");
+  if (auto fh = j.find("floor_height"); fh != j.end()) h.method.floor_height = number(*fh, "hello.floor_height");
   if (auto fw = j.find("foot_swing_speed"); fw != j.end()) h.method.foot_swing_speed = number(*fw, "hello.foot_swing_speed");
   if (auto u = j.find("user_height"); u != j.end() && !u->is_null()) h.method.user_height = number(*u, "hello.user_height");
   if (auto mp = j.find("mapping"); mp != j.end() && !mp->is_null()) {

@@ -740,6 +740,8 @@ TEST(AccentLive, UnknownClassAndBadConfigAreClearErrors) {
   };
   refused(&Settings::search_interval, {-0.01, 1.5, std::numeric_limits<double>::quiet_NaN()},
           "search_interval must be between 0 and 1 second (0 = search every frame)");
+  refused(&Settings::floor_height, {-10.5, 11.0, std::numeric_limits<double>::quiet_NaN()},
+          "floor_height must be between -10 and 10 metres");
   refused(&Settings::foot_lift_height, {-0.01, 0.6, std::numeric_limits<double>::quiet_NaN()},
           "foot_lift_height must be between 0 and 0.5 metres");
   refused(&Settings::foot_lock_slack, {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()},
@@ -1169,6 +1171,73 @@ TEST(AccentShared, AUserLyingWithoutAMatchLiesFlat) {
   EXPECT_EQ(off.flat, 0);               // the standing pose hung from the headset
   EXPECT_GT(on.flat, on.frames * 9 / 10);
   EXPECT_LT(on.pelvis, 0.5 * off.pelvis);
+}
+
+// The floor (Settings::floor): a body lowered to a headset held low — swimmer
+// 125 lies on a bench with the headset 0.7 m up — put its feet up to 60 cm
+// under the floor. With the floor the knee bends
+// instead: held out against the other swimmers, no ankle or toe is ever shown
+// below its rest height over the floor, the legs come nearer the truth, and
+// feet pushed into the floor stand on it (the ankles slide less along it).
+TEST(AccentShared, FeetNeverGoThroughTheFloorAndFeetPushedIntoItStand) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  const std::string data = testdata::shared_cmu().string();
+  const testing::SubjectFold fold = testing::subject_fold(data, "swimming", "125");
+  struct Result {
+    double deepest = 0;  // most any ankle or toe is shown below its rest height over the floor (m)
+    int under = 0;       // frames with an ankle or toe more than 5 cm below it
+    double legs = 0;     // mean distance of the lower body's role joints from the truth (m)
+    testing::FloorSlide slide;
+    int frames = 0;
+  };
+  auto run = [&](bool floor) {
+    Result r;
+    Settings cfg;
+    cfg.floor = floor;
+    long leg_joints = 0;
+    for (const auto& file : fold.held_out) {
+      const Motion input = testing::shared_trial(file);
+      cfg.user_height = measure_body(input.skeleton).standing_height;
+      const Model model = make_model(fold.db, cfg);
+      const Motion out = accentuate_motion(fold.db, cfg, input).output;
+      const auto po = joint_positions(out), pt = joint_positions(input);
+      const auto no = static_cast<std::size_t>(out.joint_count()), nt = static_cast<std::size_t>(input.joint_count());
+      for (int f = 0; f < out.frame_count(); ++f) {
+        const auto fu = static_cast<std::size_t>(f);
+        double depth = 0;
+        for (int s = 0; s < 2; ++s) {
+          const auto ankle = static_cast<std::size_t>(model.leg(s).end), toe = static_cast<std::size_t>(model.toe(s));
+          depth = std::max(depth, model.ankle_rest_height(s) - po[fu * no + ankle].y());
+          depth = std::max(depth, model.toe_rest_height(s) - po[fu * no + toe].y());
+        }
+        r.deepest = std::max(r.deepest, depth);
+        r.under += depth > 0.05;
+        for (Role role : {Role::Pelvis, Role::LeftHip, Role::LeftKnee, Role::LeftAnkle, Role::LeftToe, Role::RightHip,
+                          Role::RightKnee, Role::RightAnkle, Role::RightToe}) {
+          r.legs += (po[fu * no + static_cast<std::size_t>(out.skeleton.roles[role])] -
+                     pt[fu * nt + static_cast<std::size_t>(input.skeleton.roles[role])])
+                        .norm();
+          ++leg_joints;
+        }
+      }
+      const testing::FloorSlide s = testing::ankle_floor_slide(out);
+      r.slide.metres += s.metres;
+      r.slide.pairs += s.pairs;
+      r.frames += out.frame_count();
+    }
+    r.legs /= static_cast<double>(leg_joints);
+    return r;
+  };
+  const Result on = run(true), off = run(false);
+  std::printf("[ figures  ] swimmer 125 (%zu trials, %d frames) vs the other swimmers: deepest ankle or toe below the floor "
+              "%.1f cm with the floor, %.1f cm without (%d / %d frames more than 5 cm under); lower body %.1f / %.1f cm from "
+              "the truth; ankles near their floor slide %.2f / %.2f cm a frame\n",
+              fold.held_out.size(), on.frames, 100 * on.deepest, 100 * off.deepest, on.under, off.under, 100 * on.legs,
+              100 * off.legs, 100 * on.slide.per_pair(), 100 * off.slide.per_pair());
+  EXPECT_GT(off.under, off.frames / 20);  // without it, feet go through the floor on many frames...
+  EXPECT_LT(on.deepest, 1e-6);            // ...with it, never
+  EXPECT_LT(on.legs, off.legs);
+  EXPECT_LT(on.slide.per_pair(), off.slide.per_pair());
 }
 
 }  // namespace

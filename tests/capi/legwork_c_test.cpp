@@ -577,6 +577,17 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
             std::string::npos)
       << lw_last_error();
   s.search_interval = 0;
+  EXPECT_EQ(s.floor, 1);  // ABI 14: the engine's defaults
+  EXPECT_DOUBLE_EQ(s.floor_height, legwork::accent::Settings{}.floor_height);
+  s.floor = 2;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("floor must be 0 or 1, got 2"), std::string::npos) << lw_last_error();
+  s.floor = 0;
+  s.floor_height = 11;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("floor_height must be between -10 and 10 metres"), std::string::npos)
+      << lw_last_error();
+  s.floor_height = -0.2;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

@@ -101,6 +101,9 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   o.search_interval = -0.5;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "search_interval -0.500000 is outside [0, 1] seconds (0 = every frame)");
   o.search_interval = 0;
+  o.floor_height = 12;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "floor_height 12.000000 m is outside [-10, 10]");
+  o.floor_height = -0.5;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "(no error)");
   o.user_height = 9;
   char want[160];

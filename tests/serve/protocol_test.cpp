@@ -106,6 +106,17 @@ TEST(Protocol, FootSlackAndSwingSpeedAreHelloFields) {
 
 // The accentuation engine's numeric settings that are hello fields: absent, each
 // is the engine's default (accent::Settings); given, the value sent.
+TEST(Protocol, FloorIsAHelloField) {
+  EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.floor, accent::Settings{}.floor);
+  EXPECT_FALSE(parse_text(R"({"type":"hello","version":1,"floor":false})").hello.method.floor);
+  try {
+    parse_text(R"({"type":"hello","version":1,"floor":0})");
+    ADD_FAILURE() << "a number for hello.floor was accepted";
+  } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.code() + ": " + e.what(), "bad_message: hello.floor must be true or false");
+  }
+}
+
 TEST(Protocol, AccentSettingsAreHelloFields) {
   struct Field {
     const char* name;
@@ -120,6 +131,7 @@ TEST(Protocol, AccentSettingsAreHelloFields) {
                          Field{"lying_crown", &MethodOptions::lying_crown, d.lying_crown, 0.5},  // a lying user turned by the crown
                          Field{"other_class_cost", &MethodOptions::other_class_cost, d.other_class_cost, 1.5},  // other classes at a cost
                          Field{"search_interval", &MethodOptions::search_interval, d.search_interval, 0.1},  // searches every hop
+                         Field{"floor_height", &MethodOptions::floor_height, d.floor_height, -1.5},  // where the floor is
                          Field{"foot_lift_height", &MethodOptions::foot_lift_height, d.foot_lift_height, 0.1}}) {  // released feet's lift
     SCOPED_TRACE(f.name);
     EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.*f.option, f.engine_default);

@@ -178,6 +178,16 @@ struct Settings {
   // step flattens the swing. Not while the headset is tilted 60-80 degrees or
   // more (a swimmer). 0 = off.
   double foot_swing_speed = 0.5;
+  // The floor: the play area's floor is the plane y = floor_height (metres; 0
+  // for a floor-level tracking origin, as the IK body's). With floor on, a
+  // foot is never shown through it (the ankle and the toe stay at least their
+  // rest heights above it; the knee bends), a foot the synthesized pose pushes
+  // into it while moving slower than foot_swing_speed is planted (with
+  // foot_lock), and swinging feet clear it by foot_lift_height. Off, feet
+  // follow the synthesized pose below the floor too (a body lowered to a
+  // swimmer's headset on a bench put them up to 60 cm under it).
+  bool floor = true;
+  double floor_height = 0.0;
   // Confidence blend toward the full-body IK body (legwork::ik on the same
   // skeleton, run beside the synthesis): share of the IK pose in the output =
   // ik_blend_min, rising smoothly to ik_blend_max as the match distance
@@ -261,6 +271,10 @@ class Model {
   const ik::TwoBoneChain& leg(int foot) const { return leg_[static_cast<std::size_t>(foot)]; }
   double leg_length(int foot) const { return leg_length_[static_cast<std::size_t>(foot)]; }
   int toe(int foot) const { return toe_[static_cast<std::size_t>(foot)]; }  // -1: no toe below the ankle
+  // Rest heights (metres) of the ankle and the toe above the foot's sole (its
+  // lowest joint or end site): how high each stays above the floor.
+  double ankle_rest_height(int foot) const { return ankle_rest_[static_cast<std::size_t>(foot)]; }
+  double toe_rest_height(int foot) const { return toe_rest_[static_cast<std::size_t>(foot)]; }
   bool can_lock_feet() const { return can_lock_feet_; }
   // Arm chains (0 left, 1 right), their lengths (upper arm + forearm, metres)
   // and clavicles (-1 when the skeleton has none): hand IK's reach.
@@ -294,6 +308,7 @@ class Model {
   std::array<ik::TwoBoneChain, 2> leg_{};
   std::array<double, 2> leg_length_{0, 0};
   std::array<int, 2> toe_{-1, -1};
+  std::array<double, 2> ankle_rest_{0, 0}, toe_rest_{0, 0};
   bool can_lock_feet_ = false;
   std::array<ik::TwoBoneChain, 2> arm_{};
   std::array<double, 2> arm_length_{0, 0};
@@ -342,7 +357,7 @@ struct State {
     Quat rotation = Quat::Identity();  // world rotation of the planted ankle
     // Swing clearance (Settings::foot_swing_speed).
     bool have_floor = false;
-    double floor = 0;                  // lowest recent synthesized ankle height (relaxing upward)
+    double floor = 0;                  // lowest recent synthesized ankle height (relaxing upward; not below the floor)
     double toe_floor = 0;              // lowest recent height of the toe (ball of the foot) as shown
     Vec3 previous = Vec3::Zero();      // last frame's synthesized ankle
     double swing = 0;                  // 0..1: the foot is swinging

@@ -31,6 +31,8 @@ struct AccentJob {
   double foot_swing_speed = accent::Settings{}.foot_swing_speed;
   double travel_weight = accent::Settings{}.travel_weight;
   double max_head_height_diff = accent::Settings{}.max_head_height_diff;
+  bool no_floor = false;
+  double floor_height = accent::Settings{}.floor_height;
 };
 
 // "fast", "exact", "brute" -> the search mode; throws naming --mode otherwise.

@@ -62,6 +62,9 @@ struct MethodOptions {
   double other_class_cost = 1.25;
   // accent (and combined's upper body): accent::Settings::search_interval, the engine's default (0 = search every frame).
   double search_interval = 0.044;
+  // accent (and combined's upper body): accent::Settings::floor and floor_height, the engine's defaults.
+  bool floor = true;
+  double floor_height = 0.0;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
   std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)
