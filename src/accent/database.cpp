@@ -11,6 +11,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <string_view>
+#include <system_error>
+#include <thread>
 #include <type_traits>
 #include <fcntl.h>
 #include <fstream>
@@ -475,24 +477,66 @@ bool scan_chunk(const std::byte* base, const ScanRange& r, std::uint64_t from, s
   return bad == 0;
 }
 
-// The checksum of the block (as block_checksum) and, chunk by chunk while the
-// chunk is in cache, the content scan; contents_ok = false when anything looked wrong.
-std::uint64_t checksum_and_scan(const Database::Impl& d, bool& contents_ok) {
-  std::array<ScanRange, 7> ranges{};
-  const std::size_t nr = scan_ranges(d, ranges);
+// The checksum (format 9) is XXH3-64 of the two XXH3-64 digests of the block's
+// halves, [0, mid) with the header's checksum field zeroed and [mid, size), so
+// a load can hash the halves on two cores: one XXH3 pass over a 46 MB file is
+// bound by one core's memory bandwidth at 4-6 ms (docs/accent.md, "Database
+// format 9").
+std::uint64_t checksum_middle(std::uint64_t size) { return std::max<std::uint64_t>(sizeof(FileHeader), size / 2); }
+std::uint64_t combine_halves(std::uint64_t first, std::uint64_t second) {
+  const std::uint64_t both[2] = {first, second};  // the file is little-endian (the header's endian tag)
+  return XXH3_64bits(both, sizeof both);
+}
+
+// XXH3-64 of base[from, to) (the zeroed header first when from is 0) and,
+// chunk by chunk while the chunk is in cache, the content scan of the ranges;
+// ok = false when anything looked wrong.
+std::uint64_t hash_and_scan(const Database::Impl& d, std::span<const ScanRange> ranges, std::uint64_t from,
+                            std::uint64_t to, bool& ok) {
   XXH3_state_t state;
   XXH3_64bits_reset(&state);
-  FileHeader zeroed = d.header;
-  zeroed.checksum = 0;
-  LEGWORK_XXH3_UPDATE(&state, &zeroed, sizeof zeroed);
+  if (from == 0) {
+    FileHeader zeroed = d.header;
+    zeroed.checksum = 0;
+    LEGWORK_XXH3_UPDATE(&state, &zeroed, sizeof zeroed);
+    from = sizeof(FileHeader);
+  }
   constexpr std::uint64_t kChunk = 128 * 1024;
-  contents_ok = true;
-  for (std::uint64_t at = sizeof(FileHeader); at < d.size; at += kChunk) {
-    const std::uint64_t end = std::min<std::uint64_t>(d.size, at + kChunk);
+  ok = true;
+  for (std::uint64_t at = from; at < to; at += kChunk) {
+    const std::uint64_t end = std::min<std::uint64_t>(to, at + kChunk);
     LEGWORK_XXH3_UPDATE(&state, d.base + at, end - at);
-    for (std::size_t r = 0; r < nr; ++r) contents_ok = scan_chunk(d.base, ranges[r], at, end) && contents_ok;
+    for (const ScanRange& r : ranges) ok = scan_chunk(d.base, r, at, end) && ok;
   }
   return XXH3_64bits_digest(&state);
+}
+
+// Files at least this large hash their second half on another thread (starting
+// one costs tens of microseconds; hashing a megabyte about a hundred).
+constexpr std::uint64_t kParallelChecksumBytes = 1u << 20;
+
+// The checksum of the block (as block_checksum) with the content scan;
+// contents_ok = false when anything looked wrong.
+std::uint64_t checksum_and_scan(const Database::Impl& d, bool& contents_ok) {
+  std::array<ScanRange, 7> ranges{};
+  const std::span<const ScanRange> scan(ranges.data(), scan_ranges(d, ranges));
+  const std::uint64_t mid = checksum_middle(d.size);
+  bool ok_first = true, ok_second = true;
+  std::uint64_t second = 0;
+  std::thread helper;
+  if (d.size >= kParallelChecksumBytes) {
+    try {
+      helper = std::thread([&] { second = hash_and_scan(d, scan, mid, d.size, ok_second); });
+    } catch (const std::system_error&) {  // no thread to be had: hash both halves here
+    }
+  }
+  const std::uint64_t first = hash_and_scan(d, scan, 0, mid, ok_first);
+  if (helper.joinable())
+    helper.join();
+  else
+    second = hash_and_scan(d, scan, mid, d.size, ok_second);
+  contents_ok = ok_first && ok_second;
+  return combine_halves(first, second);
 }
 
 // Builds the KD-trees from the features (files of another nanoflann node
@@ -524,21 +568,23 @@ void build_trees(Database::Impl& d, int leaf_size) {
 }  // namespace
 
 std::uint64_t block_checksum(std::span<const std::byte> block) {
-  // XXH3-64 of the whole block with the header's checksum field zeroed:
-  // catches truncation, bit flips and overwrites (not an integrity seal
-  // against tampering). Format version 4; version 3 used a serial FNV-1a.
+  // Catches truncation, bit flips and overwrites (not an integrity seal
+  // against tampering). Format 9: the XXH3-64 of the XXH3-64s of the block's
+  // halves, the header's checksum field zeroed (checksum_and_scan); versions
+  // 4-8 hashed the block in one pass, version 3 used a serial FNV-1a.
+  if (block.size() < sizeof(FileHeader)) return XXH3_64bits(block.data(), block.size());
+  const std::uint64_t mid = checksum_middle(block.size());
   XXH3_state_t state;
   XXH3_64bits_reset(&state);
-  if (block.size() < sizeof(FileHeader)) {
-    LEGWORK_XXH3_UPDATE(&state, block.data(), block.size());
-    return XXH3_64bits_digest(&state);
-  }
   FileHeader zeroed;
   std::memcpy(&zeroed, block.data(), sizeof zeroed);
   zeroed.checksum = 0;
   LEGWORK_XXH3_UPDATE(&state, &zeroed, sizeof zeroed);
-  LEGWORK_XXH3_UPDATE(&state, block.data() + sizeof zeroed, block.size() - sizeof zeroed);
-  return XXH3_64bits_digest(&state);
+  LEGWORK_XXH3_UPDATE(&state, block.data() + sizeof zeroed, mid - sizeof zeroed);
+  const std::uint64_t first = XXH3_64bits_digest(&state);
+  XXH3_64bits_reset(&state);
+  LEGWORK_XXH3_UPDATE(&state, block.data() + mid, block.size() - mid);
+  return combine_halves(first, XXH3_64bits_digest(&state));
 }
 
 std::vector<std::byte> serialize_block(const BlockParts& p) {

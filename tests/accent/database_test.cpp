@@ -102,7 +102,7 @@ TEST(DatabaseFormat, AFormat4FileIsRefusedWithTheRebuildMessage) {
     FAIL() << "a format-4 file loaded";
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()), "accent database '" + path +
-                                         "': format version 4, but this legwork reads version 8; rebuild it with 'legwork accent build'");
+                                         "': format version 4, but this legwork reads version 9; rebuild it with 'legwork accent build'");
   }
 }
 
@@ -225,30 +225,41 @@ TEST_F(SampleDb, BadFilesAreRejectedWithClearMessages) {
   auto flipped = good;
   flipped[good.size() - 100] ^= std::byte{0x10};
   expect_error(flipped, "checksum");
+  // A bit flipped in either half of the checksum (format 9: the halves hashed
+  // apart, on two threads for a file of this size, 1 MB or more).
+  ASSERT_GE(good.size(), std::size_t{1} << 20);
+  for (std::size_t at : {good.size() / 2 - 1, good.size() / 2, good.size() / 3, 2 * good.size() / 3}) {
+    auto one = good;
+    one[at] ^= std::byte{0x01};
+    expect_error(one, "checksum");
+  }
   auto version = good;
-  version[8] = std::byte{9};  // the version field follows the 8-byte magic
-  expect_error(version, "format version 9, but this legwork reads version 8");
+  version[8] = std::byte{10};  // the version field follows the 8-byte magic
+  expect_error(version, "format version 10, but this legwork reads version 9");
   auto old = good;
   old[8] = std::byte{1};  // a version 1 file (no foot contacts): rebuild
-  expect_error(old, "format version 1, but this legwork reads version 8; rebuild it with 'legwork accent build'");
+  expect_error(old, "format version 1, but this legwork reads version 9; rebuild it with 'legwork accent build'");
   auto v2 = good;
   v2[8] = std::byte{2};  // a version 2 file (no stored search index): rebuild
-  expect_error(v2, "format version 2, but this legwork reads version 8; rebuild it");
+  expect_error(v2, "format version 2, but this legwork reads version 9; rebuild it");
   auto v3 = good;
   v3[8] = std::byte{3};  // a version 3 file (FNV-1a checksum): rebuild
-  expect_error(v3, "format version 3, but this legwork reads version 8; rebuild it with 'legwork accent build'");
+  expect_error(v3, "format version 3, but this legwork reads version 9; rebuild it with 'legwork accent build'");
   auto v4 = good;
   v4[8] = std::byte{4};  // a version 4 file (no head travel): rebuild
-  expect_error(v4, "format version 4, but this legwork reads version 8; rebuild it with 'legwork accent build'");
+  expect_error(v4, "format version 4, but this legwork reads version 9; rebuild it with 'legwork accent build'");
   auto v5 = good;
   v5[8] = std::byte{5};  // a version 5 file (100 ms windows, no stride): rebuild
-  expect_error(v5, "format version 5, but this legwork reads version 8; rebuild it with 'legwork accent build'");
+  expect_error(v5, "format version 5, but this legwork reads version 9; rebuild it with 'legwork accent build'");
   auto v6 = good;
   v6[8] = std::byte{6};  // a version 6 file (feature rows in window order, no row order): rebuild
-  expect_error(v6, "format version 6, but this legwork reads version 8; rebuild it with 'legwork accent build'");
+  expect_error(v6, "format version 6, but this legwork reads version 9; rebuild it with 'legwork accent build'");
   auto v7 = good;
   v7[8] = std::byte{7};  // a version 7 file (feature scale and projection in the JSON): rebuild
-  expect_error(v7, "format version 7, but this legwork reads version 8; rebuild it with 'legwork accent build'");
+  expect_error(v7, "format version 7, but this legwork reads version 9; rebuild it with 'legwork accent build'");
+  auto v8 = good;
+  v8[8] = std::byte{8};  // a version 8 file (the checksum in one pass): rebuild
+  expect_error(v8, "format version 8, but this legwork reads version 9; rebuild it with 'legwork accent build'");
   auto magic = good;
   magic[0] = std::byte{'X'};
   expect_error(magic, "not a legwork accent database");
