@@ -1029,9 +1029,6 @@ constexpr double kFloorRelax = 0.1;
 // damped spring on the swing clearance's lift (continuous velocity: no jerk).
 constexpr double kSwingSeconds = 0.05;
 constexpr double kClearanceHalflife = 0.04;
-// Speed (m/s, scaled with the user) below which a foot pushed into the floor is
-// planted (Settings::floor): the default swing speed.
-constexpr double kPressedSpeed = 0.5;
 
 // One foot's lock state for this frame: touch down, let go, creep beyond the
 // slack, stay within the leg's reach. `ankle` is the synthesized ankle (world).
@@ -1072,9 +1069,11 @@ void update_lock(const Model& model, State& st, int f, const Transform& ankle, b
 // with Settings::floor); smoothed by a critically damped spring. `target_y` and
 // `toe_y` are where the ankle and the toe (if `has_toe`) would be shown,
 // `upright` 0..1 the headset's uprightness (a swimmer's feet have no floor),
-// `contact` the foot's blended candidate contact.
-double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& ankle, double target_y, bool has_toe,
-                       double toe_y, double ankle_floor, double toe_floor, double upright, double contact, double dt) {
+// `contact` the foot's blended candidate contact, `step` the synthesized
+// ankle's horizontal step since the last frame (zero on a fresh one).
+double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& ankle, const Vec3& step, double target_y,
+                       bool has_toe, double toe_y, double ankle_floor, double toe_floor, double upright, double contact,
+                       double dt) {
   const Settings& cfg = model.settings();
   // The stream's first frame (or the first after a reset): nothing has been
   // shown yet, so a foot its candidates do not put down is swinging now and is
@@ -1090,8 +1089,6 @@ double swing_clearance(const Model& model, State::FootLock& lock, const Vec3& an
   }
   lock.floor = std::max(std::min(lock.floor + kFloorRelax * dt, ankle.y()), ankle_floor);
   lock.toe_floor = std::max(std::min(lock.toe_floor + kFloorRelax * dt, toe_y), toe_floor);
-  Vec3 step = ankle - lock.previous;
-  step.y() = 0;
   lock.previous = ankle;
   if (cfg.foot_swing_speed <= 0 || !cfg.foot_lock) return 0.0;
   const bool swinging = !lock.locked && dt > 0 && step.norm() > cfg.foot_swing_speed * model.scale() * dt;
@@ -1130,14 +1127,16 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     const int toe = model.toe(f);
     const double ankle_floor = cfg.floor ? cfg.floor_height + model.ankle_rest_height(f) : kNoFloor;
     const double toe_floor = cfg.floor && toe >= 0 ? cfg.floor_height + model.toe_rest_height(f) : kNoFloor;
+    // The synthesized ankle's horizontal step since the last frame (none on the
+    // stream's first: nothing was shown before it).
+    Vec3 step = lock.have_floor ? Vec3(ankle.translation - lock.previous) : Vec3::Zero();
+    step.y() = 0;
     // A foot the synthesized pose pushes into the floor, moving slower than a
     // swing, stands on it: planted as if its candidates said so.
-    Vec3 step = ankle.translation - lock.previous;
-    step.y() = 0;
     const bool pressed =
         (ankle.translation.y() < ankle_floor ||
          (toe >= 0 && st.model_space[static_cast<std::size_t>(toe)].translation.y() < toe_floor)) &&
-        lock.have_floor && dt > 0 && step.norm() < kPressedSpeed * model.scale() * dt;
+        lock.have_floor && dt > 0 && step.norm() < kDefaultSwingSpeed * model.scale() * dt;
     update_lock(model, st, f, ankle, pressed, dt);
     const double w = smooth01(lock.weight);
     // A released foot travels from the lock to the synthesized ankle on a lifted
@@ -1154,8 +1153,9 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
       const Vec3 offset = st.model_space[static_cast<std::size_t>(toe)].translation - ankle.translation;
       toe_y = target.position.y() + (foot * (ankle.rotation.conjugate() * offset)).y();
     }
-    const double lift = swing_clearance(model, lock, ankle.translation, target.position.y(), toe >= 0, toe_y, ankle_floor,
-                                        toe_floor, upright, st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback), dt);
+    const double lift = swing_clearance(model, lock, ankle.translation, step, target.position.y(), toe >= 0, toe_y,
+                                        ankle_floor, toe_floor, upright,
+                                        st.contact[static_cast<std::size_t>(f)] * (1.0 - st.fallback), dt);
     // Never through the floor: the knee bends to raise the ankle and the toe to their floors.
     const double under = std::max(ankle_floor - (target.position.y() + lift), toe_floor - (toe_y + lift));
     if (lock.weight <= 0 && lift < 1e-5 && !(under > 0)) continue;

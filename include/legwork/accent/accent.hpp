@@ -45,6 +45,10 @@
 namespace legwork::accent {
 
 inline constexpr int kMaxK = 32;
+// Horizontal foot speed (m/s, scaled with the user) that separates a swing from
+// a stand: Settings::foot_swing_speed's default, and the speed below which a
+// foot pushed into the floor is planted (Settings::floor).
+inline constexpr double kDefaultSwingSpeed = 0.5;
 
 struct Settings {
   SearchMode search = SearchMode::Fast;
@@ -177,13 +181,14 @@ struct Settings {
   // instead of grazing it: the blend of candidates in different phases of a
   // step flattens the swing. Not while the headset is tilted 60-80 degrees or
   // more (a swimmer). 0 = off.
-  double foot_swing_speed = 0.5;
+  double foot_swing_speed = kDefaultSwingSpeed;
   // The floor: the play area's floor is the plane y = floor_height (metres; 0
   // for a floor-level tracking origin, as the IK body's). With floor on, a
   // foot is never shown through it (the ankle and the toe stay at least their
   // rest heights above it; the knee bends), a foot the synthesized pose pushes
-  // into it while moving slower than foot_swing_speed is planted (with
-  // foot_lock), and swinging feet clear it by foot_lift_height. Off, feet
+  // into it while moving slower than kDefaultSwingSpeed is planted (with
+  // foot_lock; fixed, so foot_swing_speed = 0 leaves planting on), and
+  // swinging feet clear it by foot_lift_height. Off, feet
   // follow the synthesized pose below the floor too (a body lowered to a
   // swimmer's headset on a bench put them up to 60 cm under it).
   bool floor = true;
