@@ -58,18 +58,25 @@ if command -v ccache >/dev/null 2>&1; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
 # Warnings are the Release build's job (-Werror there); here only the sanitizers judge.
-# The module libraries (src/) at -O1, the tests and the CLI at -O0, -g1 everywhere (line tables for the
+# Everything at -O1 (the module libraries, the tests and the CLI), -g1 everywhere (line tables for the
 # reports). At -O0 Eigen's expression templates are not inlined, and the whole suite's tests took hours
 # (cli.eval_quick alone 418 s); with the libraries at -O1 the whole suite ran in 892 s of wall time at load 8
-# (cli.eval_quick 44 s). The tests, which only call the libraries, stay at -O0: GCC compiles 30-33 % faster
-# there (accent.cpp 27.7 vs 39.2 s CPU). LEGWORK_SANITIZE_MODULE_OPT= (empty) builds everything at -O0.
+# (cli.eval_quick 44 s). The tests used to stay at -O0 (GCC compiles them 30-33 % faster there), but the
+# Eigen functions a library does not inline are inline (COMDAT) functions, and the linker keeps the first
+# copy it meets: the test's, at -O0. So the libraries ran much of their Eigen code at -O0 all the same
+# (gdb samples of an accent test: Quaternion::_transformVector, evaluators and Matrix constructors as
+# calls into -O0 copies; libraries at -O2 changed nothing, 66 s either way). With the tests at -O1 too,
+# AccentShared.FeetNeverGoThroughTheFloorAndFeetPushedIntoItStand took 25 s instead of 66 s on the idle
+# machine (session 35). LEGWORK_SANITIZE_OPT=-O0 builds the tests and the CLI at -O0 again;
+# LEGWORK_SANITIZE_MODULE_OPT sets the libraries' own (empty: the same as the tests').
 # Unity build (CMake merges up to 8 sources of a target into one): each merged source parses
 # gtest, Eigen and nlohmann-json once, not eight times. The render tests' first batch took 20.5 CPU s
 # against 59.7 for its 8 sources apart; the whole suite's cold ASan build 17.8 CPU-min against ~40 (at -O0).
 # (The Release build stays one source at a time: it is the one developers rebuild.)
 CXX=$cxx cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O0 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O0 -g1 -DNDEBUG" \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="${LEGWORK_SANITIZE_OPT:--O1} -g1 -DNDEBUG" \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="${LEGWORK_SANITIZE_OPT:--O1} -g1 -DNDEBUG" \
   -DLEGWORK_WERROR=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_HEADER_CHECK=OFF -DLEGWORK_SANITIZER_PRELOAD="$preload" \
   -DLEGWORK_MODULE_OPT="${LEGWORK_SANITIZE_MODULE_OPT--O1}" \
   -DLEGWORK_TEST_TIMEOUT_SCALE=10 -DCMAKE_UNITY_BUILD=ON >/dev/null
