@@ -79,7 +79,7 @@ if command -v ccache >/dev/null 2>&1; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
-  -DLEGWORK_FUZZ=ON -DLEGWORK_TESTS=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_WERROR=OFF >/dev/null
+  -DLEGWORK_FUZZ=ON -DLEGWORK_TESTS=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_WERROR=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
 ninja -C "$build" -j"$jobs" $(for t in "${targets[@]}"; do printf '%s_fuzz ' "${t%%:*}"; done)
 mkdir -p "$build/artifacts"
 
