@@ -9,6 +9,7 @@
 
 namespace legwork::py {
 namespace {
+namespace accent_binding {
 
 using namespace pybind11::literals;
 using namespace legwork::accent;
@@ -227,9 +228,11 @@ void bind_runtime(pb::module_& m) {
       "motion's standing height. Returns the same dict as accentuate().");
 }
 
+}  // namespace accent_binding
 }  // namespace
 
 void bind_accent(pb::module_& m) {
+  using namespace accent_binding;  // its helpers and the module names they use
   bind_database(m);
   bind_settings(m);
   bind_runtime(m);

@@ -10,6 +10,7 @@
 
 namespace legwork::py {
 namespace {
+namespace core_binding {
 
 using namespace pybind11::literals;
 
@@ -195,9 +196,11 @@ void bind_pose(pb::module_& m) {
       .def_property_readonly("joint_count", &Pose::joint_count);
 }
 
+}  // namespace core_binding
 }  // namespace
 
 void bind_core(pb::module_& m) {
+  using namespace core_binding;  // its helpers and the module names they use
   bind_skeleton(m);
   bind_motion(m);
   bind_pose(m);

@@ -7,6 +7,7 @@
 
 namespace legwork::py {
 namespace {
+namespace eval_binding {
 
 using namespace pybind11::literals;
 using namespace legwork::eval;
@@ -131,9 +132,11 @@ void bind_steps(pb::module_& m) {
       "'trials', 'skipped', 'truth_foot_skating_cm'. legwork.Error for no trials or a bad database/table.");
 }
 
+}  // namespace eval_binding
 }  // namespace
 
 void bind_eval(pb::module_& m) {
+  using namespace eval_binding;  // its helpers and the module names they use
   bind_track(m);
   bind_metrics(m);
   bind_steps(m);

@@ -5,6 +5,7 @@
 
 namespace legwork::py {
 namespace {
+namespace io_binding {
 
 using namespace pybind11::literals;
 
@@ -28,9 +29,11 @@ pb::object read(const std::string& path, double scale, bool drop_first, bool len
   return pb::make_tuple(std::move(f.motion), rep);
 }
 
+}  // namespace io_binding
 }  // namespace
 
 void bind_io(pb::module_& m) {
+  using namespace io_binding;  // its helpers and the module names they use
   m.def("read_bvh", &read, "path"_a, "scale"_a = 0.0, "drop_first"_a = false, "lenient"_a = false, "report"_a = false,
         "Reads a BVH file into a legwork.core.Motion (metres; Euler channels -> quaternions).\n"
         "scale: file units -> metres (0 = detect from the rest height); drop_first: drop frame 0 (the CMU T-pose);\n"

@@ -5,6 +5,7 @@
 
 namespace legwork::py {
 namespace {
+namespace tracker_binding {
 
 using namespace pybind11::literals;
 
@@ -57,11 +58,13 @@ void fill_device(std::vector<TrackerFrame>& frames, Device d, const pb::handle& 
   }
 }
 
+}  // namespace tracker_binding
 }  // namespace
 
 std::vector<TrackerFrame> frames_from_arrays(double fps, const pb::handle& head_position, const pb::handle& head_rotation,
                                              const pb::handle& left_hand, const pb::handle& right_hand,
                                              const pb::handle& left_foot, const pb::handle& right_foot, double start_time) {
+  using namespace tracker_binding;  // its helpers and the module names they use
   require_rate(fps, "fps");
   if (!std::isfinite(start_time)) value_error("start_time: expected a finite time in seconds");
   const Array h = require_array(head_position, "head_position", {kAny, 3}, "(frames, 3) metres", false);
@@ -76,6 +79,7 @@ std::vector<TrackerFrame> frames_from_arrays(double fps, const pb::handle& head_
 }
 
 void bind_tracker(pb::module_& m) {
+  using namespace tracker_binding;  // its helpers and the module names they use
   pb::enum_<Device>(m, "Device", "Tracked devices of a TrackerFrame.")
       .value("Head", Device::Head)
       .value("LeftHand", Device::LeftHand)

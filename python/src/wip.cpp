@@ -7,6 +7,7 @@
 
 namespace legwork::py {
 namespace {
+namespace wip_binding {
 
 using namespace pybind11::literals;
 using namespace legwork::wip;
@@ -134,9 +135,11 @@ void bind_runtime(pb::module_& m) {
              "of model.skeleton()) written; returns legwork.core.UpdateStatus.");
 }
 
+}  // namespace wip_binding
 }  // namespace
 
 void bind_wip(pb::module_& m) {
+  using namespace wip_binding;  // its helpers and the module names they use
   bind_settings(m);
   bind_runtime(m);
   pb::class_<SwingEvent>(m, "SwingEvent", "One swing of a foot: foot (0 left, 1 right), off/strike times (s), apex (m).")

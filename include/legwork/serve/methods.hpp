@@ -3,6 +3,7 @@
 // combined, walker). Each live avatar owns one Method: built from the session's
 // options, fed one TrackerFrame per update, writing a pose on skeleton().
 // Adapting the server to a runtime API change touches only methods.cpp.
+#include <legwork/accent/accent.hpp>
 #include <legwork/core/info_fields.hpp>
 #include <legwork/core/motion.hpp>
 #include <legwork/core/tracker.hpp>
@@ -35,36 +36,38 @@ struct Resources {
 struct MethodOptions {
   std::string method = "accent";     // accent | ik | wip | combined | walker
   std::vector<std::string> classes;  // accent classes to match (empty = all)
-  double exaggeration = 1.0;         // accent: hand-motion exaggeration about the head
+  // accent: hand-motion exaggeration about the head. The accent fields below are
+  // accent::Settings' and take the engine's defaults from it.
+  double exaggeration = accent::Settings{}.exaggeration;
   double user_height = 0;            // metres; 0 = the avatar skeleton's own height
   std::string mapping = "document";  // wip / combined legs' depths: document (equations 1-4) | learned
   std::string detector;              // wip / combined legs' foot-off detector: document | adaptive ("" = the default)
   // accent: with several classes allowed, recognise the activity and search
   // only its class (accent::Settings::recognize_class); false: search all.
-  bool recognize_class = true;
+  bool recognize_class = accent::Settings{}.recognize_class;
   // accent (and combined's upper body): metres a foot released at the end of
   // a contact is lifted on its way back (accent::Settings::foot_lift_height).
-  double foot_lift_height = 0.05;
+  double foot_lift_height = accent::Settings{}.foot_lift_height;
   // accent::Settings::foot_lock_slack (metres) and foot_swing_speed (m/s), the engine's defaults.
-  double foot_lock_slack = 0.0;
-  double foot_swing_speed = 0.5;
+  double foot_lock_slack = accent::Settings{}.foot_lock_slack;
+  double foot_swing_speed = accent::Settings{}.foot_swing_speed;
   // accent (and combined's upper body): accent::Settings::travel_weight, the engine's default (0 = off).
-  double travel_weight = 2.0;
+  double travel_weight = accent::Settings{}.travel_weight;
   // accent (and combined's upper body): accent::Settings::max_head_height_diff, the engine's default (0 = off).
-  double max_head_height_diff = 0.15;
+  double max_head_height_diff = accent::Settings{}.max_head_height_diff;
   // accent (and combined's upper body): accent::Settings::smooth_feedforward, the engine's default (0 = off).
-  double smooth_feedforward = 1.0;
+  double smooth_feedforward = accent::Settings{}.smooth_feedforward;
   // accent (and combined's upper body): accent::Settings::lying_root_smoothing, the engine's default (1 = off).
-  double lying_root_smoothing = 8.0;
+  double lying_root_smoothing = accent::Settings{}.lying_root_smoothing;
   // accent (and combined's upper body): accent::Settings::lying_crown, the engine's default (0 = off).
-  double lying_crown = 1.0;
+  double lying_crown = accent::Settings{}.lying_crown;
   // accent (and combined's upper body): accent::Settings::other_class_cost, the engine's default (0 = the recognised class only).
-  double other_class_cost = 1.25;
+  double other_class_cost = accent::Settings{}.other_class_cost;
   // accent (and combined's upper body): accent::Settings::search_interval, the engine's default (0 = search every frame).
-  double search_interval = 0.044;
+  double search_interval = accent::Settings{}.search_interval;
   // accent (and combined's upper body): accent::Settings::floor and floor_height, the engine's defaults.
-  bool floor = true;
-  double floor_height = 0.0;
+  bool floor = accent::Settings{}.floor;
+  double floor_height = accent::Settings{}.floor_height;
   std::string walk = "normal";       // walker: the walk file's name in Resources::walks_dir, without .json
   std::string root = "smooth";       // walker: smooth (even travel, legs by IK) | pivot (document 001)
   std::string ground;                // walker: the ground walked on, JSON of a path file's "ground" object ("" = flat)
