@@ -72,7 +72,7 @@ fi
 # Unity build (CMake merges up to 8 sources of a target into one): each merged source parses
 # gtest, Eigen and nlohmann-json once, not eight times. The render tests' first batch took 20.5 CPU s
 # against 59.7 for its 8 sources apart; the whole suite's cold ASan build 17.8 CPU-min against ~40 (at -O0).
-# (The Release build stays one source at a time: it is the one developers rebuild.)
+# (./run-tests' Release tree is a unity build too; ./run-demo's build/, the one developers rebuild, is not.)
 CXX=$cxx cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="${LEGWORK_SANITIZE_OPT:--O1} -g1 -DNDEBUG" \
