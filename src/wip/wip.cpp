@@ -320,17 +320,10 @@ void update_depth_targets(const Model& m, State& st, const unsigned ev[2], doubl
   }
 }
 
-void solve_pose(const Model& m, State& st, const double lift[2], PoseRef out, Vec3 target_world[2]) {
-  const auto& mp = m.settings().mapping;
+// The root's world position and each ankle's IK target (world) for this frame's state.
+Vec3 leg_targets(const Model& m, const State& st, const double lift[2], Vec3 target_world[2]) {
   const Quat yaw = yaw_rotation(st.heading);
-  const Pose& base = m.base_pose();
-  std::copy(base.rotations.begin(), base.rotations.end(), out.rotations.begin());
-  std::copy(base.translations.begin(), base.translations.end(), out.translations.begin());
   const Vec3 root(st.root_xz.x(), m.root_height() - st.dh, st.root_xz.z());
-  out.translations[0] = root;
-  out.rotations[0] = yaw * base.rotations[0];
-  forward_kinematics(m.skeleton(), out, st.model_space);
-  const Vec3 forward = yaw * Vec3::UnitZ();
   for (int f = 0; f < 2; ++f) {
     const Model::Leg& leg = m.leg(f);
     const Vec3 local(leg.foot_offset.x(), 0, leg.foot_offset.z() + st.z[f]);
@@ -338,14 +331,31 @@ void solve_pose(const Model& m, State& st, const double lift[2], PoseRef out, Ve
     target.x() += root.x();
     target.z() += root.z();
     target.y() = leg.ankle_height + lift[f];
+    target_world[f] = target;
+  }
+  return root;
+}
+
+// The avatar on the base pose, its root at `root`, each leg's two-bone IK on its target.
+void solve_pose(const Model& m, State& st, const Vec3& root, const Vec3 target_world[2], PoseRef out) {
+  const auto& mp = m.settings().mapping;
+  const Quat yaw = yaw_rotation(st.heading);
+  const Pose& base = m.base_pose();
+  std::copy(base.rotations.begin(), base.rotations.end(), out.rotations.begin());
+  std::copy(base.translations.begin(), base.translations.end(), out.translations.begin());
+  out.translations[0] = root;
+  out.rotations[0] = yaw * base.rotations[0];
+  forward_kinematics(m.skeleton(), out, st.model_space);
+  const Vec3 forward = yaw * Vec3::UnitZ();
+  for (int f = 0; f < 2; ++f) {
+    const Model::Leg& leg = m.leg(f);
     ik::TwoBoneTarget t;
-    t.position = target;
+    t.position = target_world[f];
     const Vec3 hip = st.model_space[static_cast<std::size_t>(leg.chain.root)].translation;
-    t.hint = 0.5 * (hip + target) + mp.hint_forward * m.scale() * forward;
+    t.hint = 0.5 * (hip + t.position) + mp.hint_forward * m.scale() * forward;
     t.rotation = yaw * leg.foot_rotation;
     t.rotation_weight = mp.feet_flat ? 1.0 : 0.0;
     ik::solve_two_bone(m.skeleton(), leg.chain, t, out, st.model_space);
-    target_world[f] = target;
   }
 }
 
@@ -385,7 +395,7 @@ void advance_body(const Model& m, State& st, double time, double dt, const unsig
 }
 
 void fill_info(const Model& m, const State& st, double time, const unsigned ev[2], const double y_local[2],
-               ConstPoseRef out, const Vec3 target_world[2], Info& fr) {
+               const Vec3& root, const Vec3 target_world[2], Info& fr) {
   fr.time = time;
   for (int f = 0; f < 2; ++f) {
     fr.phase[f] = st.gait[f].phase;
@@ -406,7 +416,7 @@ void fill_info(const Model& m, const State& st, double time, const unsigned ev[2
   fr.distance = st.distance;
   fr.heading = st.heading;
   fr.turn_rate = st.turn_rate;
-  fr.root_position = out.translations[0];
+  fr.root_position = root;
   fr.walking = st.walking;
   fr.driver = st.driver;
   fr.lead = st.lead;
@@ -419,7 +429,8 @@ void fill_info(const Model& m, const State& st, double time, const unsigned ev[2
 }  // namespace
 
 UpdateStatus update(const Model& m, const TrackerFrame& frame, State& st, PoseRef out, Info* info) {
-  if (out.joint_count() != m.skeleton().joint_count() || out.translations.size() != out.rotations.size() ||
+  if ((out.joint_count() != 0 && out.joint_count() != m.skeleton().joint_count()) ||
+      out.translations.size() != out.rotations.size() ||
       st.model_space.size() != static_cast<std::size_t>(m.skeleton().joint_count()))
     return UpdateStatus::Rejected;  // not this model's pose or state: nothing to do
   const FrameClock::Step step = st.clock.advance(frame.time);
@@ -469,8 +480,9 @@ UpdateStatus update(const Model& m, const TrackerFrame& frame, State& st, PoseRe
   }
   advance_body(m, st, frame.time, dt, ev);
   Vec3 target_world[2];
-  solve_pose(m, st, lift, out, target_world);
-  if (info) fill_info(m, st, frame.time, ev, y_local, out, target_world, *info);
+  const Vec3 root = leg_targets(m, st, lift, target_world);
+  if (out.joint_count() > 0) solve_pose(m, st, root, target_world, out);
+  if (info) fill_info(m, st, frame.time, ev, y_local, root, target_world, *info);
   if (restarted) return UpdateStatus::Restarted;
   return feet_ok ? UpdateStatus::Ok : UpdateStatus::Degraded;
 }

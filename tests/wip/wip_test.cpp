@@ -144,6 +144,83 @@ TEST(Update, ANonFiniteOrAbsurdFirstTimestampIsRejectedAndDoesNotFreezeTheStream
   }
 }
 
+// Every Info field, compared exactly.
+void expect_same_info(const Info& a, const Info& b, std::size_t frame) {
+  EXPECT_EQ(a.time, b.time) << frame;
+  for (int f = 0; f < 2; ++f) {
+    EXPECT_EQ(a.phase[f], b.phase[f]) << frame;
+    EXPECT_EQ(a.events[f], b.events[f]) << frame;
+    EXPECT_EQ(a.h[f], b.h[f]) << frame;
+    EXPECT_EQ(a.v[f], b.v[f]) << frame;
+    EXPECT_EQ(a.confidence[f], b.confidence[f]) << frame;
+    EXPECT_EQ(a.h1[f], b.h1[f]) << frame;
+    EXPECT_EQ(a.z_target[f], b.z_target[f]) << frame;
+    EXPECT_EQ(a.z[f], b.z[f]) << frame;
+    EXPECT_EQ(a.y[f], b.y[f]) << frame;
+    EXPECT_EQ(a.cycle[f], b.cycle[f]) << frame;
+    EXPECT_EQ(a.apex_estimate[f], b.apex_estimate[f]) << frame;
+    EXPECT_EQ(a.target_world[f], b.target_world[f]) << frame;
+  }
+  EXPECT_EQ(a.lead, b.lead) << frame;
+  EXPECT_EQ(a.stride_period, b.stride_period) << frame;
+  EXPECT_EQ(a.since_strike, b.since_strike) << frame;
+  EXPECT_EQ(a.root_offset, b.root_offset) << frame;
+  EXPECT_EQ(a.speed, b.speed) << frame;
+  EXPECT_EQ(a.distance, b.distance) << frame;
+  EXPECT_EQ(a.heading, b.heading) << frame;
+  EXPECT_EQ(a.turn_rate, b.turn_rate) << frame;
+  EXPECT_EQ(a.root_position, b.root_position) << frame;
+  EXPECT_EQ(a.walking, b.walking) << frame;
+  EXPECT_EQ(a.driver, b.driver) << frame;
+  EXPECT_EQ(a.kind, b.kind) << frame;
+  EXPECT_EQ(a.double_support_time, b.double_support_time) << frame;
+}
+
+// An empty pose (the evaluation's and the tuning's runs, which keep no poses):
+// the legs are not solved, and the state and every Info field are the same as
+// with a pose, frame by frame, on the real walk with lost ankle samples, a
+// backward time and a restart in it. A pose of another size is still refused.
+TEST(Update, WithoutAPoseTheGaitAndTargetsAreTheSameAsWithOne) {
+  auto frames = walk_frames();
+  for (std::size_t i = 20; i < 26; ++i) frames[i].foot(0).valid = false;  // a lost ankle
+  frames.insert(frames.begin() + 60, frames[50]);                          // an old frame again (rejected)
+  for (std::size_t i = 100; i < frames.size(); ++i) frames[i].time += 10.0;  // a gap longer than kMaxGap: a restart
+  const Stream with = run_stream(walk_model(), frames);
+  State st(walk_model());
+  int walking = 0, restarts = 0, rejected = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    Info info;
+    const UpdateStatus s = update(walk_model(), frames[i], st, PoseRef{}, &info);
+    ASSERT_EQ(s, with.status[i]) << i;
+    if (s == UpdateStatus::Rejected) {
+      ++rejected;
+      continue;
+    }
+    restarts += s == UpdateStatus::Restarted;
+    walking += info.walking;
+    expect_same_info(info, with.info[i], i);
+  }
+  EXPECT_EQ(rejected, 1);
+  EXPECT_EQ(restarts, 1);
+  EXPECT_GT(walking, static_cast<int>(frames.size()) / 3);  // the walk does walk
+  // run_wip without poses to keep: the same Info as with them.
+  RunOptions keep, skip;
+  keep.calibrate = skip.calibrate = false;
+  skip.keep_poses = false;
+  const wip::Run a = run_wip(walk_model(), walk_frames(), keep), b = run_wip(walk_model(), walk_frames(), skip);
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  EXPECT_EQ(a.motion.frame_count(), static_cast<int>(a.frames.size()));
+  EXPECT_EQ(b.motion.frame_count(), 0);
+  for (std::size_t i = 0; i < a.frames.size(); ++i) expect_same_info(a.frames[i], b.frames[i], i);
+  // A pose that is neither empty nor the model's: refused, the state untouched.
+  Pose small(walk_model().skeleton());
+  small.rotations.pop_back();
+  small.translations.pop_back();
+  State fresh(walk_model());
+  Info info;
+  EXPECT_EQ(update(walk_model(), walk_frames()[0], fresh, small.ref(), &info), UpdateStatus::Rejected);
+}
+
 TEST(Update, BackwardAndRepeatedTimesAreRejectedWithoutChangingTheOutcome) {
   auto frames = walk_frames();
   std::vector<TrackerFrame> with_bad;

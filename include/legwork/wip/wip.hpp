@@ -196,7 +196,10 @@ void set_floor(State& state, double left, double right);
 // Restarted resets filters, gait and speed (keeping the floor calibration,
 // the heading and the avatar's place) and consumes the frame. A foot that is
 // not usable() is held (its confidence decays; a swinging foot is put down)
-// and the frame is Degraded. Never allocates, throws or does I/O.
+// and the frame is Degraded. An empty `out` (PoseRef{}) advances the state
+// and fills `info` alike without solving the legs: for runs that need only
+// the gait and the IK targets (the evaluation, the detector's tuning; about
+// half the time). Never allocates, throws or does I/O.
 UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
 
 // This frame's Info as named fields (InfoFields: the server's pose "info",

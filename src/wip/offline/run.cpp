@@ -84,7 +84,8 @@ Run run_wip(const Model& model, std::span<const TrackerFrame> frames, const RunO
   }
   run.frames.reserve(frames.size());
   if (opt.keep_poses) run.motion = Motion(model.skeleton(), model.settings().signal.rate, 0);
-  Pose pose(model.skeleton());
+  // Without poses to keep, the legs are not solved (update() with an empty pose).
+  Pose pose = opt.keep_poses ? Pose(model.skeleton()) : Pose();
   Info info;
   for (const auto& fr : frames) {
     if (update(model, fr, state, pose.ref(), &info) == UpdateStatus::Rejected) continue;

@@ -25,7 +25,7 @@ FloorCalibration calibrate_floor(std::span<const TrackerFrame> frames, double se
 struct RunOptions {
   bool calibrate = true;            // calibrate the floor first (throws if not still)
   double calibration_seconds = 3.0;
-  bool keep_poses = true;           // fill Run::motion
+  bool keep_poses = true;           // fill Run::motion (false: the legs are not solved, Info is the same)
 };
 struct Run {
   std::vector<Info> frames;   // one per consumed (not rejected) tracker frame
