@@ -68,7 +68,10 @@ fi
 # calls into -O0 copies; libraries at -O2 changed nothing, 66 s either way). With the tests at -O1 too,
 # AccentShared.FeetNeverGoThroughTheFloorAndFeetPushedIntoItStand took 25 s instead of 66 s on the idle
 # machine (session 35). LEGWORK_SANITIZE_OPT=-O0 builds the tests and the CLI at -O0 again;
-# LEGWORK_SANITIZE_MODULE_OPT sets the libraries' own (empty: the same as the tests').
+# LEGWORK_SANITIZE_MODULE_OPT sets the libraries' own (empty: the same as the tests'). The load client
+# bench/serve_load (the server tests' traffic, not code under test) is built at -O0: Boost.Beast at -O1
+# under ASan took 132 CPU-s to compile, at -O0 78 (session 37). The analysis programs of
+# scripts/wip-*-analysis, which no test runs, are left out (27 CPU-s; the Release build still compiles them).
 # Unity build (CMake merges up to 8 sources of a target into one): each merged source parses
 # gtest, Eigen and nlohmann-json once, not eight times. The render tests' first batch took 20.5 CPU s
 # against 59.7 for its 8 sources apart; the whole suite's cold ASan build 17.8 CPU-min against ~40 (at -O0).
@@ -78,7 +81,7 @@ CXX=$cxx cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="${LEGWORK_SANITIZE_OPT:--O1} -g1 -DNDEBUG" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="${LEGWORK_SANITIZE_OPT:--O1} -g1 -DNDEBUG" \
   -DLEGWORK_WERROR=OFF -DLEGWORK_BENCH=OFF -DLEGWORK_HEADER_CHECK=OFF -DLEGWORK_SANITIZER_PRELOAD="$preload" \
-  -DLEGWORK_MODULE_OPT="${LEGWORK_SANITIZE_MODULE_OPT--O1}" \
+  -DLEGWORK_MODULE_OPT="${LEGWORK_SANITIZE_MODULE_OPT--O1}" -DLEGWORK_LOAD_CLIENT_OPT=-O0 -DLEGWORK_ANALYSIS_TOOLS=OFF \
   -DLEGWORK_TEST_TIMEOUT_SCALE=10 -DCMAKE_UNITY_BUILD=ON >/dev/null
 
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1"

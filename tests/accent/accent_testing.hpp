@@ -126,8 +126,18 @@ struct Avatar {
   Info update(const TrackerFrame& f) {
     Info info;
     last_status = accent::update(model, f, state, pose.ref(), &info);
+    if (recorded < output.frame_count()) output.set_frame(recorded++, pose);
     return info;
   }
+  // Keeps the pose after each of the next `frames` updates in `output` (at
+  // `fps`): frame by frame what accentuate() returns for the same frames, so
+  // a test that walks the avatar needs no second run for the body.
+  void record(int frames, double fps) {
+    output = Motion(model.skeleton(), fps, frames);
+    recorded = 0;
+  }
+  Motion output;
+  int recorded = 0;
   std::span<const Match> matches(int hand) const { return last_matches(state, hand); }
   const Feature& live_feature(int hand) const { return state.live[static_cast<std::size_t>(hand)]; }
   const Skeleton& skeleton() const { return model.skeleton(); }
