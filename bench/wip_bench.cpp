@@ -1,6 +1,7 @@
 // Walking-in-place runtime cost: one avatar's per-frame update (signal
 // processing, gait machines, equations, speed, FK and two-bone IK for both
-// legs), driven by a real CMU walk's ankles; and one two-bone IK solve.
+// legs), driven by a real CMU walk's ankles, and the same without a pose (no
+// FK or IK: the evaluation's runs); and one two-bone IK solve.
 // Counters: avatars_per_core_30Hz = how many avatars one core updates at 30 Hz.
 #include <benchmark/benchmark.h>
 
@@ -25,9 +26,11 @@ Motion load_walk(const char* name) { return testdata::load_sample(std::string("c
 
 // Feeds the 30 Hz samples to update() once per iteration and reports how
 // many avatars one core keeps up with.
-void run_updates(benchmark::State& state, const Model& model, const std::vector<TrackerFrame>& samples) {
+// With `solve_legs` false, update() gets an empty pose (the evaluation's and
+// the tuning's runs): the gait and the IK targets without the legs' FK and IK.
+void run_updates(benchmark::State& state, const Model& model, const std::vector<TrackerFrame>& samples, bool solve_legs = true) {
   State st(model);
-  Pose pose(model.skeleton());
+  Pose pose = solve_legs ? Pose(model.skeleton()) : Pose();
   Info info;
   std::size_t i = 0;
   double offset = 0;
@@ -50,6 +53,14 @@ void BM_WipUpdatePerAvatarFrame(benchmark::State& state) {
   state.counters["joints"] = model.skeleton().joint_count();
 }
 BENCHMARK(BM_WipUpdatePerAvatarFrame);
+
+// The same frames without a pose: what `wip eval` and `wip tune` pay per frame.
+void BM_WipUpdateWithoutPose(benchmark::State& state) {
+  const Motion walk = load_walk("16_15.bvh");
+  const Model model = make_model(walk.skeleton);
+  run_updates(state, model, tracker_frames_from_motion(walk, 30.0), false);
+}
+BENCHMARK(BM_WipUpdateWithoutPose);
 
 // The same with the depth mapping learned from real walks (the shipped table).
 void BM_WipUpdateLearnedMapping(benchmark::State& state) {
