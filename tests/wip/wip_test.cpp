@@ -219,6 +219,7 @@ TEST(Update, WithoutAPoseTheGaitAndTargetsAreTheSameAsWithOne) {
   State fresh(walk_model());
   Info info;
   EXPECT_EQ(update(walk_model(), walk_frames()[0], fresh, small.ref(), &info), UpdateStatus::Rejected);
+  EXPECT_FALSE(fresh.clock.started());  // the frame was not consumed
 }
 
 TEST(Update, BackwardAndRepeatedTimesAreRejectedWithoutChangingTheOutcome) {

@@ -198,8 +198,8 @@ void set_floor(State& state, double left, double right);
 // not usable() is held (its confidence decays; a swinging foot is put down)
 // and the frame is Degraded. An empty `out` (PoseRef{}) advances the state
 // and fills `info` alike without solving the legs: for runs that need only
-// the gait and the IK targets (the evaluation, the detector's tuning; about
-// half the time). Never allocates, throws or does I/O.
+// the gait and the IK targets (the evaluation, the detector's tuning; about a
+// quarter of the time, bench/wip_bench). Never allocates, throws or does I/O.
 UpdateStatus update(const Model& model, const TrackerFrame& frame, State& state, PoseRef out, Info* info = nullptr);
 
 // This frame's Info as named fields (InfoFields: the server's pose "info",
