@@ -52,14 +52,22 @@ void require_pose(const Skeleton& skel, const Pose& out);
 
 // Defines `update(model, frame, state, out, info=None) -> UpdateStatus` of one
 // runtime module: the C++ update() with the output pose's size checked.
+// `pose_optional`: out=None passes an empty pose (PoseRef{}), for a runtime
+// whose update() then advances without solving a body (legwork::wip);
+// otherwise None is refused by name.
 template <class M, class S, class I>
-void def_update(pb::module_& m, UpdateStatus (*fn)(const M&, const TrackerFrame&, S&, PoseRef, I*), const char* doc) {
+void def_update(pb::module_& m, UpdateStatus (*fn)(const M&, const TrackerFrame&, S&, PoseRef, I*), const char* doc,
+                bool pose_optional = false) {
   using namespace pybind11::literals;
   m.def(
       "update",
-      [fn](const M& model, const TrackerFrame& frame, S& state, Pose& out, I* info) {
-        require_pose(model.skeleton(), out);
-        return fn(model, frame, state, out.ref(), info);
+      [fn, pose_optional](const M& model, const TrackerFrame& frame, S& state, Pose* out, I* info) {
+        if (!out && !pose_optional)
+          value_error("out: a Pose of the model's skeleton (" + std::to_string(model.skeleton().joint_count()) +
+                      " joints) expected, got None");
+        if (!out) return fn(model, frame, state, PoseRef{}, info);
+        require_pose(model.skeleton(), *out);
+        return fn(model, frame, state, out->ref(), info);
       },
       "model"_a, "frame"_a, "state"_a, "out"_a, "info"_a = nullptr, doc);
 }

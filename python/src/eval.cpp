@@ -5,6 +5,9 @@
 #include <legwork/eval/metrics.hpp>
 #include <legwork/eval/wip.hpp>
 
+#include <cmath>
+#include <span>
+
 namespace legwork::py {
 namespace {
 namespace eval_binding {
@@ -103,14 +106,67 @@ void bind_steps(pb::module_& m) {
   m.def(
       "detected_swings", [](const std::vector<wip::Info>& frames) { return detected_swings(frames); }, "frames"_a,
       "Swings (legwork.wip.SwingEvent) seen by the gait machines in a list of legwork.wip.Info, one per consumed frame.");
+  pb::class_<StrictScore>(m, "StrictScore",
+                          "Step detection scored as the field does (legwork.eval.match_foot_offs): rates are NaN where\n"
+                          "undefined (no detections, no true steps); latencies in ms, signed (detected - true foot-off).")
+      .def_readonly("tolerance_ms", &StrictScore::tolerance_ms)
+      .def_readonly("true_steps", &StrictScore::true_steps)
+      .def_readonly("detected", &StrictScore::detected)
+      .def_readonly("matched", &StrictScore::matched)
+      .def_readonly("precision", &StrictScore::precision)
+      .def_readonly("recall", &StrictScore::recall)
+      .def_readonly("f1", &StrictScore::f1)
+      .def_readonly("latencies_ms", &StrictScore::latencies_ms, "one per matched step")
+      .def_readonly("median_ms", &StrictScore::median_ms)
+      .def_readonly("p90_ms", &StrictScore::p90_ms)
+      .def_readonly("mean_ms", &StrictScore::mean_ms)
+      .def("__repr__", [](const StrictScore& s) { return "StrictScore(+-" + format_or_na(s.tolerance_ms, "%.0f") + " ms: " + format_strict(s) + ")"; });
+  auto check_window = [](double tolerance, double t_begin, double t_end) {
+    if (!(std::isfinite(tolerance) && tolerance > 0 && tolerance < 10))
+      value_error("tolerance: expected seconds in (0, 10), e.g. 0.2 for the field's +-200 ms, got " + std::to_string(tolerance));
+    if (!(std::isfinite(t_begin) && std::isfinite(t_end) && t_begin <= t_end))
+      value_error("t_begin, t_end: expected finite seconds with t_begin <= t_end, got " + std::to_string(t_begin) + ", " +
+                  std::to_string(t_end));
+  };
+  m.def(
+      "match_foot_offs",
+      [check_window](const std::vector<SwingEvent>& detected, const std::vector<SwingEvent>& truth, double t_begin,
+                     double t_end, double tolerance) {
+        check_window(tolerance, t_begin, t_end);
+        return match_foot_offs(detected, truth, tolerance, t_begin, t_end);
+      },
+      "detected"_a, "truth"_a, "t_begin"_a, "t_end"_a, "tolerance"_a = 0.2,
+      "The field's standard step score, `legwork wip eval`'s headline: detected and true foot-offs of the same foot\n"
+      "matched one to one within +-tolerance seconds, closest pairs first; only true foot-offs in [t_begin, t_end]\n"
+      "count, and a detection there with no partner is a false step. truth: legwork.wip.foot_swings(motion,\n"
+      "end_swings=True). Returns legwork.eval.StrictScore.");
+  m.def(
+      "unmatched_detections",
+      [check_window](const std::vector<SwingEvent>& detected, const std::vector<SwingEvent>& truth, double tolerance) {
+        check_window(tolerance, 0, 0);
+        return unmatched_detections(detected, truth, tolerance);
+      },
+      "detected"_a, "truth"_a, "tolerance"_a = 0.2,
+      "The detections match_foot_offs leaves without a true partner: the false steps, wherever they are.");
+  m.def(
+      "combine",
+      [](const std::vector<StrictScore>& scores) {
+        for (const auto& s : scores)
+          if (s.tolerance_ms != scores.front().tolerance_ms)
+            value_error("scores: expected one tolerance, got " + format_or_na(scores.front().tolerance_ms, "%.0f") + " and " +
+                        format_or_na(s.tolerance_ms, "%.0f") + " ms");
+        return combine(std::span<const StrictScore>(scores));
+      },
+      "scores"_a, "StrictScores of several trials pooled: counts summed, rates and latencies from all matches.");
   m.def(
       "score_steps",
       [](const std::vector<SwingEvent>& detected, const std::vector<SwingEvent>& truth, double t_begin, double t_end) {
         return score_steps(detected, truth, t_begin, t_end);
       },
       "detected"_a, "truth"_a, "t_begin"_a, "t_end"_a,
-        "Step precision/recall/F1 and latencies: swings of the same foot whose intervals overlap are matched one to\n"
-        "one; swings outside [t_begin, t_end] seconds are ignored. truth: legwork.wip.foot_swings(motion).");
+        "The lenient overlap score (a secondary figure; match_foot_offs is the field's): swings of the same foot\n"
+        "whose intervals overlap are matched one to one, however late; swings outside [t_begin, t_end] seconds are\n"
+        "ignored. truth: legwork.wip.foot_swings(motion).");
   m.def(
       "evaluate_combined",
       [](const std::vector<std::string>& files, const std::string& database, const std::string& wip_table, double rate) {

@@ -3,7 +3,12 @@
 
 #include <legwork/core/contacts.hpp>
 #include <legwork/wip/offline/learn.hpp>
+#include <legwork/wip/offline/run.hpp>
+#include <legwork/wip/offline/synthetic.hpp>
 #include <legwork/wip/wip.hpp>
+
+#include <cmath>
+#include <cstdio>
 
 namespace legwork::py {
 namespace {
@@ -132,7 +137,71 @@ void bind_runtime(pb::module_& m) {
       .def_readonly("walking", &Info::walking));
   def_update(m, &update,
              "One frame: the feet devices' heights in (the head's yaw steers when usable); `out` (a legwork.core.Pose\n"
-             "of model.skeleton()) written; returns legwork.core.UpdateStatus.");
+             "of model.skeleton()) written; returns legwork.core.UpdateStatus. out=None advances the gait, the\n"
+             "IK targets and `info` exactly as with a pose but does not solve the legs (about a quarter of the time):\n"
+             "for step detection and depth studies that need no body.",
+             /*pose_optional=*/true);
+}
+
+// Whole clips (legwork/wip/offline/run.hpp): what `legwork wip` and `legwork
+// wip eval` run, for researchers scoring detectors from Python.
+void bind_offline(pb::module_& m) {
+  pb::class_<FloorCalibration>(m, "FloorCalibration", "Floor calibration from standing still (legwork.wip.calibrate_floor).")
+      .def_readonly("ok", &FloorCalibration::ok)
+      .def_property_readonly("floor", [](const FloorCalibration& c) { return pair(c.floor); }, "(left, right) ankle heights, metres")
+      .def_property_readonly("spread", [](const FloorCalibration& c) { return pair(c.spread); }, "(left, right) std of the height, metres")
+      .def_readonly("message", &FloorCalibration::message, "what was calibrated, or why not");
+  m.def(
+      "calibrate_floor",
+      [](const std::vector<TrackerFrame>& frames, double seconds, double max_std) {
+        if (!(std::isfinite(seconds) && seconds > 0)) value_error("seconds: expected a positive number of seconds, got " + std::to_string(seconds));
+        if (!(std::isfinite(max_std) && max_std > 0)) value_error("max_std: expected a positive height spread in metres, got " + std::to_string(max_std));
+        return calibrate_floor(frames, seconds, max_std);
+      },
+      "frames"_a, "seconds"_a = 3.0, "max_std"_a = 0.03,
+      "Each ankle's mean height over the first `seconds` of a list of legwork.core.TrackerFrame; ok = False (message\n"
+      "says why) when an ankle's height varies by more than max_std metres or too few samples are usable.");
+  pb::class_<Run>(m, "Run", "A clip run through one avatar (legwork.wip.run).")
+      .def_readonly("frames", &Run::frames, "legwork.wip.Info of every consumed (not rejected) frame")
+      .def_property_readonly(
+          "motion",
+          [](const pb::object& self) -> pb::object {
+            const Run& r = self.cast<const Run&>();
+            if (r.motion.skeleton.joint_count() == 0) return pb::none();
+            return pb::cast(&r.motion, pb::return_value_policy::reference_internal, self);
+          },
+          "the avatar at those frames (legwork.core.Motion at settings.signal.rate), None when run with keep_poses=False")
+      .def_readonly("calibration", &Run::calibration, "the floor calibration (ok = False when not calibrated)")
+      .def("__len__", [](const Run& r) { return r.frames.size(); });
+  m.def(
+      "run",
+      [](const Model& model, const std::vector<TrackerFrame>& frames, bool calibrate, double calibration_seconds, bool keep_poses) {
+        if (calibrate && !(std::isfinite(calibration_seconds) && calibration_seconds > 0))
+          value_error("calibration_seconds: expected a positive number of seconds, got " + std::to_string(calibration_seconds));
+        RunOptions opt;
+        opt.calibrate = calibrate;
+        opt.calibration_seconds = calibration_seconds;
+        opt.keep_poses = keep_poses;
+        pb::gil_scoped_release release;
+        return run_wip(model, frames, opt);
+      },
+      "model"_a, "frames"_a, "calibrate"_a = true, "calibration_seconds"_a = 3.0, "keep_poses"_a = true,
+      "One avatar over a list of legwork.core.TrackerFrame, as `legwork wip` runs a clip: the floor calibrated from\n"
+      "the first calibration_seconds of standing (legwork.Error naming the ankle when the user is not still; pass\n"
+      "calibrate=False for a rolling floor, as `legwork wip eval` does on real walks), then update() per frame.\n"
+      "keep_poses=False does not solve the legs (Run.motion is None; every Info is the same).");
+  m.def(
+      "add_tracker_noise",
+      [](std::vector<TrackerFrame> frames, double noise, double drop_rate, std::uint64_t seed) {
+        if (!(std::isfinite(noise) && noise >= 0)) value_error("noise: expected a jitter >= 0 metres, got " + std::to_string(noise));
+        if (!(drop_rate >= 0 && drop_rate <= 1)) value_error("drop_rate: expected a fraction in [0, 1], got " + std::to_string(drop_rate));
+        add_tracker_noise(frames, noise, drop_rate, seed);
+        return frames;
+      },
+      "frames"_a, "noise"_a = 0.015, "drop_rate"_a = 0.02, "seed"_a = 1,
+      "A copy of the frames with seeded Kinect-like corruption of the feet: Gaussian jitter (metres, per coordinate)\n"
+      "and dropped samples (valid = False), as `legwork wip eval`'s noisy run (its seed: seed x 1000003 + the\n"
+      "trial's index).");
 }
 
 }  // namespace wip_binding
@@ -142,14 +211,40 @@ void bind_wip(pb::module_& m) {
   using namespace wip_binding;  // its helpers and the module names they use
   bind_settings(m);
   bind_runtime(m);
-  pb::class_<SwingEvent>(m, "SwingEvent", "One swing of a foot: foot (0 left, 1 right), off/strike times (s), apex (m).")
+  bind_offline(m);
+  pb::class_<SwingEvent>(m, "SwingEvent",
+                         "One swing of a foot: foot (0 left, 1 right), off/strike times (s), apex (m), cut (the clip ended\n"
+                         "mid-swing). Made by foot_swings / legwork.eval.detected_swings, or by hand to score another detector.")
+      .def(pb::init([](int foot, double off, double strike, double apex, bool cut) {
+             if (foot != 0 && foot != 1) value_error("foot: expected 0 (left) or 1 (right), got " + std::to_string(foot));
+             if (!(std::isfinite(off) && std::isfinite(strike) && strike >= off))
+               value_error("off, strike: expected finite seconds with strike >= off, got " + std::to_string(off) + ", " +
+                           std::to_string(strike));
+             return SwingEvent{foot, off, strike, apex, cut};
+           }),
+           "foot"_a, "off"_a, "strike"_a, "apex"_a = 0.0, "cut"_a = false)
       .def_readonly("foot", &SwingEvent::foot)
       .def_readonly("off", &SwingEvent::off)
       .def_readonly("strike", &SwingEvent::strike)
-      .def_readonly("apex", &SwingEvent::apex);
+      .def_readonly("apex", &SwingEvent::apex)
+      .def_readonly("cut", &SwingEvent::cut)
+      .def("__repr__", [](const SwingEvent& e) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "SwingEvent(foot=%d, off=%.4f, strike=%.4f, apex=%.4f%s)", e.foot, e.off, e.strike,
+                      e.apex, e.cut ? ", cut=True" : "");
+        return std::string(buf);
+      });
   m.def(
-      "foot_swings", [](const Motion& mo) { return foot_swings(mo); }, "motion"_a,
-      "Ground-truth swings of a walking motion (toe off to first contact; default ContactOptions).");
+      "foot_swings",
+      [](const Motion& mo, bool end_swings) {
+        ContactOptions opt;
+        opt.end_swings = end_swings;
+        return foot_swings(mo, opt);
+      },
+      "motion"_a, "end_swings"_a = false,
+      "Ground-truth swings of a walking motion (toe off to first contact; each foot's stance height learned from\n"
+      "the trial). end_swings=True also gives a last swing the clip's end cuts (strike = the clip's end, cut set):\n"
+      "the truth `legwork wip eval` scores foot-offs against (legwork.eval.match_foot_offs).");
 }
 
 }  // namespace legwork::py

@@ -248,28 +248,126 @@ def test_walker_root_is_smooth_by_default_and_pivot_on_request():
 
 
 def test_step_f1_equals_cli_wip_eval(cli, tmp_path):
-    """Walking in place driven frame by frame from Python, scored by legwork.eval, against `legwork wip eval`."""
+    """Walking in place driven frame by frame from Python, scored by legwork.eval, against `legwork wip eval`:
+    the strict +-200 / +-100 ms scores (the headline), the noisy run's and the lenient overlap score."""
     folder = SOURCE / "data/cmu/bvh/walking"
     cli("wip", "eval", "--data", folder, "--clip", folder / "07_01.bvh", "--out", tmp_path)
     report = json.loads((tmp_path / "report.json").read_text())
     assert report["per_trial"]
-    for trial in report["per_trial"]:
+    for index, trial in enumerate(report["per_trial"]):
         motion = legwork.io.read_bvh(str(folder / (trial["trial"] + ".bvh")), drop_first=True)
         settings = wip.Settings()  # the CLI's defaults: 30 Hz trackers
         model = wip.make_model(motion.skeleton, settings)
         state, pose = wip.State(model), core.Pose(model.skeleton())
         infos = []
-        for frame in core.tracker_frames_from_motion(motion, settings.signal.rate):
+        frames = core.tracker_frames_from_motion(motion, settings.signal.rate)
+        for frame in frames:
             info = wip.Info()
             if wip.update(model, frame, state, pose, info) != core.UpdateStatus.Rejected:
                 infos.append(info)
-        score = legwork.eval.score_steps(legwork.eval.detected_swings(infos), wip.foot_swings(motion), 0.5,
-                                         motion.duration - 0.1)
-        cli_steps = trial["lenient_overlap"]  # overlap score; strict_200ms is the headline
+        t_begin, t_end = 0.5, motion.duration - 0.1  # the evaluation's settling time and end
+        score = legwork.eval.score_steps(legwork.eval.detected_swings(infos), wip.foot_swings(motion), t_begin, t_end)
+        cli_steps = trial["lenient_overlap"]  # overlap score, the secondary figure
         assert (score.true_steps, score.detected, score.matched) == (
             cli_steps["true_steps"], cli_steps["detected"], cli_steps["matched"]), trial["trial"]
         assert score.f1 == pytest.approx(cli_steps["f1"], rel=1e-12)
         assert score.off_latency_ms == pytest.approx(cli_steps["foot_off_latency_ms"], rel=1e-12)
+
+        truth = wip.foot_swings(motion, end_swings=True)
+        detected = legwork.eval.detected_swings(infos)
+        # The whole clip in one call gives the same per-frame figures, with or without solving the legs.
+        run = wip.run(model, frames, calibrate=False, keep_poses=False)
+        assert run.motion is None and len(run) == len(infos)
+        assert [(e.foot, e.off, e.strike) for e in legwork.eval.detected_swings(run.frames)] == [
+            (e.foot, e.off, e.strike) for e in detected]
+        noisy = wip.run(model, wip.add_tracker_noise(frames, seed=1 * 1000003 + index), calibrate=False, keep_poses=False)
+        for key, found, tolerance in (("strict_200ms", detected, 0.2), ("strict_100ms", detected, 0.1),
+                                      ("strict_200ms_noisy", legwork.eval.detected_swings(noisy.frames), 0.2)):
+            strict, expected = legwork.eval.match_foot_offs(found, truth, t_begin, t_end, tolerance), trial[key]
+            assert (strict.true_steps, strict.detected, strict.matched) == (
+                expected["true_steps"], expected["detected"], expected["matched"]), (trial["trial"], key)
+            assert strict.tolerance_ms == expected["tolerance_ms"]
+            assert strict.f1 == pytest.approx(expected["f1"], rel=1e-12)
+            assert strict.median_ms == pytest.approx(expected["latency_median_ms"], rel=1e-12)
+            assert strict.p90_ms == pytest.approx(expected["latency_p90_ms"], rel=1e-12)
+            assert len(strict.latencies_ms) == strict.matched
+        pooled = legwork.eval.combine([legwork.eval.match_foot_offs(detected, truth, t_begin, t_end)] * 2)
+        assert (pooled.true_steps, pooled.matched) == (2 * trial["strict_200ms"]["true_steps"],
+                                                       2 * trial["strict_200ms"]["matched"])
+        assert pooled.f1 == pytest.approx(trial["strict_200ms"]["f1"], rel=1e-12)
+
+
+def test_wip_run_calibrates_from_standing_and_solves_the_legs_only_when_asked():
+    walk = core.resample(legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/16_15.bvh"), drop_first=True), 30.0)
+    model = wip.make_model(walk.skeleton)
+    frames = core.tracker_frames_from_motion(walk)
+    # Real walking has no standing start: the calibration refuses it, naming the ankle.
+    with pytest.raises(legwork.Error, match=r"not standing still during the first 3\.0 s \((left|right) ankle height varies"):
+        wip.run(model, frames)
+    calibration = wip.calibrate_floor(frames)
+    assert not calibration.ok and "not standing still" in calibration.message
+    # Two seconds of standing (the first frame held) before the walk: calibrated on its ankle heights.
+    first = frames[0]
+    standing = []
+    for i in range(60):
+        f = core.TrackerFrame(first.time - (60 - i) / 30.0)
+        for d in (core.Device.Head, core.Device.LeftHand, core.Device.RightHand, core.Device.LeftFoot, core.Device.RightFoot):
+            f.set(d, *first.get(d)[:2])
+        standing.append(f)
+    run = wip.run(model, standing + frames, calibration_seconds=1.5)
+    assert run.calibration.ok and run.calibration.spread == pytest.approx((0.0, 0.0), abs=1e-6)
+    assert run.calibration.floor == pytest.approx((first.get(core.Device.LeftFoot)[0][1],
+                                                   first.get(core.Device.RightFoot)[0][1]), rel=1e-12)
+    assert run.motion.frame_count == len(run) == len(standing) + len(frames)
+    # Driving the same avatar frame by frame gives the same legs; without a pose, the same gait and targets.
+    state, pose, info = wip.State(model), core.Pose(model.skeleton()), wip.Info()
+    wip.set_floor(state, *run.calibration.floor)
+    bare, bare_info = wip.State(model), wip.Info()
+    wip.set_floor(bare, *run.calibration.floor)
+    for i, f in enumerate(standing + frames):
+        wip.update(model, f, state, pose, info)
+        assert wip.update(model, f, bare, None, bare_info) != core.UpdateStatus.Rejected
+        assert bare_info.fields() == info.fields() == run.frames[i].fields()
+        assert (bare_info.z, bare_info.h) == (info.z, info.h)
+    assert np.array_equal(pose.rotations, run.motion.rotations[-1])
+    strict = legwork.eval.match_foot_offs(legwork.eval.detected_swings(run.frames), wip.foot_swings(walk, end_swings=True),
+                                          0.5, walk.duration - 0.1)
+    assert strict.true_steps == strict.matched == strict.detected == 6  # every step after the settling time, in time
+    # Other runtimes need their pose; bad arguments are named.
+    with pytest.raises(ValueError, match=r"out: a Pose of the model's skeleton \(31 joints\) expected, got None"):
+        ik.update(ik.make_model(walk.skeleton), frames[0], ik.State(ik.make_model(walk.skeleton)), None)
+    with pytest.raises(ValueError, match=r"calibration_seconds: expected a positive number of seconds, got -1"):
+        wip.run(model, frames, calibration_seconds=-1)
+    with pytest.raises(ValueError, match=r"drop_rate: expected a fraction in \[0, 1\], got 2"):
+        wip.add_tracker_noise(frames, drop_rate=2)
+    with pytest.raises(ValueError, match=r"tolerance: expected seconds in \(0, 10\)"):
+        legwork.eval.match_foot_offs([], [], 0, 1, tolerance=float("nan"))
+    with pytest.raises(ValueError, match=r"t_begin, t_end: expected finite seconds with t_begin <= t_end"):
+        legwork.eval.match_foot_offs([], [], 2, 1)
+    with pytest.raises(ValueError, match=r"off, strike: expected finite seconds with strike >= off"):
+        wip.SwingEvent(0, 1.0, 0.5)
+
+
+def test_another_detectors_steps_are_scored_the_fields_way():
+    """A researcher's own detections, made by hand, against the true foot-offs of a real walk."""
+    walk = legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/16_15.bvh"), drop_first=True)
+    truth = wip.foot_swings(walk, end_swings=True)
+    # The clip ends mid-swing: that foot-off counts for scoring, its strike is the clip's end.
+    assert [e.cut for e in truth] == [False] * len(wip.foot_swings(walk)) + [True]
+    assert truth[-1].strike == pytest.approx(walk.duration, abs=1 / walk.fps)
+    t_end = walk.duration
+    late = [wip.SwingEvent(e.foot, e.off + 0.15, e.strike + 0.15) for e in truth]  # every step 150 ms late
+    within = legwork.eval.match_foot_offs(late, truth, 0, t_end)
+    assert within.f1 == 1.0 and within.median_ms == pytest.approx(150.0)
+    outside = legwork.eval.match_foot_offs(late, truth, 0, t_end, tolerance=0.1)
+    assert outside.matched == 0 and outside.f1 == 0.0 and np.isnan(outside.median_ms)
+    assert len(legwork.eval.unmatched_detections(late, truth, tolerance=0.1)) == len(late)
+    wrong_foot = [wip.SwingEvent(1 - e.foot, e.off, e.strike) for e in truth]  # a foot-off only matches its own foot
+    assert legwork.eval.match_foot_offs(wrong_foot, truth, 0, t_end).matched == 0
+    none = legwork.eval.match_foot_offs([], truth, 0, t_end)
+    assert none.recall == 0.0 and np.isnan(none.precision)
+    with pytest.raises(ValueError, match=r"scores: expected one tolerance, got 200 and 100 ms"):
+        legwork.eval.combine([within, outside])
 
 
 def test_combined_legs_come_from_wip_and_the_upper_body_from_ik():
