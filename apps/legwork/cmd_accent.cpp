@@ -163,6 +163,11 @@ void register_run(CLI::App& parent) {
                   "it always creeps)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--foot-lock-hold", a->foot_lock_hold,
+                  "seconds a planted foot stays put before it creeps after the synthesized foot (0 = it creeps from "
+                  "touch-down)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
   cmd->add_option("--travel-weight", a->travel_weight,
                   "weight of the user's head travel (horizontal speed over 0.2 and 0.6 s, vertical velocity, height) "
                   "against the hand features when ranking candidates: walking users get walking legs (0 = hand "

@@ -28,7 +28,7 @@ struct EngineOption {
   double lo, hi;
   const char* help;
 };
-constexpr std::array<EngineOption, 20> kEngineOptions{{
+constexpr std::array<EngineOption, 21> kEngineOptions{{
     {"--threshold", &accent::Settings::threshold, 0.0, std::numeric_limits<double>::infinity(), "engine: distance threshold in typical distances (0 = none)"},
     {"--hand-ik", &accent::Settings::hand_ik, 0.0, 1.0, "engine: 0..1 pull of the synthesized arms onto the real hands"},
     {"--foot-lift-height", &accent::Settings::foot_lift_height, 0.0, 0.5,
@@ -48,6 +48,8 @@ constexpr std::array<EngineOption, 20> kEngineOptions{{
      "engine: match distance (typical distances) where the IK body's share reaches its maximum"},
     {"--foot-lock-follow", &accent::Settings::foot_lock_follow_seconds, 0.0, 10.0,
      "engine: seconds a planted foot takes to creep toward the synthesized one (0 = held still)"},
+    {"--foot-lock-hold", &accent::Settings::foot_lock_hold_seconds, 0.0, 10.0,
+     "engine: seconds a planted foot stays put before it creeps (0 = it creeps from touch-down)"},
     {"--contact-on", &accent::Settings::contact_on, 0.0, 1.0,
      "engine: blended candidate contact above which a foot locks (0..1)"},
     {"--contact-off", &accent::Settings::contact_off, 0.0, 1.0,

@@ -64,6 +64,10 @@ static class Checks
         Expect.That("floor default", bad.Floor == 1 && bad.FloorHeight == 0, "Floor " + bad.Floor + ", FloorHeight " + bad.FloorHeight);
         bad.FloorHeight = 12;
         Expect.Throws<LegworkException>("floor height out of range", () => Model.CreateAccent(db, bad), "floor_height must be between -10 and 10 metres");
+        bad = AccentSettings.Default();
+        Expect.That("foot lock hold default", bad.FootLockHoldSeconds == 0.2, "FootLockHoldSeconds " + bad.FootLockHoldSeconds);
+        bad.FootLockHoldSeconds = 11;
+        Expect.Throws<LegworkException>("foot lock hold out of range", () => Model.CreateAccent(db, bad), "foot_lock_hold_seconds must be between 0 and 10 s");
 
         Model model = Model.CreateAccent(db, AccentSettings.Default());
         Avatar avatar = Avatar.Create(model);

@@ -91,6 +91,7 @@ namespace Legwork
         public double SearchInterval;  // seconds (0..1) between two searches of the database; in between the matches are continued in their trials; 0 = every frame (ABI 13)
         public int Floor;              // 1: feet never go through the floor (the knee bends; a foot pushed into it stands on it); 0: they may (ABI 14)
         public double FloorHeight;     // metres (-10..10): the play area's floor is y = FloorHeight (ABI 14)
+        public double FootLockHoldSeconds;    // seconds (0..10) a planted foot stays put before it creeps; 0 = it creeps from touch-down (ABI 15)
 
         public static AccentSettings Default()
         {
@@ -194,7 +195,7 @@ namespace Legwork
     public static class Library
     {
         /// <summary>The ABI this file was written for (LW_ABI_VERSION).</summary>
-        public const uint AbiVersion = 14;
+        public const uint AbiVersion = 15;
 
         public static string Version { get { return Native.Str(Native.lw_version_string()); } }
         public static string StatusName(Status s) { return Native.Str(Native.lw_status_name(s)); }

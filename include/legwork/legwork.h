@@ -43,7 +43,7 @@ extern "C" {
 #endif
 
 /* ABI version: bumped whenever a struct layout or a signature changes. */
-#define LW_ABI_VERSION 14u
+#define LW_ABI_VERSION 15u
 LW_API uint32_t lw_abi_version(void);
 LW_API const char* lw_version_string(void);
 
@@ -173,6 +173,8 @@ typedef struct lw_accent_settings {
                               0: they follow the synthesized pose below it too (ABI 14) */
   double floor_height;     /* metres (-10..10): the play area's floor is y = floor_height (0 = a floor-level tracking
                               origin) (ABI 14) */
+  double foot_lock_hold_seconds;   /* seconds (0..10) a planted foot stays put before it creeps after the synthesized foot;
+                              0 = it creeps from touch-down (ABI 15) */
 } lw_accent_settings;
 LW_API void lw_accent_settings_default(lw_accent_settings* s);
 /* The database must outlive the model. */

@@ -106,6 +106,8 @@ void bind_settings(pb::module_& m) {
       .def_readwrite("foot_release_seconds", &Settings::foot_release_seconds, "seconds to blend out of a lock")
       .def_readwrite("foot_lift_height", &Settings::foot_lift_height,
                      "metres (0..0.5) a foot released at the end of a contact is lifted on its way back (0 = slides)")
+      .def_readwrite("foot_lock_hold_seconds", &Settings::foot_lock_hold_seconds,
+                     "seconds a planted foot stays put before it creeps after the synthesized foot (0 = it creeps from touch-down)")
       .def_readwrite("foot_lock_slack", &Settings::foot_lock_slack,
                      "metres the synthesized foot may move from a planted foot before the plant creeps after it (0 = it always creeps)")
       .def_readwrite("foot_swing_speed", &Settings::foot_swing_speed,

@@ -203,15 +203,18 @@ def test_foot_lift_setting_equals_the_cli_option(cli, db, db_path, truth, tmp_pa
 
 
 def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, truth, tmp_path):
-    """Settings.foot_lock_slack / foot_swing_speed are the CLI's --foot-lock-slack / --foot-swing-speed: the same
-    motion either way, and they change it; out of range they are errors naming the setting."""
+    """Settings.foot_lock_slack / foot_lock_hold_seconds / foot_swing_speed are the CLI's --foot-lock-slack /
+    --foot-lock-hold / --foot-swing-speed: the same motion either way, and they change it; out of range they are
+    errors naming the setting."""
     out_bvh = tmp_path / "slack.bvh"
     cli("accent", "run", "--db", db_path, "--input", TRIAL, "--drop-first", "--out", out_bvh, "--foot-lock-slack", "0.1",
-        "--foot-swing-speed", "0")
+        "--foot-lock-hold", "0", "--foot-swing-speed", "0")
     s = settings_for(truth)
     assert s.foot_lock_slack == pytest.approx(0.0) and s.foot_swing_speed == pytest.approx(0.5)  # the defaults
+    assert s.foot_lock_hold_seconds == pytest.approx(0.2)
     default = accent.accentuate_motion(db, s, truth)["motion"]
     s.foot_lock_slack = 0.1
+    s.foot_lock_hold_seconds = 0.0
     s.foot_swing_speed = 0.0
     plain = accent.accentuate_motion(db, s, truth)["motion"]
     back = legwork.io.read_bvh(str(out_bvh), scale=1.0)
@@ -223,6 +226,10 @@ def test_foot_slack_and_swing_settings_equal_the_cli_options(cli, db, db_path, t
     s.foot_lock_slack = 0.1
     s.foot_swing_speed = 12.0
     with pytest.raises(legwork.Error, match="foot_swing_speed must be between 0 and 10 m/s"):
+        accent.make_model(db, s)
+    s.foot_swing_speed = 0.0
+    s.foot_lock_hold_seconds = float("nan")
+    with pytest.raises(legwork.Error, match=r"foot_lock_hold_seconds must be between 0 and 10 s \(how long a planted foot"):
         accent.make_model(db, s)
 
 

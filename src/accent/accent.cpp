@@ -90,6 +90,10 @@ void check_settings(const Database& db, const Settings& cfg) {
     throw Error("accent: foot_release_seconds must be >= 0");
   if (!std::isfinite(cfg.foot_lift_height) || cfg.foot_lift_height < 0 || cfg.foot_lift_height > 0.5)
     throw Error("accent: foot_lift_height must be between 0 and 0.5 metres");
+  if (!std::isfinite(cfg.foot_lock_follow_seconds) || cfg.foot_lock_follow_seconds < 0 || cfg.foot_lock_follow_seconds > 10)
+    throw Error("accent: foot_lock_follow_seconds must be between 0 and 10 s (0 = a planted foot is held still)");
+  if (!std::isfinite(cfg.foot_lock_hold_seconds) || cfg.foot_lock_hold_seconds < 0 || cfg.foot_lock_hold_seconds > 10)
+    throw Error("accent: foot_lock_hold_seconds must be between 0 and 10 s (how long a planted foot stays put before it creeps)");
   if (!std::isfinite(cfg.foot_lock_slack) || cfg.foot_lock_slack < 0 || cfg.foot_lock_slack > 1)
     throw Error("accent: foot_lock_slack must be between 0 and 1 metre");
   if (!std::isfinite(cfg.foot_swing_speed) || cfg.foot_swing_speed < 0 || cfg.foot_swing_speed > 10)
@@ -1043,14 +1047,17 @@ void update_lock(const Model& model, State& st, int f, const Transform& ankle, b
     lock.position = ankle.translation + w * (lock.position - ankle.translation);
     lock.rotation = ankle.rotation.slerp(w, lock.rotation).normalized();
     lock.locked = true;
+    lock.held = 0;
   }
   if (!contact) lock.locked = false;
   if (lock.locked) {
-    // A planted foot stays put while the synthesized one is within the slack, and
-    // creeps toward it by the distance beyond (foot_lock_follow_seconds; 0 = held still) ...
+    // A planted foot stays put for foot_lock_hold_seconds and while the synthesized
+    // one is within the slack; after that it creeps toward it by the distance
+    // beyond (foot_lock_follow_seconds; 0 = held still) ...
     const Vec3 gap = ankle.translation - lock.position;
     const double g = gap.norm(), slack = cfg.foot_lock_slack * model.scale();
-    if (cfg.foot_lock_follow_seconds > 0 && g > slack)
+    lock.held += dt;
+    if (cfg.foot_lock_follow_seconds > 0 && g > slack && lock.held > cfg.foot_lock_hold_seconds)
       lock.position += (1.0 - std::exp(-dt / cfg.foot_lock_follow_seconds)) * ((g - slack) / g) * gap;
     // ... and never further from the hip than the leg reaches (pulled along the leg: mostly up, like a heel rising).
     const Vec3 hip = st.model_space[static_cast<std::size_t>(model.leg(f).root)].translation;

@@ -299,7 +299,8 @@ void lw_accent_settings_default(lw_accent_settings* s) {
   *s = lw_accent_settings{nullptr, d.k_left, d.exaggeration, d.user_height, d.hand_ik, d.smooth_halflife, d.recognize_class ? 1 : 0,
                            d.foot_lift_height, d.foot_lock_slack, d.foot_swing_speed, d.travel_weight,
                            d.max_head_height_diff, d.smooth_feedforward, d.lying_root_smoothing, d.lying_crown,
-                           d.other_class_cost, d.search_interval, d.floor ? 1 : 0, d.floor_height};
+                           d.other_class_cost, d.search_interval, d.floor ? 1 : 0, d.floor_height,
+                           d.foot_lock_hold_seconds};
 }
 
 }  // extern "C"
@@ -330,6 +331,7 @@ std::string accent_settings(const lw_accent_settings* s, accent::Settings& cfg) 
   if (s->floor != 0 && s->floor != 1) return "floor must be 0 or 1, got " + std::to_string(s->floor);
   cfg.floor = s->floor == 1;
   cfg.floor_height = s->floor_height;  // checked by make_model
+  cfg.foot_lock_hold_seconds = s->foot_lock_hold_seconds;  // checked by make_model
   if (s->classes) {
     std::string cur;
     for (const char* c = s->classes;; ++c) {

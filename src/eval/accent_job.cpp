@@ -95,6 +95,7 @@ void run_accent_job(const AccentJob& a) {
   cfg.class_margin = a.class_margin;
   cfg.foot_lift_height = a.foot_lift_height;
   cfg.foot_lock_slack = a.foot_lock_slack;
+  cfg.foot_lock_hold_seconds = a.foot_lock_hold;
   cfg.foot_swing_speed = a.foot_swing_speed;
   cfg.travel_weight = a.travel_weight;
   cfg.max_head_height_diff = a.max_head_height_diff;

@@ -419,6 +419,7 @@ json report_json(const EvalResult& r) {
                         {"foot_lock_follow_seconds", v.config.foot_lock_follow_seconds},
                         {"foot_lift_height", v.config.foot_lift_height},
                         {"foot_lock_slack", v.config.foot_lock_slack},
+                        {"foot_lock_hold_seconds", v.config.foot_lock_hold_seconds},
                         {"foot_swing_speed", v.config.foot_swing_speed},
                         {"floor", v.config.floor},
                         {"floor_height", v.config.floor_height},

@@ -361,6 +361,8 @@ std::vector<Variant> ablation_variants(const accent::BuildConfig& build, const a
   add("no_foot_lock", "no foot locking", [](Variant& x) { x.config.foot_lock = false; });
   add("no_ik_blend", "no confidence blend toward the IK body", [](Variant& x) { x.config.ik_blend_min = x.config.ik_blend_max = 0; });
   add("foot_lock_held", "feet held still while planted (no creep)", [](Variant& x) { x.config.foot_lock_follow_seconds = 0; });
+  add("no_foot_lock_hold", "planted feet creep from touch-down (foot_lock_hold_seconds = 0)",
+      [](Variant& x) { x.config.foot_lock_hold_seconds = 0; });
   add("no_foot_lift", "released feet slide back along the floor (foot_lift_height = 0)",
       [](Variant& x) { x.config.foot_lift_height = 0; });
   add("foot_slack", "planted feet hold within 0.1 m before creeping (foot_lock_slack = 0.1)",

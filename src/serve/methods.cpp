@@ -106,6 +106,7 @@ void accent_options(const MethodOptions& opt, accent::Settings& c) {
   c.recognize_class = opt.recognize_class;
   c.foot_lift_height = opt.foot_lift_height;
   c.foot_lock_slack = opt.foot_lock_slack;
+  c.foot_lock_hold_seconds = opt.foot_lock_hold_seconds;
   c.foot_swing_speed = opt.foot_swing_speed;
   c.travel_weight = opt.travel_weight;
   c.max_head_height_diff = opt.max_head_height_diff;
@@ -209,6 +210,8 @@ std::unique_ptr<Method> make_method(const Resources& res, const MethodOptions& o
     throw Error("foot_lift_height " + std::to_string(opt.foot_lift_height) + " m is outside [0, 0.5]");
   if (!(opt.foot_lock_slack >= 0 && opt.foot_lock_slack <= 1))
     throw Error("foot_lock_slack " + std::to_string(opt.foot_lock_slack) + " m is outside [0, 1]");
+  if (!(opt.foot_lock_hold_seconds >= 0 && opt.foot_lock_hold_seconds <= 10))
+    throw Error("foot_lock_hold_seconds " + std::to_string(opt.foot_lock_hold_seconds) + " s is outside [0, 10]");
   if (!(opt.travel_weight >= 0 && opt.travel_weight <= 100))
     throw Error("travel_weight " + std::to_string(opt.travel_weight) + " is outside [0, 100] (0 = off)");
   if (!(opt.max_head_height_diff >= 0 && opt.max_head_height_diff <= 2))

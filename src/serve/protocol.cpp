@@ -92,6 +92,7 @@ Hello parse_hello(const json& j) {
   if (auto rc = j.find("recognize_class"); rc != j.end()) h.method.recognize_class = boolean(*rc, "hello.recognize_class");
   if (auto fl = j.find("foot_lift_height"); fl != j.end()) h.method.foot_lift_height = number(*fl, "hello.foot_lift_height");
   if (auto fs = j.find("foot_lock_slack"); fs != j.end()) h.method.foot_lock_slack = number(*fs, "hello.foot_lock_slack");
+  if (auto fh = j.find("foot_lock_hold_seconds"); fh != j.end()) h.method.foot_lock_hold_seconds = number(*fh, "hello.foot_lock_hold_seconds");
   if (auto tw = j.find("travel_weight"); tw != j.end()) h.method.travel_weight = number(*tw, "hello.travel_weight");
   if (auto hd = j.find("max_head_height_diff"); hd != j.end())
     h.method.max_head_height_diff = number(*hd, "hello.max_head_height_diff");

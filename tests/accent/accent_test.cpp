@@ -419,6 +419,62 @@ TEST_F(HeldOut, PlantedFeetStayPutAndSlideLess) {
   EXPECT_LT(c, a);
 }
 
+// A planted foot stays where it touched down for foot_lock_hold_seconds (0.2 s,
+// a running stance) before it creeps: on the held-out walk every locked ankle
+// that the leg reaches is still over its lock's first 0.2 s, which the creep
+// from touch-down (hold 0) does not give; on a held-out runner (subject 35,
+// not in the database) the feet near the floor slide less than with the creep
+// from touch-down (the evaluation's skating measure).
+TEST_F(HeldOut, PlantedFeetStayPutForARunningStanceBeforeTheyCreep) {
+  Settings hold, creep;
+  ASSERT_EQ(hold.foot_lock_hold_seconds, 0.2);  // the default
+  creep.foot_lock_hold_seconds = 0;
+  hold.user_height = creep.user_height = measure_body(input_->skeleton).standing_height;
+  const Model model = make_model(*db_, hold);
+  // Locked frame pairs early in a lock (the later frame at most 17 frames = 0.19 s
+  // after touch-down at 90 Hz) with both ankles within the leg's reach: their slides.
+  auto early_slides = [&](const AccentRun& run) {
+    const auto slides = ankle_slides(run.output);
+    const auto& r = run.output.skeleton.roles;
+    auto within_reach = [&](int f, int foot) {
+      const auto p = joint_positions(run.output.skeleton, run.output.frame(f));
+      const Vec3 hip = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftHip : Role::RightHip])];
+      const Vec3 ankle = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftAnkle : Role::RightAnkle])];
+      return (ankle - hip).norm() < 0.99 * model.leg_length(foot);
+    };
+    std::vector<double> out;
+    for (int foot = 0; foot < 2; ++foot) {
+      const auto fu = static_cast<std::size_t>(foot);
+      int age = 0;  // frames since touch-down, 1 on the touch-down frame
+      for (std::size_t f = 0; f + 1 < run.info.size(); ++f) {
+        age = run.info[f].foot_locked[fu] ? age + 1 : 0;
+        if (!run.info[f].foot_locked[fu] || !run.info[f + 1].foot_locked[fu] || age + 1 > 17) continue;
+        if (within_reach(static_cast<int>(f), foot) && within_reach(static_cast<int>(f) + 1, foot)) out.push_back(slides[fu][f]);
+      }
+    }
+    return out;
+  };
+  const auto held = early_slides(accentuate_motion(*db_, hold, *input_));
+  const auto crept = early_slides(accentuate_motion(*db_, creep, *input_));
+  ASSERT_GT(held.size(), 50u) << "a walk plants its feet";
+  const double held_max = *std::max_element(held.begin(), held.end()), crept_max = *std::max_element(crept.begin(), crept.end());
+  std::printf("[ figures  ] early in a lock (%zu / %zu frame pairs): largest ankle slide %.4f cm held, %.2f cm creeping\n",
+              held.size(), crept.size(), 100 * held_max, 100 * crept_max);
+  EXPECT_LT(held_max, 1e-5);
+  EXPECT_GT(crept_max, 1e-3);
+
+  const Motion runner = testing::tracker_rate_trial("running/35_17");
+  Settings run_hold, run_creep;
+  run_hold.user_height = run_creep.user_height = measure_body(runner.skeleton).standing_height;
+  run_creep.foot_lock_hold_seconds = 0;
+  const double s_hold = testing::ankle_floor_slide(accentuate_motion(*db_, run_hold, runner).output).per_pair();
+  const double s_creep = testing::ankle_floor_slide(accentuate_motion(*db_, run_creep, runner).output).per_pair();
+  const double s_truth = testing::ankle_floor_slide(runner).per_pair();
+  std::printf("[ figures  ] held-out runner 35_17: ankle slide near the floor %.2f cm/frame held 0.2 s, %.2f creeping from "
+              "touch-down, %.2f the capture's\n", 100 * s_hold, 100 * s_creep, 100 * s_truth);
+  EXPECT_LT(s_hold, s_creep);
+}
+
 // A foot let go at the end of a contact travels back to the synthesized foot
 // on a lifted arc: where the avatar's feet are near the floor they slide less
 // (the evaluation's foot-skating measure: horizontal ankle travel between

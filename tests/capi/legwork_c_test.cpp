@@ -588,6 +588,12 @@ TEST(CApi, BadInputGivesAStatusAndAMessage) {
   EXPECT_NE(std::string(lw_last_error()).find("floor_height must be between -10 and 10 metres"), std::string::npos)
       << lw_last_error();
   s.floor_height = -0.2;
+  EXPECT_DOUBLE_EQ(s.foot_lock_hold_seconds, legwork::accent::Settings{}.foot_lock_hold_seconds);  // ABI 15: the engine's default
+  s.foot_lock_hold_seconds = -0.1;
+  EXPECT_NE(lw_model_create_accent(db, &s, &model), LW_OK);
+  EXPECT_NE(std::string(lw_last_error()).find("foot_lock_hold_seconds must be between 0 and 10 s"), std::string::npos)
+      << lw_last_error();
+  s.foot_lock_hold_seconds = 0.3;
   EXPECT_EQ(lw_model_create_accent(db, &s, &model), LW_OK) << lw_last_error();
   lw_model_destroy(model);
   model = nullptr;

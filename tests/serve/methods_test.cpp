@@ -77,6 +77,9 @@ TEST(ServeMethods, BadOptionsAreExplainedToTheClient) {
   o.foot_lock_slack = 1.5;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "foot_lock_slack 1.500000 m is outside [0, 1]");
   o.foot_lock_slack = 0.2;
+  o.foot_lock_hold_seconds = -0.5;
+  EXPECT_EQ(message_of([&] { make_method(res, o); }), "foot_lock_hold_seconds -0.500000 s is outside [0, 10]");
+  o.foot_lock_hold_seconds = 0.3;
   o.foot_swing_speed = -1;
   EXPECT_EQ(message_of([&] { make_method(res, o); }), "foot_swing_speed -1.000000 m/s is outside [0, 10]");
   o.foot_swing_speed = 0.8;

@@ -132,7 +132,8 @@ TEST(Protocol, AccentSettingsAreHelloFields) {
                          Field{"other_class_cost", &MethodOptions::other_class_cost, d.other_class_cost, 1.5},  // other classes at a cost
                          Field{"search_interval", &MethodOptions::search_interval, d.search_interval, 0.1},  // searches every hop
                          Field{"floor_height", &MethodOptions::floor_height, d.floor_height, -1.5},  // where the floor is
-                         Field{"foot_lift_height", &MethodOptions::foot_lift_height, d.foot_lift_height, 0.1}}) {  // released feet's lift
+                         Field{"foot_lift_height", &MethodOptions::foot_lift_height, d.foot_lift_height, 0.1},  // released feet's lift
+                         Field{"foot_lock_hold_seconds", &MethodOptions::foot_lock_hold_seconds, d.foot_lock_hold_seconds, 0.35}}) {  // planted feet held
     SCOPED_TRACE(f.name);
     EXPECT_EQ(parse_text(R"({"type":"hello","version":1})").hello.method.*f.option, f.engine_default);
     for (double v : {0.0, f.sent}) {

@@ -159,9 +159,13 @@ struct Settings {
   // contact ends the foot blends back to the synthesized pose over
   // foot_release_seconds. A planted foot the leg cannot reach is pulled along
   // the leg (mostly up, like a heel rising); with foot_lock_follow_seconds > 0
-  // it also creeps toward the synthesized foot with that time constant.
+  // it also creeps toward the synthesized foot with that time constant, once
+  // it has been planted for foot_lock_hold_seconds (0.2 s, the median true
+  // stance of the shared running trials: a quick step's foot never creeps;
+  // 0 = it creeps from touch-down).
   bool foot_lock = true;
   double foot_lock_follow_seconds = 0.15;
+  double foot_lock_hold_seconds = 0.2;
   double contact_on = 0.6, contact_off = 0.4;
   double foot_release_seconds = 0.15;
   // A released foot (contact ended) travels back to the synthesized foot
@@ -360,6 +364,7 @@ struct State {
     double weight = 0;      // share of the lock in the output (1 while locked, fading after)
     Vec3 position = Vec3::Zero();      // world position of the planted ankle
     Quat rotation = Quat::Identity();  // world rotation of the planted ankle
+    double held = 0;                   // seconds since touch-down
     // Swing clearance (Settings::foot_swing_speed).
     bool have_floor = false;
     double floor = 0;                  // lowest recent synthesized ankle height (relaxing upward; not below the floor)

@@ -28,6 +28,7 @@ struct AccentJob {
   double search_interval = accent::Settings{}.search_interval;
   double foot_lift_height = accent::Settings{}.foot_lift_height;
   double foot_lock_slack = accent::Settings{}.foot_lock_slack;
+  double foot_lock_hold = accent::Settings{}.foot_lock_hold_seconds;
   double foot_swing_speed = accent::Settings{}.foot_swing_speed;
   double travel_weight = accent::Settings{}.travel_weight;
   double max_head_height_diff = accent::Settings{}.max_head_height_diff;

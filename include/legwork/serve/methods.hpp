@@ -50,6 +50,7 @@ struct MethodOptions {
   double foot_lift_height = accent::Settings{}.foot_lift_height;
   // accent::Settings::foot_lock_slack (metres) and foot_swing_speed (m/s), the engine's defaults.
   double foot_lock_slack = accent::Settings{}.foot_lock_slack;
+  double foot_lock_hold_seconds = accent::Settings{}.foot_lock_hold_seconds;  // seconds (accent::Settings::foot_lock_hold_seconds)
   double foot_swing_speed = accent::Settings{}.foot_swing_speed;
   // accent (and combined's upper body): accent::Settings::travel_weight, the engine's default (0 = off).
   double travel_weight = accent::Settings{}.travel_weight;
