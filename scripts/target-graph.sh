@@ -9,7 +9,7 @@ out=$(mktemp -d)
 cat > "$out/CMakeGraphVizOptions.cmake" <<'OPT'
 set(GRAPHVIZ_EXECUTABLES FALSE)
 set(GRAPHVIZ_EXTERNAL_LIBS FALSE)
-set(GRAPHVIZ_IGNORE_TARGETS "test_.*;legwork_header_check;legwork_testdata;.*_bench;.*fuzz.*;legwork_c_static")
+set(GRAPHVIZ_IGNORE_TARGETS "test_.*;legwork_header_check;legwork_testdata;.*_bench;.*fuzz.*;legwork_c_static;legwork_c_objects")
 OPT
 cp "$out/CMakeGraphVizOptions.cmake" "$BUILD/"
 cmake --graphviz="$out/targets.dot" "$BUILD" >/dev/null
