@@ -145,6 +145,11 @@ void bind_runtime(pb::module_& m) {
 
 // Whole clips (legwork/wip/offline/run.hpp): what `legwork wip` and `legwork
 // wip eval` run, for researchers scoring detectors from Python.
+struct PyRun {
+  pb::object frames, motion;
+  FloorCalibration calibration;
+};
+
 void bind_offline(pb::module_& m) {
   pb::class_<FloorCalibration>(m, "FloorCalibration", "Floor calibration from standing still (legwork.wip.calibrate_floor).")
       .def_readonly("ok", &FloorCalibration::ok)
@@ -161,18 +166,14 @@ void bind_offline(pb::module_& m) {
       "frames"_a, "seconds"_a = 3.0, "max_std"_a = 0.03,
       "Each ankle's mean height over the first `seconds` of a list of legwork.core.TrackerFrame; ok = False (message\n"
       "says why) when an ankle's height varies by more than max_std metres or too few samples are usable.");
-  pb::class_<Run>(m, "Run", "A clip run through one avatar (legwork.wip.run).")
-      .def_readonly("frames", &Run::frames, "legwork.wip.Info of every consumed (not rejected) frame")
-      .def_property_readonly(
-          "motion",
-          [](const pb::object& self) -> pb::object {
-            const Run& r = self.cast<const Run&>();
-            if (r.motion.skeleton.joint_count() == 0) return pb::none();
-            return pb::cast(&r.motion, pb::return_value_policy::reference_internal, self);
-          },
-          "the avatar at those frames (legwork.core.Motion at settings.signal.rate), None when run with keep_poses=False")
-      .def_readonly("calibration", &Run::calibration, "the floor calibration (ok = False when not calibrated)")
-      .def("__len__", [](const Run& r) { return r.frames.size(); });
+  // Run's frames and motion become Python objects once, when the run returns
+  // (a def_readonly vector would be copied into a new list at every read).
+  pb::class_<PyRun>(m, "Run", "A clip run through one avatar (legwork.wip.run).")
+      .def_readonly("frames", &PyRun::frames, "list of legwork.wip.Info, one per consumed (not rejected) frame")
+      .def_readonly("motion", &PyRun::motion,
+                    "the avatar at those frames (legwork.core.Motion at settings.signal.rate), None when run with keep_poses=False")
+      .def_readonly("calibration", &PyRun::calibration, "the floor calibration (ok = False when not calibrated)")
+      .def("__len__", [](const PyRun& r) { return pb::len(r.frames); });
   m.def(
       "run",
       [](const Model& model, const std::vector<TrackerFrame>& frames, bool calibrate, double calibration_seconds, bool keep_poses) {
@@ -182,8 +183,16 @@ void bind_offline(pb::module_& m) {
         opt.calibrate = calibrate;
         opt.calibration_seconds = calibration_seconds;
         opt.keep_poses = keep_poses;
-        pb::gil_scoped_release release;
-        return run_wip(model, frames, opt);
+        Run run;
+        {
+          pb::gil_scoped_release release;
+          run = run_wip(model, frames, opt);
+        }
+        PyRun out;
+        out.frames = pb::cast(std::move(run.frames));
+        out.motion = keep_poses ? pb::cast(std::move(run.motion)) : pb::none();
+        out.calibration = std::move(run.calibration);
+        return out;
       },
       "model"_a, "frames"_a, "calibrate"_a = true, "calibration_seconds"_a = 3.0, "keep_poses"_a = true,
       "One avatar over a list of legwork.core.TrackerFrame, as `legwork wip` runs a clip: the floor calibrated from\n"
