@@ -302,6 +302,16 @@ double lower_body_error(const Motion& input90, const Motion& out) {
   return sum / std::max(n, 1);
 }
 
+// Whether `foot`'s ankle (0 left, 1 right) is within the model's leg reach of
+// its hip at frame f of m (a planted foot out of reach is pulled along the leg).
+bool ankle_within_reach(const Motion& m, const Model& model, int f, int foot) {
+  const auto& r = m.skeleton.roles;
+  const auto p = joint_positions(m.skeleton, m.frame(f));
+  const Vec3 hip = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftHip : Role::RightHip])];
+  const Vec3 ankle = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftAnkle : Role::RightAnkle])];
+  return (ankle - hip).norm() < 0.99 * model.leg_length(foot);
+}
+
 // Horizontal slide of each ankle from frame f to f + 1 (metres), per foot.
 std::array<std::vector<double>, 2> ankle_slides(const Motion& m) {
   std::array<std::vector<double>, 2> out;
@@ -374,13 +384,7 @@ TEST_F(HeldOut, PlantedFeetStayPutAndSlideLess) {
   Settings sized = hard;
   sized.user_height = measure_body(input_->skeleton).standing_height;
   const Model model = make_model(*db_, sized);
-  const auto& r = held.output.skeleton.roles;
-  auto within_reach = [&](int f, int foot) {
-    const auto p = joint_positions(held.output.skeleton, held.output.frame(f));
-    const Vec3 hip = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftHip : Role::RightHip])];
-    const Vec3 ankle = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftAnkle : Role::RightAnkle])];
-    return (ankle - hip).norm() < 0.99 * model.leg_length(foot);
-  };
+  auto within_reach = [&](int f, int foot) { return ankle_within_reach(held.output, model, f, foot); };
   int locked = 0, reachable = 0;
   for (std::size_t f = 0; f + 1 < held.info.size(); ++f)
     for (int foot = 0; foot < 2; ++foot) {
@@ -435,13 +439,7 @@ TEST_F(HeldOut, PlantedFeetStayPutForARunningStanceBeforeTheyCreep) {
   // after touch-down at 90 Hz) with both ankles within the leg's reach: their slides.
   auto early_slides = [&](const AccentRun& run) {
     const auto slides = ankle_slides(run.output);
-    const auto& r = run.output.skeleton.roles;
-    auto within_reach = [&](int f, int foot) {
-      const auto p = joint_positions(run.output.skeleton, run.output.frame(f));
-      const Vec3 hip = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftHip : Role::RightHip])];
-      const Vec3 ankle = p[static_cast<std::size_t>(r[foot == 0 ? Role::LeftAnkle : Role::RightAnkle])];
-      return (ankle - hip).norm() < 0.99 * model.leg_length(foot);
-    };
+    auto within_reach = [&](int f, int foot) { return ankle_within_reach(run.output, model, f, foot); };
     std::vector<double> out;
     for (int foot = 0; foot < 2; ++foot) {
       const auto fu = static_cast<std::size_t>(foot);
