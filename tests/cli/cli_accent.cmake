@@ -22,6 +22,8 @@ legwork_cli_test(accent_run_foot_lift accent run --db ${ACC_DB} --input ${D}/wal
                  --foot-lift-height 0.08 --out ${O}/accent_07_02_lift.bvh)
 legwork_cli_error(accent_run_foot_slack_range "--foot-lock-slack: Value 2 not in range 0\\.0+ to 1\\.0*"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --foot-lock-slack 2 --out ${O}/x.bvh)
+legwork_cli_error(accent_run_foot_hold_range "--foot-lock-hold: Value 11 not in range 0\\.0+ to 10\\.0*"
+                 accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --foot-lock-hold 11 --out ${O}/x.bvh)
 legwork_cli_error(accent_run_swing_speed_range "--foot-swing-speed: Value -1 not in range 0\\.0+ to 10\\.0*"
                  accent run --db ${ACC_DB} --input ${D}/walking/07_02.bvh --foot-swing-speed -1 --out ${O}/x.bvh)
 legwork_cli_error(accent_run_travel_weight_range "--travel-weight: Value -1 not in range 0\\.0+ to 100\\.0*"

@@ -9,6 +9,7 @@ legwork_cli_test(eval_help eval accent --help)
 legwork_cli_error(eval_other_class_cost_range "--other-class-cost: Value 0.5 must be 0 \\(off\\) or a factor from 1 to 1000000" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --other-class-cost 0.5)
 legwork_cli_error(eval_foot_lift_range "--foot-lift-height: Value -1 not in range 0\\.0+ to 0\\.50*" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --foot-lift-height -1)
 legwork_cli_error(eval_foot_slack_range "--foot-lock-slack: Value 3 not in range 0\\.0+ to 1\\.0*" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --foot-lock-slack 3)
+legwork_cli_error(eval_foot_hold_range "--foot-lock-hold: Value -1 not in range 0\\.0+ to 10\\.0*" eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --foot-lock-hold -1)
 legwork_cli_test(eval_foot_lift eval accent --data ${PROJECT_SOURCE_DIR}/data/cmu --quick --quick-trials 2 --max-seconds 3 --no-ablation --skip-no-class --foot-lift-height 0.08)
 set_tests_properties(cli.eval_foot_lift PROPERTIES TIMEOUT 180)
 # The IK blend, contact thresholds and lock creep as evaluation options (issue 12's "where IK wins" runs).
