@@ -6,6 +6,7 @@
 #include <legwork/eval/wip.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <span>
 
 namespace legwork::py {
@@ -158,6 +159,32 @@ void bind_steps(pb::module_& m) {
         return combine(std::span<const StrictScore>(scores));
       },
       "scores"_a, "StrictScores of several trials pooled: counts summed, rates and latencies from all matches.");
+  pb::class_<StillSegment>(m, "StillSegment", "A still stretch of a trial (both feet in contact, ground truth) and its false steps.")
+      .def_readonly("begin", &StillSegment::begin, "seconds")
+      .def_readonly("end", &StillSegment::end, "seconds")
+      .def_readonly("false_steps", &StillSegment::false_steps, "detected foot-offs inside that match no true one")
+      .def("__repr__", [](const StillSegment& g) {
+        char buf[120];
+        std::snprintf(buf, sizeof buf, "StillSegment(begin=%.3f, end=%.3f, false_steps=%d)", g.begin, g.end, g.false_steps);
+        return std::string(buf);
+      });
+  m.def(
+      "still_segments",
+      [check_window](const Motion& motion, const std::vector<SwingEvent>& detected, double t_begin, double t_end,
+                     double min_duration, double tolerance) {
+        check_window(tolerance, t_begin, t_end);
+        if (!(std::isfinite(min_duration) && min_duration > 0))
+          value_error("min_duration: expected a positive number of seconds, got " + std::to_string(min_duration));
+        ContactOptions truth;
+        truth.end_swings = true;
+        const auto unmatched = unmatched_detections(detected, foot_swings(motion, truth), tolerance);
+        return still_segments(motion, "", truth, unmatched, min_duration, t_begin, t_end);
+      },
+      "motion"_a, "detected"_a, "t_begin"_a, "t_end"_a, "min_duration"_a = 1.0, "tolerance"_a = 0.2,
+      "The still stretches of a walk, as `legwork wip eval` scores false steps: both feet in contact (the truth of\n"
+      "legwork.wip.foot_swings) for at least min_duration seconds within [t_begin, t_end], each with the detected\n"
+      "foot-offs inside that match no true one within +-tolerance. False steps per minute = their sum over the\n"
+      "segments' minutes.");
   m.def(
       "score_steps",
       [](const std::vector<SwingEvent>& detected, const std::vector<SwingEvent>& truth, double t_begin, double t_end) {

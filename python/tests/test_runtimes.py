@@ -348,6 +348,33 @@ def test_wip_run_calibrates_from_standing_and_solves_the_legs_only_when_asked():
         wip.SwingEvent(0, 1.0, 0.5)
 
 
+def test_false_steps_are_counted_on_the_still_segments_of_a_walk():
+    """A real walk after two seconds of standing: the standing is a still segment (until the walk's first
+    true foot-off), the detector takes no step in it, and a detection there that matches no true step is a
+    false one, as `legwork wip eval` counts them; a detection matched to the first true step is not."""
+    walk = legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/16_15.bvh"), drop_first=True)
+    n = int(2 * walk.fps)
+    standing = core.Motion(walk.skeleton, walk.fps, np.ascontiguousarray(np.repeat(walk.rotations[:1], n, 0)),
+                           np.ascontiguousarray(np.repeat(np.array(walk.translations)[:1], n, 0)))
+    motion = core.concatenate(standing, walk)
+    run = wip.run(wip.make_model(motion.skeleton), core.tracker_frames_from_motion(motion, 30.0), calibrate=False,
+                  keep_poses=False)
+    detected = legwork.eval.detected_swings(run.frames)
+    first = min(wip.foot_swings(motion, end_swings=True), key=lambda e: e.off)
+    first_off = first.off
+    t_end = motion.duration - 0.1
+    still = legwork.eval.still_segments(motion, detected, 0.5, t_end)
+    assert len(still) == 1 and still[0].begin == pytest.approx(0.5) and still[0].false_steps == 0
+    assert 2.0 <= still[0].end <= first_off + 1e-9  # the standing, up to the first true foot-off
+    fake = wip.SwingEvent(0, 1.0, 1.3)  # a step taken while standing
+    assert [g.false_steps for g in legwork.eval.still_segments(motion, detected + [fake], 0.5, t_end)] == [1]
+    assert legwork.eval.still_segments(motion, [fake], 0.5, 0.9) == []  # shorter than min_duration
+    early = wip.SwingEvent(first.foot, first_off - 0.05, first_off + 0.3)  # the first step, detected 50 ms early
+    assert [g.false_steps for g in legwork.eval.still_segments(motion, [early], 0.5, t_end)] == [0]
+    with pytest.raises(ValueError, match=r"min_duration: expected a positive number of seconds, got -1"):
+        legwork.eval.still_segments(motion, detected, 0.5, t_end, min_duration=-1)
+
+
 def test_another_detectors_steps_are_scored_the_fields_way():
     """A researcher's own detections, made by hand, against the true foot-offs of a real walk."""
     walk = legwork.io.read_bvh(str(SOURCE / "data/cmu/bvh/walking/16_15.bvh"), drop_first=True)
