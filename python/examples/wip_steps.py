@@ -1,5 +1,6 @@
 """Scores the walking-in-place step detector the field's way (foot-offs matched one to one within
-+-200 ms) on walking BVH trials, from Python: what `legwork wip eval` reports as strict_200ms.
++-200 ms) on walking BVH trials, from Python: what `legwork wip eval` reports as strict_200ms, and its
+false steps per minute on the trials' still segments.
 
     PYTHONPATH=build/python python3 python/examples/wip_steps.py --data data/cmu/bvh/walking [--noise]
 
@@ -22,7 +23,7 @@ args = parser.parse_args()
 trials = sorted(pathlib.Path(args.data).glob("*.bvh"))
 if not trials:
     raise SystemExit(f"wip_steps: no .bvh trials in {args.data}")
-scores = []
+scores, still_minutes, false_steps = [], 0.0, 0
 for index, path in enumerate(trials):
     motion = legwork.io.read_bvh(str(path), drop_first=True)
     settings = wip.Settings()                                    # 30 Hz trackers, the adaptive detector
@@ -35,8 +36,13 @@ for index, path in enumerate(trials):
     truth = wip.foot_swings(motion, end_swings=True)             # a swing the clip's end cuts was taken too
     score = legwork.eval.match_foot_offs(detected, truth, t_begin=0.5, t_end=motion.duration - 0.1)
     scores.append(score)
+    for segment in legwork.eval.still_segments(motion, detected, t_begin=0.5, t_end=motion.duration - 0.1):
+        still_minutes += (segment.end - segment.begin) / 60                 # both feet down for at least 1 s
+        false_steps += segment.false_steps
     print(f"{path.stem}: {score.matched} of {score.true_steps} steps, F1 {score.f1:.3f}, "
           f"foot-off latency median {score.median_ms:.0f} ms")
 pooled = legwork.eval.combine(scores)
 print(f"pooled over {len(trials)} trials: precision {pooled.precision:.3f}, recall {pooled.recall:.3f}, "
       f"F1 {pooled.f1:.3f}, latency median {pooled.median_ms:.0f} ms, p90 {pooled.p90_ms:.0f} ms")
+print(f"false steps: {false_steps / still_minutes:.2f} per minute over {still_minutes:.2f} min of still segments"
+      if still_minutes > 0 else "false steps: n/a (no still segment of 1 s or more in these trials)")
