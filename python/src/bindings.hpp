@@ -44,6 +44,9 @@ pb::array view(const double* data, std::initializer_list<pb::ssize_t> shape, con
 void quats_to_wxyz(std::span<const Quat> q, double* out);
 void wxyz_to_quats(const double* in, std::span<Quat> q);
 
+// A duration: finite and positive (ValueError naming `name`).
+void require_seconds(double seconds, const char* name);
+
 // Frame rate check: finite and positive (ValueError naming `name`).
 void require_rate(double fps, const char* name);
 

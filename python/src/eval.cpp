@@ -173,8 +173,7 @@ void bind_steps(pb::module_& m) {
       [check_window](const Motion& motion, const std::vector<SwingEvent>& detected, double t_begin, double t_end,
                      double min_duration, double tolerance) {
         check_window(tolerance, t_begin, t_end);
-        if (!(std::isfinite(min_duration) && min_duration > 0))
-          value_error("min_duration: expected a positive number of seconds, got " + std::to_string(min_duration));
+        require_seconds(min_duration, "min_duration");
         ContactOptions truth;
         truth.end_swings = true;
         const auto unmatched = unmatched_detections(detected, foot_swings(motion, truth), tolerance);

@@ -80,6 +80,11 @@ void require_pose(const Skeleton& skel, const Pose& out) {
                 std::to_string(out.joint_count()) + " joints");
 }
 
+void require_seconds(double seconds, const char* name) {
+  if (!(std::isfinite(seconds) && seconds > 0))
+    value_error(std::string(name) + ": expected a positive number of seconds, got " + std::to_string(seconds));
+}
+
 void require_rate(double fps, const char* name) {
   if (!(std::isfinite(fps) && fps > 0 && fps < 1e6))
     value_error(std::string(name) + ": expected a finite frame rate in Hz (0 < fps < 1e6), got " + std::to_string(fps));

@@ -159,7 +159,7 @@ void bind_offline(pb::module_& m) {
   m.def(
       "calibrate_floor",
       [](const std::vector<TrackerFrame>& frames, double seconds, double max_std) {
-        if (!(std::isfinite(seconds) && seconds > 0)) value_error("seconds: expected a positive number of seconds, got " + std::to_string(seconds));
+        require_seconds(seconds, "seconds");
         if (!(std::isfinite(max_std) && max_std > 0)) value_error("max_std: expected a positive height spread in metres, got " + std::to_string(max_std));
         return calibrate_floor(frames, seconds, max_std);
       },
@@ -177,8 +177,7 @@ void bind_offline(pb::module_& m) {
   m.def(
       "run",
       [](const Model& model, const std::vector<TrackerFrame>& frames, bool calibrate, double calibration_seconds, bool keep_poses) {
-        if (calibrate && !(std::isfinite(calibration_seconds) && calibration_seconds > 0))
-          value_error("calibration_seconds: expected a positive number of seconds, got " + std::to_string(calibration_seconds));
+        if (calibrate) require_seconds(calibration_seconds, "calibration_seconds");
         RunOptions opt;
         opt.calibrate = calibrate;
         opt.calibration_seconds = calibration_seconds;

@@ -336,6 +336,8 @@ def test_wip_run_calibrates_from_standing_and_solves_the_legs_only_when_asked():
     # Other runtimes need their pose; bad arguments are named.
     with pytest.raises(ValueError, match=r"out: a Pose of the model's skeleton \(31 joints\) expected, got None"):
         ik.update(ik.make_model(walk.skeleton), frames[0], ik.State(ik.make_model(walk.skeleton)), None)
+    with pytest.raises(ValueError, match=r"^seconds: expected a positive number of seconds, got 0"):
+        wip.calibrate_floor(frames, seconds=0)
     with pytest.raises(ValueError, match=r"calibration_seconds: expected a positive number of seconds, got -1"):
         wip.run(model, frames, calibration_seconds=-1)
     with pytest.raises(ValueError, match=r"drop_rate: expected a fraction in \[0, 1\], got 2"):
