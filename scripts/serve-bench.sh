@@ -2,23 +2,32 @@
 # Load benchmark for `legwork serve` on loopback (bounded; stops by itself):
 # N replay clients at 90 Hz (bench/serve_load), doubling N until p99 > 5 ms
 # or a frame goes unanswered, against
-#   1. one server process pinned to one core (taskset -c 0), and
-#   2. two server processes (cores 0 and 1) behind HAProxy (scripts/serve-cluster.sh).
+#   1. one server process pinned to one core (taskset -c 0), the client on core 1,
+#   2. the same behind HAProxy (scripts/serve-cluster.sh), and
+#   3. two server processes (cores 0 and 1) behind HAProxy.
 # Prints the figures and writes OUT.json (default serve-bench.json).
 #   scripts/serve-bench.sh [--out FILE] [--method ik|accent] [--db FILE] [--classes a,b] [--seconds S] [--max-clients N]
 #                          [--build DIR] [--workers N (default 0)] [--aligned] [--one-only] [--search-interval S]
-#                          [--start-spread S]
+#                          [--start-spread S] [--cpu-cap F] [--repeat R] [--cooldown S]
 # --classes: the sessions' accent classes (default none: the server recognises the activity);
 # --search-interval: the sessions' accent search interval in seconds (default: the server's, 0.044);
 # --aligned: clients send at the same instant (default: spread over the frame period);
 # --start-spread: seconds over which the clients' streams start (default 0: all in the first period);
-# --one-only: skip the two-process HAProxy run.
+# --one-only: skip the HAProxy runs (2 and 3).
+# --cpu-cap F: each server process gets at most F (0.1-1) of its core (a cgroup CPU quota,
+#   scripts/serve-cluster.sh --cpu-cap): on 2 cores, two servers capped at 0.5 leave a core's
+#   worth to HAProxy and the clients, so the 2-process scaling can be measured; the avatar
+#   counts are then those of F of a core, not of a whole one.
+# --repeat R: R rounds of the three runs, alternating so that all see the host's moods; the
+#   figures are the medians and the scaling their ratio (every round is in OUT.json).
+# --cooldown S: seconds idle before each run (default 0): each ramp ends overloaded, and on a
+#   shared virtual machine the next run's first steps can pay for it.
 # serve_load reports the servers' CPU per frame and their run-queue wait (CPU time other
 # processes took from them): on a shared machine the latency figures include it.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-out=serve-bench.json method=ik db="" seconds=5 max=1280 build="$root/build" workers=0 one_only=0
-load_args=()
+out=serve-bench.json method=ik db="" seconds=5 max=1280 build="$root/build" workers=0 one_only=0 cap="" repeat=1 cooldown=0
+load_args=() cluster_args=()
 while [ $# -gt 0 ]; do
   case $1 in
     --out) out=$2; shift 2 ;;
@@ -33,40 +42,77 @@ while [ $# -gt 0 ]; do
     --aligned) load_args+=(--aligned); shift ;;
     --start-spread) load_args+=(--start-spread "$2"); shift 2 ;;
     --one-only) one_only=1; shift ;;
+    --cpu-cap) cap=$2; cluster_args+=(--cpu-cap "$2"); shift 2 ;;
+    --repeat) repeat=$2; shift 2 ;;
+    --cooldown) cooldown=$2; shift 2 ;;
     *) echo "serve-bench: unknown option $1" >&2; exit 2 ;;
   esac
 done
+case $repeat in ''|*[!0-9]*|0) echo "serve-bench: --repeat $repeat: a count of rounds (1 or more) expected" >&2; exit 2 ;; esac
+case $cooldown in ''|*[!0-9]*) echo "serve-bench: --cooldown $cooldown: whole seconds (0 or more) expected" >&2; exit 2 ;; esac
 legwork="$build/apps/legwork/legwork" load="$build/bench/serve_load"
 serve_args=(--max-sessions 5000 --max-rate 1000 --workers "$workers")
 [ -n "$db" ] && serve_args+=(--db "$db")
 work=$(mktemp -d)
-trap '"$root/scripts/serve-cluster.sh" stop --dir "$work/c1" >/dev/null 2>&1 || true; "$root/scripts/serve-cluster.sh" stop --dir "$work/c2" >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
+trap 'for c in "$work"/c*; do "$root/scripts/serve-cluster.sh" stop --dir "$c" >/dev/null 2>&1 || true; done; rm -rf "$work"' EXIT
 free_port() { python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'; }
 ulimit -n 20000 2>/dev/null || true
 
-# 1. One process on one core, clients direct (the load client runs on the other core).
-"$root/scripts/serve-cluster.sh" start 1 --port "$(free_port)" --dir "$work/c1" --legwork "$legwork" --pin -- "${serve_args[@]}" >/dev/null
-p1=$(grep -o '127.0.0.1:[0-9]*/' "$work/c1/serve-1.log" | head -1 | tr -dc '0-9:' | cut -d: -f2)
-taskset -c 1 "$load" --port "$p1" --server-pids "$(cat "$work/c1/serve-1.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "1 process" --json "$work/one.json"
-"$root/scripts/serve-cluster.sh" stop --dir "$work/c1" >/dev/null
-
-if [ "$one_only" = 1 ]; then
-  echo '{"sustained_avatars": 0, "skipped": true}' > "$work/two.json"
-else
-  # 2. Two processes (one per core) behind HAProxy.
+# ramp_cluster N LABEL FILE: N server processes (one per core) behind HAProxy, the client unpinned.
+ramp_cluster() {
+  local port pids
+  sleep "$cooldown"
   port=$(free_port)
-  "$root/scripts/serve-cluster.sh" start 2 --port "$port" --dir "$work/c2" --legwork "$legwork" --pin -- "${serve_args[@]}" >/dev/null
-  "$load" --port "$port" --server-pids "$(cat "$work/c2/serve-1.pid"),$(cat "$work/c2/serve-2.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "2 via haproxy" --json "$work/two.json"
-  "$root/scripts/serve-cluster.sh" stop --dir "$work/c2" >/dev/null
-fi
+  "$root/scripts/serve-cluster.sh" start "$1" --port "$port" --dir "$work/c$1" --legwork "$legwork" --pin "${cluster_args[@]}" -- "${serve_args[@]}" >/dev/null
+  pids=$(cat "$work/c$1"/serve-*.pid | paste -sd,)
+  "$load" --port "$port" --server-pids "$pids" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "$2" --json "$3"
+  "$root/scripts/serve-cluster.sh" stop --dir "$work/c$1" >/dev/null
+}
 
-python3 - "$work/one.json" "$work/two.json" "$out" <<'PY'
-import json, os, sys
-one, two = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
-res = {"machine_cores": os.cpu_count(), "one_process": one, "two_processes_haproxy": two,
-       "scaling": (two["sustained_avatars"] / one["sustained_avatars"]) if one["sustained_avatars"] else None}
-json.dump(res, open(sys.argv[3], "w"), indent=2)
-print("serve-bench: 1 process %d avatars, 2 processes via haproxy %d avatars (x%s); wrote %s" % (
-    one["sustained_avatars"], two["sustained_avatars"],
-    "%.2f" % res["scaling"] if res["scaling"] else "-", sys.argv[3]))
+for r in $(seq "$repeat"); do
+  [ "$repeat" -gt 1 ] && echo "serve-bench: round $r of $repeat"
+  sleep "$cooldown"
+  # 1. One process on one core, clients direct (the load client runs on the other core).
+  "$root/scripts/serve-cluster.sh" start 1 --port "$(free_port)" --dir "$work/c1" --legwork "$legwork" --pin "${cluster_args[@]}" -- "${serve_args[@]}" >/dev/null
+  p1=$(grep -o '127.0.0.1:[0-9]*/' "$work/c1/serve-1.log" | head -1 | tr -dc '0-9:' | cut -d: -f2)
+  taskset -c 1 "$load" --port "$p1" --server-pids "$(cat "$work/c1/serve-1.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "1 process" --json "$work/one-$r.json"
+  "$root/scripts/serve-cluster.sh" stop --dir "$work/c1" >/dev/null
+
+  if [ "$one_only" = 1 ]; then
+    echo '{"sustained_avatars": 0, "skipped": true}' > "$work/one-haproxy-$r.json"
+    echo '{"sustained_avatars": 0, "skipped": true}' > "$work/two-$r.json"
+  else
+    # 2. The same process behind HAProxy (the path of 3, with one server), then
+    # 3. two processes (one per core) behind HAProxy.
+    ramp_cluster 1 "1 via haproxy" "$work/one-haproxy-$r.json"
+    ramp_cluster 2 "2 via haproxy" "$work/two-$r.json"
+  fi
+done
+
+python3 - "$work" "$repeat" "$out" "$cap" <<'PY'
+import json, os, statistics, sys
+work, repeat, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+cap = float(sys.argv[4]) if sys.argv[4] else None
+kinds = ("one", "one-haproxy", "two")
+rounds = [{k: json.load(open("%s/%s-%d.json" % (work, k, r))) for k in kinds} for r in range(1, repeat + 1)]
+counts = {k: [x[k]["sustained_avatars"] for x in rounds] for k in kinds}
+med = {k: statistics.median(v) for k, v in counts.items()}
+ratio = lambda a, b: (a / b) if b else None
+# The first round's full figures (as before), every round's, and the scaling of the medians:
+# against the one process reached directly, and against it behind the same HAProxy path.
+res = {"machine_cores": os.cpu_count(), "cpu_cap_per_process": cap,
+       "one_process": rounds[0]["one"], "one_process_haproxy": rounds[0]["one-haproxy"], "two_processes_haproxy": rounds[0]["two"],
+       "rounds": [{"one_process": x["one"], "one_process_haproxy": x["one-haproxy"], "two_processes_haproxy": x["two"]} for x in rounds],
+       "sustained_one_process": counts["one"], "sustained_one_process_haproxy": counts["one-haproxy"],
+       "sustained_two_processes": counts["two"],
+       "sustained_one_process_median": med["one"], "sustained_one_process_haproxy_median": med["one-haproxy"],
+       "sustained_two_processes_median": med["two"],
+       "scaling": ratio(med["two"], med["one"]), "scaling_vs_one_haproxy": ratio(med["two"], med["one-haproxy"])}
+json.dump(res, open(out, "w"), indent=2)
+f = lambda x: "%.2f" % x if x else "-"
+each = "" if repeat == 1 else " (medians of %d rounds: %s)" % (
+    repeat, "; ".join("%s %s" % (k.replace("-", " via "), ", ".join(map(str, counts[k]))) for k in kinds))
+print("serve-bench: 1 process %g avatars, 1 via haproxy %g, 2 processes via haproxy %g (x%s against 1 process, x%s against 1 via haproxy)%s%s; wrote %s" % (
+    med["one"], med["one-haproxy"], med["two"], f(res["scaling"]), f(res["scaling_vs_one_haproxy"]), each,
+    ", each process capped at %g of a core" % cap if cap else "", out))
 PY
