@@ -9,7 +9,8 @@
 // then halving steps between the last good N and the first bad one;
 // "sustained" is the largest N found that kept p99 <= --p99-ms with every
 // frame answered (the doubling steps below it kept it too). --server-pids adds the servers'
-// CPU time per frame (from /proc) and the avatars per core it implies.
+// CPU time per frame (from /proc) and the avatars per core it implies, --proxy-pids
+// HAProxy's; the client's own CPU per frame is always printed.
 #include <legwork/core/measure.hpp>
 #include <legwork/core/tracker.hpp>
 #include <legwork/io/bvh.hpp>
@@ -31,7 +32,6 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <unistd.h>
 #include <vector>
 
@@ -45,31 +45,10 @@ using Clock = std::chrono::steady_clock;
 using json = nlohmann::json;
 using namespace legwork;
 
-// CPU seconds (user + system) used so far by the given processes (Linux /proc).
-double cpu_seconds(const std::vector<int>& pids) {
-  double total = 0;
-  for (int pid : pids) {
-    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-    std::string line;
-    std::getline(in, line);
-    const auto close = line.rfind(')');
-    if (close == std::string::npos) continue;
-    std::istringstream rest(line.substr(close + 2));
-    std::string field;
-    unsigned long long utime = 0, stime = 0;
-    for (int i = 3; i <= 15 && rest >> field; ++i) {
-      if (i == 14) utime = std::stoull(field);
-      if (i == 15) stime = std::stoull(field);
-    }
-    total += static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
-  }
-  return total;
-}
-
-// Nanoseconds the processes' threads spent waiting on a run queue for a CPU
-// (Linux /proc/PID/task/TID/schedstat, second field): time other processes on
-// the same cores took from them.
-double runqueue_wait_seconds(const std::vector<int>& pids) {
+// Seconds summed over the processes' threads from Linux /proc/PID/task/TID/schedstat:
+// field 0, time on a CPU (nanoseconds, exact: not the 10 ms ticks of /proc/PID/stat);
+// field 1, time waiting on a run queue for one (CPU time other processes took from them).
+double schedstat_seconds(const std::vector<int>& pids, int field) {
   double total = 0;
   for (int pid : pids) {
     const std::string dir = "/proc/" + std::to_string(pid) + "/task";
@@ -77,16 +56,20 @@ double runqueue_wait_seconds(const std::vector<int>& pids) {
     for (const auto& t : std::filesystem::directory_iterator(dir, ec)) {
       std::ifstream in(t.path() / "schedstat");
       unsigned long long run = 0, wait = 0;
-      if (in >> run >> wait) total += static_cast<double>(wait) * 1e-9;
+      if (in >> run >> wait) total += static_cast<double>(field == 0 ? run : wait) * 1e-9;
     }
   }
   return total;
 }
+double cpu_seconds(const std::vector<int>& pids) { return schedstat_seconds(pids, 0); }
+double runqueue_wait_seconds(const std::vector<int>& pids) { return schedstat_seconds(pids, 1); }
 
 struct Run {
   int clients = 0;
   double server_cpu_us_per_frame = 0;  // with --server-pids
   double server_wait_us_per_frame = 0, client_wait_us_per_frame = 0;  // run-queue waits (CPU taken by others)
+  double proxy_cpu_us_per_frame = 0;   // with --proxy-pids (HAProxy)
+  double client_cpu_us_per_frame = 0;  // this load client's own
   std::uint64_t sent = 0, answered = 0, errors = 0, failed_clients = 0;
   std::vector<double> latency_ms;
   double p50 = 0, p90 = 0, p99 = 0, max = 0, answered_share = 0;
@@ -246,6 +229,7 @@ json to_json(const Run& r) {
           {"failed_clients", r.failed_clients}, {"server_cpu_us_per_frame", r.server_cpu_us_per_frame},
           {"server_runqueue_wait_us_per_frame", r.server_wait_us_per_frame},
           {"client_runqueue_wait_us_per_frame", r.client_wait_us_per_frame},
+          {"proxy_cpu_us_per_frame", r.proxy_cpu_us_per_frame}, {"client_cpu_us_per_frame", r.client_cpu_us_per_frame},
           {"avatars_per_core_by_cpu", r.server_cpu_us_per_frame > 0 ? 1e6 / (90.0 * r.server_cpu_us_per_frame) : 0.0}};
 }
 
@@ -283,6 +267,8 @@ int main(int argc, char** argv) {
   app.add_option("--json", out, "write the figures here");
   std::vector<int> server_pids;
   app.add_option("--server-pids", server_pids, "server process ids: report their CPU time per frame")->delimiter(',');
+  std::vector<int> proxy_pids;
+  app.add_option("--proxy-pids", proxy_pids, "proxy (HAProxy) process ids: report their CPU time per frame")->delimiter(',');
   app.add_flag("--still", still, "replay only the trial's first frame (a user standing still; for output checks)");
   CLI11_PARSE(app, argc, argv);
 
@@ -305,11 +291,14 @@ int main(int argc, char** argv) {
   // One step: n clients for `seconds`; prints and records it; true when ok.
   auto step = [&](int n, bool& answered) {
     const double cpu0 = cpu_seconds(server_pids), wait0 = runqueue_wait_seconds(server_pids);
-    const double self_wait0 = runqueue_wait_seconds({static_cast<int>(getpid())});
+    const std::vector<int> self{static_cast<int>(getpid())};
+    const double self_wait0 = runqueue_wait_seconds(self), self_cpu0 = cpu_seconds(self), proxy0 = cpu_seconds(proxy_pids);
     Run r = run_clients(ep, frames, n, seconds, hello.dump(), aligned, start_spread);
     if (r.answered > 0) {
       const auto per_frame = [&](double s) { return 1e6 * s / static_cast<double>(r.answered); };
-      r.client_wait_us_per_frame = per_frame(runqueue_wait_seconds({static_cast<int>(getpid())}) - self_wait0);
+      r.client_wait_us_per_frame = per_frame(runqueue_wait_seconds(self) - self_wait0);
+      r.client_cpu_us_per_frame = per_frame(cpu_seconds(self) - self_cpu0);
+      if (!proxy_pids.empty()) r.proxy_cpu_us_per_frame = per_frame(cpu_seconds(proxy_pids) - proxy0);
       if (!server_pids.empty()) {
         r.server_cpu_us_per_frame = per_frame(cpu_seconds(server_pids) - cpu0);
         r.server_wait_us_per_frame = per_frame(runqueue_wait_seconds(server_pids) - wait0);
@@ -317,10 +306,14 @@ int main(int argc, char** argv) {
     }
     answered = r.answered_share >= 0.99 && r.failed_clients == 0;
     const bool ok = answered && r.p99 <= p99_limit;
+    char proxy[48] = "";
+    if (!proxy_pids.empty()) std::snprintf(proxy, sizeof proxy, ", proxy %.1f", r.proxy_cpu_us_per_frame);
     std::printf("%-13s clients %5d  sent %8llu  answered %6.2f %%  p50 %6.2f ms  p90 %6.2f ms  p99 %7.2f ms  max %7.2f ms  server CPU %6.1f us/frame  "
-                "run-queue wait: server %6.1f, client %6.1f us/frame  %s\n",
+                "run-queue wait: server %6.1f, client %6.1f us/frame  CPU: client %5.1f%s us/frame  %s\n",
                 label.c_str(), n, static_cast<unsigned long long>(r.sent), 100 * r.answered_share, r.p50, r.p90, r.p99, r.max,
-                r.server_cpu_us_per_frame, r.server_wait_us_per_frame, r.client_wait_us_per_frame, ok ? "ok" : "over");
+                r.server_cpu_us_per_frame, r.server_wait_us_per_frame, r.client_wait_us_per_frame, r.client_cpu_us_per_frame,
+                proxy,
+                ok ? "ok" : "over");
     std::fflush(stdout);
     steps.push_back(to_json(r));
     steps.back()["ok"] = ok;

@@ -23,7 +23,8 @@
 # --cooldown S: seconds idle before each run (default 0): each ramp ends overloaded, and on a
 #   shared virtual machine the next run's first steps can pay for it.
 # serve_load reports the servers' CPU per frame and their run-queue wait (CPU time other
-# processes took from them): on a shared machine the latency figures include it.
+# processes took from them): on a shared machine the latency figures include it; also its own
+# CPU per frame and, behind HAProxy, HAProxy's.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=serve-bench.json method=ik db="" seconds=5 max=1280 build="$root/build" workers=0 one_only=0 cap="" repeat=1 cooldown=0
@@ -65,7 +66,7 @@ ramp_cluster() {
   port=$(free_port)
   "$root/scripts/serve-cluster.sh" start "$1" --port "$port" --dir "$work/c$1" --legwork "$legwork" --pin "${cluster_args[@]}" -- "${serve_args[@]}" >/dev/null
   pids=$(cat "$work/c$1"/serve-*.pid | paste -sd,)
-  "$load" --port "$port" --server-pids "$pids" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "$2" --json "$3"
+  "$load" --port "$port" --server-pids "$pids" --proxy-pids "$(cat "$work/c$1/haproxy.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "$2" --json "$3"
   "$root/scripts/serve-cluster.sh" stop --dir "$work/c$1" >/dev/null
 }
 

@@ -40,6 +40,9 @@ for key in ("one_process", "one_process_haproxy", "two_processes_haproxy"):
     steps = run["steps"]
     assert steps and steps[0]["clients"] == 10 and steps[0]["frames_sent"] > 0, (key, steps)
     assert run["method"] == "ik", run["method"]
+    assert steps[0]["client_cpu_us_per_frame"] > 0, (key, steps[0])
+    # HAProxy's CPU is measured behind it (a pid given), and only there.
+    assert (steps[0]["proxy_cpu_us_per_frame"] > 0) == (key != "one_process"), (key, steps[0])
     assert r[key] == run, key  # the first round's figures at the top level, as before
 for key, runs in (("one_process", "sustained_one_process"), ("one_process_haproxy", "sustained_one_process_haproxy"),
                   ("two_processes_haproxy", "sustained_two_processes")):
