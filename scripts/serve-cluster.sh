@@ -88,8 +88,7 @@ case $cmd in
     if [ -n "$cap" ]; then
       python3 -c "import sys; c = float(sys.argv[1]); sys.exit(0 if 0.1 <= c <= 1 else 1)" "$cap" 2>/dev/null ||
         { echo "serve-cluster: --cpu-cap $cap: a share of one core between 0.1 and 1 expected" >&2; exit 2; }
-      probe=$(cgroup_root)/legwork-probe-$$
-      { mkdir "$probe" && rmdir "$probe"; } 2>/dev/null ||
+      { base=$(cgroup_root) && mkdir "$base/legwork-probe-$$" && rmdir "$base/legwork-probe-$$"; } 2>/dev/null ||
         { echo "serve-cluster: --cpu-cap needs a writable cgroup CPU controller (/sys/fs/cgroup/cpu or cgroup v2 with cpu), e.g. root in a container" >&2; exit 1; }
     fi
     mkdir -p "$dir"
