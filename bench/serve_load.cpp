@@ -45,24 +45,25 @@ using Clock = std::chrono::steady_clock;
 using json = nlohmann::json;
 using namespace legwork;
 
-// Seconds summed over the processes' threads from Linux /proc/PID/task/TID/schedstat:
-// field 0, time on a CPU (nanoseconds, exact: not the 10 ms ticks of /proc/PID/stat);
-// field 1, time waiting on a run queue for one (CPU time other processes took from them).
-double schedstat_seconds(const std::vector<int>& pids, int field) {
-  double total = 0;
+// The processes' threads' times in seconds, from Linux /proc/PID/task/TID/schedstat (exact
+// nanoseconds, not the 10 ms ticks of /proc/PID/stat): on a CPU, and waiting on a run queue
+// for one (CPU time other processes took from them).
+struct SchedTimes {
+  double cpu = 0, wait = 0;
+};
+SchedTimes sched_times(const std::vector<int>& pids) {
+  SchedTimes total;
   for (int pid : pids) {
     const std::string dir = "/proc/" + std::to_string(pid) + "/task";
     std::error_code ec;
     for (const auto& t : std::filesystem::directory_iterator(dir, ec)) {
       std::ifstream in(t.path() / "schedstat");
       unsigned long long run = 0, wait = 0;
-      if (in >> run >> wait) total += static_cast<double>(field == 0 ? run : wait) * 1e-9;
+      if (in >> run >> wait) total.cpu += static_cast<double>(run) * 1e-9, total.wait += static_cast<double>(wait) * 1e-9;
     }
   }
   return total;
 }
-double cpu_seconds(const std::vector<int>& pids) { return schedstat_seconds(pids, 0); }
-double runqueue_wait_seconds(const std::vector<int>& pids) { return schedstat_seconds(pids, 1); }
 
 struct Run {
   int clients = 0;
@@ -290,19 +291,17 @@ int main(int argc, char** argv) {
   json steps = json::array();
   // One step: n clients for `seconds`; prints and records it; true when ok.
   auto step = [&](int n, bool& answered) {
-    const double cpu0 = cpu_seconds(server_pids), wait0 = runqueue_wait_seconds(server_pids);
     const std::vector<int> self{static_cast<int>(getpid())};
-    const double self_wait0 = runqueue_wait_seconds(self), self_cpu0 = cpu_seconds(self), proxy0 = cpu_seconds(proxy_pids);
+    const SchedTimes server0 = sched_times(server_pids), self0 = sched_times(self), proxy0 = sched_times(proxy_pids);
     Run r = run_clients(ep, frames, n, seconds, hello.dump(), aligned, start_spread);
     if (r.answered > 0) {
       const auto per_frame = [&](double s) { return 1e6 * s / static_cast<double>(r.answered); };
-      r.client_wait_us_per_frame = per_frame(runqueue_wait_seconds(self) - self_wait0);
-      r.client_cpu_us_per_frame = per_frame(cpu_seconds(self) - self_cpu0);
-      if (!proxy_pids.empty()) r.proxy_cpu_us_per_frame = per_frame(cpu_seconds(proxy_pids) - proxy0);
-      if (!server_pids.empty()) {
-        r.server_cpu_us_per_frame = per_frame(cpu_seconds(server_pids) - cpu0);
-        r.server_wait_us_per_frame = per_frame(runqueue_wait_seconds(server_pids) - wait0);
-      }
+      const SchedTimes server1 = sched_times(server_pids), self1 = sched_times(self), proxy1 = sched_times(proxy_pids);
+      r.client_wait_us_per_frame = per_frame(self1.wait - self0.wait);
+      r.client_cpu_us_per_frame = per_frame(self1.cpu - self0.cpu);
+      r.proxy_cpu_us_per_frame = per_frame(proxy1.cpu - proxy0.cpu);
+      r.server_cpu_us_per_frame = per_frame(server1.cpu - server0.cpu);
+      r.server_wait_us_per_frame = per_frame(server1.wait - server0.wait);
     }
     answered = r.answered_share >= 0.99 && r.failed_clients == 0;
     const bool ok = answered && r.p99 <= p99_limit;
@@ -312,8 +311,7 @@ int main(int argc, char** argv) {
                 "run-queue wait: server %6.1f, client %6.1f us/frame  CPU: client %5.1f%s us/frame  %s\n",
                 label.c_str(), n, static_cast<unsigned long long>(r.sent), 100 * r.answered_share, r.p50, r.p90, r.p99, r.max,
                 r.server_cpu_us_per_frame, r.server_wait_us_per_frame, r.client_wait_us_per_frame, r.client_cpu_us_per_frame,
-                proxy,
-                ok ? "ok" : "over");
+                proxy, ok ? "ok" : "over");
     std::fflush(stdout);
     steps.push_back(to_json(r));
     steps.back()["ok"] = ok;

@@ -59,25 +59,28 @@ trap 'for c in "$work"/c*; do "$root/scripts/serve-cluster.sh" stop --dir "$c" >
 free_port() { python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'; }
 ulimit -n 20000 2>/dev/null || true
 
-# ramp_cluster N LABEL FILE: N server processes (one per core) behind HAProxy, the client unpinned.
-ramp_cluster() {
-  local port pids
+# ramp N LABEL FILE [direct]: N server processes (one per core) behind HAProxy, the client
+# unpinned; "direct": the client on core 1 talks to the one server itself, not through HAProxy.
+ramp() {
+  local port pids target=()
   sleep "$cooldown"
   port=$(free_port)
   "$root/scripts/serve-cluster.sh" start "$1" --port "$port" --dir "$work/c$1" --legwork "$legwork" --pin "${cluster_args[@]}" -- "${serve_args[@]}" >/dev/null
   pids=$(cat "$work/c$1"/serve-*.pid | paste -sd,)
-  "$load" --port "$port" --server-pids "$pids" --proxy-pids "$(cat "$work/c$1/haproxy.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "$2" --json "$3"
+  if [ "${4:-}" = direct ]; then
+    port=$(grep -o '127.0.0.1:[0-9]*/' "$work/c$1/serve-1.log" | head -1 | tr -dc '0-9:' | cut -d: -f2)
+    target=(taskset -c 1 "$load" --port "$port")
+  else
+    target=("$load" --port "$port" --proxy-pids "$(cat "$work/c$1/haproxy.pid")")
+  fi
+  "${target[@]}" --server-pids "$pids" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "$2" --json "$3"
   "$root/scripts/serve-cluster.sh" stop --dir "$work/c$1" >/dev/null
 }
 
 for r in $(seq "$repeat"); do
   [ "$repeat" -gt 1 ] && echo "serve-bench: round $r of $repeat"
-  sleep "$cooldown"
   # 1. One process on one core, clients direct (the load client runs on the other core).
-  "$root/scripts/serve-cluster.sh" start 1 --port "$(free_port)" --dir "$work/c1" --legwork "$legwork" --pin "${cluster_args[@]}" -- "${serve_args[@]}" >/dev/null
-  p1=$(grep -o '127.0.0.1:[0-9]*/' "$work/c1/serve-1.log" | head -1 | tr -dc '0-9:' | cut -d: -f2)
-  taskset -c 1 "$load" --port "$p1" --server-pids "$(cat "$work/c1/serve-1.pid")" --ramp --seconds "$seconds" --max-clients "$max" --method "$method" "${load_args[@]}" --label "1 process" --json "$work/one-$r.json"
-  "$root/scripts/serve-cluster.sh" stop --dir "$work/c1" >/dev/null
+  ramp 1 "1 process" "$work/one-$r.json" direct
 
   if [ "$one_only" = 1 ]; then
     echo '{"sustained_avatars": 0, "skipped": true}' > "$work/one-haproxy-$r.json"
@@ -85,8 +88,8 @@ for r in $(seq "$repeat"); do
   else
     # 2. The same process behind HAProxy (the path of 3, with one server), then
     # 3. two processes (one per core) behind HAProxy.
-    ramp_cluster 1 "1 via haproxy" "$work/one-haproxy-$r.json"
-    ramp_cluster 2 "2 via haproxy" "$work/two-$r.json"
+    ramp 1 "1 via haproxy" "$work/one-haproxy-$r.json"
+    ramp 2 "2 via haproxy" "$work/two-$r.json"
   fi
 done
 
