@@ -19,7 +19,9 @@
 #   worth to HAProxy and the clients, so the 2-process scaling can be measured; the avatar
 #   counts are then those of F of a core, not of a whole one.
 # --repeat R: R rounds of the three runs, alternating so that all see the host's moods; the
-#   figures are the medians and the scaling their ratio (every round is in OUT.json).
+#   figures are the medians and the scaling their ratio (every round is in OUT.json, with
+#   its order). Round r starts with the r-th run and goes round (one, one via HAProxy, two;
+#   then one via HAProxy, two, one; ...): each run is as often first.
 # --cooldown S: seconds idle before each run (default 0): each ramp ends overloaded, and on a
 #   shared virtual machine the next run's first steps can pay for it.
 # serve_load reports the servers' CPU per frame and their run-queue wait (CPU time other
@@ -77,19 +79,30 @@ ramp() {
   "$root/scripts/serve-cluster.sh" stop --dir "$work/c$1" >/dev/null
 }
 
+# run KIND R: one ramp of round R.
+#   one: one process on one core, clients direct (the load client runs on the other core);
+#   one-haproxy: the same process behind HAProxy (the path of two, with one server);
+#   two: two processes (one per core) behind HAProxy.
+run() {
+  case $1 in
+    one) ramp 1 "1 process" "$work/one-$2.json" direct ;;
+    one-haproxy) ramp 1 "1 via haproxy" "$work/one-haproxy-$2.json" ;;
+    two) ramp 2 "2 via haproxy" "$work/two-$2.json" ;;
+  esac
+}
+kinds=(one one-haproxy two)
+[ "$one_only" = 1 ] && kinds=(one)
 for r in $(seq "$repeat"); do
-  [ "$repeat" -gt 1 ] && echo "serve-bench: round $r of $repeat"
-  # 1. One process on one core, clients direct (the load client runs on the other core).
-  ramp 1 "1 process" "$work/one-$r.json" direct
-
+  # Round r starts with the (r-1)th kind and goes round: each kind is as often first,
+  # and the first run of a round met most of the host's slow moments (session 39).
+  order=()
+  for i in "${!kinds[@]}"; do order+=("${kinds[$(( (i + r - 1) % ${#kinds[@]} ))]}"); done
+  [ "$repeat" -gt 1 ] && echo "serve-bench: round $r of $repeat (${order[*]})"
+  printf '%s\n' "${order[@]}" > "$work/order-$r.txt"
+  for k in "${order[@]}"; do run "$k" "$r"; done
   if [ "$one_only" = 1 ]; then
     echo '{"sustained_avatars": 0, "skipped": true}' > "$work/one-haproxy-$r.json"
     echo '{"sustained_avatars": 0, "skipped": true}' > "$work/two-$r.json"
-  else
-    # 2. The same process behind HAProxy (the path of 3, with one server), then
-    # 3. two processes (one per core) behind HAProxy.
-    ramp 1 "1 via haproxy" "$work/one-haproxy-$r.json"
-    ramp 2 "2 via haproxy" "$work/two-$r.json"
   fi
 done
 
@@ -98,6 +111,7 @@ import json, os, statistics, sys
 work, repeat, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 cap = float(sys.argv[4]) if sys.argv[4] else None
 kinds = ("one", "one-haproxy", "two")
+names = {"one": "one_process", "one-haproxy": "one_process_haproxy", "two": "two_processes_haproxy"}
 rounds = [{k: json.load(open("%s/%s-%d.json" % (work, k, r))) for k in kinds} for r in range(1, repeat + 1)]
 counts = {k: [x[k]["sustained_avatars"] for x in rounds] for k in kinds}
 med = {k: statistics.median(v) for k, v in counts.items()}
@@ -106,7 +120,9 @@ ratio = lambda a, b: (a / b) if b else None
 # against the one process reached directly, and against it behind the same HAProxy path.
 res = {"machine_cores": os.cpu_count(), "cpu_cap_per_process": cap,
        "one_process": rounds[0]["one"], "one_process_haproxy": rounds[0]["one-haproxy"], "two_processes_haproxy": rounds[0]["two"],
-       "rounds": [{"one_process": x["one"], "one_process_haproxy": x["one-haproxy"], "two_processes_haproxy": x["two"]} for x in rounds],
+       "rounds": [{"one_process": x["one"], "one_process_haproxy": x["one-haproxy"], "two_processes_haproxy": x["two"],
+                   "order": [names[k] for k in open("%s/order-%d.txt" % (work, r)).read().split()]}
+                  for r, x in enumerate(rounds, 1)],
        "sustained_one_process": counts["one"], "sustained_one_process_haproxy": counts["one-haproxy"],
        "sustained_two_processes": counts["two"],
        "sustained_one_process_median": med["one"], "sustained_one_process_haproxy_median": med["one-haproxy"],

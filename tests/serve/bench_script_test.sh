@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # scripts/serve-bench.sh end to end at a tiny load: its option checks refuse bad
 # values by name, and one round of its three ramps (one process direct, one behind
-# HAProxy, two behind HAProxy) writes the JSON the docs quote: every run's steps,
-# the sustained counts and medians, the scaling. (The figures themselves are the
+# HAProxy, two behind HAProxy) in each of two rounds, the second starting with the
+# second run, writes the JSON the docs quote: every run's steps and order, the
+# sustained counts and medians, the scaling. (The figures themselves are the
 # benchmark's, not this test's.)
 #   bench_script_test.sh BUILD_DIR
 set -euo pipefail
@@ -28,25 +29,30 @@ refuse "--cooldown -1: whole seconds (0 or more) expected" --cooldown -1
 refuse "--cpu-cap 3: a share of one core between 0.1 and 1 expected" --cpu-cap 3 --seconds 1 --max-clients 10
 refuse "unknown option --bogus" --bogus
 
-"$root/scripts/serve-bench.sh" --build "$build" --seconds 1 --max-clients 10 --out "$dir/bench.json" | tee "$dir/out.txt"
+"$root/scripts/serve-bench.sh" --build "$build" --seconds 1 --max-clients 10 --repeat 2 --out "$dir/bench.json" | tee "$dir/out.txt"
 grep -q "^serve-bench: 1 process [0-9]* avatars, 1 via haproxy [0-9]*, 2 processes via haproxy [0-9]*" "$dir/out.txt" ||
   { echo "bench_script_test: FAIL: no summary line"; exit 1; }
 python3 - "$dir/bench.json" <<'PY'
 import json, statistics, sys
 r = json.load(open(sys.argv[1]))
-assert len(r["rounds"]) == 1, r.keys()
-for key in ("one_process", "one_process_haproxy", "two_processes_haproxy"):
-    run = r["rounds"][0][key]
+assert len(r["rounds"]) == 2, r.keys()
+# Each round starts with another run and goes round.
+kinds = ["one_process", "one_process_haproxy", "two_processes_haproxy"]
+assert r["rounds"][0]["order"] == kinds, r["rounds"][0]["order"]
+assert r["rounds"][1]["order"] == kinds[1:] + kinds[:1], r["rounds"][1]["order"]
+for key, rnd in ((k, x) for k in kinds for x in r["rounds"]):
+    run = rnd[key]
     steps = run["steps"]
     assert steps and steps[0]["clients"] == 10 and steps[0]["frames_sent"] > 0, (key, steps)
     assert run["method"] == "ik", run["method"]
     assert steps[0]["client_cpu_us_per_frame"] > 0, (key, steps[0])
     # HAProxy's CPU is measured behind it (a pid given), and only there.
     assert (steps[0]["proxy_cpu_us_per_frame"] > 0) == (key != "one_process"), (key, steps[0])
-    assert r[key] == run, key  # the first round's figures at the top level, as before
+    if rnd is r["rounds"][0]:
+        assert r[key] == run, key  # the first round's figures at the top level, as before
 for key, runs in (("one_process", "sustained_one_process"), ("one_process_haproxy", "sustained_one_process_haproxy"),
                   ("two_processes_haproxy", "sustained_two_processes")):
-    assert r[runs] == [r["rounds"][0][key]["sustained_avatars"]], runs
+    assert r[runs] == [x[key]["sustained_avatars"] for x in r["rounds"]], runs
     assert r[runs + "_median"] == statistics.median(r[runs]), runs
 one, two = r["sustained_one_process_median"], r["sustained_two_processes_median"]
 assert r["scaling"] == (two / one if one else None), r["scaling"]
