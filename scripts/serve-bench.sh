@@ -93,8 +93,8 @@ run() {
 kinds=(one one-haproxy two)
 [ "$one_only" = 1 ] && kinds=(one)
 for r in $(seq "$repeat"); do
-  # Round r starts with the (r-1)th kind and goes round: each kind is as often first,
-  # and the first run of a round met most of the host's slow moments (session 39).
+  # Round r starts with the r-th kind and goes round: each kind is as often first
+  # (session 39 saw the first run of a round meet most of the host's slow moments).
   order=()
   for i in "${!kinds[@]}"; do order+=("${kinds[$(( (i + r - 1) % ${#kinds[@]} ))]}"); done
   [ "$repeat" -gt 1 ] && echo "serve-bench: round $r of $repeat (${order[*]})"

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # scripts/serve-bench.sh end to end at a tiny load: its option checks refuse bad
-# values by name, and one round of its three ramps (one process direct, one behind
-# HAProxy, two behind HAProxy) in each of two rounds, the second starting with the
-# second run, writes the JSON the docs quote: every run's steps and order, the
-# sustained counts and medians, the scaling. (The figures themselves are the
+# values by name, and two rounds of its three ramps (one process direct, one behind
+# HAProxy, two behind HAProxy; the second round starts with the second) write the
+# JSON the docs quote: every run's steps, each round's order, the sustained counts
+# and medians, the scaling. (The figures themselves are the
 # benchmark's, not this test's.)
 #   bench_script_test.sh BUILD_DIR
 set -euo pipefail
