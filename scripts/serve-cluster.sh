@@ -43,16 +43,15 @@ cgroup_root() {
     return 1
   fi
 }
-# cap_process PID GROUP: PID (all its threads) into a new cgroup GROUP limited to $cap of a core.
+# cap_process PID GROUP: PID (all its threads) into a new cgroup GROUP under $base limited to
+# 1000 us of CPU per $period us (start sets both once, after checking --cpu-cap).
 cap_process() {
-  local base g quota=1000 period
-  period=$(python3 -c "print(round(1000 / $cap))")
-  base=$(cgroup_root) && mkdir -p "$base/$2" 2>/dev/null || return 1
-  g=$base/$2
+  local g=$base/$2
+  mkdir -p "$g" 2>/dev/null || return 1
   if [ -e "$g/cpu.max" ]; then
-    echo "$quota $period" > "$g/cpu.max" || return 1
+    echo "1000 $period" > "$g/cpu.max" || return 1
   else
-    echo "$period" > "$g/cpu.cfs_period_us" && echo "$quota" > "$g/cpu.cfs_quota_us" || return 1
+    echo "$period" > "$g/cpu.cfs_period_us" && echo 1000 > "$g/cpu.cfs_quota_us" || return 1
   fi
   echo "$1" > "$g/cgroup.procs" || return 1
   echo "$g" >> "$dir/cgroups"
@@ -90,6 +89,7 @@ case $cmd in
         { echo "serve-cluster: --cpu-cap $cap: a share of one core between 0.1 and 1 expected" >&2; exit 2; }
       { base=$(cgroup_root) && mkdir "$base/legwork-probe-$$" && rmdir "$base/legwork-probe-$$"; } 2>/dev/null ||
         { echo "serve-cluster: --cpu-cap needs a writable cgroup CPU controller (/sys/fs/cgroup/cpu or cgroup v2 with cpu), e.g. root in a container" >&2; exit 1; }
+      period=$(python3 -c "import sys; print(round(1000 / float(sys.argv[1])))" "$cap")  # us per 1000 us of CPU
     fi
     mkdir -p "$dir"
     stop
