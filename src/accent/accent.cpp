@@ -1138,12 +1138,16 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     // stream's first: nothing was shown before it).
     Vec3 step = lock.have_floor ? Vec3(ankle.translation - lock.previous) : Vec3::Zero();
     step.y() = 0;
-    // A foot the synthesized pose pushes into the floor, moving slower than a
-    // swing, stands on it: planted as if its candidates said so.
+    // A foot the synthesized pose pushes into the floor stands on it, planted as
+    // if its candidates said so: when it moves slower than a swing, and whatever
+    // its speed while the user is bent over or lying (the headset tilted past
+    // 60 degrees), where the swing clearance does not lift it in full and a fast
+    // foot would slide along the floor (a swimmer standing bent over, matched to
+    // kicking swimmers: docs/accent.md, "A bent-over user's feet on the floor").
     const bool pressed =
         (ankle.translation.y() < ankle_floor ||
          (toe >= 0 && st.model_space[static_cast<std::size_t>(toe)].translation.y() < toe_floor)) &&
-        lock.have_floor && dt > 0 && step.norm() < kDefaultSwingSpeed * model.scale() * dt;
+        lock.have_floor && dt > 0 && (upright < 1.0 || step.norm() < kDefaultSwingSpeed * model.scale() * dt);
     update_lock(model, st, f, ankle, pressed, dt);
     const double w = smooth01(lock.weight);
     // A released foot travels from the lock to the synthesized ankle on a lifted
