@@ -47,7 +47,8 @@ namespace legwork::accent {
 inline constexpr int kMaxK = 32;
 // Horizontal foot speed (m/s, scaled with the user) that separates a swing from
 // a stand: Settings::foot_swing_speed's default, and the speed below which a
-// foot pushed into the floor is planted (Settings::floor).
+// foot pushed into the floor is planted (Settings::floor; at any speed while
+// the user is bent over or lying).
 inline constexpr double kDefaultSwingSpeed = 0.5;
 
 struct Settings {
@@ -190,8 +191,10 @@ struct Settings {
   // for a floor-level tracking origin, as the IK body's). With floor on, a
   // foot is never shown through it (the ankle and the toe stay at least their
   // rest heights above it; the knee bends), a foot the synthesized pose pushes
-  // into it while moving slower than kDefaultSwingSpeed is planted (with
-  // foot_lock; fixed, so foot_swing_speed = 0 leaves planting on), and
+  // into it is planted (with foot_lock) while moving slower than
+  // kDefaultSwingSpeed, and at any speed while the user is bent over or lying
+  // (the headset tilted past 60 degrees, where the swing clearance does not
+  // lift it in full; fixed, so foot_swing_speed = 0 leaves planting on), and
   // swinging feet clear it by foot_lift_height. Off, feet
   // follow the synthesized pose below the floor too (a body lowered to a
   // swimmer's headset on a bench put them up to 60 cm under it).
