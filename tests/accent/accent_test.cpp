@@ -1232,17 +1232,12 @@ TEST(AccentShared, AUserLyingWithoutAMatchLiesFlat) {
   EXPECT_LT(on.pelvis, 0.5 * off.pelvis);
 }
 
-// The floor (Settings::floor): a body lowered to a headset held low — swimmer
-// 125 lies on a bench with the headset 0.7 m up — put its feet up to 60 cm
-// under the floor. With the floor the knee bends
-// instead: held out against the other swimmers, no ankle or toe is ever shown
-// below its rest height over the floor, the legs come nearer the truth, and
-// feet pushed into the floor stand on it (the ankles slide less along it).
 // A user bent over or lying (the headset tilted past 60 degrees) gets no swing
 // clearance (a swimmer's feet have no floor), so a foot the synthesis pushes
 // into the floor while it moves fast used to slide along it: subject 125 swims
-// breast stroke standing bent over, feet on the floor, and matched against the
-// other swimmers (mostly lying on a bench, kicking) its feet skated at 1-2 m/s.
+// its breast strokes partly standing bent over, feet on the floor, and matched
+// against the other swimmers (126 lying on a bench, kicking; 79 and 80
+// standing) its feet skated along the floor at about 2 m/s (up to 4.5).
 // Such a foot now stands where it meets the floor, as a slow one always did.
 TEST(AccentShared, ABentOverUsersFeetOnTheFloorStandWhateverTheSynthesisKicks) {
   LEGWORK_REQUIRE_SHARED_CMU();
@@ -1299,6 +1294,12 @@ TEST(AccentShared, ABentOverUsersFeetOnTheFloorStandWhateverTheSynthesisKicks) {
   EXPECT_EQ(locked, on_floor);
 }
 
+// The floor (Settings::floor): a body lowered to a headset held low — swimmer
+// 125 lies on a bench with the headset 0.7 m up — put its feet up to 60 cm
+// under the floor. With the floor the knee bends
+// instead: held out against the other swimmers, no ankle or toe is ever shown
+// below its rest height over the floor, the legs come nearer the truth, and
+// feet pushed into the floor stand on it (the ankles slide less along it).
 TEST(AccentShared, FeetNeverGoThroughTheFloorAndFeetPushedIntoItStand) {
   LEGWORK_REQUIRE_SHARED_CMU();
   const std::string data = testdata::shared_cmu().string();
