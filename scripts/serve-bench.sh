@@ -119,9 +119,8 @@ ratio = lambda a, b: (a / b) if b else None
 # The first round's full figures (as before), every round's, and the scaling of the medians:
 # against the one process reached directly, and against it behind the same HAProxy path.
 res = {"machine_cores": os.cpu_count(), "cpu_cap_per_process": cap,
-       "one_process": rounds[0]["one"], "one_process_haproxy": rounds[0]["one-haproxy"], "two_processes_haproxy": rounds[0]["two"],
-       "rounds": [{"one_process": x["one"], "one_process_haproxy": x["one-haproxy"], "two_processes_haproxy": x["two"],
-                   "order": [names[k] for k in open("%s/order-%d.txt" % (work, r)).read().split()]}
+       **{names[k]: rounds[0][k] for k in kinds},
+       "rounds": [{**{names[k]: x[k] for k in kinds}, "order": [names[k] for k in open("%s/order-%d.txt" % (work, r)).read().split()]}
                   for r, x in enumerate(rounds, 1)],
        "sustained_one_process": counts["one"], "sustained_one_process_haproxy": counts["one-haproxy"],
        "sustained_two_processes": counts["two"],

@@ -45,13 +45,11 @@ if not rows or any(k not in rows[0] for k in need):
     sys.exit(f"depth_bound: {a.dump}: not a depth_dump CSV (needs the columns {', '.join(need)})")
 trials = sorted(set(r["trial"] for r in rows))
 D = {}
-start = 0
 for tr in trials:
-    rr = [r for r in rows if r["trial"] == tr]
-    col = lambda k: np.array([float(r[k]) for r in rr])
-    D[tr] = dict(subject=rr[0]["subject"], leg=float(rr[0]["leg"]), t=col("t"), h=np.stack([col("hL"), col("hR")]),
-                 z=np.stack([col("zL"), col("zR")]), turn=col("turn"), first=start)
-    start += len(rr)
+    rows_of = [i for i, r in enumerate(rows) if r["trial"] == tr]  # the dump's row numbers (depth_lab's lines)
+    col = lambda k: np.array([float(rows[i][k]) for i in rows_of])
+    D[tr] = dict(subject=rows[rows_of[0]]["subject"], leg=float(rows[rows_of[0]]["leg"]), t=col("t"),
+                 h=np.stack([col("hL"), col("hR")]), z=np.stack([col("zL"), col("zR")]), turn=col("turn"), rows=rows_of)
 subjects = sorted(set(d["subject"] for d in D.values()))
 
 HALF, STEP, TURN_WEIGHT = 15, 3, 0.1  # +-0.5 s every 0.1 s; the turn rate weighted like a 10 % leg-length height
@@ -172,7 +170,7 @@ if a.shipped:
         sys.exit(f"depth_bound: {a.shipped}: not depth_lab's prediction file ({e})")
     if shipped_rows.shape != (len(rows), 2):
         sys.exit(f"depth_bound: {a.shipped}: {shipped_rows.shape[0]} rows of {shipped_rows.shape[1]}, the dump has {len(rows)} frames of 2 feet")
-    shipped = {tr: np.concatenate([shipped_rows[d["first"]:d["first"] + len(d["t"]), f] / d["leg"] for f in (0, 1)]) for tr, d in D.items()}
+    shipped = {tr: np.concatenate([shipped_rows[d["rows"], f] / d["leg"] for f in (0, 1)]) for tr, d in D.items()}
     add("shipped learned table + turning gain (depth_lab)", True, "subject", shipped, F[True])
 for protocol in ("subject", "trial"):
     causal = knn(F[True], protocol)
