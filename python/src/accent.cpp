@@ -138,8 +138,8 @@ void bind_settings(pb::module_& m) {
                      "motion matching does; 0 = search every frame")
       .def_readwrite("floor", &Settings::floor,
                      "feet never go through the floor (the knee bends; a foot pushed into it while moving slowly, or at any "
-                     "speed while the user is bent over or lying, stands on it); False: they follow the synthesized pose "
-                     "below it too")
+                     "speed while the user is bent over or lying or when pushed more than 5 cm in, stands on it); False: "
+                     "they follow the synthesized pose below it too")
       .def_readwrite("floor_height", &Settings::floor_height,
                      "metres (-10..10): the play area's floor is y = floor_height (0 = a floor-level tracking origin)")
       .def_readwrite("foot_lock_follow_seconds", &Settings::foot_lock_follow_seconds,

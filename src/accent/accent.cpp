@@ -1033,6 +1033,12 @@ constexpr double kFloorRelax = 0.1;
 // damped spring on the swing clearance's lift (continuous velocity: no jerk).
 constexpr double kSwingSeconds = 0.05;
 constexpr double kClearanceHalflife = 0.04;
+// How deep (metres, scaled with the user) the synthesized pose must push an
+// ankle into its floor for the foot to stand on it whatever its speed: the
+// default lift height (Settings::foot_lift_height), by which a swing grazing
+// the floor is lifted over it; a foot pushed deeper is the body coming down
+// onto it (a landing, a crouch), not a swing.
+constexpr double kPressedDepth = 0.05;
 
 // One foot's lock state for this frame: touch down, let go, creep beyond the
 // slack, stay within the leg's reach. `ankle` is the synthesized ankle (world).
@@ -1139,15 +1145,21 @@ void lock_feet(const Model& model, State& st, double dt, PoseRef out) {
     Vec3 step = lock.have_floor ? Vec3(ankle.translation - lock.previous) : Vec3::Zero();
     step.y() = 0;
     // A foot the synthesized pose pushes into the floor stands on it, planted as
-    // if its candidates said so: when it moves slower than a swing, and whatever
+    // if its candidates said so: when it moves slower than a swing; whatever
     // its speed while the user is bent over or lying (the headset tilted past
     // 60 degrees), where the swing clearance does not lift it in full and a fast
     // foot would slide along the floor (a swimmer standing bent over, matched to
-    // kicking swimmers: docs/accent.md, "A bent-over user's feet on the floor").
+    // kicking swimmers: docs/accent.md, "A bent-over user's feet on the floor");
+    // and whatever its speed when the ankle is pushed more than kPressedDepth
+    // into it: the body coming down onto its feet, where the clearance's lift
+    // lags and the feet slid along the floor (a runner landing from a leap, the
+    // body the IK body's: docs/accent.md, "A body coming down onto its feet").
     const bool pressed =
         (ankle.translation.y() < ankle_floor ||
          (toe >= 0 && st.model_space[static_cast<std::size_t>(toe)].translation.y() < toe_floor)) &&
-        lock.have_floor && dt > 0 && (upright < 1.0 || step.norm() < kDefaultSwingSpeed * model.scale() * dt);
+        lock.have_floor && dt > 0 &&
+        (upright < 1.0 || step.norm() < kDefaultSwingSpeed * model.scale() * dt ||
+         ankle.translation.y() < ankle_floor - kPressedDepth * model.scale());
     update_lock(model, st, f, ankle, pressed, dt);
     const double w = smooth01(lock.weight);
     // A released foot travels from the lock to the synthesized ankle on a lifted

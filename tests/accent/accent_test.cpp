@@ -1294,6 +1294,48 @@ TEST(AccentShared, ABentOverUsersFeetOnTheFloorStandWhateverTheSynthesisKicks) {
   EXPECT_EQ(locked, on_floor);
 }
 
+// A body coming down onto its feet: runner 49 lands from a leap crouching while
+// the head still travels at 2-3 m/s, matched to nothing close (the body is the
+// IK body's), and the lowered body pushes both synthesized ankles up to 11 cm
+// into the floor while they move at 2-4 m/s. The swing clearance's lift lags
+// such a drop and the floor held the feet up: they slid along it. Held out of
+// the other runners, every foot whose synthesized ankle is pushed more than
+// 5 cm (scaled) into its floor is planted.
+TEST(AccentShared, FeetTheBodyComesDownOntoArePlantedWhateverTheirSpeed) {
+  LEGWORK_REQUIRE_SHARED_CMU();
+  const std::string data = testdata::shared_cmu().string();
+  const testing::SubjectFold fold = testing::subject_fold(data, "running", "49");
+  int pushed = 0, locked = 0;
+  double fastest = 0;  // m/s: the fastest of those synthesized ankles, horizontally
+  for (const auto& file : fold.held_out) {
+    const Motion input = testing::shared_trial(file);
+    Settings cfg;
+    cfg.user_height = measure_body(input.skeleton).standing_height;
+    testing::Avatar avatar(fold.db, cfg);
+    const auto frames = tracker_frames_from_motion(input);
+    ASSERT_EQ(static_cast<int>(frames.size()), input.frame_count());
+    std::array<Vec3, 2> before{};
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      const Info info = avatar.update(frames[i]);
+      for (int s = 0; s < 2; ++s) {
+        const Vec3 synthesized = avatar.state.foot[static_cast<std::size_t>(s)].previous;  // this frame's, before the lock
+        const Vec3 step = synthesized - before[static_cast<std::size_t>(s)];
+        before[static_cast<std::size_t>(s)] = synthesized;
+        if (i == 0 || synthesized.y() > avatar.model.ankle_rest_height(s) - 0.05 * avatar.model.scale()) continue;
+        ++pushed;
+        locked += info.foot_locked[static_cast<std::size_t>(s)];
+        fastest = std::max(fastest, std::hypot(step.x(), step.z()) * input.fps);
+      }
+    }
+  }
+  std::printf("[ figures  ] runner 49 held out of the other runners: %d foot-frames with the synthesized ankle more than "
+              "5 cm into the floor (moving up to %.1f m/s), %d of them planted\n",
+              pushed, fastest, locked);
+  ASSERT_GT(pushed, 10);  // the landings push both feet into the floor for several frames
+  EXPECT_GT(fastest, kDefaultSwingSpeed);  // faster than a swing: the rule for slow pressed feet does not cover them
+  EXPECT_EQ(locked, pushed);
+}
+
 // The floor (Settings::floor): a body lowered to a headset held low — swimmer
 // 125 lies on a bench with the headset 0.7 m up — put its feet up to 60 cm
 // under the floor. With the floor the knee bends

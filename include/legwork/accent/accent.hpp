@@ -48,7 +48,7 @@ inline constexpr int kMaxK = 32;
 // Horizontal foot speed (m/s, scaled with the user) that separates a swing from
 // a stand: Settings::foot_swing_speed's default, and the speed below which a
 // foot pushed into the floor is planted (Settings::floor; at any speed while
-// the user is bent over or lying).
+// the user is bent over or lying, or when it is pushed more than 5 cm in).
 inline constexpr double kDefaultSwingSpeed = 0.5;
 
 struct Settings {
@@ -192,9 +192,11 @@ struct Settings {
   // foot is never shown through it (the ankle and the toe stay at least their
   // rest heights above it; the knee bends), a foot the synthesized pose pushes
   // into it is planted (with foot_lock) while moving slower than
-  // kDefaultSwingSpeed, and at any speed while the user is bent over or lying
+  // kDefaultSwingSpeed, at any speed while the user is bent over or lying
   // (the headset tilted past 60 degrees, where the swing clearance does not
   // lift it in full; fixed, so foot_swing_speed = 0 leaves planting on), and
+  // at any speed when its ankle is pushed more than 5 cm (scaled) into it (the
+  // body coming down onto its feet: a landing, a crouch), and
   // swinging feet clear it by foot_lift_height. Off, feet
   // follow the synthesized pose below the floor too (a body lowered to a
   // swimmer's headset on a bench put them up to 60 cm under it).
