@@ -43,14 +43,32 @@ except OSError as e:
     sys.exit(f"depth_bound: cannot read {a.dump}: {e.strerror}")
 if not rows or any(k not in rows[0] for k in need):
     sys.exit(f"depth_bound: {a.dump}: not a depth_dump CSV (needs the columns {', '.join(need)})")
+
+
+def number(i, k):
+    """Field k of the dump's data row i (line i + 2 of the file), or a message naming both."""
+    v = rows[i][k]
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        x = float("nan")
+    if not np.isfinite(x):
+        sys.exit(f"depth_bound: {a.dump} line {i + 2}: field '{k}' is '{v}', not a finite number")
+    return x
+
+
 trials = sorted(set(r["trial"] for r in rows))
 D = {}
 for tr in trials:
     rows_of = [i for i, r in enumerate(rows) if r["trial"] == tr]  # the dump's row numbers (depth_lab's lines)
-    col = lambda k: np.array([float(rows[i][k]) for i in rows_of])
-    D[tr] = dict(subject=rows[rows_of[0]]["subject"], leg=float(rows[rows_of[0]]["leg"]), t=col("t"),
+    col = lambda k: np.array([number(i, k) for i in rows_of])
+    D[tr] = dict(subject=rows[rows_of[0]]["subject"], leg=number(rows_of[0], "leg"), t=col("t"),
                  h=np.stack([col("hL"), col("hR")]), z=np.stack([col("zL"), col("zR")]), turn=col("turn"), rows=rows_of)
 subjects = sorted(set(d["subject"] for d in D.values()))
+if len(subjects) < 2:
+    sys.exit(f"depth_bound: {a.dump} holds walks of {len(subjects)} subject; leaving one subject out needs at least 2")
+if any(d["leg"] <= 0 for d in D.values()):
+    sys.exit(f"depth_bound: {a.dump}: a leg length is not positive (field 'leg')")
 
 HALF, STEP, TURN_WEIGHT = 15, 3, 0.1  # +-0.5 s every 0.1 s; the turn rate weighted like a 10 % leg-length height
 
@@ -79,6 +97,8 @@ def knn(F, protocol, k=20):
     out = {}
     for tr, train in folds(protocol):
         Xtr = np.vstack([F[u][0] for u in train])
+        if len(Xtr) <= k:
+            sys.exit(f"depth_bound: holding out {tr} leaves {len(Xtr)} samples to learn from; the kNN needs more than {k}")
         Ytr = np.concatenate([F[u][1] for u in train])
         Xte = F[tr][0]
         d2 = (Xte ** 2).sum(1)[:, None] - 2 * Xte @ Xtr.T + (Xtr ** 2).sum(1)[None, :]
@@ -161,16 +181,25 @@ def add(name, live, protocol, pred, feats):
           " ".join(f"{s}:{per[s]['r']:.2f}/{per[s]['rms_cm']:.1f}" for s in subjects), flush=True)
 
 
+if a.shipped:
+    try:
+        lines = open(a.shipped).read().splitlines()
+    except OSError as e:
+        sys.exit(f"depth_bound: cannot read {a.shipped}: {e.strerror}")
+    if len(lines) != len(rows):
+        sys.exit(f"depth_bound: {a.shipped}: {len(lines)} lines, the dump has {len(rows)} frames (depth_lab writes one line of 2 feet a frame)")
+    shipped_rows = np.zeros((len(rows), 2))
+    for i, line in enumerate(lines):
+        try:
+            shipped_rows[i] = [float(x) for x in line.split(",")]
+        except ValueError:
+            shipped_rows[i] = np.nan
+        if not np.isfinite(shipped_rows[i]).all():
+            sys.exit(f"depth_bound: {a.shipped} line {i + 1}: '{line[:60]}' is not two finite numbers (depth_lab's left,right depths)")
+    shipped = {tr: np.concatenate([shipped_rows[d["rows"], f] / d["leg"] for f in (0, 1)]) for tr, d in D.items()}
 print(f"{len(trials)} trials, {len(subjects)} subjects; columns: predictor, realisable live, held out, pooled, per subject r/RMS cm")
 t0 = time.time()
 if a.shipped:
-    try:
-        shipped_rows = np.loadtxt(a.shipped, delimiter=",", ndmin=2)
-    except (OSError, ValueError) as e:
-        sys.exit(f"depth_bound: {a.shipped}: not depth_lab's prediction file ({e})")
-    if shipped_rows.shape != (len(rows), 2):
-        sys.exit(f"depth_bound: {a.shipped}: {shipped_rows.shape[0]} rows of {shipped_rows.shape[1]}, the dump has {len(rows)} frames of 2 feet")
-    shipped = {tr: np.concatenate([shipped_rows[d["rows"], f] / d["leg"] for f in (0, 1)]) for tr, d in D.items()}
     add("shipped learned table + turning gain (depth_lab)", True, "subject", shipped, F[True])
 for protocol in ("subject", "trial"):
     causal = knn(F[True], protocol)
