@@ -24,7 +24,7 @@ refuses() {  # refuses 'expected message' args...
 refuses "depth_bound: cannot read $work/none.csv: No such file or directory" "$work/none.csv"
 printf 'a,b\n1,2\n' > "$work/columns.csv"
 refuses "depth_bound: $work/columns.csv: not a depth_dump CSV (needs the columns trial, subject, leg, t, hL, hR, zL, zR, turn)" "$work/columns.csv"
-# Line 40 of the file (data row 39): its left ankle height made unreadable, then not finite.
+# A field that is not a number (line 40's left ankle height) and one that is not finite (line 7's right depth).
 awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "hL") c = i } NR == 40 { $c = "abc" } { print }' "$work/dump.csv" > "$work/word.csv"
 refuses "depth_bound: $work/word.csv line 40: field 'hL' is 'abc', not a finite number" "$work/word.csv"
 awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "zR") c = i } NR == 7 { $c = "nan" } { print }' "$work/dump.csv" > "$work/nan.csv"
