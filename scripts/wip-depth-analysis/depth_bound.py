@@ -45,22 +45,29 @@ if not rows or any(k not in rows[0] for k in need):
     sys.exit(f"depth_bound: {a.dump}: not a depth_dump CSV (needs the columns {', '.join(need)})")
 
 
+def finite(text):
+    """The number a CSV field holds, or NaN when it holds none (or an empty field)."""
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return float("nan")
+
+
 def number(i, k):
     """Field k of the dump's data row i (line i + 2 of the file), or a message naming both."""
-    v = rows[i][k]
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        x = float("nan")
+    x = finite(rows[i][k])
     if not np.isfinite(x):
-        sys.exit(f"depth_bound: {a.dump} line {i + 2}: field '{k}' is '{v}', not a finite number")
+        sys.exit(f"depth_bound: {a.dump} line {i + 2}: field '{k}' is '{rows[i][k]}', not a finite number")
     return x
 
 
-trials = sorted(set(r["trial"] for r in rows))
+rows_by_trial = {}  # trial -> the dump's row numbers (depth_lab's lines), in the dump's order
+for i, r in enumerate(rows):
+    rows_by_trial.setdefault(r["trial"], []).append(i)
+trials = sorted(rows_by_trial)
 D = {}
 for tr in trials:
-    rows_of = [i for i, r in enumerate(rows) if r["trial"] == tr]  # the dump's row numbers (depth_lab's lines)
+    rows_of = rows_by_trial[tr]
     col = lambda k: np.array([number(i, k) for i in rows_of])
     D[tr] = dict(subject=rows[rows_of[0]]["subject"], leg=number(rows_of[0], "leg"), t=col("t"),
                  h=np.stack([col("hL"), col("hR")]), z=np.stack([col("zL"), col("zR")]), turn=col("turn"), rows=rows_of)
@@ -190,10 +197,8 @@ if a.shipped:
         sys.exit(f"depth_bound: {a.shipped}: {len(lines)} lines, the dump has {len(rows)} frames (depth_lab writes one line of 2 feet a frame)")
     shipped_rows = np.zeros((len(rows), 2))
     for i, line in enumerate(lines):
-        try:
-            shipped_rows[i] = [float(x) for x in line.split(",")]
-        except ValueError:
-            shipped_rows[i] = np.nan
+        fields = line.split(",")
+        shipped_rows[i] = [finite(x) for x in fields] if len(fields) == 2 else np.nan
         if not np.isfinite(shipped_rows[i]).all():
             sys.exit(f"depth_bound: {a.shipped} line {i + 1}: '{line[:60]}' is not two finite numbers (depth_lab's left,right depths)")
     shipped = {tr: np.concatenate([shipped_rows[d["rows"], f] / d["leg"] for f in (0, 1)]) for tr, d in D.items()}

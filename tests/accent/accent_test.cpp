@@ -1247,9 +1247,7 @@ TEST(AccentShared, ABentOverUsersFeetOnTheFloorStandWhateverTheSynthesisKicks) {
   testing::FloorSlide bent, truth;
   for (const auto& file : fold.held_out) {
     const Motion input = testing::shared_trial(file);
-    Settings cfg;
-    cfg.user_height = measure_body(input.skeleton).standing_height;
-    testing::Avatar avatar(fold.db, cfg);
+    testing::Avatar avatar(fold.db, input);
     avatar.record(input.frame_count(), input.fps);
     const auto frames = tracker_frames_from_motion(input);
     ASSERT_EQ(static_cast<int>(frames.size()), input.frame_count());
@@ -1309,9 +1307,7 @@ TEST(AccentShared, FeetTheBodyComesDownOntoArePlantedWhateverTheirSpeed) {
   double fastest = 0;  // m/s: the fastest of those synthesized ankles, horizontally
   for (const auto& file : fold.held_out) {
     const Motion input = testing::shared_trial(file);
-    Settings cfg;
-    cfg.user_height = measure_body(input.skeleton).standing_height;
-    testing::Avatar avatar(fold.db, cfg);
+    testing::Avatar avatar(fold.db, input);
     const auto frames = tracker_frames_from_motion(input);
     ASSERT_EQ(static_cast<int>(frames.size()), input.frame_count());
     std::array<Vec3, 2> before{};

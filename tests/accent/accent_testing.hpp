@@ -5,6 +5,7 @@
 #include <legwork/accent/offline/run.hpp>
 #include <legwork/core/fk.hpp>
 #include <legwork/core/interpolate.hpp>
+#include <legwork/core/measure.hpp>
 #include <legwork/io/bvh.hpp>
 
 #include "testdata.hpp"
@@ -118,11 +119,20 @@ inline SubjectFold subject_fold(const std::string& data, const std::string& cls,
 
 // One avatar through the runtime contract (model + state + pose buffer), so
 // tests read like the old one-object use: avatar.update(frame), avatar.pose.
+inline Settings for_user(const Motion& user) {
+  Settings s;
+  s.user_height = measure_body(user.skeleton).standing_height;
+  return s;
+}
+
 struct Avatar {
   Model model;
   State state;
   Pose pose;
   Avatar(const Database& db, const Settings& s) : model(make_model(db, s)), state(model), pose(model.neutral()) {}
+  // The default settings for a user of `user`'s standing height (as the
+  // evaluation sets it for a held-out trial).
+  Avatar(const Database& db, const Motion& user) : Avatar(db, for_user(user)) {}
   Info update(const TrackerFrame& f) {
     Info info;
     last_status = accent::update(model, f, state, pose.ref(), &info);
