@@ -37,11 +37,12 @@ bool Avatar::push(const TrackerFrame& f, std::uint64_t seq, SteadyClock::time_po
   std::lock_guard lock(mu_);
   if (closing_) return false;
   ++stats_.received;
-  if (queue_.size() >= kQueueCapacity) {  // latest sample wins: the oldest waiting frame goes
-    queue_.pop_front();
+  if (queue_size_ == kQueueCapacity) {  // latest sample wins: the oldest waiting frame goes
+    queue_head_ = (queue_head_ + 1) % kQueueCapacity;
+    --queue_size_;
     ++stats_.skipped;
   }
-  queue_.push_back({f, seq, received});
+  queue_[(queue_head_ + queue_size_++) % kQueueCapacity] = {f, seq, received};
   if (scheduled_) return false;
   scheduled_ = true;
   return true;
@@ -60,7 +61,7 @@ bool Avatar::close() {
   std::lock_guard lock(mu_);
   if (closing_) return false;
   closing_ = true;
-  queue_.clear();
+  queue_size_ = 0;
   pending_options_.clear();
   if (scheduled_) return false;
   scheduled_ = true;
@@ -91,9 +92,10 @@ bool Avatar::process_one() {
     if (!pending_options_.empty()) {
       opts = pending_options_.front();
       pending_options_.pop_front();
-    } else if (!queue_.empty()) {
-      item = queue_.front();
-      queue_.pop_front();
+    } else if (queue_size_ > 0) {
+      item = queue_[queue_head_];
+      queue_head_ = (queue_head_ + 1) % kQueueCapacity;
+      --queue_size_;
     } else if (closing_ && !finished_) {
       closing = true;
     } else {
@@ -111,7 +113,7 @@ bool Avatar::process_one() {
     run_frame(item);
   }
   std::lock_guard lock(mu_);
-  if (queue_.empty() && pending_options_.empty() && (!closing_ || finished_)) {
+  if (queue_size_ == 0 && pending_options_.empty() && (!closing_ || finished_)) {
     scheduled_ = false;
     return false;
   }

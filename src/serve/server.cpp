@@ -31,6 +31,14 @@ namespace websocket = beast::websocket;
 namespace net = boost::asio;
 using tcp = net::ip::tcp;
 
+// Every connection runs on a strand of the one network thread's io_context, named by its
+// concrete type. Beast's default `tcp_stream` type-erases it (`any_io_executor`), and a
+// strand does not fit the erased executor's inline buffer: each asynchronous step's
+// work guard then allocated a copy (about 17 mallocs a frame, issue 11, session 43).
+using Executor = net::strand<net::io_context::executor_type>;
+using Socket = tcp::socket::rebind_executor<Executor>::other;
+using Stream = beast::basic_stream<tcp, Executor>;
+
 class WsSession;
 
 namespace {
@@ -73,11 +81,18 @@ struct Server::Impl {
 
 class WsSession : public std::enable_shared_from_this<WsSession> {
  public:
-  WsSession(tcp::socket&& s, Server::Impl& srv)
+  WsSession(Socket&& s, Server::Impl& srv)
       : ws_(std::move(s)), srv_(srv), id_(srv.new_session_id()), rate_(srv.opt.max_rate_hz, SteadyClock::now()) {}
 
   void run(http::request<http::string_body> req) {
-    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+    // Beast's handshake and close timeouts (30 s). Its idle timeout re-arms a timer on every
+    // read (a cancelled wait and a new one each frame); the session's own watch_idle() does
+    // that job with one wake-up per quarter of --idle-timeout.
+    auto to = websocket::stream_base::timeout::suggested(beast::role_type::server);
+    to.idle_timeout = websocket::stream_base::none();
+    to.keep_alive_pings = false;
+    ws_.set_option(to);
+    ws_.control_callback([this](websocket::frame_type, beast::string_view) { heard(); });
     ws_.set_option(websocket::stream_base::decorator(
         [](websocket::response_type& r) { r.set(http::field::server, "legwork-serve"); }));
     ws_.read_message_max(srv_.opt.max_message_bytes);
@@ -113,7 +128,38 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
       std::lock_guard lock(srv_.mu);
       srv_.sessions[id_] = weak_from_this();
     }
+    heard();
+    watch_idle();
     read();
+  }
+
+  void heard() {
+    last_heard_ = SteadyClock::now();
+    pinged_ = false;
+  }
+
+  // Idle connections (a client gone without closing its TCP connection): with nothing
+  // received for half of --idle-timeout the session pings; for all of it, it is closed.
+  void watch_idle() {
+    const auto idle = std::chrono::duration<double>(srv_.opt.idle_timeout_seconds);
+    idle_timer_.expires_after(std::chrono::duration_cast<SteadyClock::duration>(idle / 4));
+    idle_timer_.async_wait([self = shared_from_this(), idle](beast::error_code ec) {
+      if (ec || self->closed_) return;
+      const auto quiet = SteadyClock::now() - self->last_heard_;
+      if (quiet >= idle) {
+        if (self->srv_.opt.verbose)
+          std::fprintf(stderr, "legwork serve: %s closed: nothing received for %g s (--idle-timeout)\n", self->id_.c_str(),
+                       self->srv_.opt.idle_timeout_seconds);
+        beast::error_code ignored;
+        beast::get_lowest_layer(self->ws_).socket().close(ignored);  // the pending read ends: finish()
+        return;
+      }
+      if (quiet >= idle / 2 && !self->pinged_) {
+        self->pinged_ = true;
+        self->ws_.async_ping({}, [self](beast::error_code) {});
+      }
+      self->watch_idle();
+    });
   }
 
   void read() {
@@ -125,6 +171,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
       finish();
       return;
     }
+    heard();
     const auto data = buf_.cdata();
     const std::string_view bytes(static_cast<const char*>(data.data()), data.size());
     try {
@@ -228,6 +275,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
 
   void finish() {
     closed_ = true;
+    idle_timer_.cancel();  // its handler holds the session
     if (avatar_) {
       if (avatar_->close()) srv_.workers.schedule(avatar_);
       if (srv_.vmc) srv_.vmc->release(avatar_.get());
@@ -241,7 +289,10 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     }
   }
 
-  websocket::stream<beast::tcp_stream> ws_;
+  websocket::stream<Stream> ws_;
+  net::basic_waitable_timer<SteadyClock, net::wait_traits<SteadyClock>, Executor> idle_timer_{ws_.get_executor()};
+  SteadyClock::time_point last_heard_{};
+  bool pinged_ = false;
   beast::flat_buffer buf_;
   Server::Impl& srv_;
   std::string id_;
@@ -258,7 +309,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(tcp::socket&& s, Server::Impl& srv) : stream_(std::move(s)), srv_(srv) {}
+  HttpSession(Socket&& s, Server::Impl& srv) : stream_(std::move(s)), srv_(srv) {}
   void run() { read(); }
 
  private:
@@ -309,7 +360,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     });
   }
 
-  beast::tcp_stream stream_;
+  Stream stream_;
   beast::flat_buffer buf_;
   Server::Impl& srv_;
   std::optional<http::request_parser<http::string_body>> parser_;
@@ -341,6 +392,8 @@ Server::Impl::Impl(ServeOptions o) : opt(std::move(o)), workers(opt.workers) {
   api.trials_dir = opt.trials_dir;
   if (!(opt.max_rate_hz > 0)) throw Error("--max-rate must be positive");
   if (opt.max_sessions < 1) throw Error("--max-sessions must be at least 1");
+  if (!(opt.idle_timeout_seconds >= 0.1 && opt.idle_timeout_seconds <= 604800))
+    throw Error("--idle-timeout must be between 0.1 and 604800 seconds (a week)");
   beast::error_code ec;
   const auto addr = net::ip::make_address(opt.host, ec);
   if (ec) throw Error("--host '" + opt.host + "' is not an IP address");
@@ -354,7 +407,7 @@ Server::Impl::Impl(ServeOptions o) : opt(std::move(o)), workers(opt.workers) {
 }
 
 void Server::Impl::accept() {
-  acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket s) {
+  acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, Socket s) {
     if (!acceptor.is_open()) return;
     if (!ec) {
       beast::error_code ignored;

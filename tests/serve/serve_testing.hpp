@@ -95,7 +95,7 @@ class Client {
     if (!result) {
       beast::get_lowest_layer(ws_).cancel();
       ioc_.restart();
-      ioc_.run();
+      ioc_.run_for(timeout);  // bounded: an operation suspended inside Beast is not cancelled
       return std::nullopt;
     }
     if (*result) {

@@ -257,6 +257,42 @@ TEST(Serve, ClientVanishingMidStreamDoesNotDisturbOthers) {
   expect_alive(keeper, 0.2);
 }
 
+// --idle-timeout: a client that sends nothing and answers no ping (gone without closing
+// its TCP connection) is closed; one that streams, and one that only listens (its
+// WebSocket answers the server's ping, as a paused browser's does), stay.
+TEST(Serve, SilentConnectionsArePingedThenClosedAfterTheIdleTimeout) {
+  ServeOptions o = test_options();
+  o.idle_timeout_seconds = 1.0;
+  RunningServer srv(o);
+  Client silent(srv.port()), listening(srv.port()), streaming(srv.port());
+  silent.hello();
+  listening.hello();
+  streaming.hello();
+  std::optional<Client::Message> heard;
+  std::thread listener([&] { heard = listening.read(std::chrono::milliseconds(20000)); });
+  const auto frames = trial_frames();
+  const auto start = std::chrono::steady_clock::now();
+  std::uint64_t closed_at_half = 0;
+  for (std::size_t i = 0; std::chrono::steady_clock::now() - start < std::chrono::milliseconds(3000); ++i) {
+    streaming.send_text(json_frame(frames[i]));
+    streaming.expect("pose");
+    if (closed_at_half == 0 && std::chrono::steady_clock::now() - start > std::chrono::milliseconds(500))
+      closed_at_half = srv.server().stats().sessions_closed + 1;  // +1: taken
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  const ServerStats st = srv.server().stats();
+  EXPECT_EQ(closed_at_half, 1u) << "a session closed within half the idle timeout";
+  EXPECT_EQ(st.sessions_closed, 1u);
+  EXPECT_EQ(st.live_sessions, 2);
+  expect_alive(streaming, 100.0);
+  EXPECT_FALSE(silent.read(std::chrono::milliseconds(1000)));
+  EXPECT_TRUE(silent.error()) << "the silent client's connection is still open";
+  srv.stop();  // the listening client's read ends with the server's close (going away)
+  listener.join();
+  EXPECT_FALSE(heard) << "the listening client got a message: " << heard->data;
+  EXPECT_EQ(listening.close_code(), static_cast<int>(websocket::close_code::going_away));
+}
+
 TEST(Serve, ThousandConnectDisconnectCyclesWhileAnotherClientStreams) {
   RunningServer srv;
   Client keeper(srv.port());

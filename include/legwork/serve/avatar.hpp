@@ -6,6 +6,7 @@
 #include <legwork/serve/methods.hpp>
 #include <legwork/serve/protocol.hpp>
 
+#include <array>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -94,7 +95,9 @@ class Avatar {
   RecordSpec record_;
 
   mutable std::mutex mu_;
-  std::deque<Item> queue_;
+  // The waiting frames: a ring of kQueueCapacity (no allocation per frame).
+  std::array<Item, kQueueCapacity> queue_{};
+  std::size_t queue_head_ = 0, queue_size_ = 0;
   std::deque<OptionsUpdate> pending_options_;
   bool scheduled_ = false, closing_ = false, finished_ = false;
   AvatarStats stats_;

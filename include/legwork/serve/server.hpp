@@ -28,6 +28,7 @@ struct ServeOptions {
   std::size_t max_message_bytes = 64 * 1024;
   std::string record_dir;     // record sessions here ("" = off)
   double record_max_seconds = 300;
+  double idle_timeout_seconds = 300;  // a WebSocket with nothing received this long is closed (pinged at half)
   int workers = 1;            // synthesis threads
   bool verbose = false;
 };
