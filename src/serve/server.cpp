@@ -154,9 +154,9 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
         beast::get_lowest_layer(self->ws_).socket().close(ignored);  // the pending read ends: finish()
         return;
       }
-      if (quiet >= idle / 2 && !self->pinged_) {
-        self->pinged_ = true;
-        self->ws_.async_ping({}, [self](beast::error_code) {});
+      if (quiet >= idle / 2 && !self->pinged_ && !self->ping_in_flight_) {  // Beast takes one ping at a time
+        self->pinged_ = self->ping_in_flight_ = true;
+        self->ws_.async_ping({}, [self](beast::error_code) { self->ping_in_flight_ = false; });
       }
       self->watch_idle();
     });
@@ -292,7 +292,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   websocket::stream<Stream> ws_;
   net::basic_waitable_timer<SteadyClock, net::wait_traits<SteadyClock>, Executor> idle_timer_{ws_.get_executor()};
   SteadyClock::time_point last_heard_{};
-  bool pinged_ = false;
+  bool pinged_ = false, ping_in_flight_ = false;  // pinged in this quiet spell; a ping not yet written
   beast::flat_buffer buf_;
   Server::Impl& srv_;
   std::string id_;
