@@ -47,7 +47,7 @@ void register_serve(CLI::App& app) {
   cmd->add_option("--max-rate", o->max_rate_hz, "most frames per second of a session's own time stamps (above: dropped; wall-clock ceiling twice this)")->capture_default_str()->check(positive_number());
   cmd->add_option("--record", o->record_dir, "record each session here when it ends: input as tracker CSV, output as BVH");
   cmd->add_option("--record-max-seconds", o->record_max_seconds, "longest recording per session")->capture_default_str()->check(positive_number());
-  cmd->add_option("--idle-timeout", o->idle_timeout_seconds, "seconds a WebSocket may send nothing before it is closed (pinged at half of it)")->capture_default_str()->check(CLI::Range(0.1, 604800.0));
+  cmd->add_option("--idle-timeout", o->idle_timeout_seconds, "seconds a WebSocket may send nothing before it is closed (pinged at half of it)")->capture_default_str()->check(CLI::Range(serve::kMinIdleTimeoutSeconds, serve::kMaxIdleTimeoutSeconds));
   cmd->add_option("--workers", o->workers, "synthesis threads (0: synthesize on the network thread, fastest for one process per core)")->capture_default_str()->check(CLI::Range(0, 256));
   cmd->add_flag("--verbose", o->verbose, "log sessions to stderr");
   cmd->callback([o] {

@@ -392,7 +392,7 @@ Server::Impl::Impl(ServeOptions o) : opt(std::move(o)), workers(opt.workers) {
   api.trials_dir = opt.trials_dir;
   if (!(opt.max_rate_hz > 0)) throw Error("--max-rate must be positive");
   if (opt.max_sessions < 1) throw Error("--max-sessions must be at least 1");
-  if (!(opt.idle_timeout_seconds >= 0.1 && opt.idle_timeout_seconds <= 604800))
+  if (!(opt.idle_timeout_seconds >= kMinIdleTimeoutSeconds && opt.idle_timeout_seconds <= kMaxIdleTimeoutSeconds))
     throw Error("--idle-timeout must be between 0.1 and 604800 seconds (a week)");
   beast::error_code ec;
   const auto addr = net::ip::make_address(opt.host, ec);

@@ -9,6 +9,9 @@
 
 namespace legwork::serve {
 
+// Bounds of ServeOptions::idle_timeout_seconds (--idle-timeout): a tenth of a second to a week.
+inline constexpr double kMinIdleTimeoutSeconds = 0.1, kMaxIdleTimeoutSeconds = 604800;
+
 struct ServeOptions {
   std::string db_path;        // accent database (.lwdb); empty: ik only (needs skeleton_path)
   std::string skeleton_path;  // BVH whose skeleton drives ik when there is no database
