@@ -17,10 +17,15 @@ Quat slerp(const Quat& a, const Quat& b, double t) {
   const double sign = d < 0 ? -1.0 : 1.0;
   d = std::abs(d);
   if (d > 0.9995) return nlerp(a, b, t);  // nearly equal: nlerp is exact enough and stable
-  const double theta = std::acos(std::clamp(d, -1.0, 1.0));
-  const double s = std::sin(theta);
-  const double wa = std::sin((1 - t) * theta) / s;
-  const double wb = sign * std::sin(t * theta) / s;
+  // sin((1 - t) theta) = sin(theta) cos(t theta) - cos(theta) sin(t theta), with
+  // cos(theta) = d and sin(theta) = sqrt(1 - d^2) (>= 0.03 here): one acos and
+  // one sincos instead of an acos and three sines (per joint and frame in the
+  // accentuation's blends, where the four were 5 % of its time).
+  const double theta = std::acos(d);
+  const double s = std::sqrt(1.0 - d * d);
+  const double st = std::sin(t * theta), ct = std::cos(t * theta);
+  const double wa = ct - d * st / s;
+  const double wb = sign * st / s;
   Quat q(a.coeffs() * wa + b.coeffs() * wb);
   q.normalize();
   return q;
